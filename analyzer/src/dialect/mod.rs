@@ -1,0 +1,236 @@
+//! Dialects: the three control languages, their variants/profiles, and the
+//! tables of G and M codes each one knows.
+//!
+//! A dialect is data plus a thin layer of code. The tables live in one file per
+//! dialect ([`servoworks`], [`rs274ngc`], [`fanuc`]) and are consulted by the
+//! static rules, the interpreter and the language server's hover/completion.
+
+pub mod fanuc;
+pub mod rs274ngc;
+pub mod servoworks;
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Dialect {
+    Servoworks,
+    #[default]
+    Rs274ngc,
+    Fanuc,
+}
+
+impl Dialect {
+    pub const ALL: [Dialect; 3] = [Dialect::Servoworks, Dialect::Rs274ngc, Dialect::Fanuc];
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Dialect::Servoworks => "servoworks",
+            Dialect::Rs274ngc => "rs274ngc",
+            Dialect::Fanuc => "fanuc",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Dialect> {
+        Some(match s.trim().to_ascii_lowercase().as_str() {
+            "servoworks" | "sw" => Dialect::Servoworks,
+            "rs274ngc" | "ngc" | "linuxcnc" | "rs274" | "emc2" => Dialect::Rs274ngc,
+            "fanuc" => Dialect::Fanuc,
+            _ => return None,
+        })
+    }
+
+    /// The code table of this dialect.
+    pub fn codes(self) -> &'static [CodeInfo] {
+        match self {
+            Dialect::Servoworks => servoworks::CODES,
+            Dialect::Rs274ngc => rs274ngc::CODES,
+            Dialect::Fanuc => fanuc::CODES,
+        }
+    }
+
+    /// The default variant/profile of this dialect.
+    pub fn default_variant(self) -> Variant {
+        match self {
+            Dialect::Servoworks => Variant::S140M,
+            Dialect::Rs274ngc => Variant::Linuxcnc,
+            Dialect::Fanuc => Variant::Fanuc30i,
+        }
+    }
+}
+
+/// A product variant (ServoWorks) or language profile (RS274/NGC).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Variant {
+    /// ServoWorks S-100M: 3 coordinated axes, no G02.3/G03.3, no G43.2.
+    #[serde(rename = "S-100M", alias = "s100m", alias = "S100M")]
+    S100M,
+    /// ServoWorks S-120M: 4 axes, G02.3/G03.3, no G43.2.
+    #[serde(rename = "S-120M", alias = "s120m", alias = "S120M")]
+    S120M,
+    /// ServoWorks S-140M: 5 axes, everything including G43.2 TCP.
+    #[serde(rename = "S-140M", alias = "s140m", alias = "S140M")]
+    S140M,
+    /// LinuxCNC 2.9 semantics.
+    Linuxcnc,
+    /// The 2007 EMC2 seed's semantics.
+    Emc2,
+    /// FANUC Series 30i (M system).
+    #[serde(rename = "30i", alias = "fanuc30i")]
+    Fanuc30i,
+}
+
+impl Variant {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Variant::S100M => "S-100M",
+            Variant::S120M => "S-120M",
+            Variant::S140M => "S-140M",
+            Variant::Linuxcnc => "linuxcnc",
+            Variant::Emc2 => "emc2",
+            Variant::Fanuc30i => "30i",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Variant> {
+        let k: String = s.chars().filter(|c| *c != '-' && *c != '_').collect::<String>().to_ascii_lowercase();
+        Some(match k.as_str() {
+            "s100m" => Variant::S100M,
+            "s120m" => Variant::S120M,
+            "s140m" => Variant::S140M,
+            "linuxcnc" | "linuxcnc29" => Variant::Linuxcnc,
+            "emc2" => Variant::Emc2,
+            "30i" | "fanuc30i" => Variant::Fanuc30i,
+            _ => return None,
+        })
+    }
+
+    /// The bit of this variant in a [`CodeInfo::variants`] mask.
+    pub const fn bit(self) -> u8 {
+        match self {
+            Variant::S100M => 1,
+            Variant::S120M => 2,
+            Variant::S140M => 4,
+            Variant::Linuxcnc => 8,
+            Variant::Emc2 => 16,
+            Variant::Fanuc30i => 32,
+        }
+    }
+
+    pub fn dialect(self) -> Dialect {
+        match self {
+            Variant::S100M | Variant::S120M | Variant::S140M => Dialect::Servoworks,
+            Variant::Linuxcnc | Variant::Emc2 => Dialect::Rs274ngc,
+            Variant::Fanuc30i => Dialect::Fanuc,
+        }
+    }
+}
+
+/// Variant masks for [`CodeInfo::variants`].
+pub mod variants {
+    pub const S100M: u8 = 1;
+    pub const S120M: u8 = 2;
+    pub const S140M: u8 = 4;
+    pub const ALL_SW: u8 = S100M | S120M | S140M;
+    pub const LINUXCNC: u8 = 8;
+    pub const EMC2: u8 = 16;
+    pub const ALL_NGC: u8 = LINUXCNC | EMC2;
+    pub const FANUC30I: u8 = 32;
+}
+
+/// A G or M code number in tenths: `G2.3` is `CodeNum(23)`, `G54.1` is
+/// `CodeNum(541)`, `M30` is `CodeNum(300)`. Tenths make decimal G codes exact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct CodeNum(pub u32);
+
+impl CodeNum {
+    /// The code for a programmed value, when it is within 0.001 of a tenth
+    /// (the RS274/NGC rule; FANUC and ServoWorks literals are exact anyway).
+    pub fn from_value(v: f64) -> Option<CodeNum> {
+        if !v.is_finite() || v < 0.0 || v > 400_000_000.0 {
+            return None;
+        }
+        let t = v * 10.0;
+        let r = t.round();
+        if (t - r).abs() > 0.001 * 10.0 {
+            return None;
+        }
+        Some(CodeNum(r as u32))
+    }
+
+    pub const fn whole(n: u32) -> CodeNum {
+        CodeNum(n * 10)
+    }
+
+    /// Formats as the dialect writes it: `2`, `2.3`, `54.1`.
+    pub fn display(self) -> String {
+        if self.0 % 10 == 0 {
+            format!("{}", self.0 / 10)
+        } else {
+            format!("{}.{}", self.0 / 10, self.0 % 10)
+        }
+    }
+}
+
+/// What a code does, for the rules that need to know (axis-word consumers,
+/// motion, one-shot).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CodeKind {
+    /// Group-1 style motion (G0, G1, G2, cycles…): consumes axis words.
+    Motion,
+    /// Non-modal code that consumes axis words (G10, G28, G92, G52, G53…).
+    AxisConsumer,
+    /// Modal setting (plane, units, distance mode, …).
+    Modal,
+    /// Non-modal code that does not use axis words (G4 dwell, …).
+    OneShot,
+    /// An M code.
+    Misc,
+}
+
+/// A word a code takes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Param {
+    /// The address letter, upper case.
+    pub letter: char,
+    /// Meaning in our own words.
+    pub doc: &'static str,
+    pub required: bool,
+}
+
+/// One G or M code of one dialect.
+#[derive(Debug, Clone, Copy)]
+pub struct CodeInfo {
+    /// `'G'` or `'M'`.
+    pub letter: char,
+    pub num: CodeNum,
+    /// Modal group as the dialect's manual numbers it (`0` = non-modal / group 00).
+    /// `None` for codes outside every group.
+    pub group: Option<u8>,
+    pub kind: CodeKind,
+    /// Variants that have this code (a [`variants`] mask).
+    pub variants: u8,
+    /// Whether this is the power-on default of its group.
+    pub default: bool,
+    /// One-line summary in our own words.
+    pub summary: &'static str,
+    /// Longer description in our own words (hover text).
+    pub doc: &'static str,
+    pub params: &'static [Param],
+}
+
+impl CodeInfo {
+    pub fn name(&self) -> String {
+        format!("{}{}", self.letter, self.num.display())
+    }
+
+    pub fn on_variant(&self, v: Variant) -> bool {
+        self.variants & v.bit() != 0
+    }
+}
+
+/// Looks a code up in a dialect's table.
+pub fn lookup(dialect: Dialect, letter: char, num: CodeNum) -> Option<&'static CodeInfo> {
+    dialect.codes().iter().find(|c| c.letter == letter && c.num == num)
+}

@@ -1,0 +1,476 @@
+//! Syntax tree types.
+
+use std::sync::Arc;
+
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::span::Span;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum TokenKind {
+    /// Spaces and tabs (and form feeds / vertical tabs).
+    Whitespace,
+    /// `\n`, `\r\n` or `\r`.
+    Newline,
+    /// `( … )`, possibly unclosed.
+    Comment,
+    /// A comment to end of line: `; …` in RS274/NGC, a `%` block-delete line in ServoWorks.
+    LineComment,
+    /// Explicit end of block `;` (ServoWorks, FANUC).
+    Eob,
+    /// A `%` tape/demarcation line.
+    Percent,
+    /// `/` or `/n` block skip at the start of a block.
+    BlockSkip,
+    /// An address letter.
+    Letter,
+    /// A numeric literal (in RS274/NGC and FANUC it may contain blanks).
+    Number,
+    /// `#` introducing a parameter/variable reference.
+    Hash,
+    /// `#<name>` named parameter (RS274/NGC).
+    NamedParam,
+    LBracket,
+    RBracket,
+    /// `+ - * / ** =`
+    Operator,
+    Comma,
+    /// Function, operator and keyword names (`SIN`, `MOD`, `GOTO`, `sub`, …).
+    Keyword,
+    /// A program/subprogram name (`MoveXY`, `<name>`).
+    Name,
+    /// Text the control ignores (ServoWorks lower case, data after `;`, FANUC leader).
+    Ignored,
+    /// Bytes that are not part of the language.
+    Unknown,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Token {
+    pub start: u32,
+    pub kind: TokenKind,
+}
+
+/// A numeric literal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num {
+    pub value: f64,
+    pub span: Span,
+    /// Whether the literal has a decimal point (`10.` or `1.5`).
+    pub has_point: bool,
+    /// Whether an explicit `+` or `-` sign was written.
+    pub signed: bool,
+    /// Number of digits written (integer + fraction).
+    pub digits: u16,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ExprId(pub u32);
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BinOp {
+    Add,
+    Sub,
+    Mul,
+    Div,
+    Mod,
+    Pow,
+    And,
+    Or,
+    Xor,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+}
+
+impl BinOp {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Mod => "MOD",
+            BinOp::Pow => "**",
+            BinOp::And => "AND",
+            BinOp::Or => "OR",
+            BinOp::Xor => "XOR",
+            BinOp::Eq => "EQ",
+            BinOp::Ne => "NE",
+            BinOp::Gt => "GT",
+            BinOp::Ge => "GE",
+            BinOp::Lt => "LT",
+            BinOp::Le => "LE",
+        }
+    }
+
+    pub fn is_relational(self) -> bool {
+        matches!(self, BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Ge | BinOp::Lt | BinOp::Le)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Func {
+    Abs,
+    Acos,
+    Asin,
+    Atan,
+    Cos,
+    Exp,
+    Fix,
+    Fup,
+    Ln,
+    Round,
+    Sin,
+    Sqrt,
+    Tan,
+    Exists,
+    Bin,
+    Bcd,
+    Pow,
+    Adp,
+}
+
+impl Func {
+    pub fn from_name(name: &str) -> Option<Func> {
+        Some(match name.to_ascii_uppercase().as_str() {
+            "ABS" => Func::Abs,
+            "ACOS" => Func::Acos,
+            "ASIN" => Func::Asin,
+            "ATAN" => Func::Atan,
+            "COS" => Func::Cos,
+            "EXP" => Func::Exp,
+            "FIX" => Func::Fix,
+            "FUP" => Func::Fup,
+            "LN" => Func::Ln,
+            "ROUND" => Func::Round,
+            "SIN" => Func::Sin,
+            "SQRT" => Func::Sqrt,
+            "TAN" => Func::Tan,
+            "EXISTS" => Func::Exists,
+            "BIN" => Func::Bin,
+            "BCD" => Func::Bcd,
+            "POW" => Func::Pow,
+            "ADP" => Func::Adp,
+            _ => return None,
+        })
+    }
+
+    /// Whether the dialect has this function.
+    pub fn in_dialect(self, d: Dialect) -> bool {
+        match self {
+            Func::Exists => d == Dialect::Rs274ngc,
+            Func::Bin | Func::Bcd | Func::Pow | Func::Adp => d != Dialect::Rs274ngc,
+            _ => true,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Expr {
+    Num(Num),
+    /// `#n`, `##n`, `#[expr]`: the variable whose number is the value of `index`.
+    Var { index: ExprId },
+    /// `#<name>`; the span of the whole token.
+    Named { name: Span },
+    /// Unary minus or plus.
+    Neg { arg: ExprId },
+    Plus { arg: ExprId },
+    Binary { op: BinOp, lhs: ExprId, rhs: ExprId },
+    /// `NAME[a]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
+    Call { func: Func, arg: ExprId, arg2: Option<ExprId> },
+    /// `[ inner ]`
+    Group { inner: ExprId },
+    /// Something that could not be parsed; a diagnostic was emitted.
+    Error,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExprNode {
+    pub expr: Expr,
+    pub span: Span,
+}
+
+/// The value of a word.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WordValue {
+    Num(Num),
+    /// A parameter, expression or function value.
+    Expr(ExprId),
+    /// A name (`M98 PMoveXY` in ServoWorks).
+    Name(Span),
+    /// `S2_1500` (ServoWorks multi-spindle): spindle number and speed.
+    Indexed(u32, Num),
+    /// The letter had no value; a diagnostic was emitted.
+    Missing,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Word {
+    /// Upper-case address letter (`b'$'`, `b'@'`, `b'^'` for RS274/NGC's extra words).
+    pub letter: u8,
+    /// Written after a comma (`,C` / `,R` chamfer and corner in FANUC).
+    pub comma: bool,
+    pub letter_span: Span,
+    pub value: WordValue,
+}
+
+impl Word {
+    /// The literal numeric value, if the word has one.
+    pub fn num(&self) -> Option<&Num> {
+        match &self.value {
+            WordValue::Num(n) | WordValue::Indexed(_, n) => Some(n),
+            _ => None,
+        }
+    }
+
+    pub fn letter_char(&self) -> char {
+        self.letter as char
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum CommentKind {
+    Plain,
+    Msg,
+    Debug,
+    Print,
+    Log,
+    LogOpen,
+    LogAppend,
+    LogClose,
+    Abort,
+    ProbeOpen,
+    ProbeClose,
+    Py,
+    /// `(partscope: …)` directive.
+    Partscope,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum OKeyword {
+    Sub,
+    Endsub,
+    Return,
+    Call,
+    Do,
+    While,
+    Endwhile,
+    Break,
+    Continue,
+    If,
+    Elseif,
+    Else,
+    Endif,
+    Repeat,
+    Endrepeat,
+}
+
+impl OKeyword {
+    pub fn from_name(s: &str) -> Option<OKeyword> {
+        Some(match s.to_ascii_lowercase().as_str() {
+            "sub" => OKeyword::Sub,
+            "endsub" => OKeyword::Endsub,
+            "return" => OKeyword::Return,
+            "call" => OKeyword::Call,
+            "do" => OKeyword::Do,
+            "while" => OKeyword::While,
+            "endwhile" => OKeyword::Endwhile,
+            "break" => OKeyword::Break,
+            "continue" => OKeyword::Continue,
+            "if" => OKeyword::If,
+            "elseif" => OKeyword::Elseif,
+            "else" => OKeyword::Else,
+            "endif" => OKeyword::Endif,
+            "repeat" => OKeyword::Repeat,
+            "endrepeat" => OKeyword::Endrepeat,
+            _ => return None,
+        })
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            OKeyword::Sub => "sub",
+            OKeyword::Endsub => "endsub",
+            OKeyword::Return => "return",
+            OKeyword::Call => "call",
+            OKeyword::Do => "do",
+            OKeyword::While => "while",
+            OKeyword::Endwhile => "endwhile",
+            OKeyword::Break => "break",
+            OKeyword::Continue => "continue",
+            OKeyword::If => "if",
+            OKeyword::Elseif => "elseif",
+            OKeyword::Else => "else",
+            OKeyword::Endif => "endif",
+            OKeyword::Repeat => "repeat",
+            OKeyword::Endrepeat => "endrepeat",
+        }
+    }
+}
+
+/// The label of an O-word: `o100` or `o<name>`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OLabel {
+    Number(u32),
+    /// Span of the name between `<` and `>`.
+    Name(Span),
+    /// Computed label (`o#1`, `o[…]`).
+    Expr(ExprId),
+    Missing,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OWord {
+    pub label: OLabel,
+    pub label_span: Span,
+    pub keyword: Option<OKeyword>,
+    pub keyword_span: Span,
+    /// Range into [`Program::expr_lists`].
+    pub args: (u32, u32),
+}
+
+/// FANUC Custom Macro B (and ServoWorks macro) statements.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MacroStmt {
+    /// `GOTO n`
+    Goto { target: ExprId },
+    /// `IF [cond] GOTO n`
+    IfGoto { cond: ExprId, target: ExprId },
+    /// `IF [cond] THEN` — the statement follows as the next item of the block.
+    IfThen { cond: ExprId },
+    /// `WHILE [cond] DO m`
+    While { cond: ExprId, m: ExprId },
+    /// `DO m` without WHILE (endless loop).
+    Do { m: ExprId },
+    /// `END m`
+    End { m: ExprId },
+    /// `POPEN`, `PCLOS`, `DPRNT[…]`, `BPRNT[…]`: external output, not interpreted.
+    Output,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ItemKind {
+    Word(Word),
+    /// `#n = expr` / `#<name> = expr`; `target` is a `Var` or `Named` node.
+    Assign { target: ExprId, value: ExprId },
+    Comment(CommentKind),
+    OWord(OWord),
+    Macro(MacroStmt),
+    /// A program head: `O1234`, `:1234`, `OMoveXY`, `<name>`. `name` is the span of the
+    /// number or name after the `O`.
+    ProgramHead { name: Span, number: Option<u32> },
+    /// Input that could not be parsed (a diagnostic was emitted).
+    Error,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Item {
+    pub kind: ItemKind,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum BlockKind {
+    Normal,
+    /// A `%` line (tape start/end or RS274/NGC demarcation).
+    Percent,
+    /// A ServoWorks `%` block-delete line: a comment.
+    Deleted,
+    /// FANUC leader after the first `%`, or text after the closing `%`.
+    Ignored,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Block {
+    /// The block's content, without its terminator.
+    pub span: Span,
+    /// The terminator: newline, `;`, `;` + newline, or empty at end of file.
+    pub end: Span,
+    /// 0-based physical line of the block's first byte.
+    pub line: u32,
+    pub kind: BlockKind,
+    /// Block skip `/` or `/n`: its span and switch number (1 for a bare `/`).
+    pub skip: Option<(Span, u8)>,
+    /// Range into [`Program::items`].
+    pub items: (u32, u32),
+}
+
+impl Block {
+    pub fn full_span(&self) -> Span {
+        self.span.cover(self.end)
+    }
+}
+
+/// A parsed file: flat vectors indexed by `u32`.
+#[derive(Debug, Clone)]
+pub struct Program {
+    pub dialect: Dialect,
+    pub text: Arc<[u8]>,
+    pub tokens: Vec<Token>,
+    pub blocks: Vec<Block>,
+    pub items: Vec<Item>,
+    pub exprs: Vec<ExprNode>,
+    pub expr_lists: Vec<ExprId>,
+    /// Syntax diagnostics.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl Program {
+    pub fn items_of(&self, block: &Block) -> &[Item] {
+        self.items.get(block.items.0 as usize..block.items.1 as usize).unwrap_or(&[])
+    }
+
+    pub fn expr(&self, id: ExprId) -> &ExprNode {
+        static ERROR: ExprNode = ExprNode { expr: Expr::Error, span: Span { start: 0, end: 0 } };
+        self.exprs.get(id.0 as usize).unwrap_or(&ERROR)
+    }
+
+    pub fn expr_list(&self, range: (u32, u32)) -> &[ExprId] {
+        self.expr_lists.get(range.0 as usize..range.1 as usize).unwrap_or(&[])
+    }
+
+    pub fn slice(&self, span: Span) -> &[u8] {
+        span.slice(&self.text)
+    }
+
+    /// The text of a span, lossily decoded.
+    pub fn str_of(&self, span: Span) -> std::borrow::Cow<'_, str> {
+        String::from_utf8_lossy(self.slice(span))
+    }
+
+    pub fn token_span(&self, i: usize) -> Span {
+        let start = self.tokens[i].start;
+        let end = self.tokens.get(i + 1).map(|t| t.start).unwrap_or(self.text.len() as u32);
+        Span::new(start, end)
+    }
+
+    /// Reassembles the source from the tokens. Equal to the input for every input.
+    pub fn print(&self) -> Vec<u8> {
+        let mut out = Vec::with_capacity(self.text.len());
+        for i in 0..self.tokens.len() {
+            out.extend_from_slice(self.token_span(i).slice(&self.text));
+        }
+        out
+    }
+
+    /// The words of a block.
+    pub fn words<'a>(&'a self, block: &'a Block) -> impl Iterator<Item = (&'a Item, &'a Word)> + 'a {
+        self.items_of(block).iter().filter_map(|it| match &it.kind {
+            ItemKind::Word(w) => Some((it, w)),
+            _ => None,
+        })
+    }
+
+    /// The index of the block containing `offset` (binary search).
+    pub fn block_at(&self, offset: u32) -> Option<usize> {
+        if self.blocks.is_empty() {
+            return None;
+        }
+        let i = self.blocks.partition_point(|b| b.span.start <= offset);
+        Some(i.saturating_sub(1))
+    }
+}

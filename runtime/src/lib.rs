@@ -1,0 +1,1 @@
+//! Partscope runtime: interpreter, interpolator and motion planner. Pure: no IO.
