@@ -1,0 +1,82 @@
+//! What a rule sees: the program, the block, the analysis settings and the
+//! G/M codes of the block already looked up in the dialect table.
+
+use crate::dialect::{self, CodeInfo, CodeNum};
+use crate::settings::Settings;
+use crate::span::Span;
+use crate::syntax::{Block, ItemKind, Program, WordValue};
+
+/// A G or M word of a block with a literal value, looked up in the dialect table.
+#[derive(Debug, Clone, Copy)]
+pub struct BlockCode {
+    /// Index of the item within the block's items.
+    pub item: usize,
+    /// `'G'` or `'M'`.
+    pub letter: char,
+    /// `None` when the value is not a valid code number (negative, too many decimals).
+    pub num: Option<CodeNum>,
+    /// The table entry, when the dialect knows the code.
+    pub info: Option<&'static CodeInfo>,
+    /// The whole word.
+    pub span: Span,
+}
+
+impl BlockCode {
+    pub fn is(&self, letter: char, tenths: u32) -> bool {
+        self.letter == letter && self.num == Some(CodeNum(tenths))
+    }
+
+    pub fn group(&self) -> Option<u8> {
+        self.info.and_then(|i| i.group)
+    }
+}
+
+pub struct BlockCx<'a> {
+    pub program: &'a Program,
+    pub block: &'a Block,
+    /// Index of the block in `program.blocks`.
+    pub index: usize,
+    pub settings: &'a Settings,
+    pub codes: &'a [BlockCode],
+}
+
+impl<'a> BlockCx<'a> {
+    pub fn items(&self) -> &'a [crate::syntax::Item] {
+        self.program.items_of(self.block)
+    }
+
+    pub fn has_code(&self, letter: char, tenths: u32) -> bool {
+        self.codes.iter().any(|c| c.is(letter, tenths))
+    }
+
+    /// The words of this block.
+    pub fn words(&self) -> impl Iterator<Item = (&'a crate::syntax::Item, &'a crate::syntax::Word)> + 'a {
+        self.program.words(self.block)
+    }
+
+    pub fn word(&self, letter: u8) -> Option<&'a crate::syntax::Word> {
+        self.words().find(|(_, w)| w.letter == letter && !w.comma).map(|(_, w)| w)
+    }
+}
+
+pub struct ProgramCx<'a> {
+    pub program: &'a Program,
+    pub settings: &'a Settings,
+}
+
+/// Collects the literal G and M codes of a block.
+pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>) {
+    for (i, item) in program.items_of(block).iter().enumerate() {
+        let ItemKind::Word(w) = &item.kind else { continue };
+        if w.comma || !(w.letter == b'G' || w.letter == b'M') {
+            continue;
+        }
+        let letter = w.letter as char;
+        let num = match &w.value {
+            WordValue::Num(n) if !n.signed || n.value >= 0.0 => CodeNum::from_value(n.value),
+            _ => None,
+        };
+        let info = num.and_then(|n| dialect::lookup(program.dialect, letter, n));
+        out.push(BlockCode { item: i, letter, num, info, span: item.span });
+    }
+}

@@ -1,0 +1,120 @@
+//! Static (block-local and whole-file, no execution) rules, and the rule
+//! metadata type shared with the runtime's flow-sensitive rules.
+//!
+//! Shape (after ruff and Biome): one file per rule, named for what it flags,
+//! declared with [`declare_rule!`]; its doc comment (`## What it does`,
+//! `## Why is this bad?`, `## Example`, `Use instead:`, `## Dialects`,
+//! `Implements: …`) is the text of `partscope rule CODE`, of the LSP hover on a
+//! diagnostic and of the generated docs, and its examples are tested.
+//!
+//! Code letters: `L` lexical/format (emitted by the parser), `G` G/M code
+//! tables, `W` words of a block, `P` program structure, `S` style (off by
+//! default). The runtime uses `A` arcs, `C` canned cycles, `T` tool
+//! compensation, `K` coordinates/kinematics/limits, `D` look-ahead modes,
+//! `F` flow/subprograms/feed, `X` execution.
+
+pub mod context;
+pub mod registry;
+mod syntax_rules;
+
+pub use context::{BlockCode, BlockCx, ProgramCx};
+
+use crate::diagnostic::Diagnostic;
+
+/// Where a rule's check runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Origin {
+    /// Emitted by the parser.
+    Syntax,
+    /// A static rule in `analyzer::rules`.
+    Static,
+    /// A flow-sensitive rule in `runtime`.
+    Runtime,
+}
+
+/// Metadata of one rule. The `doc` is the rule's doc comment.
+#[derive(Debug)]
+pub struct RuleMeta {
+    pub code: &'static str,
+    /// kebab-case name, e.g. `modal-group-conflict`.
+    pub name: &'static str,
+    pub summary: &'static str,
+    pub doc: &'static str,
+    /// Spec catalogue ids this rule implements (`SW006`, `NGC105`, `FAN020`).
+    pub implements: &'static [&'static str],
+    pub origin: Origin,
+    /// Style advice is off unless selected.
+    pub default_enabled: bool,
+}
+
+/// A static rule: checks one block at a time, or the whole file.
+pub trait Rule: Sync {
+    fn meta(&self) -> &'static RuleMeta;
+
+    fn check_block(&self, _cx: &BlockCx<'_>, _out: &mut Vec<Diagnostic>) {}
+
+    fn check_program(&self, _cx: &ProgramCx<'_>, _out: &mut Vec<Diagnostic>) {}
+}
+
+/// Declares a rule's metadata from its doc comment.
+///
+/// ```text
+/// declare_rule! {
+///     /// ## What it does
+///     /// …
+///     pub static MODAL_GROUP_CONFLICT = {
+///         code: "G001",
+///         name: "modal-group-conflict",
+///         summary: "Two G codes of one modal group in a block",
+///         implements: &["SW006", "NGC020"],
+///         origin: Static,
+///         default_enabled: true,
+///     }
+/// }
+/// ```
+#[macro_export]
+macro_rules! declare_rule {
+    (
+        $(#[doc = $doc:expr])*
+        $vis:vis static $ident:ident = {
+            code: $code:expr,
+            name: $name:expr,
+            summary: $summary:expr,
+            implements: $implements:expr,
+            origin: $origin:ident,
+            default_enabled: $enabled:expr $(,)?
+        }
+    ) => {
+        $(#[doc = $doc])*
+        $vis static $ident: $crate::rules::RuleMeta = $crate::rules::RuleMeta {
+            code: $code,
+            name: $name,
+            summary: $summary,
+            doc: concat!($($doc, "\n"),*),
+            implements: $implements,
+            origin: $crate::rules::Origin::$origin,
+            default_enabled: $enabled,
+        };
+    };
+}
+
+/// Runs every enabled static rule over a parsed program.
+pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+    let rules = registry::STATIC_RULES;
+    let enabled: Vec<&&dyn Rule> = rules.iter().filter(|r| cx.settings.rule_enabled(r.meta())).collect();
+    if enabled.is_empty() {
+        return;
+    }
+    let mut codes = Vec::new();
+    for (i, block) in cx.program.blocks.iter().enumerate() {
+        codes.clear();
+        context::collect_codes(cx.program, block, &mut codes);
+        let bcx = BlockCx { program: cx.program, block, index: i, settings: cx.settings, codes: &codes };
+        for r in &enabled {
+            r.check_block(&bcx, out);
+        }
+    }
+    for r in &enabled {
+        r.check_program(cx, out);
+    }
+}

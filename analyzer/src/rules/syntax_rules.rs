@@ -1,0 +1,427 @@
+//! Metadata of the diagnostics the parser emits (their checks live in
+//! [`crate::syntax`], where the text is read).
+
+use crate::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a `(` comment that is not closed by `)` before the end of the block.
+    ///
+    /// ## Why is this bad?
+    /// Comments never span blocks. RS274/NGC refuses the line (`Unclosed comment found`),
+    /// FANUC raises a format alarm, and on ServoWorks the words you meant to follow the
+    /// comment are swallowed by it.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G0 X10 (rapid to start
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G0 X10 (rapid to start)
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error everywhere. A quick fix appends the missing `)`.
+    ///
+    /// Implements: SW010, NGC001, FAN010
+    pub static UNCLOSED_COMMENT = {
+        code: "L001",
+        name: "unclosed-comment",
+        summary: "Comment not closed before the end of the block",
+        implements: &["SW010", "NGC001", "FAN010"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a `(` inside a comment.
+    ///
+    /// ## Why is this bad?
+    /// Comments do not nest. LinuxCNC stops with `Nested comment found`; FANUC treats it
+    /// as a format error. The comment ends at the first `)`, so the text after it would be
+    /// read as program words.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G0 X1 (outer (inner) text)
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G0 X1 (outer - inner - text)
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC and FANUC (error). ServoWorks does not define nesting.
+    ///
+    /// Implements: NGC002, FAN011
+    pub static NESTED_COMMENT = {
+        code: "L002",
+        name: "nested-comment",
+        summary: "Comment inside a comment",
+        implements: &["NGC002", "FAN011"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags an address letter with no value after it, such as `X` alone or `G` followed
+    /// by another letter.
+    ///
+    /// ## Why is this bad?
+    /// Every word is a letter followed by a number, a parameter or an expression. A bare
+    /// letter is an alarm on FANUC (PS0005), an error in LinuxCNC, and an unparseable word
+    /// on ServoWorks.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G1 X F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G1 X10 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error.
+    ///
+    /// Implements: SW014, NGC003, FAN005
+    pub static MISSING_VALUE = {
+        code: "L003",
+        name: "missing-value",
+        summary: "Address letter without a value",
+        implements: &["SW014", "NGC003", "FAN005"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags numbers that cannot be read: a sign or point without digits (`X-`, `X.`),
+    /// two decimal points (`X1.2.3`), or a value too large for a double.
+    ///
+    /// ## Why is this bad?
+    /// The control stops with a number-format alarm (LinuxCNC `Bad number format`,
+    /// FANUC PS0007 for two points, PS0003 for too many digits).
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G1 X1.2.5 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G1 X1.25 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error.
+    ///
+    /// Implements: NGC004, FAN007
+    pub static MALFORMED_NUMBER = {
+        code: "L004",
+        name: "malformed-number",
+        summary: "Number that cannot be read",
+        implements: &["NGC004", "FAN007"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags characters that are not part of the language: stray numbers without an
+    /// address, symbols, control or non-ASCII bytes outside comments.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops with `Bad character used`, FANUC with an address alarm. ServoWorks
+    /// silently ignores data it does not recognise, so what you wrote is not executed.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G1 X10 ! F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G1 X10 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored).
+    ///
+    /// Implements: SW008, NGC005, FAN009
+    pub static UNKNOWN_CHARACTER = {
+        code: "L005",
+        name: "unknown-character",
+        summary: "Character that is not part of the language",
+        implements: &["SW008", "NGC005", "FAN009"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a `[` without its matching `]`.
+    ///
+    /// ## Why is this bad?
+    /// The expression cannot be evaluated: LinuxCNC reports `Unclosed expression`, FANUC
+    /// a macro format alarm (PS0114). The rest of the block is not read.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G1 X[1 + 2 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G1 X[1 + 2] F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error.
+    ///
+    /// Implements: NGC006, FAN114
+    pub static UNBALANCED_BRACKET = {
+        code: "L006",
+        name: "unbalanced-bracket",
+        summary: "Unclosed `[` expression",
+        implements: &["NGC006", "FAN114"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a `/` that is not at the start of the block.
+    ///
+    /// ## Why is this bad?
+    /// Block skip (optional skip) is only recognised as the first character of a block.
+    /// ServoWorks reports a parse error for `/` anywhere else; LinuxCNC a bad character;
+    /// on FANUC the effect depends on parameters (skip the rest of the block or alarm).
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// N10 /G01 X1.0 F100
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// /N10 G01 X1.0 F100
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks and RS274/NGC: error. FANUC: warning.
+    ///
+    /// Implements: SW002, NGC007, FAN014
+    pub static MISPLACED_BLOCK_SKIP = {
+        code: "L007",
+        name: "misplaced-block-skip",
+        summary: "`/` not at the start of the block",
+        implements: &["SW002", "NGC007", "FAN014"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags lower-case address letters where the control does not accept them.
+    ///
+    /// ## Why is this bad?
+    /// ServoWorks ignores lower-case letters outside comments and subprogram names, so a
+    /// word like `x10.0` is silently dropped. FANUC programs are upper case by convention;
+    /// most controls accept lower case only with a setting.
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// G01 x10.0 F100.0
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// G01 X10.0 F100.0
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks: warning. FANUC: info. RS274/NGC is case-insensitive.
+    ///
+    /// Implements: SW004, FAN015
+    pub static LOWERCASE = {
+        code: "L008",
+        name: "lowercase-letter",
+        summary: "Lower-case letter the control ignores",
+        implements: &["SW004", "FAN015"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags malformed expressions and statements: an unknown function or operator name,
+    /// a function without `[`, `ATAN` without its `/[x]`, a parameter reference that is not
+    /// an assignment, O-word lines without a known keyword, `IF` without `GOTO`/`THEN`,
+    /// `WHILE` without `DO`.
+    ///
+    /// ## Why is this bad?
+    /// The control cannot evaluate the statement and stops (LinuxCNC: `Unknown operation
+    /// name`, `Equal sign missing in parameter setting`; FANUC PS0114/PS0125).
+    ///
+    /// ## Example
+    /// ```ngc
+    /// #1 = ATAN[1]
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// #1 = ATAN[1]/[1]
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error.
+    ///
+    /// Implements: NGC008, NGC009, FAN125
+    pub static BAD_EXPRESSION = {
+        code: "L010",
+        name: "bad-expression",
+        summary: "Malformed expression or statement",
+        implements: &["NGC008", "NGC009", "FAN125"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a `%` where it has no meaning: not alone on its line (RS274/NGC, FANUC), not
+    /// in the first column (ServoWorks), or a `%` line in an RS274/NGC file that did not
+    /// open with `%`.
+    ///
+    /// ## Why is this bad?
+    /// In ServoWorks a `%` deletes a block only in column 1; elsewhere it is ignored and the
+    /// words after it run, which is rarely what was meant. LinuxCNC reports a bad character.
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// G01 X1.0 % Y2.0 F100.0
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// % G01 X1.0 Y2.0 F100.0
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks: warning. RS274/NGC and FANUC: error.
+    ///
+    /// Implements: SW003, NGC010
+    pub static MISPLACED_PERCENT = {
+        code: "L011",
+        name: "misplaced-percent",
+        summary: "`%` where it has no meaning",
+        implements: &["SW003", "NGC010"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Notes text after a `;` end-of-block marker on a ServoWorks line.
+    ///
+    /// ## Why is this bad?
+    /// The ServoWorks manual writes `;` at the end of blocks but never defines it. Partscope
+    /// reads it as end of block, so what follows on the line is not executed; if you meant
+    /// two blocks, put them on two lines.
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// G80; G00 X0
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// G80
+    /// G00 X0
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks, info.
+    ///
+    /// Implements: SW013
+    pub static TEXT_AFTER_EOB = {
+        code: "L013",
+        name: "text-after-end-of-block",
+        summary: "Text after `;` is not executed",
+        implements: &["SW013"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags expressions nested more deeply than Partscope reads (64 levels).
+    ///
+    /// ## Why is this bad?
+    /// No control accepts such nesting (FANUC allows 5 levels of brackets, PS0118). The
+    /// rest of the block is not analysed.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// #1 = [[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[[1]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]]
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// #1 = [1]
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error.
+    ///
+    /// Implements: FAN118
+    pub static EXPRESSION_TOO_DEEP = {
+        code: "L014",
+        name: "expression-too-deep",
+        summary: "Expression nested too deeply",
+        implements: &["FAN118"],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}

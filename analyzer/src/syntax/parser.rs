@@ -1,0 +1,1349 @@
+//! The parser: one pass over the bytes, emitting tokens (every byte belongs to
+//! exactly one) and the block/item/expression structure at the same time.
+//!
+//! It never fails: anything it does not understand becomes an `Unknown` or
+//! `Ignored` token and an `Error` item with a located diagnostic, and parsing
+//! resumes at the next item.
+
+use std::sync::Arc;
+
+use super::ast::*;
+use crate::diagnostic::{Diagnostic, Severity};
+use crate::dialect::{Dialect, Variant};
+use crate::span::Span;
+
+/// Stable codes of the diagnostics the parser emits; their docs live in the
+/// rule registry ([`crate::rules`]).
+pub mod codes {
+    pub const UNCLOSED_COMMENT: &str = "L001";
+    pub const NESTED_COMMENT: &str = "L002";
+    pub const MISSING_VALUE: &str = "L003";
+    pub const MALFORMED_NUMBER: &str = "L004";
+    pub const UNKNOWN_CHARACTER: &str = "L005";
+    pub const UNBALANCED_BRACKET: &str = "L006";
+    pub const MISPLACED_BLOCK_SKIP: &str = "L007";
+    pub const LOWERCASE: &str = "L008";
+    pub const BAD_EXPRESSION: &str = "L010";
+    pub const MISPLACED_PERCENT: &str = "L011";
+    pub const TEXT_AFTER_EOB: &str = "L013";
+    pub const EXPRESSION_TOO_DEEP: &str = "L014";
+}
+
+/// Options that change how text is read.
+#[derive(Debug, Clone, Copy)]
+pub struct ParseOptions {
+    pub dialect: Dialect,
+    pub variant: Variant,
+}
+
+impl ParseOptions {
+    pub fn new(dialect: Dialect) -> ParseOptions {
+        ParseOptions { dialect, variant: dialect.default_variant() }
+    }
+}
+
+/// Expressions nested deeper than this are cut off with a diagnostic so that
+/// hostile input cannot overflow the stack.
+const MAX_EXPR_DEPTH: u32 = 64;
+
+/// Parses a whole file.
+pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
+    let text: Arc<[u8]> = text.into();
+    let mut program = Program {
+        dialect: opts.dialect,
+        text: text.clone(),
+        tokens: Vec::with_capacity(text.len() / 3 + 1),
+        blocks: Vec::with_capacity(text.len() / 24 + 1),
+        items: Vec::with_capacity(text.len() / 5 + 1),
+        exprs: Vec::new(),
+        expr_lists: Vec::new(),
+        diagnostics: Vec::new(),
+    };
+    let mut parser = Parser::new(opts, text);
+    parser.parse_blocks(&mut program, usize::MAX);
+    program
+}
+
+/// A resumable parser over one file's text.
+pub struct Parser {
+    opts: ParseOptions,
+    text: Arc<[u8]>,
+    pos: usize,
+    line: u32,
+    /// FANUC/RS274NGC: a `%` line has been seen.
+    percent_seen: bool,
+    /// A closing `%` ended the useful content.
+    after_end: bool,
+    /// At least one non-blank line has been seen (RS274/NGC opening `%` rule).
+    seen_content: bool,
+}
+
+/// Per-block working state.
+struct Cx<'p> {
+    p: &'p mut Program,
+    text: Arc<[u8]>,
+    pos: usize,
+    /// Byte where the block ends (before its terminator).
+    limit: usize,
+    dialect: Dialect,
+    depth: u32,
+}
+
+fn is_ws(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | 0x0b | 0x0c)
+}
+
+fn is_digit(b: u8) -> bool {
+    b.is_ascii_digit()
+}
+
+impl Parser {
+    pub fn new(opts: ParseOptions, text: Arc<[u8]>) -> Parser {
+        Parser { opts, text, pos: 0, line: 0, percent_seen: false, after_end: false, seen_content: false }
+    }
+
+    pub fn is_done(&self) -> bool {
+        self.pos >= self.text.len()
+    }
+
+    /// Parses up to `max_blocks` blocks into `program`, appending. Returns the
+    /// number of blocks parsed (0 at end of input).
+    pub fn parse_blocks(&mut self, program: &mut Program, max_blocks: usize) -> usize {
+        let mut n = 0;
+        while n < max_blocks && self.pos < self.text.len() {
+            self.parse_block(program);
+            n += 1;
+        }
+        n
+    }
+
+    /// Finds the end of the current block's content and of its terminator.
+    fn block_bounds(&self) -> (usize, usize, bool) {
+        let t = &self.text;
+        let mut i = self.pos;
+        let semicolon_ends = self.opts.dialect == Dialect::Fanuc;
+        // A comment may contain `;` without ending the block; parentheses do not span lines.
+        let mut in_comment = false;
+        while i < t.len() {
+            match t[i] {
+                b'\n' | b'\r' => break,
+                b'(' => in_comment = true,
+                b')' => in_comment = false,
+                b';' if semicolon_ends && !in_comment => break,
+                _ => {}
+            }
+            i += 1;
+        }
+        let content_end = i;
+        let mut end = i;
+        let mut newline = false;
+        if end < t.len() && t[end] == b';' {
+            end += 1;
+            // `;` directly followed by (blanks and) a newline is one end of block.
+            let mut j = end;
+            while j < t.len() && is_ws(t[j]) {
+                j += 1;
+            }
+            if j < t.len() && (t[j] == b'\n' || t[j] == b'\r') {
+                end = j;
+            }
+        }
+        if end < t.len() && t[end] == b'\r' {
+            end += 1;
+            newline = true;
+            if end < t.len() && t[end] == b'\n' {
+                end += 1;
+            }
+        } else if end < t.len() && t[end] == b'\n' {
+            end += 1;
+            newline = true;
+        }
+        (content_end, end, newline)
+    }
+
+    fn parse_block(&mut self, p: &mut Program) {
+        let start = self.pos;
+        let (content_end, end, newline) = self.block_bounds();
+        let line = self.line;
+        let item_start = p.items.len() as u32;
+        let dialect = self.opts.dialect;
+        let text = self.text.clone();
+        let content = &text[start..content_end];
+        // First and last non-blank bytes decide the line's kind without allocating.
+        let first_nb = content.iter().position(|b| !is_ws(*b));
+        let last_nb = content.iter().rposition(|b| !is_ws(*b));
+        let blank = first_nb.is_none();
+        let first_byte = first_nb.map(|i| content[i]);
+        let only_percent = first_byte == Some(b'%') && first_nb == last_nb;
+
+        let mut kind = BlockKind::Normal;
+        let mut skip = None;
+        let mut cx = Cx { p, text: text.clone(), pos: start, limit: content_end, dialect, depth: 0 };
+
+        if self.after_end {
+            kind = BlockKind::Ignored;
+            if content_end > start {
+                cx.token(start, TokenKind::Ignored);
+            }
+        } else if dialect == Dialect::Servoworks && content.first() == Some(&b'%') {
+            // ServoWorks: `%` in column 1 deletes the whole line, unconditionally.
+            kind = if only_percent { BlockKind::Percent } else { BlockKind::Deleted };
+            cx.token(start, if kind == BlockKind::Percent { TokenKind::Percent } else { TokenKind::LineComment });
+        } else if first_byte == Some(b'%') && (dialect == Dialect::Fanuc || only_percent) {
+            kind = BlockKind::Percent;
+            cx.ws();
+            let pct = cx.pos;
+            cx.token(pct, TokenKind::Percent);
+            cx.pos += 1;
+            if dialect == Dialect::Fanuc && self.percent_seen {
+                self.after_end = true;
+            } else if dialect == Dialect::Rs274ngc {
+                if !self.seen_content {
+                    self.percent_seen = true;
+                } else if self.percent_seen {
+                    self.after_end = true;
+                } else {
+                    cx.diag(
+                        codes::MISPLACED_PERCENT,
+                        Severity::Error,
+                        Span::new(pct as u32, pct as u32 + 1),
+                        "`%` ends the program only when the file opened with a `%` line; here it is an illegal character (rs274: Bad character '%' used)",
+                    );
+                }
+            } else {
+                self.percent_seen = true;
+            }
+            // The rest of the line: FANUC leader / title, otherwise blanks.
+            cx.ws();
+            if cx.pos < content_end {
+                cx.token(cx.pos, TokenKind::Ignored);
+                cx.pos = content_end;
+            }
+        } else {
+            if !blank {
+                self.seen_content = true;
+            }
+            skip = cx.block_start(start);
+            cx.items();
+        }
+        if kind == BlockKind::Normal && !blank {
+            self.seen_content = true;
+        }
+        // Terminator token(s).
+        if end > content_end {
+            let t = &text[content_end..end];
+            let mut off = content_end;
+            if t.first() == Some(&b';') {
+                cx.token(off, TokenKind::Eob);
+                off += 1;
+                let mut j = off;
+                while j < end && is_ws(text[j]) {
+                    j += 1;
+                }
+                if j > off {
+                    cx.token(off, TokenKind::Whitespace);
+                    off = j;
+                }
+            }
+            if off < end {
+                cx.token(off, TokenKind::Newline);
+            }
+        }
+        let item_end = cx.p.items.len() as u32;
+        p.blocks.push(Block {
+            span: Span::new(start as u32, content_end as u32),
+            end: Span::new(content_end as u32, end as u32),
+            line,
+            kind,
+            skip,
+            items: (item_start, item_end),
+        });
+        if newline {
+            self.line += 1;
+        }
+        self.pos = end.max(start + 1).min(text.len());
+        if end == start {
+            // Cannot happen (an empty block at EOF is not parsed), but guard the loop.
+            self.pos = text.len();
+        }
+    }
+}
+
+impl<'p> Cx<'p> {
+    fn at(&self, i: usize) -> Option<u8> {
+        if i < self.limit {
+            self.text.get(i).copied()
+        } else {
+            None
+        }
+    }
+
+    fn peek(&self) -> Option<u8> {
+        self.at(self.pos)
+    }
+
+    /// Starts a token at `start` unless the previous token has the same kind
+    /// and is mergeable (whitespace, unknown runs).
+    fn token(&mut self, start: usize, kind: TokenKind) {
+        let start = start as u32;
+        if let Some(last) = self.p.tokens.last() {
+            if last.start == start {
+                // A zero-length previous token: replace it.
+                let n = self.p.tokens.len();
+                self.p.tokens[n - 1].kind = kind;
+                return;
+            }
+            if last.kind == kind && matches!(kind, TokenKind::Whitespace | TokenKind::Unknown) {
+                return;
+            }
+        }
+        self.p.tokens.push(Token { start, kind });
+    }
+
+    fn diag(&mut self, code: &'static str, sev: Severity, span: Span, msg: impl Into<String>) {
+        self.p.diagnostics.push(Diagnostic::new(code, sev, span, msg));
+    }
+
+    fn push_item(&mut self, kind: ItemKind, start: usize) {
+        let span = Span::new(start as u32, self.pos as u32);
+        self.p.items.push(Item { kind, span });
+    }
+
+    fn push_expr(&mut self, expr: Expr, start: usize) -> ExprId {
+        let id = ExprId(self.p.exprs.len() as u32);
+        self.p.exprs.push(ExprNode { expr, span: Span::new(start as u32, self.pos as u32) });
+        id
+    }
+
+    /// Skips blanks, emitting a whitespace token.
+    fn ws(&mut self) {
+        let s = self.pos;
+        while let Some(b) = self.peek() {
+            if !is_ws(b) {
+                break;
+            }
+            self.pos += 1;
+        }
+        if self.pos > s {
+            self.token(s, TokenKind::Whitespace);
+        }
+    }
+
+    fn sev_for_unknown(&self) -> Severity {
+        match self.dialect {
+            // ServoWorks silently drops data it does not recognise (§3.6).
+            Dialect::Servoworks => Severity::Warning,
+            _ => Severity::Error,
+        }
+    }
+
+    /// Block skip and other things only allowed at the start of a block.
+    fn block_start(&mut self, start: usize) -> Option<(Span, u8)> {
+        if self.dialect != Dialect::Servoworks {
+            self.ws();
+        }
+        if self.peek() != Some(b'/') {
+            return None;
+        }
+        let s = self.pos;
+        if self.dialect == Dialect::Servoworks && s != start {
+            return None;
+        }
+        self.token(s, TokenKind::BlockSkip);
+        self.pos += 1;
+        let mut level = 1u8;
+        if self.dialect == Dialect::Fanuc {
+            if let Some(d) = self.peek().filter(|b| (b'1'..=b'9').contains(b)) {
+                level = d - b'0';
+                self.pos += 1;
+            }
+        }
+        Some((Span::new(s as u32, self.pos as u32), level))
+    }
+
+    fn items(&mut self) {
+        let mut first = true;
+        while self.pos < self.limit {
+            let Some(b) = self.peek() else { break };
+            let start = self.pos;
+            match b {
+                b' ' | b'\t' | 0x0b | 0x0c => self.ws(),
+                b'(' => self.comment(),
+                b';' => self.semicolon(),
+                b'#' => self.assignment(),
+                b'/' => {
+                    let (sev, msg) = match self.dialect {
+                        Dialect::Servoworks => (Severity::Error, "`/` (optional skip) must be the first character of the line; anywhere else the control reports a parse error"),
+                        Dialect::Rs274ngc => (Severity::Error, "`/` is only allowed as the block-delete character at the start of the line (rs274: Bad character '/' used)"),
+                        Dialect::Fanuc => (Severity::Warning, "`/` in the middle of a block: depending on parameters the control skips the rest of the block or rejects it; put block skip at the start of the block"),
+                    };
+                    self.pos += 1;
+                    self.token(start, TokenKind::BlockSkip);
+                    self.diag(codes::MISPLACED_BLOCK_SKIP, sev, Span::new(start as u32, self.pos as u32), msg);
+                    self.push_item(ItemKind::Error, start);
+                }
+                b'%' => {
+                    self.pos += 1;
+                    self.token(start, TokenKind::Unknown);
+                    let (sev, msg) = match self.dialect {
+                        Dialect::Servoworks => (Severity::Warning, "`%` deletes a block only in the first column; here it is ignored and the words after it are executed"),
+                        Dialect::Rs274ngc => (Severity::Error, "`%` must stand alone on its line (rs274: Bad character '%' used)"),
+                        Dialect::Fanuc => (Severity::Error, "`%` marks the start or end of the tape and must stand alone on its line"),
+                    };
+                    self.diag(codes::MISPLACED_PERCENT, sev, Span::new(start as u32, self.pos as u32), msg);
+                    self.push_item(ItemKind::Error, start);
+                }
+                b'<' if self.dialect == Dialect::Fanuc && first => self.fanuc_name_head(),
+                b':' if self.dialect == Dialect::Fanuc => {
+                    // `:` is the ISO synonym of `O` for program numbers.
+                    self.pos += 1;
+                    self.token(start, TokenKind::Letter);
+                    self.program_number(start);
+                }
+                b',' if self.dialect == Dialect::Fanuc
+                    && self.at(self.pos + 1).is_some_and(|c| matches!(c.to_ascii_uppercase(), b'C' | b'R' | b'A')) =>
+                {
+                    self.token(start, TokenKind::Comma);
+                    self.pos += 1;
+                    self.word(true);
+                }
+                b'$' | b'@' | b'^' if self.dialect == Dialect::Rs274ngc => self.word(false),
+                c if c.is_ascii_alphabetic() => self.letter_item(first),
+                _ => self.unknown_run(),
+            }
+            first = false;
+        }
+    }
+
+    fn unknown_run(&mut self) {
+        let start = self.pos;
+        // Consume a run of bytes that cannot start an item, so one stray sequence
+        // gives one diagnostic.
+        while let Some(b) = self.peek() {
+            if b.is_ascii_alphabetic() || matches!(b, b'(' | b';' | b'#' | b'/' | b'%' | b' ' | b'\t') {
+                break;
+            }
+            self.pos += 1;
+        }
+        if self.pos == start {
+            self.pos += 1;
+        }
+        let span = Span::new(start as u32, self.pos as u32);
+        let text = String::from_utf8_lossy(span.slice(&self.text)).into_owned();
+        let sev = self.sev_for_unknown();
+        let msg = match self.dialect {
+            Dialect::Servoworks => format!("unrecognised data `{}` is ignored by the control", printable(&text)),
+            _ => format!("unexpected `{}`: not a word, comment or statement", printable(&text)),
+        };
+        self.token(start, TokenKind::Unknown);
+        self.diag(codes::UNKNOWN_CHARACTER, sev, span, msg);
+        self.push_item(ItemKind::Error, start);
+    }
+
+    fn comment(&mut self) {
+        let start = self.pos;
+        self.pos += 1;
+        let mut closed = false;
+        let mut nested = None;
+        // After a nested `(` (an error in itself) the comment runs to the `)` that
+        // balances it, so the rest of the text is not misread as words.
+        let mut depth = 1u32;
+        while let Some(b) = self.peek() {
+            self.pos += 1;
+            if b == b')' {
+                depth -= 1;
+                if depth == 0 || self.dialect == Dialect::Servoworks {
+                    closed = true;
+                    break;
+                }
+            }
+            if b == b'(' {
+                depth += 1;
+                if nested.is_none() {
+                    nested = Some(self.pos - 1);
+                }
+            }
+        }
+        self.token(start, TokenKind::Comment);
+        let span = Span::new(start as u32, self.pos as u32);
+        if !closed {
+            let sev = Severity::Error;
+            self.diag(codes::UNCLOSED_COMMENT, sev, span, "comment is not closed with `)` before the end of the block");
+            let d = self.p.diagnostics.len() - 1;
+            self.p.diagnostics[d].fixes.push(crate::diagnostic::Fix {
+                title: "Close the comment".into(),
+                edits: vec![crate::diagnostic::TextEdit { span: Span::new(span.end, span.end), new_text: ")".into() }],
+            });
+        }
+        if let Some(n) = nested {
+            if self.dialect != Dialect::Servoworks {
+                self.diag(
+                    codes::NESTED_COMMENT,
+                    Severity::Error,
+                    Span::new(n as u32, n as u32 + 1),
+                    "comments do not nest: `(` inside a comment is an error",
+                );
+            }
+        }
+        let kind = comment_kind(span.slice(&self.text));
+        self.push_item(ItemKind::Comment(kind), start);
+    }
+
+    fn semicolon(&mut self) {
+        let start = self.pos;
+        match self.dialect {
+            Dialect::Rs274ngc => {
+                self.pos = self.limit;
+                self.token(start, TokenKind::LineComment);
+                let kind = comment_kind(Span::new(start as u32, self.pos as u32).slice(&self.text));
+                self.push_item(ItemKind::Comment(kind), start);
+            }
+            _ => {
+                // ServoWorks: `;` ends the block's words; the rest of the line is data the
+                // control does not use (FANUC never gets here: `;` ends its blocks).
+                self.pos += 1;
+                self.token(start, TokenKind::Eob);
+                self.ws();
+                if self.pos < self.limit {
+                    let s = self.pos;
+                    self.pos = self.limit;
+                    self.token(s, TokenKind::Ignored);
+                    self.diag(
+                        codes::TEXT_AFTER_EOB,
+                        Severity::Info,
+                        Span::new(s as u32, self.pos as u32),
+                        "text after `;` is not executed (the manual does not define `;`; it is read as end of block)",
+                    );
+                }
+            }
+        }
+    }
+
+    /// `#… = expr` at item position.
+    fn assignment(&mut self) {
+        let start = self.pos;
+        let target = self.param_ref();
+        self.ws();
+        if self.peek() == Some(b'=') {
+            let s = self.pos;
+            self.pos += 1;
+            self.token(s, TokenKind::Operator);
+            self.ws();
+            // Custom Macro B (and ServoWorks macros) allow an unbracketed expression on the
+            // right-hand side; RS274/NGC requires brackets around operators.
+            let value = if self.dialect == Dialect::Rs274ngc { self.value_expr() } else { self.binary(0) };
+            self.push_item(ItemKind::Assign { target, value }, start);
+        } else {
+            let span = Span::new(start as u32, self.pos as u32);
+            self.diag(
+                codes::BAD_EXPRESSION,
+                Severity::Error,
+                span,
+                "a parameter reference here must be an assignment: `#n = value` (equal sign missing)",
+            );
+            self.push_item(ItemKind::Error, start);
+        }
+    }
+
+    /// `#n`, `##n`, `#[e]`, `#<name>`. The cursor is on `#`.
+    fn param_ref(&mut self) -> ExprId {
+        let start = self.pos;
+        if self.dialect == Dialect::Rs274ngc {
+            // `#<name>`: the name may contain anything but `>`.
+            let mut j = self.pos + 1;
+            while self.at(j).is_some_and(is_ws) {
+                j += 1;
+            }
+            if self.at(j) == Some(b'<') {
+                let mut k = j + 1;
+                while let Some(c) = self.at(k) {
+                    if c == b'>' {
+                        break;
+                    }
+                    k += 1;
+                }
+                if self.at(k) == Some(b'>') {
+                    self.pos = k + 1;
+                    self.token(start, TokenKind::NamedParam);
+                    let name = Span::new(j as u32 + 1, k as u32);
+                    return self.push_expr(Expr::Named { name }, start);
+                }
+                self.pos = self.limit;
+                self.token(start, TokenKind::NamedParam);
+                self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "named parameter is missing its closing `>`");
+                return self.push_expr(Expr::Error, start);
+            }
+        }
+        self.token(start, TokenKind::Hash);
+        self.pos += 1;
+        self.ws();
+        let index = match self.peek() {
+            Some(b'#') => {
+                if self.dialect == Dialect::Fanuc {
+                    let s = self.pos;
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, s as u32 + 1), "`##n` is not allowed in Custom Macro B; write `#[#n]`");
+                }
+                self.param_ref()
+            }
+            Some(b'[') => self.group(),
+            Some(c) if is_digit(c) || c == b'.' => {
+                let n = self.number(false);
+                let s = n.span.start as usize;
+                self.push_expr(Expr::Num(n), s)
+            }
+            Some(b'-') | Some(b'+') => {
+                let n = self.number(true);
+                let s = n.span.start as usize;
+                self.push_expr(Expr::Num(n), s)
+            }
+            _ => {
+                let span = Span::new(start as u32, self.pos as u32);
+                self.diag(codes::MISSING_VALUE, Severity::Error, span, "`#` must be followed by a parameter number, `[expression]` or `<name>`");
+                self.push_expr(Expr::Error, self.pos)
+            }
+        };
+        self.push_expr(Expr::Var { index }, start)
+    }
+
+    /// A numeric literal; `allow_sign` admits a leading `+`/`-`. Blanks inside the
+    /// number are allowed in RS274/NGC and FANUC (they are removed before reading).
+    fn number(&mut self, allow_sign: bool) -> Num {
+        let start = self.pos;
+        let inner_ws = self.dialect != Dialect::Servoworks;
+        let mut s = String::new();
+        let mut digits = 0u16;
+        let mut has_point = false;
+        let mut signed = false;
+        let mut bad = false;
+        let mut end = self.pos;
+        if allow_sign {
+            if let Some(c @ (b'+' | b'-')) = self.peek() {
+                s.push(c as char);
+                signed = true;
+                self.pos += 1;
+                end = self.pos;
+            }
+        }
+        loop {
+            let mut j = self.pos;
+            if inner_ws {
+                while self.at(j).is_some_and(is_ws) {
+                    j += 1;
+                }
+            }
+            match self.at(j) {
+                Some(c) if is_digit(c) => {
+                    s.push(c as char);
+                    digits = digits.saturating_add(1);
+                    self.pos = j + 1;
+                    end = self.pos;
+                }
+                Some(b'.') => {
+                    if has_point {
+                        // A second decimal point: consume the rest of the malformed literal.
+                        bad = true;
+                    }
+                    has_point = true;
+                    s.push('.');
+                    self.pos = j + 1;
+                    end = self.pos;
+                }
+                _ => break,
+            }
+        }
+        self.pos = end;
+        let span = Span::new(start as u32, end as u32);
+        if end > start {
+            self.token(start, TokenKind::Number);
+        }
+        let value = if digits == 0 || bad { None } else { s.parse::<f64>().ok() };
+        let value = match value {
+            Some(v) if v.is_finite() => v,
+            _ => {
+                let what = if bad {
+                    "more than one decimal point in a number"
+                } else if digits == 0 {
+                    "no digits where a number should be"
+                } else {
+                    "number out of range"
+                };
+                let (code, span) = if end == start {
+                    (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
+                } else {
+                    (codes::MALFORMED_NUMBER, span)
+                };
+                self.diag(code, Severity::Error, span, format!("bad number format: {what}"));
+                f64::NAN
+            }
+        };
+        Num { value, span, has_point, signed, digits }
+    }
+
+    /// Reads a real value after a letter: number, `#…`, `[expr]`, function, signed forms.
+    fn value_expr(&mut self) -> ExprId {
+        self.depth += 1;
+        let r = self.value_expr_inner();
+        self.depth -= 1;
+        r
+    }
+
+    fn value_expr_inner(&mut self) -> ExprId {
+        let start = self.pos;
+        if self.depth > MAX_EXPR_DEPTH {
+            self.pos = self.limit;
+            self.token(start, TokenKind::Unknown);
+            self.diag(codes::EXPRESSION_TOO_DEEP, Severity::Error, Span::new(start as u32, self.pos as u32), "expression nested too deeply; the rest of the block is not read");
+            return self.push_expr(Expr::Error, start);
+        }
+        match self.peek() {
+            Some(b'[') => self.group(),
+            Some(b'#') => self.param_ref(),
+            Some(c) if is_digit(c) || c == b'.' => {
+                let n = self.number(false);
+                self.push_expr(Expr::Num(n), start)
+            }
+            Some(c @ (b'+' | b'-')) => {
+                // A sign before a literal belongs to the number; before anything else it is
+                // a unary operator (LinuxCNC 2.9, FANUC).
+                let mut j = self.pos + 1;
+                while self.at(j).is_some_and(is_ws) {
+                    j += 1;
+                }
+                if self.at(j).is_some_and(|d| is_digit(d) || d == b'.') {
+                    let n = self.number(true);
+                    return self.push_expr(Expr::Num(n), start);
+                }
+                self.token(start, TokenKind::Operator);
+                self.pos += 1;
+                self.ws();
+                let arg = self.value_expr();
+                let e = if c == b'-' { Expr::Neg { arg } } else { Expr::Plus { arg } };
+                self.push_expr(e, start)
+            }
+            Some(c) if c.is_ascii_alphabetic() => self.function(),
+            _ => {
+                let span = Span::new(start as u32, start as u32);
+                self.diag(codes::MISSING_VALUE, Severity::Error, span, "a value is missing here");
+                self.push_expr(Expr::Error, start)
+            }
+        }
+    }
+
+    /// `[ expr ]`, cursor on `[`.
+    fn group(&mut self) -> ExprId {
+        let start = self.pos;
+        self.token(start, TokenKind::LBracket);
+        self.pos += 1;
+        self.depth += 1;
+        let inner = self.binary(0);
+        self.depth -= 1;
+        self.ws();
+        if self.peek() == Some(b']') {
+            let s = self.pos;
+            self.token(s, TokenKind::RBracket);
+            self.pos += 1;
+        } else {
+            self.diag(
+                codes::UNBALANCED_BRACKET,
+                Severity::Error,
+                Span::new(start as u32, start as u32 + 1),
+                "unclosed expression: this `[` has no matching `]`",
+            );
+            // Skip to the end of the block so the rest is not misread.
+            if self.pos < self.limit {
+                let s = self.pos;
+                self.pos = self.limit;
+                self.token(s, TokenKind::Unknown);
+            }
+        }
+        self.push_expr(Expr::Group { inner }, start)
+    }
+
+    fn binop_at(&self) -> Option<(BinOp, usize)> {
+        let c = self.peek()?;
+        let op = match c {
+            b'+' => (BinOp::Add, 1),
+            b'-' => (BinOp::Sub, 1),
+            b'*' if self.at(self.pos + 1) == Some(b'*') => (BinOp::Pow, 2),
+            b'*' => (BinOp::Mul, 1),
+            b'/' => (BinOp::Div, 1),
+            c if c.is_ascii_alphabetic() => {
+                let mut j = self.pos;
+                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                    j += 1;
+                }
+                let w = Span::new(self.pos as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                let op = match w.as_slice() {
+                    b"MOD" => BinOp::Mod,
+                    b"AND" => BinOp::And,
+                    b"OR" => BinOp::Or,
+                    b"XOR" => BinOp::Xor,
+                    b"EQ" => BinOp::Eq,
+                    b"NE" => BinOp::Ne,
+                    b"GT" => BinOp::Gt,
+                    b"GE" => BinOp::Ge,
+                    b"LT" => BinOp::Lt,
+                    b"LE" => BinOp::Le,
+                    _ => return None,
+                };
+                (op, j - self.pos)
+            }
+            _ => return None,
+        };
+        Some(op)
+    }
+
+    fn precedence(&self, op: BinOp) -> u8 {
+        match self.dialect {
+            // LinuxCNC's five levels (used by both profiles, see the digest §1.8).
+            Dialect::Rs274ngc => match op {
+                BinOp::Pow => 5,
+                BinOp::Mul | BinOp::Div | BinOp::Mod => 4,
+                BinOp::Add | BinOp::Sub => 3,
+                BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Ge | BinOp::Lt | BinOp::Le => 2,
+                BinOp::And | BinOp::Or | BinOp::Xor => 1,
+            },
+            // Custom Macro B: `* / AND MOD` over `+ - OR XOR`; relations lowest.
+            _ => match op {
+                BinOp::Pow => 4,
+                BinOp::Mul | BinOp::Div | BinOp::Mod | BinOp::And => 3,
+                BinOp::Add | BinOp::Sub | BinOp::Or | BinOp::Xor => 2,
+                _ => 1,
+            },
+        }
+    }
+
+    /// Precedence climbing; all operators are left-associative.
+    fn binary(&mut self, min_prec: u8) -> ExprId {
+        self.ws();
+        let start = self.pos;
+        let mut lhs = self.value_expr();
+        loop {
+            self.ws();
+            let Some((op, len)) = self.binop_at() else { break };
+            let prec = self.precedence(op);
+            if prec < min_prec {
+                break;
+            }
+            let s = self.pos;
+            self.token(s, if len > 1 && op != BinOp::Pow { TokenKind::Keyword } else { TokenKind::Operator });
+            self.pos += len;
+            let rhs = self.binary(prec + 1);
+            lhs = self.push_expr(Expr::Binary { op, lhs, rhs }, start);
+        }
+        lhs
+    }
+
+    /// A function call `NAME[…]`; cursor on the first letter.
+    fn function(&mut self) -> ExprId {
+        let start = self.pos;
+        let mut j = self.pos;
+        while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+            j += 1;
+        }
+        let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text)).into_owned();
+        let func = Func::from_name(&name).filter(|f| f.in_dialect(self.dialect));
+        let Some(func) = func else {
+            // Not a function: leave the letter for the caller (it is the next word).
+            let span = Span::new(start as u32, start as u32);
+            self.diag(codes::MISSING_VALUE, Severity::Error, span, "a value is missing here");
+            return self.push_expr(Expr::Error, start);
+        };
+        self.pos = j;
+        self.token(start, TokenKind::Keyword);
+        self.ws();
+        if self.peek() != Some(b'[') {
+            let span = Span::new(start as u32, self.pos as u32);
+            self.diag(codes::BAD_EXPRESSION, Severity::Error, span, format!("`{}` must be followed by `[`", name.to_ascii_uppercase()));
+            return self.push_expr(Expr::Error, start);
+        }
+        // Two-argument forms: `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
+        let two = matches!(func, Func::Atan | Func::Pow);
+        let (arg, arg2) = if two && self.dialect != Dialect::Rs274ngc {
+            self.bracket_args()
+        } else {
+            (self.group(), None)
+        };
+        let mut arg2 = arg2;
+        if func == Func::Atan && arg2.is_none() {
+            self.ws();
+            if self.peek() == Some(b'/') {
+                let s = self.pos;
+                self.token(s, TokenKind::Operator);
+                self.pos += 1;
+                self.ws();
+                if self.peek() == Some(b'[') {
+                    arg2 = Some(self.group());
+                } else {
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, self.pos as u32), "`[` missing after the slash of ATAN[y]/[x]");
+                }
+            } else {
+                self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "ATAN needs two arguments: ATAN[y]/[x]");
+            }
+        }
+        self.push_expr(Expr::Call { func, arg, arg2 }, start)
+    }
+
+    /// `[a]` or `[a,b]` for FANUC two-argument functions.
+    fn bracket_args(&mut self) -> (ExprId, Option<ExprId>) {
+        let start = self.pos;
+        self.token(start, TokenKind::LBracket);
+        self.pos += 1;
+        self.depth += 1;
+        let a = self.binary(0);
+        self.ws();
+        let mut b = None;
+        if self.peek() == Some(b',') {
+            let s = self.pos;
+            self.token(s, TokenKind::Comma);
+            self.pos += 1;
+            b = Some(self.binary(0));
+            self.ws();
+        }
+        self.depth -= 1;
+        if self.peek() == Some(b']') {
+            let s = self.pos;
+            self.token(s, TokenKind::RBracket);
+            self.pos += 1;
+        } else {
+            self.diag(codes::UNBALANCED_BRACKET, Severity::Error, Span::new(start as u32, start as u32 + 1), "unclosed expression: this `[` has no matching `]`");
+        }
+        let g = self.push_expr(Expr::Group { inner: a }, start);
+        (g, b)
+    }
+
+    /// An item starting with a letter: keyword statement, program head, O-word or word.
+    fn letter_item(&mut self, first: bool) {
+        let start = self.pos;
+        let mut j = self.pos;
+        while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+            j += 1;
+        }
+        let run = Span::new(start as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+        let c = run[0];
+        match self.dialect {
+            Dialect::Rs274ngc if c == b'O' => return self.oword(),
+            Dialect::Fanuc | Dialect::Servoworks => {
+                if let Some(kw) = macro_keyword(&run) {
+                    return self.macro_stmt(kw);
+                }
+                if c == b'O' && self.text[start] == b'O' {
+                    if self.dialect == Dialect::Servoworks {
+                        return self.sw_program_head();
+                    }
+                    if first || self.at(start + 1).is_some_and(is_digit) {
+                        self.pos += 1;
+                        self.token(start, TokenKind::Letter);
+                        return self.program_number(start);
+                    }
+                }
+            }
+            _ => {}
+        }
+        let lower = self.text[start].is_ascii_lowercase();
+        if lower && self.dialect == Dialect::Servoworks {
+            // ServoWorks ignores lower-case letters outside comments and names (§3.1):
+            // the letter and its value are dropped.
+            self.pos += 1;
+            while self.peek().is_some_and(|b| is_digit(b) || b == b'.' || b == b'-' || b == b'+') {
+                self.pos += 1;
+            }
+            self.token(start, TokenKind::Ignored);
+            self.diag(
+                codes::LOWERCASE,
+                Severity::Warning,
+                Span::new(start as u32, self.pos as u32),
+                "ServoWorks ignores lower-case letters outside comments and subprogram names; this word is not executed",
+            );
+            self.push_item(ItemKind::Error, start);
+            return;
+        }
+        if lower && self.dialect == Dialect::Fanuc {
+            self.diag(
+                codes::LOWERCASE,
+                Severity::Info,
+                Span::new(start as u32, start as u32 + 1),
+                "lower-case address letter; FANUC programs are upper case (accepted here as upper case)",
+            );
+        }
+        self.word(false)
+    }
+
+    /// An address letter and its value.
+    fn word(&mut self, comma: bool) {
+        let start = if comma { self.pos - 1 } else { self.pos };
+        let ls = self.pos;
+        let letter = self.text[ls].to_ascii_uppercase();
+        self.pos += 1;
+        self.token(ls, TokenKind::Letter);
+        let letter_span = Span::new(ls as u32, self.pos as u32);
+        self.ws();
+        let value = self.word_value(letter);
+        self.push_item(ItemKind::Word(Word { letter, comma, letter_span, value }), start);
+    }
+
+    fn in_m98_block(&self) -> bool {
+        // The block's text mentions M98 (subprogram call): P is then a name.
+        let b = Span::new(0, self.limit as u32);
+        let line_start = self.text[..self.pos].iter().rposition(|c| *c == b'\n' || *c == b'\r').map(|i| i + 1).unwrap_or(0);
+        let s = Span::new(line_start as u32, b.end).slice(&self.text);
+        let up: Vec<u8> = s.iter().map(|c| c.to_ascii_uppercase()).collect();
+        up.windows(3).enumerate().any(|(i, w)| w == b"M98" && !up.get(i + 3).is_some_and(|d| d.is_ascii_digit()))
+            || up.windows(4).any(|w| w == b"M098")
+    }
+
+    fn word_value(&mut self, letter: u8) -> WordValue {
+        let start = self.pos;
+        let Some(c) = self.peek() else {
+            return self.missing(letter, start);
+        };
+        // ServoWorks: `M98 P<name>`: a name made of letters, digits and `_`.
+        if self.dialect == Dialect::Servoworks && letter == b'P' && (c.is_ascii_alphabetic() || c == b'_' || (is_digit(c) && self.in_m98_block())) {
+            let mut j = self.pos;
+            while self.at(j).is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
+                j += 1;
+            }
+            self.pos = j;
+            self.token(start, TokenKind::Name);
+            return WordValue::Name(Span::new(start as u32, j as u32));
+        }
+        match c {
+            b'0'..=b'9' | b'.' | b'+' | b'-' => {
+                let signed_non_literal = matches!(c, b'+' | b'-') && {
+                    let mut j = self.pos + 1;
+                    while self.at(j).is_some_and(is_ws) {
+                        j += 1;
+                    }
+                    !self.at(j).is_some_and(|d| is_digit(d) || d == b'.')
+                };
+                if signed_non_literal {
+                    if self.dialect == Dialect::Rs274ngc && !self.at(self.pos + 1).is_some_and(|d| d == b'#' || d == b'[' || d.is_ascii_alphabetic() || is_ws(d)) {
+                        // `X-` followed by nothing usable.
+                        return self.missing(letter, start);
+                    }
+                    return WordValue::Expr(self.value_expr());
+                }
+                let n = self.number(true);
+                // ServoWorks multi-spindle `S2_1500`.
+                if self.dialect == Dialect::Servoworks && letter == b'S' && self.peek() == Some(b'_') && !n.has_point {
+                    self.pos += 1;
+                    let speed_start = self.pos;
+                    let speed = self.number(false);
+                    // The `_` is part of the number token run.
+                    let _ = speed_start;
+                    return WordValue::Indexed(n.value.max(0.0) as u32, speed);
+                }
+                WordValue::Num(n)
+            }
+            b'#' | b'[' => WordValue::Expr(self.value_expr()),
+            c if c.is_ascii_alphabetic() && self.dialect != Dialect::Servoworks => {
+                // A function value (`X sin[30]`) — otherwise the letter has no value.
+                let mut j = self.pos;
+                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                    j += 1;
+                }
+                let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text)).into_owned();
+                if Func::from_name(&name).is_some_and(|f| f.in_dialect(self.dialect)) && self.next_non_ws(j) == Some(b'[') {
+                    WordValue::Expr(self.value_expr())
+                } else {
+                    self.missing(letter, start)
+                }
+            }
+            _ => self.missing(letter, start),
+        }
+    }
+
+    fn next_non_ws(&self, mut j: usize) -> Option<u8> {
+        while self.at(j).is_some_and(is_ws) {
+            j += 1;
+        }
+        self.at(j)
+    }
+
+    fn missing(&mut self, letter: u8, at: usize) -> WordValue {
+        self.diag(
+            codes::MISSING_VALUE,
+            Severity::Error,
+            Span::new(at.saturating_sub(1) as u32, at as u32),
+            format!("address {} has no value", letter as char),
+        );
+        WordValue::Missing
+    }
+
+    /// FANUC `O1234` / `:1234`; the cursor is after `O`/`:`.
+    fn program_number(&mut self, start: usize) {
+        self.ws();
+        let ns = self.pos;
+        while self.peek().is_some_and(is_digit) {
+            self.pos += 1;
+        }
+        let name = Span::new(ns as u32, self.pos as u32);
+        let number = std::str::from_utf8(name.slice(&self.text)).ok().and_then(|s| s.parse::<u32>().ok());
+        if self.pos > ns {
+            self.token(ns, TokenKind::Name);
+        } else {
+            self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "program number missing after O");
+        }
+        self.push_item(ItemKind::ProgramHead { name, number }, start);
+    }
+
+    /// FANUC 30i `<name>` program head.
+    fn fanuc_name_head(&mut self) {
+        let start = self.pos;
+        let mut j = self.pos + 1;
+        while self.at(j).is_some_and(|c| c != b'>') {
+            j += 1;
+        }
+        if self.at(j) == Some(b'>') {
+            self.pos = j + 1;
+            self.token(start, TokenKind::Name);
+            let name = Span::new(start as u32 + 1, j as u32);
+            self.push_item(ItemKind::ProgramHead { name, number: None }, start);
+        } else {
+            self.unknown_run();
+        }
+    }
+
+    /// ServoWorks `OMoveXY` / `O100`.
+    fn sw_program_head(&mut self) {
+        let start = self.pos;
+        self.pos += 1;
+        self.token(start, TokenKind::Letter);
+        self.ws();
+        let ns = self.pos;
+        while self.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
+            self.pos += 1;
+        }
+        let name = Span::new(ns as u32, self.pos as u32);
+        if self.pos > ns {
+            self.token(ns, TokenKind::Name);
+        } else {
+            self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "program name missing after O");
+        }
+        let number = std::str::from_utf8(name.slice(&self.text)).ok().and_then(|s| s.parse::<u32>().ok());
+        self.push_item(ItemKind::ProgramHead { name, number }, start);
+    }
+
+    /// RS274/NGC O-word statement; cursor on `o`.
+    fn oword(&mut self) {
+        let start = self.pos;
+        self.token(start, TokenKind::Letter);
+        self.pos += 1;
+        self.ws();
+        let ls = self.pos;
+        let label = match self.peek() {
+            Some(b'<') => {
+                let mut j = self.pos + 1;
+                while self.at(j).is_some_and(|c| c != b'>') {
+                    j += 1;
+                }
+                if self.at(j) == Some(b'>') {
+                    self.pos = j + 1;
+                    self.token(ls, TokenKind::Name);
+                    OLabel::Name(Span::new(ls as u32 + 1, j as u32))
+                } else {
+                    self.pos = self.limit;
+                    self.token(ls, TokenKind::Unknown);
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(ls as u32, self.pos as u32), "o-word name is missing its closing `>`");
+                    OLabel::Missing
+                }
+            }
+            Some(c) if is_digit(c) => {
+                let n = self.number(false);
+                if n.value.is_finite() && n.value >= 0.0 && n.value <= u32::MAX as f64 {
+                    OLabel::Number(n.value.round() as u32)
+                } else {
+                    OLabel::Missing
+                }
+            }
+            Some(b'#') | Some(b'[') => OLabel::Expr(self.value_expr()),
+            _ => {
+                self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "o-word label missing after O");
+                OLabel::Missing
+            }
+        };
+        let label_span = Span::new(ls as u32, self.pos as u32);
+        self.ws();
+        let ks = self.pos;
+        while self.peek().is_some_and(|c| c.is_ascii_alphabetic()) {
+            self.pos += 1;
+        }
+        let kw_span = Span::new(ks as u32, self.pos as u32);
+        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(&self.text)));
+        if self.pos > ks {
+            self.token(ks, TokenKind::Keyword);
+        }
+        if keyword.is_none() {
+            let msg = if kw_span.is_empty() {
+                "o-word without a keyword (sub, endsub, call, do, while, if, repeat, …)".to_string()
+            } else {
+                format!("unknown o-word keyword `{}`", String::from_utf8_lossy(kw_span.slice(&self.text)))
+            };
+            self.diag(codes::BAD_EXPRESSION, Severity::Error, if kw_span.is_empty() { Span::new(start as u32, self.pos as u32) } else { kw_span }, msg);
+        }
+        // Arguments: bracketed expressions (call args, conditions, return values).
+        let args_start = self.p.expr_lists.len() as u32;
+        let mut args = Vec::new();
+        loop {
+            self.ws();
+            match self.peek() {
+                Some(b'[') => args.push(self.group()),
+                Some(b'#') if keyword == Some(OKeyword::Call) || keyword == Some(OKeyword::Return) || keyword == Some(OKeyword::Endsub) => {
+                    args.push(self.value_expr())
+                }
+                Some(b'(') => self.comment(),
+                Some(b';') => self.semicolon(),
+                None => break,
+                Some(c) if is_digit(c) || c == b'-' || c == b'+' || c == b'.' => {
+                    // LinuxCNC accepts bare numbers as call arguments only inside brackets.
+                    args.push(self.value_expr());
+                    let id = *args.last().unwrap_or(&ExprId(0));
+                    let span = self.p.expr(id).span;
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, span, "o-word arguments must be in brackets: `[value]`");
+                }
+                Some(_) => {
+                    self.unknown_run();
+                }
+            }
+        }
+        self.p.expr_lists.extend(args);
+        let args_end = self.p.expr_lists.len() as u32;
+        let ow = OWord { label, label_span, keyword, keyword_span: kw_span, args: (args_start, args_end) };
+        // The O-word item spans up to the end of its arguments.
+        self.push_item(ItemKind::OWord(ow), start);
+    }
+
+    fn macro_stmt(&mut self, kw: &'static str) {
+        let start = self.pos;
+        let kw_len = kw.len();
+        self.token(start, TokenKind::Keyword);
+        self.pos += kw_len;
+        self.ws();
+        let stmt = match kw {
+            "GOTO" => MacroStmt::Goto { target: self.value_expr() },
+            "IF" => {
+                let cond = self.cond();
+                self.ws();
+                let ks = self.pos;
+                let mut j = self.pos;
+                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                    j += 1;
+                }
+                let w = Span::new(ks as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                if w == b"GOTO" {
+                    self.pos = j;
+                    self.token(ks, TokenKind::Keyword);
+                    self.ws();
+                    MacroStmt::IfGoto { cond, target: self.value_expr() }
+                } else if w == b"THEN" {
+                    self.pos = j;
+                    self.token(ks, TokenKind::Keyword);
+                    MacroStmt::IfThen { cond }
+                } else {
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "IF [condition] must be followed by GOTO n or THEN statement");
+                    MacroStmt::IfThen { cond }
+                }
+            }
+            "WHILE" => {
+                let cond = self.cond();
+                self.ws();
+                let ks = self.pos;
+                let mut j = self.pos;
+                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                    j += 1;
+                }
+                let w = Span::new(ks as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                if w == b"DO" {
+                    self.pos = j;
+                    self.token(ks, TokenKind::Keyword);
+                    self.ws();
+                    MacroStmt::While { cond, m: self.value_expr() }
+                } else {
+                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "WHILE [condition] must be followed by DO m");
+                    let m = self.push_expr(Expr::Error, self.pos);
+                    MacroStmt::While { cond, m }
+                }
+            }
+            "DO" => MacroStmt::Do { m: self.value_expr() },
+            "END" => MacroStmt::End { m: self.value_expr() },
+            _ => {
+                // External output statements: keep their bracketed arguments as text.
+                if self.peek() == Some(b'[') {
+                    let _ = self.group();
+                }
+                MacroStmt::Output
+            }
+        };
+        self.push_item(ItemKind::Macro(stmt), start);
+    }
+
+    fn cond(&mut self) -> ExprId {
+        if self.peek() == Some(b'[') {
+            self.group()
+        } else {
+            let s = self.pos;
+            self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, s as u32), "condition must be in brackets: [ … ]");
+            self.push_expr(Expr::Error, s)
+        }
+    }
+}
+
+/// Recognises Custom Macro B keywords at the start of a letter run.
+fn macro_keyword(run: &[u8]) -> Option<&'static str> {
+    for kw in ["GOTO", "WHILE", "IF", "DO", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT"] {
+        if run.starts_with(kw.as_bytes()) {
+            // `IF` must be followed by `[` (I and F are also addresses); the caller's run
+            // stops at non-letters, so `IF[` gives run "IF", while `IF10.` gives run "IF".
+            let exact = run.len() == kw.len();
+            let ok = match kw {
+                "IF" | "DO" | "END" | "GOTO" | "WHILE" => exact,
+                _ => true,
+            };
+            if ok {
+                return Some(kw);
+            }
+        }
+    }
+    None
+}
+
+fn comment_kind(text: &[u8]) -> CommentKind {
+    let body = text.strip_prefix(b"(").or_else(|| text.strip_prefix(b";")).unwrap_or(text);
+    let body: Vec<u8> = body.iter().skip_while(|c| is_ws(**c)).map(|c| c.to_ascii_lowercase()).collect();
+    let starts = |p: &[u8]| body.starts_with(p);
+    if starts(b"msg,") {
+        CommentKind::Msg
+    } else if starts(b"debug,") {
+        CommentKind::Debug
+    } else if starts(b"print,") {
+        CommentKind::Print
+    } else if starts(b"logopen,") {
+        CommentKind::LogOpen
+    } else if starts(b"logappend,") {
+        CommentKind::LogAppend
+    } else if starts(b"logclose") {
+        CommentKind::LogClose
+    } else if starts(b"log,") {
+        CommentKind::Log
+    } else if starts(b"abort,") {
+        CommentKind::Abort
+    } else if starts(b"probeopen") {
+        CommentKind::ProbeOpen
+    } else if starts(b"probeclose") {
+        CommentKind::ProbeClose
+    } else if starts(b"py,") || starts(b"pyrun,") || starts(b"pyreload") {
+        CommentKind::Py
+    } else if starts(b"partscope:") || starts(b"partscope ") {
+        CommentKind::Partscope
+    } else {
+        CommentKind::Plain
+    }
+}
+
+fn printable(s: &str) -> String {
+    let mut out: String = s.chars().take(20).map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
+    if s.chars().count() > 20 {
+        out.push('…');
+    }
+    out
+}
