@@ -1,1 +1,10 @@
-fn main() {}
+//! `partscope`: lint, dry-run and language server for CNC part programs.
+
+mod cli;
+mod lsp;
+
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    cli::main()
+}
