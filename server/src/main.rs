@@ -2,6 +2,7 @@
 
 mod cli;
 mod lsp;
+mod rules;
 
 use std::process::ExitCode;
 

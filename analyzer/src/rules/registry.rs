@@ -8,6 +8,7 @@ use super::{Rule, RuleMeta};
 
 /// Metadata of every syntax and static rule, in code order.
 pub static RULES: &[&RuleMeta] = &[
+    &syn::IO_ERROR,
     &syn::UNCLOSED_COMMENT,
     &syn::NESTED_COMMENT,
     &syn::MISSING_VALUE,
@@ -16,6 +17,7 @@ pub static RULES: &[&RuleMeta] = &[
     &syn::UNBALANCED_BRACKET,
     &syn::MISPLACED_BLOCK_SKIP,
     &syn::LOWERCASE,
+    &syn::NOT_TEXT,
     &syn::BAD_EXPRESSION,
     &syn::MISPLACED_PERCENT,
     &syn::TEXT_AFTER_EOB,

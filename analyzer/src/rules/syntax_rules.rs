@@ -425,3 +425,49 @@ declare_rule! {
         default_enabled: true,
     }
 }
+
+declare_rule! {
+    /// ## What it does
+    /// Reports a file that could not be read (missing, unreadable, a directory).
+    ///
+    /// ## Why is this bad?
+    /// Nothing in it could be checked.
+    ///
+    /// ## Dialects
+    /// All, error. `partscope check` exits with status 2 when a file could not be read.
+    ///
+    /// Implements:
+    pub static IO_ERROR = {
+        code: "L000",
+        name: "io-error",
+        summary: "File could not be read",
+        implements: &[],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a file that is not text (it contains NUL bytes or mostly non-text bytes), and
+    /// text that is not valid UTF-8.
+    ///
+    /// ## Why is this bad?
+    /// A binary file is not a part program: it was probably picked up by mistake (an image,
+    /// a compiled post-processor). Invalid UTF-8 usually means a file saved in a legacy code
+    /// page; controls read only ASCII outside comments, and the comment text will show
+    /// garbled in editors. A binary file is reported once and not analysed further.
+    ///
+    /// ## Dialects
+    /// All. Binary: error. Invalid UTF-8: warning.
+    ///
+    /// Implements:
+    pub static NOT_TEXT = {
+        code: "L009",
+        name: "not-text",
+        summary: "Binary file or invalid UTF-8",
+        implements: &[],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
