@@ -152,7 +152,7 @@ impl CodeNum {
     /// The code for a programmed value, when it is within 0.001 of a tenth
     /// (the RS274/NGC rule; FANUC and ServoWorks literals are exact anyway).
     pub fn from_value(v: f64) -> Option<CodeNum> {
-        if !v.is_finite() || v < 0.0 || v > 400_000_000.0 {
+        if !v.is_finite() || !(0.0..=400_000_000.0).contains(&v) {
             return None;
         }
         let t = v * 10.0;
@@ -169,7 +169,7 @@ impl CodeNum {
 
     /// Formats as the dialect writes it: `2`, `2.3`, `54.1`.
     pub fn display(self) -> String {
-        if self.0 % 10 == 0 {
+        if self.0.is_multiple_of(10) {
             format!("{}", self.0 / 10)
         } else {
             format!("{}.{}", self.0 / 10, self.0 % 10)
