@@ -210,7 +210,8 @@ pub struct CodeInfo {
     pub letter: char,
     pub num: CodeNum,
     /// Modal group as the dialect's manual numbers it (`0` = non-modal / group 00).
-    /// `None` for codes outside every group.
+    /// `None` for codes outside every group. M-code groups (RS274/NGC only) are a
+    /// separate numbering from G-code groups: compare with [`CodeInfo::same_group`].
     pub group: Option<u8>,
     pub kind: CodeKind,
     /// Variants that have this code (a [`variants`] mask).
@@ -227,6 +228,12 @@ pub struct CodeInfo {
 impl CodeInfo {
     pub fn name(&self) -> String {
         format!("{}{}", self.letter, self.num.display())
+    }
+
+    /// Whether `self` and `other` are in the same modal group (G and M groups
+    /// are separate numberings, so the letters must match too).
+    pub fn same_group(&self, other: &CodeInfo) -> bool {
+        self.letter == other.letter && self.group.is_some() && self.group == other.group
     }
 
     pub fn on_variant(&self, v: Variant) -> bool {
@@ -268,12 +275,23 @@ pub fn lookup_address(dialect: Dialect, letter: char) -> Option<&'static Address
     dialect.addresses().iter().find(|a| a.letter == up)
 }
 
-/// Every code of `dialect` that belongs to modal group `group`, in table order.
+/// Every G code of `dialect` in modal group `group`, in table order. G and M
+/// groups are numbered separately (RS274/NGC's M groups 4–10 are not G groups
+/// 4–10); use [`codes_in_letter_group`] for M-code groups.
 pub fn codes_in_group(dialect: Dialect, group: u8) -> impl Iterator<Item = &'static CodeInfo> {
+    codes_in_letter_group(dialect, 'G', group)
+}
+
+/// Every code with `letter` (`'G'` or `'M'`) of `dialect` in modal group `group`.
+pub fn codes_in_letter_group(
+    dialect: Dialect,
+    letter: char,
+    group: u8,
+) -> impl Iterator<Item = &'static CodeInfo> {
     dialect
         .codes()
         .iter()
-        .filter(move |c| c.group == Some(group))
+        .filter(move |c| c.letter == letter && c.group == Some(group))
 }
 
 /// The power-on default codes of `dialect` (at most one per group), in table order.
@@ -281,9 +299,14 @@ pub fn default_codes(dialect: Dialect) -> impl Iterator<Item = &'static CodeInfo
     dialect.codes().iter().filter(|c| c.default)
 }
 
-/// The distinct modal groups used by `dialect`'s table, ascending.
-pub fn groups(dialect: Dialect) -> Vec<u8> {
-    let mut g: Vec<u8> = dialect.codes().iter().filter_map(|c| c.group).collect();
+/// The distinct modal groups of `letter` codes in `dialect`'s table, ascending.
+pub fn groups(dialect: Dialect, letter: char) -> Vec<u8> {
+    let mut g: Vec<u8> = dialect
+        .codes()
+        .iter()
+        .filter(|c| c.letter == letter)
+        .filter_map(|c| c.group)
+        .collect();
     g.sort_unstable();
     g.dedup();
     g
@@ -362,15 +385,19 @@ pub(crate) fn check_table_invariants(dialect: Dialect) {
             );
         }
     }
-    for g in groups(dialect) {
-        let n = codes_in_group(dialect, g).filter(|c| c.default).count();
-        assert!(
-            n <= 1,
-            "{}: group {} has {} defaults",
-            dialect.as_str(),
-            g,
-            n
-        );
+    for letter in ['G', 'M'] {
+        for g in groups(dialect, letter) {
+            let n = codes_in_letter_group(dialect, letter, g)
+                .filter(|c| c.default)
+                .count();
+            assert!(
+                n <= 1,
+                "{}: {letter} group {} has {} defaults",
+                dialect.as_str(),
+                g,
+                n
+            );
+        }
     }
     let letters: Vec<char> = dialect.addresses().iter().map(|a| a.letter).collect();
     for (i, l) in letters.iter().enumerate() {
