@@ -8,7 +8,7 @@
 //! G40.1–G42.1, and the digest asks for two independent states, so G25/G26 get
 //! their own number ([`G25_GROUP`]).
 
-use super::{AddressInfo, CodeInfo, CodeKind, CodeNum, Param, variants};
+use super::{variants, AddressInfo, CodeInfo, CodeKind, CodeNum, Param};
 
 use CodeKind::{AxisConsumer, Misc, Modal, Motion, OneShot};
 
@@ -1709,8 +1709,8 @@ pub static ADDRESSES: &[AddressInfo] = &[
 #[cfg(test)]
 mod tests {
     use super::super::{
-        Dialect, Variant, assert_all_present, check_table_invariants, codes_in_group,
-        default_codes, lookup, lookup_address,
+        assert_all_present, check_table_invariants, codes_in_group, default_codes, lookup,
+        lookup_address, Dialect, Variant,
     };
     use super::*;
 

@@ -624,15 +624,13 @@ mod tests {
         assert!(g04.contains("- `P` dwell in milliseconds, integer\n"));
         let g432 =
             lookup(Dialect::Servoworks, 'G', CodeNum(432)).map(|c| c.hover(Dialect::Servoworks));
-        assert!(
-            g432.unwrap_or_default()
-                .contains("Modal group 08. Only on: S-140M.")
-        );
+        assert!(g432
+            .unwrap_or_default()
+            .contains("Modal group 08. Only on: S-140M."));
         let m8 = lookup(Dialect::Rs274ngc, 'M', CodeNum(90)).map(|c| c.hover(Dialect::Rs274ngc));
-        assert!(
-            m8.unwrap_or_default()
-                .contains("Modal group M8, power-on default.")
-        );
+        assert!(m8
+            .unwrap_or_default()
+            .contains("Modal group M8, power-on default."));
         let g80 =
             lookup(Dialect::Fanuc, 'G', CodeNum(800)).and_then(|c| c.group_label(Dialect::Fanuc));
         assert_eq!(g80.as_deref(), Some("09"));
