@@ -182,8 +182,11 @@ impl CodeNum {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CodeKind {
     /// Group-1 style motion (G0, G1, G2, cycles…): consumes axis words.
+    /// The cycle cancel G80 is [`CodeKind::Modal`], because it takes no axis words.
     Motion,
     /// Non-modal code that consumes axis words (G10, G28, G92, G52, G53…).
+    /// RS274/NGC's G53 is [`CodeKind::OneShot`] there: it only modifies the
+    /// G0/G1 on its line, which keeps the axis words.
     AxisConsumer,
     /// Modal setting (plane, units, distance mode, …).
     Modal,
