@@ -10,10 +10,15 @@ pub fn all() -> Vec<&'static RuleMeta> {
 }
 
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {
-    all().into_iter().find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+    all()
+        .into_iter()
+        .find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
 }
 
 /// A rule doc as text: the doc comment lines with their single leading space removed.
 pub fn clean_doc(doc: &str) -> String {
-    doc.lines().map(|l| l.strip_prefix(' ').unwrap_or(l)).collect::<Vec<_>>().join("\n")
+    doc.lines()
+        .map(|l| l.strip_prefix(' ').unwrap_or(l))
+        .collect::<Vec<_>>()
+        .join("\n")
 }

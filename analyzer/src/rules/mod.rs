@@ -101,7 +101,10 @@ macro_rules! declare_rule {
 /// Runs every enabled static rule over a parsed program.
 pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     let rules = registry::STATIC_RULES;
-    let enabled: Vec<&&dyn Rule> = rules.iter().filter(|r| cx.settings.rule_enabled(r.meta())).collect();
+    let enabled: Vec<&&dyn Rule> = rules
+        .iter()
+        .filter(|r| cx.settings.rule_enabled(r.meta()))
+        .collect();
     if enabled.is_empty() {
         return;
     }
@@ -109,7 +112,13 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     for (i, block) in cx.program.blocks.iter().enumerate() {
         codes.clear();
         context::collect_codes(cx.program, block, &mut codes);
-        let bcx = BlockCx { program: cx.program, block, index: i, settings: cx.settings, codes: &codes };
+        let bcx = BlockCx {
+            program: cx.program,
+            block,
+            index: i,
+            settings: cx.settings,
+            codes: &codes,
+        };
         for r in &enabled {
             r.check_block(&bcx, out);
         }

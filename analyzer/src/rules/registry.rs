@@ -28,5 +28,8 @@ pub static RULES: &[&RuleMeta] = &[
 pub static STATIC_RULES: &[&dyn Rule] = &[];
 
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {
-    RULES.iter().copied().find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+    RULES
+        .iter()
+        .copied()
+        .find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
 }

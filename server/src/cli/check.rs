@@ -24,7 +24,10 @@ pub fn run(args: CheckArgs) -> ExitCode {
     };
     let (files, walk_errors) = workspace::collect_files(&args.paths);
     let cache = ConfigCache::default();
-    let mut reports: Vec<FileReport> = files.par_iter().map(|f| check_file(f, &args, explicit.as_ref(), &cache)).collect();
+    let mut reports: Vec<FileReport> = files
+        .par_iter()
+        .map(|f| check_file(f, &args, explicit.as_ref(), &cache))
+        .collect();
     for (p, e) in walk_errors {
         reports.push(FileReport::io_error(p, e));
     }
@@ -33,7 +36,11 @@ pub fn run(args: CheckArgs) -> ExitCode {
         .fail_level
         .as_deref()
         .and_then(Severity::parse)
-        .or_else(|| explicit.as_ref().map(|c| analyzer::settings::fail_level(&c.config)))
+        .or_else(|| {
+            explicit
+                .as_ref()
+                .map(|c| analyzer::settings::fail_level(&c.config))
+        })
         .unwrap_or(Severity::Warning);
     if let Err(e) = output::emit(args.format, &reports) {
         eprintln!("partscope: cannot write output: {e}");
@@ -42,7 +49,9 @@ pub fn run(args: CheckArgs) -> ExitCode {
     if reports.iter().any(|r| r.io_error) {
         return ExitCode::from(2);
     }
-    let failed = reports.iter().any(|r| r.diagnostics.iter().any(|d| d.severity >= fail_level));
+    let failed = reports
+        .iter()
+        .any(|r| r.diagnostics.iter().any(|d| d.severity >= fail_level));
     if failed {
         ExitCode::from(1)
     } else {
@@ -50,12 +59,26 @@ pub fn run(args: CheckArgs) -> ExitCode {
     }
 }
 
-fn check_file(path: &Path, args: &CheckArgs, explicit: Option<&LoadedConfig>, cache: &ConfigCache) -> FileReport {
+fn check_file(
+    path: &Path,
+    args: &CheckArgs,
+    explicit: Option<&LoadedConfig>,
+    cache: &ConfigCache,
+) -> FileReport {
     let bytes = match std::fs::read(path) {
         Ok(b) => b,
         Err(e) => return FileReport::io_error(path.to_path_buf(), e.to_string()),
     };
-    let dir = path.parent().map(|p| if p.as_os_str().is_empty() { Path::new(".") } else { p }).unwrap_or(Path::new("."));
+    let dir = path
+        .parent()
+        .map(|p| {
+            if p.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                p
+            }
+        })
+        .unwrap_or(Path::new("."));
     let dir = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
     let loaded = match explicit {
         Some(c) => c.clone(),
@@ -64,15 +87,27 @@ fn check_file(path: &Path, args: &CheckArgs, explicit: Option<&LoadedConfig>, ca
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         },
     };
-    let dialect = workspace::resolve_dialect(args.dialect.map(|d| d.dialect()), &loaded.config, path, &bytes);
-    let settings = match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
-        Ok(s) => s,
-        Err(e) => return FileReport::io_error(path.to_path_buf(), e),
-    };
+    let dialect = workspace::resolve_dialect(
+        args.dialect.map(|d| d.dialect()),
+        &loaded.config,
+        path,
+        &bytes,
+    );
+    let settings =
+        match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
+            Ok(s) => s,
+            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+        };
     let text: Arc<[u8]> = bytes.into();
     let analysis = analyzer::analyze(text.clone(), &settings);
     let diagnostics = analysis.diagnostics;
-    FileReport { path: path.to_path_buf(), text, diagnostics, io_error: false, extra_files: Vec::new() }
+    FileReport {
+        path: path.to_path_buf(),
+        text,
+        diagnostics,
+        io_error: false,
+        extra_files: Vec::new(),
+    }
 }
 
 impl FileReport {
@@ -80,7 +115,11 @@ impl FileReport {
         FileReport {
             path,
             text: Arc::from(&b""[..]),
-            diagnostics: vec![Diagnostic::error("L000", Span::new(0, 0), format!("cannot read file: {message}"))],
+            diagnostics: vec![Diagnostic::error(
+                "L000",
+                Span::new(0, 0),
+                format!("cannot read file: {message}"),
+            )],
             io_error: true,
             extra_files: Vec::new(),
         }

@@ -10,7 +10,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand, ValueEnum};
 
 #[derive(Parser)]
-#[command(name = "partscope", version, about = "Lint, dry-run and language server for CNC part programs")]
+#[command(
+    name = "partscope",
+    version,
+    about = "Lint, dry-run and language server for CNC part programs"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -87,7 +91,11 @@ pub fn main() -> ExitCode {
         Ok(c) => c,
         Err(e) => {
             let _ = e.print();
-            return if e.use_stderr() { ExitCode::from(2) } else { ExitCode::SUCCESS };
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
         }
     };
     match cli.command {
@@ -101,7 +109,11 @@ fn rule(code: Option<String>, all: bool) -> ExitCode {
     let rules = crate::rules::all();
     if all || code.is_none() {
         for r in &rules {
-            let off = if r.default_enabled { "" } else { " (off by default)" };
+            let off = if r.default_enabled {
+                ""
+            } else {
+                " (off by default)"
+            };
             println!("{:<6} {:<36} {}{}", r.code, r.name, r.summary, off);
         }
         return ExitCode::SUCCESS;

@@ -36,23 +36,40 @@ fn position(index: &LineIndex, text: &[u8], offset: u32) -> (u32, u32) {
     let (line, col) = index.line_col(offset);
     let start = index.line_start(line).unwrap_or(0) as usize;
     let end = (start + col as usize).min(text.len());
-    let chars = String::from_utf8_lossy(&text[start.min(end)..end]).chars().count() as u32;
+    let chars = String::from_utf8_lossy(&text[start.min(end)..end])
+        .chars()
+        .count() as u32;
     (line + 1, chars + 1)
 }
 
 pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
     let mut out = Vec::new();
     for r in reports {
-        let mut indexes: Vec<(String, &[u8], LineIndex)> = Vec::with_capacity(1 + r.extra_files.len());
-        indexes.push((r.path.display().to_string(), &r.text[..], LineIndex::new(&r.text)));
+        let mut indexes: Vec<(String, &[u8], LineIndex)> =
+            Vec::with_capacity(1 + r.extra_files.len());
+        indexes.push((
+            r.path.display().to_string(),
+            &r.text[..],
+            LineIndex::new(&r.text),
+        ));
         for (p, t) in &r.extra_files {
             indexes.push((p.display().to_string(), &t[..], LineIndex::new(t)));
         }
         for d in &r.diagnostics {
-            let Some((path, text, index)) = indexes.get(d.file.0 as usize) else { continue };
+            let Some((path, text, index)) = indexes.get(d.file.0 as usize) else {
+                continue;
+            };
             let (line, column) = position(index, text, d.span.start);
             let (end_line, end_column) = position(index, text, d.span.end.max(d.span.start));
-            out.push(Located { path: path.clone(), text, line, column, end_line, end_column, d });
+            out.push(Located {
+                path: path.clone(),
+                text,
+                line,
+                column,
+                end_line,
+                end_column,
+                d,
+            });
         }
     }
     out
@@ -175,21 +192,35 @@ fn sarif(located: &[Located<'_>]) -> Value {
 }
 
 fn escape_data(s: &str) -> String {
-    s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A")
+    s.replace('%', "%25")
+        .replace('\r', "%0D")
+        .replace('\n', "%0A")
 }
 
 fn escape_property(s: &str) -> String {
     escape_data(s).replace(':', "%3A").replace(',', "%2C")
 }
 
-fn human(out: &mut impl Write, reports: &[FileReport], located: &[Located<'_>]) -> std::io::Result<()> {
-    use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic, NamedSource};
-    let color = std::io::IsTerminal::is_terminal(&std::io::stdout()) && std::env::var_os("NO_COLOR").is_none();
-    let theme = if color { GraphicalTheme::unicode() } else { GraphicalTheme::unicode_nocolor() };
+fn human(
+    out: &mut impl Write,
+    reports: &[FileReport],
+    located: &[Located<'_>],
+) -> std::io::Result<()> {
+    use miette::{
+        GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic, NamedSource,
+    };
+    let color = std::io::IsTerminal::is_terminal(&std::io::stdout())
+        && std::env::var_os("NO_COLOR").is_none();
+    let theme = if color {
+        GraphicalTheme::unicode()
+    } else {
+        GraphicalTheme::unicode_nocolor()
+    };
     let handler = GraphicalReportHandler::new_themed(theme).with_context_lines(1);
     let (mut errors, mut warnings, mut others) = (0, 0, 0);
     // One shared source per file: miette reads context lines from it.
-    let mut sources: std::collections::HashMap<String, Arc<String>> = std::collections::HashMap::new();
+    let mut sources: std::collections::HashMap<String, Arc<String>> =
+        std::collections::HashMap::new();
     let plain = located.len() > 1000;
     for l in located {
         match l.d.severity {
@@ -198,10 +229,22 @@ fn human(out: &mut impl Write, reports: &[FileReport], located: &[Located<'_>]) 
             _ => others += 1,
         }
         if plain {
-            writeln!(out, "{}:{}:{}: {} {}: {}", l.path, l.line, l.column, l.d.severity.as_str(), l.d.code, l.d.message)?;
+            writeln!(
+                out,
+                "{}:{}:{}: {} {}: {}",
+                l.path,
+                l.line,
+                l.column,
+                l.d.severity.as_str(),
+                l.d.code,
+                l.d.message
+            )?;
             continue;
         }
-        let src = sources.entry(l.path.clone()).or_insert_with(|| Arc::new(String::from_utf8_lossy(l.text).into_owned())).clone();
+        let src = sources
+            .entry(l.path.clone())
+            .or_insert_with(|| Arc::new(String::from_utf8_lossy(l.text).into_owned()))
+            .clone();
         let clamp = |o: u32| -> usize {
             let mut o = (o as usize).min(src.len());
             while o > 0 && !src.is_char_boundary(o) {
@@ -211,12 +254,18 @@ fn human(out: &mut impl Write, reports: &[FileReport], located: &[Located<'_>]) 
         };
         let s = clamp(l.d.span.start);
         let e = clamp(l.d.span.end).max(s);
-        let mut labels = vec![LabeledSpan::new_primary_with_span(Some(l.d.code.to_string()), (s, e - s))];
+        let mut labels = vec![LabeledSpan::new_primary_with_span(
+            Some(l.d.code.to_string()),
+            (s, e - s),
+        )];
         for r in &l.d.related {
             if r.file == l.d.file {
                 let rs = clamp(r.span.start);
                 let re = clamp(r.span.end).max(rs);
-                labels.push(LabeledSpan::new_with_span(Some(r.message.clone()), (rs, re - rs)));
+                labels.push(LabeledSpan::new_with_span(
+                    Some(r.message.clone()),
+                    (rs, re - rs),
+                ));
             }
         }
         let severity = match l.d.severity {
@@ -231,19 +280,36 @@ fn human(out: &mut impl Write, reports: &[FileReport], located: &[Located<'_>]) 
         if let Some(f) = l.d.fixes.first() {
             diag = diag.with_help(format!("fix available: {}", f.title));
         }
-        let report = miette::Report::new(diag).with_source_code(NamedSource::new(l.path.clone(), src));
+        let report =
+            miette::Report::new(diag).with_source_code(NamedSource::new(l.path.clone(), src));
         let mut buf = String::new();
         if handler.render_report(&mut buf, report.as_ref()).is_ok() {
             writeln!(out, "{buf}")?;
         } else {
-            writeln!(out, "{}:{}:{}: {} {}: {}", l.path, l.line, l.column, l.d.severity.as_str(), l.d.code, l.d.message)?;
+            writeln!(
+                out,
+                "{}:{}:{}: {} {}: {}",
+                l.path,
+                l.line,
+                l.column,
+                l.d.severity.as_str(),
+                l.d.code,
+                l.d.message
+            )?;
         }
     }
     let files = reports.len();
     if errors + warnings + others == 0 {
-        writeln!(out, "All checks passed ({files} file{}).", if files == 1 { "" } else { "s" })?;
+        writeln!(
+            out,
+            "All checks passed ({files} file{}).",
+            if files == 1 { "" } else { "s" }
+        )?;
     } else {
-        writeln!(out, "Found {errors} error(s), {warnings} warning(s), {others} note(s) in {files} file(s).")?;
+        writeln!(
+            out,
+            "Found {errors} error(s), {warnings} warning(s), {others} note(s) in {files} file(s)."
+        )?;
     }
     Ok(())
 }

@@ -7,7 +7,9 @@ use std::sync::Mutex;
 use analyzer::{Config, Dialect, Settings};
 
 /// File extensions `check` picks up when walking a directory.
-pub const EXTENSIONS: &[&str] = &["nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf", "fnc", "sw"];
+pub const EXTENSIONS: &[&str] = &[
+    "nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf", "fnc", "sw",
+];
 
 /// A loaded config and where it came from.
 #[derive(Clone, Debug)]
@@ -38,7 +40,10 @@ impl ConfigCache {
         } else {
             match dir.parent() {
                 Some(parent) if parent != dir => self.for_dir(parent),
-                _ => Ok(LoadedConfig { config: Config::default(), path: None }),
+                _ => Ok(LoadedConfig {
+                    config: Config::default(),
+                    path: None,
+                }),
             }
         };
         if let Ok(mut map) = self.by_dir.lock() {
@@ -51,7 +56,10 @@ impl ConfigCache {
 pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let config = Config::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(LoadedConfig { config, path: Some(path.to_path_buf()) })
+    Ok(LoadedConfig {
+        config,
+        path: Some(path.to_path_buf()),
+    })
 }
 
 /// Chooses a file's dialect: command line, then config, then a first-line
@@ -73,7 +81,12 @@ pub fn resolve_dialect(cli: Option<Dialect>, config: &Config, path: &Path, text:
 }
 
 /// Settings for one file.
-pub fn settings_for(config: &Config, dialect: Dialect, select: &[String], ignore: &[String]) -> Result<Settings, String> {
+pub fn settings_for(
+    config: &Config,
+    dialect: Dialect,
+    select: &[String],
+    ignore: &[String],
+) -> Result<Settings, String> {
     let mut s = Settings::from_config(config, Some(dialect))?;
     s.select.extend(select.iter().cloned());
     s.ignore.extend(ignore.iter().cloned());
@@ -92,10 +105,9 @@ pub fn collect_files(paths: &[PathBuf]) -> (Vec<PathBuf>, Vec<(PathBuf, String)>
                     Ok(e) => {
                         let path = e.path();
                         let ok = e.file_type().is_some_and(|t| t.is_file())
-                            && path
-                                .extension()
-                                .and_then(|x| x.to_str())
-                                .is_some_and(|x| EXTENSIONS.contains(&x.to_ascii_lowercase().as_str()));
+                            && path.extension().and_then(|x| x.to_str()).is_some_and(|x| {
+                                EXTENSIONS.contains(&x.to_ascii_lowercase().as_str())
+                            });
                         if ok {
                             files.push(path.to_path_buf());
                         }
