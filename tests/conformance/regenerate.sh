@@ -16,6 +16,8 @@
 #   tests/conformance/regenerate.sh NAME...    # only these programs (name without .ngc)
 # Absolute paths of the programs directory inside rs274's messages are stripped from the
 # .stderr goldens, so they read "file:NAME.ngc" wherever the checkout lives.
+# Every rs274 run gets a private HOME: rs274 shares its tool table between processes through
+# $HOME/.tool.mmap, so concurrent runs would otherwise corrupt each other.
 # Environment: ORACLE=path/to/run_rs274.sh overrides the wrapper location.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -24,6 +26,12 @@ oracle=${ORACLE:-/work/shared/oracle/run_rs274.sh}
 programs=$here/programs
 goldens=$here/goldens
 mkdir -p "$goldens"
+
+# rs274 keeps its tool table in a memory-mapped file $HOME/.tool.mmap that every rs274 process
+# on the machine shares; concurrent runs (other engineers, parallel tests) then corrupt each
+# other's tool data or die with SIGBUS.  Each run therefore gets a private HOME.
+scratch=$(mktemp -d /tmp/conformance-regen.XXXXXX)
+trap 'rm -rf "$scratch"' EXIT
 
 if [ $# -gt 0 ]; then
   names=("$@")
@@ -47,7 +55,8 @@ for n in "${names[@]}"; do
   [ -e "$programs/$n.tbl" ] && args+=(-t "$programs/$n.tbl")
   [ -e "$programs/$n.var" ] && args+=(-v "$programs/$n.var")
   set +e
-  "$oracle" "${args[@]}" -o "$goldens/$n.canon" "$ngc" 2> "$goldens/$n.stderr"
+  rm -rf "$scratch/home"; mkdir -p "$scratch/home"
+  HOME=$scratch/home "$oracle" "${args[@]}" -o "$goldens/$n.canon" "$ngc" 2> "$goldens/$n.stderr"
   rc=$?
   set -e
   if [ $rc -gt 1 ]; then
