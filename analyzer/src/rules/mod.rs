@@ -16,6 +16,24 @@
 pub mod context;
 pub mod registry;
 mod syntax_rules;
+mod modal_group_conflict;
+mod m_group_conflict;
+mod too_many_m_words;
+mod unknown_code;
+mod code_not_on_variant;
+mod duplicate_word;
+mod conflicting_words;
+mod missing_required_word;
+mod axis_word_conflict;
+mod unknown_address;
+mod integer_word;
+mod oword_structure;
+mod macro_loop_structure;
+mod goto_target;
+mod macro_with_nc_words;
+mod program_end;
+mod unreachable_after_end;
+pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};
 

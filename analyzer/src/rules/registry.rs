@@ -6,6 +6,24 @@
 use super::syntax_rules as syn;
 use super::{Rule, RuleMeta};
 
+use super::axis_word_conflict::{AxisWordConflict, AXIS_WORD_CONFLICT};
+use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
+use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
+use super::duplicate_word::{DuplicateWord, DUPLICATE_WORD};
+use super::goto_target::{GotoTarget, GOTO_TARGET};
+use super::integer_word::{IntegerWord, INTEGER_WORD};
+use super::m_group_conflict::{MGroupConflict, M_GROUP_CONFLICT};
+use super::macro_loop_structure::{MacroLoopStructure, MACRO_LOOP_STRUCTURE};
+use super::macro_with_nc_words::{MacroWithNcWords, MACRO_WITH_NC_WORDS};
+use super::missing_required_word::{MissingRequiredWord, MISSING_REQUIRED_WORD};
+use super::modal_group_conflict::{ModalGroupConflict, MODAL_GROUP_CONFLICT};
+use super::oword_structure::{OwordStructure, OWORD_STRUCTURE};
+use super::program_end::{ProgramEnd, PROGRAM_END};
+use super::too_many_m_words::{TooManyMWords, TOO_MANY_M_WORDS};
+use super::unknown_address::{UnknownAddress, UNKNOWN_ADDRESS};
+use super::unknown_code::{UnknownCode, UNKNOWN_CODE};
+use super::unreachable_after_end::{UnreachableAfterEnd, UNREACHABLE_AFTER_END};
+
 /// Metadata of every syntax and static rule, in code order.
 pub static RULES: &[&RuleMeta] = &[
     &syn::UNCLOSED_COMMENT,
@@ -20,11 +38,72 @@ pub static RULES: &[&RuleMeta] = &[
     &syn::MISPLACED_PERCENT,
     &syn::TEXT_AFTER_EOB,
     &syn::EXPRESSION_TOO_DEEP,
+    &MODAL_GROUP_CONFLICT,
+    &M_GROUP_CONFLICT,
+    &TOO_MANY_M_WORDS,
+    &UNKNOWN_CODE,
+    &CODE_NOT_ON_VARIANT,
+    &DUPLICATE_WORD,
+    &CONFLICTING_WORDS,
+    &MISSING_REQUIRED_WORD,
+    &AXIS_WORD_CONFLICT,
+    &UNKNOWN_ADDRESS,
+    &INTEGER_WORD,
+    &OWORD_STRUCTURE,
+    &MACRO_LOOP_STRUCTURE,
+    &GOTO_TARGET,
+    &MACRO_WITH_NC_WORDS,
+    &PROGRAM_END,
+    &UNREACHABLE_AFTER_END,
 ];
 
 /// The static rules that run over parsed programs.
-pub static STATIC_RULES: &[&dyn Rule] = &[];
+pub static STATIC_RULES: &[&dyn Rule] = &[
+    &ModalGroupConflict,
+    &MGroupConflict,
+    &TooManyMWords,
+    &UnknownCode,
+    &CodeNotOnVariant,
+    &DuplicateWord,
+    &ConflictingWords,
+    &MissingRequiredWord,
+    &AxisWordConflict,
+    &UnknownAddress,
+    &IntegerWord,
+    &OwordStructure,
+    &MacroLoopStructure,
+    &GotoTarget,
+    &MacroWithNcWords,
+    &ProgramEnd,
+    &UnreachableAfterEnd,
+];
 
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {
-    RULES.iter().copied().find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+    RULES
+        .iter()
+        .copied()
+        .find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_and_names_are_unique_and_static_rules_are_registered() {
+        for (i, a) in RULES.iter().enumerate() {
+            for b in &RULES[i + 1..] {
+                assert_ne!(a.code, b.code);
+                assert_ne!(a.name, b.name);
+            }
+        }
+        for r in STATIC_RULES {
+            assert!(
+                RULES.iter().any(|m| std::ptr::eq(*m, r.meta())),
+                "{} not in RULES",
+                r.meta().code
+            );
+            assert_eq!(r.meta().origin, super::super::Origin::Static);
+        }
+    }
 }

@@ -1,0 +1,121 @@
+//! W002: words that exclude each other in one block.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+
+use super::util::{first_g, has, word_item};
+use super::{BlockCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Flags words that exclude each other in one block: an arc (`G02`/`G03`) with both a
+    /// radius `R` and centre offsets `I`/`J`/`K`; ServoWorks scaling `G51` with both an
+    /// overall factor `P` and per-axis factors `I`/`J`/`K`; ServoWorks dwell `G04` with
+    /// both `P` (milliseconds) and `X` (seconds); LinuxCNC `G4` on a line with `G2`/`G3`
+    /// (both read `P`).
+    ///
+    /// ## Why is this bad?
+    /// The two forms describe the same thing twice and can disagree. LinuxCNC and
+    /// ServoWorks stop with an error; FANUC uses `R` and ignores `I`/`J`/`K`, so the arc may
+    /// not be the one the centre offsets describe.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G17 G2 X10 Y0 R5 I5 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G17 G2 X10 Y0 I5 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// Arcs: error in RS274/NGC and ServoWorks, warning in FANUC. `G51 P`+`I/J/K`: ServoWorks
+    /// error. `G04 P`+`X`: ServoWorks warning. `G4` with `G2`/`G3`: `linuxcnc` error.
+    ///
+    /// Implements: SW031, SW053, SW100, NGC114, NGC204, FAN032
+    pub static CONFLICTING_WORDS = {
+        code: "W002",
+        name: "conflicting-words",
+        summary: "Words that exclude each other in one block",
+        implements: &["SW031", "SW053", "SW100", "NGC114", "NGC204", "FAN032"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct ConflictingWords;
+
+fn ijk<'a>(cx: &BlockCx<'a>) -> Option<&'a crate::syntax::Item> {
+    [b'I', b'J', b'K']
+        .into_iter()
+        .find_map(|l| word_item(cx, l))
+        .map(|(i, _)| i)
+}
+
+impl Rule for ConflictingWords {
+    fn meta(&self) -> &'static RuleMeta {
+        &CONFLICTING_WORDS
+    }
+
+    fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
+        let d = cx.program.dialect;
+        if let Some(arc) = first_g(cx, &[20, 30]) {
+            if let (Some((r, _)), Some(c)) = (word_item(cx, b'R'), ijk(cx)) {
+                let diag = match d {
+                    Dialect::Fanuc => Diagnostic::warning(
+                        "W002",
+                        r.span,
+                        "Arc with both R and I/J/K: FANUC uses R and ignores the centre offsets, so the arc may differ from the one I/J/K describe. Keep one form.",
+                    ),
+                    _ => Diagnostic::error(
+                        "W002",
+                        r.span,
+                        "Arc with both a radius R and centre offsets I/J/K: the control refuses the block. Keep one form (I/J/K is more accurate near 180°).",
+                    ),
+                };
+                out.push(
+                    diag.with_related(c.span, "centre offset")
+                        .with_related(arc.span, "arc code"),
+                );
+            }
+            if d == Dialect::Rs274ngc && !super::util::is_emc2(cx.settings) && has(cx, 'G', 40) {
+                out.push(Diagnostic::error(
+                    "W002",
+                    arc.span,
+                    "G4 and an arc on one line both use P (dwell time / number of turns), so LinuxCNC refuses the line. Put the dwell on its own line.",
+                ));
+            }
+        }
+        if d != Dialect::Servoworks {
+            return;
+        }
+        if has(cx, 'G', 510) {
+            if let (Some((p, _)), Some(c)) = (word_item(cx, b'P'), ijk(cx)) {
+                out.push(
+                    Diagnostic::error(
+                        "W002",
+                        p.span,
+                        "G51 with both P (one factor for all axes) and I/J/K (per-axis factors): the control refuses it. Use P alone, or I/J/K alone.",
+                    )
+                    .with_related(c.span, "per-axis factor"),
+                );
+            }
+        }
+        if has(cx, 'G', 40) {
+            if let (Some((p, _)), Some((x, _))) = (word_item(cx, b'P'), word_item(cx, b'X')) {
+                out.push(
+                    Diagnostic::warning(
+                        "W002",
+                        x.span,
+                        "G04 with both P (milliseconds) and X (seconds): the manual does not say which one wins. Keep one of them.",
+                    )
+                    .with_related(p.span, "P dwell"),
+                );
+            }
+        }
+    }
+}
