@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
-use super::util::{has, near_integer};
+use super::util::{has, is_drilling_cycle, near_integer};
 use super::{BlockCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -61,7 +61,7 @@ impl Rule for IntegerWord {
         let cycle = cx
             .codes
             .iter()
-            .any(|c| c.letter == 'G' && c.group() == Some(9) && !c.is('G', 800));
+            .any(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let dwell = has(cx, 'G', 40);
         for (item, w) in cx.words() {
             if w.comma {

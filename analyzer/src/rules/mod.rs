@@ -33,6 +33,14 @@ mod goto_target;
 mod macro_with_nc_words;
 mod program_end;
 mod unreachable_after_end;
+mod word_value_range;
+mod dlacc_form;
+mod g54_with_words;
+mod m98_with_motion;
+mod block_too_long;
+mod macro_call_arguments;
+mod subprogram_name_glued;
+mod sequence_number;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

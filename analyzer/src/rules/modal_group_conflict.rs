@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
-use super::util::{code_name, removal_span};
+use super::util::{code_name, is_drilling_cycle, removal_span};
 use super::{BlockCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -51,9 +51,6 @@ declare_rule! {
 }
 
 pub struct ModalGroupConflict;
-
-/// The canned-cycle group in ServoWorks and FANUC numbering.
-const CYCLE_GROUP: u8 = 9;
 
 impl Rule for ModalGroupConflict {
     fn meta(&self) -> &'static RuleMeta {
@@ -112,10 +109,15 @@ impl Rule for ModalGroupConflict {
             out.push(diag.with_related(other, "the other code of the group"));
         }
         if d != Dialect::Rs274ngc {
-            let motion = g.iter().find(|c| c.group() == Some(1));
-            let cycle = g
+            // By number, so the check does not depend on how complete a table is.
+            let motion = cx
+                .codes
                 .iter()
-                .find(|c| c.group() == Some(CYCLE_GROUP) && c.num.is_some_and(|n| n.0 != 800));
+                .find(|c| c.letter == 'G' && c.num.is_some_and(|n| [0, 10, 20, 30].contains(&n.0)));
+            let cycle = cx
+                .codes
+                .iter()
+                .find(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
             if let (Some(m), Some(c)) = (motion, cycle) {
                 let (Some(mn), Some(cn)) = (m.num, c.num) else {
                     return;

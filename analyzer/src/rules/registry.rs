@@ -7,22 +7,30 @@ use super::syntax_rules as syn;
 use super::{Rule, RuleMeta};
 
 use super::axis_word_conflict::{AxisWordConflict, AXIS_WORD_CONFLICT};
+use super::block_too_long::{BlockTooLong, BLOCK_TOO_LONG};
 use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
 use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
+use super::dlacc_form::{DlaccForm, DLACC_FORM};
 use super::duplicate_word::{DuplicateWord, DUPLICATE_WORD};
+use super::g54_with_words::{G54WithWords, G54_WITH_WORDS};
 use super::goto_target::{GotoTarget, GOTO_TARGET};
 use super::integer_word::{IntegerWord, INTEGER_WORD};
+use super::m98_with_motion::{M98WithMotion, M98_WITH_MOTION};
 use super::m_group_conflict::{MGroupConflict, M_GROUP_CONFLICT};
+use super::macro_call_arguments::{MacroCallArguments, MACRO_CALL_ARGUMENTS};
 use super::macro_loop_structure::{MacroLoopStructure, MACRO_LOOP_STRUCTURE};
 use super::macro_with_nc_words::{MacroWithNcWords, MACRO_WITH_NC_WORDS};
 use super::missing_required_word::{MissingRequiredWord, MISSING_REQUIRED_WORD};
 use super::modal_group_conflict::{ModalGroupConflict, MODAL_GROUP_CONFLICT};
 use super::oword_structure::{OwordStructure, OWORD_STRUCTURE};
 use super::program_end::{ProgramEnd, PROGRAM_END};
+use super::sequence_number::{SequenceNumber, SEQUENCE_NUMBER};
+use super::subprogram_name_glued::{SubprogramNameGlued, SUBPROGRAM_NAME_GLUED};
 use super::too_many_m_words::{TooManyMWords, TOO_MANY_M_WORDS};
 use super::unknown_address::{UnknownAddress, UNKNOWN_ADDRESS};
 use super::unknown_code::{UnknownCode, UNKNOWN_CODE};
 use super::unreachable_after_end::{UnreachableAfterEnd, UNREACHABLE_AFTER_END};
+use super::word_value_range::{WordValueRange, WORD_VALUE_RANGE};
 
 /// Metadata of every syntax and static rule, in code order.
 pub static RULES: &[&RuleMeta] = &[
@@ -49,12 +57,20 @@ pub static RULES: &[&RuleMeta] = &[
     &AXIS_WORD_CONFLICT,
     &UNKNOWN_ADDRESS,
     &INTEGER_WORD,
+    &WORD_VALUE_RANGE,
+    &DLACC_FORM,
+    &G54_WITH_WORDS,
+    &M98_WITH_MOTION,
+    &BLOCK_TOO_LONG,
+    &MACRO_CALL_ARGUMENTS,
+    &SUBPROGRAM_NAME_GLUED,
     &OWORD_STRUCTURE,
     &MACRO_LOOP_STRUCTURE,
     &GOTO_TARGET,
     &MACRO_WITH_NC_WORDS,
     &PROGRAM_END,
     &UNREACHABLE_AFTER_END,
+    &SEQUENCE_NUMBER,
 ];
 
 /// The static rules that run over parsed programs.
@@ -70,12 +86,20 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &AxisWordConflict,
     &UnknownAddress,
     &IntegerWord,
+    &WordValueRange,
+    &DlaccForm,
+    &G54WithWords,
+    &M98WithMotion,
+    &BlockTooLong,
+    &MacroCallArguments,
+    &SubprogramNameGlued,
     &OwordStructure,
     &MacroLoopStructure,
     &GotoTarget,
     &MacroWithNcWords,
     &ProgramEnd,
     &UnreachableAfterEnd,
+    &SequenceNumber,
 ];
 
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {

@@ -103,3 +103,12 @@ pub fn removal_span(program: &Program, span: Span) -> Span {
     }
     Span::new(span.start, end as u32)
 }
+
+/// Drilling cycles by code number in tenths (RS274/NGC G76 is threading).
+pub fn is_drilling_cycle(d: Dialect, tenths: u32) -> bool {
+    match tenths {
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => true,
+        760 => d != Dialect::Rs274ngc,
+        _ => false,
+    }
+}
