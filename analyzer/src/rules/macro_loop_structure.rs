@@ -101,6 +101,10 @@ pub(super) fn loops(p: &Program, mut out: Option<&mut Vec<Diagnostic>>) -> Vec<(
                 ItemKind::ProgramHead { .. } => unclosed(&mut stack, &mut report),
                 ItemKind::Macro(MacroStmt::While { m, .. })
                 | ItemKind::Macro(MacroStmt::Do { m }) => {
+                    // A malformed statement was reported by the parser; do not pair it.
+                    if matches!(p.expr(m).expr, Expr::Error) {
+                        continue;
+                    }
                     let mv = literal(p, m);
                     if let Some(v) = mv {
                         if !(v == 1.0 || v == 2.0 || v == 3.0) {

@@ -37,13 +37,13 @@ declare_rule! {
     /// without P or X is a valid exact stop and is not flagged. Errors, except the
     /// ServoWorks exponential-interpolation feeds (warning).
     ///
-    /// Implements: SW020, SW028, SW032, SW046, SW060, SW101, SW110, NGC115, NGC203, NGC218, NGC223, NGC333, NGC409, NGC818, FAN030, FAN072
+    /// Implements: SW020, SW028, SW032, SW046, SW060, SW101, NGC115, NGC203, NGC218, NGC223, NGC333, NGC409, NGC818, FAN030, FAN072
     pub static MISSING_REQUIRED_WORD = {
         code: "W003",
         name: "missing-required-word",
         summary: "Code without a word it needs",
         implements: &[
-            "SW020", "SW028", "SW032", "SW046", "SW060", "SW101", "SW110", "NGC115", "NGC203", "NGC218", "NGC223", "NGC333",
+            "SW020", "SW028", "SW032", "SW046", "SW060", "SW101", "NGC115", "NGC203", "NGC218", "NGC223", "NGC333",
             "NGC409", "NGC818", "FAN030", "FAN072",
         ],
         origin: Static,

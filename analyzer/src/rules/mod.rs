@@ -41,6 +41,7 @@ mod block_too_long;
 mod macro_call_arguments;
 mod subprogram_name_glued;
 mod sequence_number;
+mod bracket_nesting;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

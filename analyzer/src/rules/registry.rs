@@ -8,6 +8,7 @@ use super::{Rule, RuleMeta};
 
 use super::axis_word_conflict::{AxisWordConflict, AXIS_WORD_CONFLICT};
 use super::block_too_long::{BlockTooLong, BLOCK_TOO_LONG};
+use super::bracket_nesting::{BracketNesting, BRACKET_NESTING};
 use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
 use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
 use super::dlacc_form::{DlaccForm, DLACC_FORM};
@@ -64,6 +65,7 @@ pub static RULES: &[&RuleMeta] = &[
     &BLOCK_TOO_LONG,
     &MACRO_CALL_ARGUMENTS,
     &SUBPROGRAM_NAME_GLUED,
+    &BRACKET_NESTING,
     &OWORD_STRUCTURE,
     &MACRO_LOOP_STRUCTURE,
     &GOTO_TARGET,
@@ -93,6 +95,7 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &BlockTooLong,
     &MacroCallArguments,
     &SubprogramNameGlued,
+    &BracketNesting,
     &OwordStructure,
     &MacroLoopStructure,
     &GotoTarget,

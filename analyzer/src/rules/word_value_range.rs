@@ -38,7 +38,7 @@ declare_rule! {
     /// All; errors where the control stops, warnings where it changes the value. Values
     /// given by parameters or expressions are checked when the program runs.
     ///
-    /// Implements: SW022, SW030, SW041, SW044, SW054, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC500, NGC501, NGC502, NGC509, NGC809, FAN011, FAN073, FAN074, FAN076
+    /// Implements: SW022, SW030, SW041, SW044, SW054, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
     pub static WORD_VALUE_RANGE = {
         code: "W007",
         name: "word-value-range",
@@ -46,7 +46,7 @@ declare_rule! {
         implements: &[
             "SW022", "SW030", "SW041", "SW044", "SW054", "SW073", "SW091", "SW102", "SW110", "SW122", "SW123", "SW130",
             "SW136", "SW137", "SW138", "SW140", "SW141", "SW143", "NGC215", "NGC224", "NGC304", "NGC305", "NGC308",
-            "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN011",
+            "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN003", "FAN005", "FAN011",
             "FAN073", "FAN074", "FAN076",
         ],
         origin: Static,
@@ -336,6 +336,37 @@ impl Rule for WordValueRange {
                 }
             }
             Dialect::Fanuc => {
+                let macro_call = has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661);
+                let unsigned: &[u8] = if macro_call { b"NPL" } else { b"NPTMSHDLKF" };
+                for (item, w) in cx.words() {
+                    let Some(n) = w.num().filter(|_| !w.comma) else {
+                        continue;
+                    };
+                    let text = cx.program.str_of(item.span).into_owned();
+                    let l = w.letter_char();
+                    if n.value < 0.0 && unsigned.contains(&w.letter) {
+                        k.out.push(Diagnostic::error(
+                            "W007",
+                            item.span,
+                            format!("`{text}`: address {l} takes no minus sign (alarm PS0006)."),
+                        ));
+                    }
+                    let max = match w.letter {
+                        b'S' => 5,
+                        b'H' | b'D' => 3,
+                        b'M' | b'T' | b'P' | b'L' => 8,
+                        b'X' | b'Y' | b'Z' | b'U' | b'V' | b'W' | b'A' | b'B' | b'C' | b'I'
+                        | b'J' | b'K' | b'R' | b'Q' => 9,
+                        _ => continue,
+                    };
+                    if usize::from(n.digits) > max {
+                        k.out.push(Diagnostic::error(
+                            "W007",
+                            item.span,
+                            format!("`{text}` has {} digits; address {l} takes at most {max} (alarm PS0003).", n.digits),
+                        ));
+                    }
+                }
                 for item in cx.items() {
                     if let ItemKind::ProgramHead {
                         number: Some(n), ..
