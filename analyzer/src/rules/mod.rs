@@ -42,6 +42,16 @@ mod macro_call_arguments;
 mod subprogram_name_glued;
 mod sequence_number;
 mod bracket_nesting;
+mod style_line_numbers;
+mod style_radius_arc;
+mod style_number_whitespace;
+mod style_decimals;
+mod style_units;
+mod style_preamble;
+mod style_order_of_execution;
+mod style_lowercase_o;
+mod style_g92;
+mod style_start_with_g40;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

@@ -26,6 +26,16 @@ use super::modal_group_conflict::{ModalGroupConflict, MODAL_GROUP_CONFLICT};
 use super::oword_structure::{OwordStructure, OWORD_STRUCTURE};
 use super::program_end::{ProgramEnd, PROGRAM_END};
 use super::sequence_number::{SequenceNumber, SEQUENCE_NUMBER};
+use super::style_decimals::{TooFewDecimals, TOO_FEW_DECIMALS};
+use super::style_g92::{G92Offset, G92_OFFSET};
+use super::style_line_numbers::{LineNumberOrder, LineNumbers, LINE_NUMBERS, LINE_NUMBER_ORDER};
+use super::style_lowercase_o::{LowercaseO, LOWERCASE_O};
+use super::style_number_whitespace::{NumberWhitespace, NUMBER_WHITESPACE};
+use super::style_order_of_execution::{OrderOfExecution, ORDER_OF_EXECUTION};
+use super::style_preamble::{Preamble, PREAMBLE};
+use super::style_radius_arc::{RadiusArc, RADIUS_ARC};
+use super::style_start_with_g40::{StartWithG40, START_WITH_G40};
+use super::style_units::{UnitsSetting, UNITS_SETTING};
 use super::subprogram_name_glued::{SubprogramNameGlued, SUBPROGRAM_NAME_GLUED};
 use super::too_many_m_words::{TooManyMWords, TOO_MANY_M_WORDS};
 use super::unknown_address::{UnknownAddress, UNKNOWN_ADDRESS};
@@ -73,6 +83,17 @@ pub static RULES: &[&RuleMeta] = &[
     &PROGRAM_END,
     &UNREACHABLE_AFTER_END,
     &SEQUENCE_NUMBER,
+    &LINE_NUMBERS,
+    &LINE_NUMBER_ORDER,
+    &RADIUS_ARC,
+    &NUMBER_WHITESPACE,
+    &TOO_FEW_DECIMALS,
+    &UNITS_SETTING,
+    &PREAMBLE,
+    &ORDER_OF_EXECUTION,
+    &LOWERCASE_O,
+    &G92_OFFSET,
+    &START_WITH_G40,
 ];
 
 /// The static rules that run over parsed programs.
@@ -103,6 +124,17 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &ProgramEnd,
     &UnreachableAfterEnd,
     &SequenceNumber,
+    &LineNumbers,
+    &LineNumberOrder,
+    &RadiusArc,
+    &NumberWhitespace,
+    &TooFewDecimals,
+    &UnitsSetting,
+    &Preamble,
+    &OrderOfExecution,
+    &LowercaseO,
+    &G92Offset,
+    &StartWithG40,
 ];
 
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {

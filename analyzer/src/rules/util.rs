@@ -112,3 +112,28 @@ pub fn is_drilling_cycle(d: Dialect, tenths: u32) -> bool {
         _ => false,
     }
 }
+
+/// Whether a block has a literal word of `letter` with value `v`.
+pub fn block_has_word_value(program: &Program, b: &Block, letter: u8, v: f64) -> bool {
+    program
+        .words(b)
+        .any(|(_, w)| w.letter == letter && !w.comma && lit(w) == Some(v))
+}
+
+/// The G code values (in tenths) written as literals in a block.
+pub fn block_g_codes(program: &Program, b: &Block) -> Vec<u32> {
+    program
+        .words(b)
+        .filter(|(_, w)| w.letter == b'G' && !w.comma)
+        .filter_map(|(_, w)| lit(w))
+        .filter_map(CodeNum::from_value)
+        .map(|n| n.0)
+        .collect()
+}
+
+/// Whether a block has an axis word of the machine.
+pub fn block_has_axis(program: &Program, b: &Block, settings: &Settings) -> bool {
+    program
+        .words(b)
+        .any(|(_, w)| !w.comma && is_machine_axis(settings, w.letter))
+}
