@@ -11,7 +11,8 @@ declare_rule! {
     /// ## What it does
     /// Flags a block where a non-modal code that takes axis words (`G10`, `G28`, `G30`,
     /// `G92`, `G52` …) is written together with an explicit group-1 motion code, and an
-    /// RS274/NGC line with axis words and an explicit `G80` but nothing that uses them.
+    /// RS274/NGC line with axis words and an explicit `G80` but nothing that uses them, and a
+    /// LinuxCNC `G43.1` (whose axis words are offsets) with a motion code.
     ///
     /// ## Why is this bad?
     /// Both codes want the same X/Y/Z words. LinuxCNC refuses the line (`Cannot use two G
@@ -37,12 +38,12 @@ declare_rule! {
     /// with `G00`/`G01` is the normal machine-coordinate move and is not flagged.
     /// ServoWorks: not checked (the manual is silent).
     ///
-    /// Implements: NGC106, NGC108, FAN027
+    /// Implements: NGC106, NGC108, NGC805, FAN027
     pub static AXIS_WORD_CONFLICT = {
         code: "W004",
         name: "axis-word-conflict",
         summary: "Axis words claimed by two codes, or by none",
-        implements: &["NGC106", "NGC108", "FAN027"],
+        implements: &["NGC106", "NGC108", "NGC805", "FAN027"],
         origin: Static,
         default_enabled: true,
     }
@@ -95,6 +96,19 @@ impl Rule for AxisWordConflict {
             };
             out.push(diag.with_related(g0.span, "group-00 code that uses the axis words"));
             return;
+        }
+        if d == Dialect::Rs274ngc && !is_emc2(cx.settings) {
+            if let (Some(tlo), Some(m)) = (cx.codes.iter().find(|c| c.is('G', 431)), motion) {
+                out.push(
+                    Diagnostic::error(
+                        "W004",
+                        m.span,
+                        "G43.1 takes the axis words of this line as tool offsets, so motion on the same line is refused. Put the move on the next line.",
+                    )
+                    .with_related(tlo.span, "dynamic tool length offset"),
+                );
+                return;
+            }
         }
         if d == Dialect::Rs274ngc && consumer.is_none() && !axes.is_empty() {
             let modern_axis_users =

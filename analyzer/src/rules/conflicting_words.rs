@@ -13,7 +13,8 @@ declare_rule! {
     /// radius `R` and centre offsets `I`/`J`/`K`; ServoWorks scaling `G51` with both an
     /// overall factor `P` and per-axis factors `I`/`J`/`K`; ServoWorks dwell `G04` with
     /// both `P` (milliseconds) and `X` (seconds); LinuxCNC `G4` on a line with `G2`/`G3`
-    /// (both read `P`).
+    /// (both read `P`); `F` with `G33`/`G33.1`; `G43.2` with both or neither of `H` and axis
+    /// words; words in a ServoWorks `G41.1`/`G42.1` block, which takes none.
     ///
     /// ## Why is this bad?
     /// The two forms describe the same thing twice and can disagree. LinuxCNC and
@@ -36,12 +37,12 @@ declare_rule! {
     /// Arcs: error in RS274/NGC and ServoWorks, warning in FANUC. `G51 P`+`I/J/K`: ServoWorks
     /// error. `G04 P`+`X`: ServoWorks warning. `G4` with `G2`/`G3`: `linuxcnc` error.
     ///
-    /// Implements: SW031, SW053, SW100, NGC114, NGC204, FAN032
+    /// Implements: SW031, SW053, SW089, SW100, NGC114, NGC204, NGC222, NGC806, FAN032
     pub static CONFLICTING_WORDS = {
         code: "W002",
         name: "conflicting-words",
         summary: "Words that exclude each other in one block",
-        implements: &["SW031", "SW053", "SW100", "NGC114", "NGC204", "FAN032"],
+        implements: &["SW031", "SW053", "SW089", "SW100", "NGC114", "NGC204", "NGC222", "NGC806", "FAN032"],
         origin: Static,
         default_enabled: true,
     }
@@ -90,8 +91,50 @@ impl Rule for ConflictingWords {
                 ));
             }
         }
+        if d == Dialect::Rs274ngc {
+            if let (Some(g33), Some((f, _))) = (first_g(cx, &[330, 331]), word_item(cx, b'F')) {
+                out.push(
+                    Diagnostic::error(
+                        "W002",
+                        f.span,
+                        "F on a spindle-synchronised line: the feed of G33/G33.1 comes from K and the spindle speed, so F is refused. Remove it.",
+                    )
+                    .with_related(g33.span, "synchronised motion"),
+                );
+            }
+            if let Some(tcp) = first_g(cx, &[432]).filter(|_| !super::util::is_emc2(cx.settings)) {
+                let axes = !super::util::axis_words(cx).is_empty();
+                let h = word_item(cx, b'H').is_some();
+                if axes == h {
+                    let msg = if h {
+                        "G43.2 takes either H (add a tool's offset) or axis words (add the given offsets), not both."
+                    } else {
+                        "G43.2 needs H (a tool whose offset is added) or axis words (the offsets to add)."
+                    };
+                    out.push(Diagnostic::error("W002", tcp.span, msg));
+                }
+            }
+        }
         if d != Dialect::Servoworks {
             return;
+        }
+        if let Some(ndc) = first_g(cx, &[411, 421]) {
+            let extra = cx
+                .words()
+                .find(|(i, w)| w.letter != b'G' && w.letter != b'N' && i.span != ndc.span);
+            if let Some((i, _)) = extra {
+                out.push(
+                    Diagnostic::warning(
+                        "W002",
+                        i.span,
+                        format!(
+                            "`{}` in a normal-direction-control block: the manual lists no parameters for G41.1/G42.1, so the word is probably ignored. Put it on another line.",
+                            cx.program.str_of(i.span)
+                        ),
+                    )
+                    .with_related(ndc.span, "normal direction control"),
+                );
+            }
         }
         if has(cx, 'G', 510) {
             if let (Some((p, _)), Some(c)) = (word_item(cx, b'P'), ijk(cx)) {

@@ -14,7 +14,8 @@ declare_rule! {
     /// Checks that a main program ends: with `M2`/`M30` (RS274/NGC, unless the file is
     /// wrapped in `%` lines), with `M02`/`M30` (ServoWorks main programs), or with
     /// `M02`/`M30`/`M99` (FANUC). An RS274/NGC file that opens with `%` needs its closing
-    /// `%`, and a ServoWorks file must end with a `%` line or a line break.
+    /// `%`, a ServoWorks file must end with a `%` line or a line break, and a FANUC file
+    /// starts with `%` and an `O` number.
     ///
     /// ## Why is this bad?
     /// LinuxCNC stops with `File ended with no percent sign or program end` (or `File ended
@@ -39,12 +40,12 @@ declare_rule! {
     /// RS274/NGC: error (files that only define subroutines are exempt). ServoWorks and
     /// FANUC: warning; files that contain `M99` are subprograms and need no `M30`.
     ///
-    /// Implements: SW011, SW019, NGC024, NGC025, FAN012
+    /// Implements: SW011, SW019, NGC024, NGC025, FAN010, FAN012
     pub static PROGRAM_END = {
         code: "P005",
         name: "missing-program-end",
         summary: "Program without an end code",
-        implements: &["SW011", "SW019", "NGC024", "NGC025", "FAN012"],
+        implements: &["SW011", "SW019", "NGC024", "NGC025", "FAN010", "FAN012"],
         origin: Static,
         default_enabled: true,
     }
@@ -155,6 +156,28 @@ impl Rule for ProgramEnd {
                 }
             }
             Dialect::Fanuc => {
+                let opens_with_percent = p
+                    .blocks
+                    .iter()
+                    .find(|b| b.kind != BlockKind::Normal || !p.items_of(b).is_empty())
+                    .is_some_and(|b| b.kind == BlockKind::Percent);
+                let has_head = p
+                    .items
+                    .iter()
+                    .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }));
+                if !opens_with_percent || !has_head {
+                    let what = match (opens_with_percent, has_head) {
+                        (false, false) => "does not start with a `%` line and has no O number",
+                        (false, true) => "does not start with a `%` line",
+                        _ => "has no O program number",
+                    };
+                    let start = code_blocks.first().map(|b| b.span).unwrap_or_default();
+                    out.push(Diagnostic::warning(
+                        "P005",
+                        start,
+                        format!("The file {what}: a FANUC program is stored as `%`, `O1234;`, blocks, end code, `%`. Text between the first `%` and the first end of block is skipped as the leader."),
+                    ));
+                }
                 if !ends(&[2.0, 30.0, 99.0]) {
                     out.push(Diagnostic::warning(
                         "P005",

@@ -98,12 +98,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: SW014, NGC006, FAN002
+    /// Implements: SW014, NGC006, NGC030, FAN002
     pub static MISSING_VALUE = {
         code: "L003",
         name: "missing-value",
         summary: "Address letter without a value",
-        implements: &["SW014", "NGC006", "FAN002"],
+        implements: &["SW014", "NGC006", "NGC030", "FAN002"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -168,12 +168,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored).
     ///
-    /// Implements: SW008, NGC002
+    /// Implements: SW008, NGC002, NGC011
     pub static UNKNOWN_CHARACTER = {
         code: "L005",
         name: "unknown-character",
         summary: "Character that is not part of the language",
-        implements: &["SW008", "NGC002"],
+        implements: &["SW008", "NGC002", "NGC011"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -309,12 +309,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: NGC012, NGC013, NGC020, FAN130, FAN131, FAN132
+    /// Implements: NGC012, NGC013, NGC020, NGC027, NGC600, NGC611, NGC612, FAN130, FAN131, FAN132
     pub static BAD_EXPRESSION = {
         code: "L010",
         name: "bad-expression",
         summary: "Malformed expression or statement",
-        implements: &["NGC012", "NGC013", "NGC020", "FAN130", "FAN131", "FAN132"],
+        implements: &["NGC012", "NGC013", "NGC020", "NGC027", "NGC600", "NGC611", "NGC612", "FAN130", "FAN131", "FAN132"],
         origin: Syntax,
         default_enabled: true,
     }
