@@ -52,6 +52,12 @@ mod style_order_of_execution;
 mod style_lowercase_o;
 mod style_g92;
 mod style_start_with_g40;
+mod constant_expression;
+mod parameter_number;
+mod expression_form;
+mod parameter_same_line;
+mod comment_use;
+mod oword_calls;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

@@ -10,9 +10,12 @@ use super::axis_word_conflict::{AxisWordConflict, AXIS_WORD_CONFLICT};
 use super::block_too_long::{BlockTooLong, BLOCK_TOO_LONG};
 use super::bracket_nesting::{BracketNesting, BRACKET_NESTING};
 use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
+use super::comment_use::{CommentUse, COMMENT_USE};
 use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
+use super::constant_expression::{ConstantExpression, CONSTANT_EXPRESSION};
 use super::dlacc_form::{DlaccForm, DLACC_FORM};
 use super::duplicate_word::{DuplicateWord, DUPLICATE_WORD};
+use super::expression_form::{ExpressionForm, EXPRESSION_FORM};
 use super::g54_with_words::{G54WithWords, G54_WITH_WORDS};
 use super::goto_target::{GotoTarget, GOTO_TARGET};
 use super::integer_word::{IntegerWord, INTEGER_WORD};
@@ -23,7 +26,10 @@ use super::macro_loop_structure::{MacroLoopStructure, MACRO_LOOP_STRUCTURE};
 use super::macro_with_nc_words::{MacroWithNcWords, MACRO_WITH_NC_WORDS};
 use super::missing_required_word::{MissingRequiredWord, MISSING_REQUIRED_WORD};
 use super::modal_group_conflict::{ModalGroupConflict, MODAL_GROUP_CONFLICT};
+use super::oword_calls::{OwordCalls, OWORD_CALLS};
 use super::oword_structure::{OwordStructure, OWORD_STRUCTURE};
+use super::parameter_number::{ParameterNumber, PARAMETER_NUMBER};
+use super::parameter_same_line::{ParameterSameLine, PARAMETER_SAME_LINE};
 use super::program_end::{ProgramEnd, PROGRAM_END};
 use super::sequence_number::{SequenceNumber, SEQUENCE_NUMBER};
 use super::style_decimals::{TooFewDecimals, TOO_FEW_DECIMALS};
@@ -76,6 +82,11 @@ pub static RULES: &[&RuleMeta] = &[
     &MACRO_CALL_ARGUMENTS,
     &SUBPROGRAM_NAME_GLUED,
     &BRACKET_NESTING,
+    &CONSTANT_EXPRESSION,
+    &PARAMETER_NUMBER,
+    &EXPRESSION_FORM,
+    &PARAMETER_SAME_LINE,
+    &COMMENT_USE,
     &OWORD_STRUCTURE,
     &MACRO_LOOP_STRUCTURE,
     &GOTO_TARGET,
@@ -83,6 +94,7 @@ pub static RULES: &[&RuleMeta] = &[
     &PROGRAM_END,
     &UNREACHABLE_AFTER_END,
     &SEQUENCE_NUMBER,
+    &OWORD_CALLS,
     &LINE_NUMBERS,
     &LINE_NUMBER_ORDER,
     &RADIUS_ARC,
@@ -117,6 +129,11 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &MacroCallArguments,
     &SubprogramNameGlued,
     &BracketNesting,
+    &ConstantExpression,
+    &ParameterNumber,
+    &ExpressionForm,
+    &ParameterSameLine,
+    &CommentUse,
     &OwordStructure,
     &MacroLoopStructure,
     &GotoTarget,
@@ -124,6 +141,7 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &ProgramEnd,
     &UnreachableAfterEnd,
     &SequenceNumber,
+    &OwordCalls,
     &LineNumbers,
     &LineNumberOrder,
     &RadiusArc,

@@ -137,3 +137,58 @@ pub fn block_has_axis(program: &Program, b: &Block, settings: &Settings) -> bool
         .words(b)
         .any(|(_, w)| !w.comma && is_machine_axis(settings, w.letter))
 }
+
+/// The root expressions of a block: word values, assignment sides, O-word
+/// arguments and macro statement operands.
+pub fn block_exprs(program: &Program, items: &[Item]) -> Vec<crate::syntax::ExprId> {
+    use crate::syntax::MacroStmt as M;
+    let mut out = Vec::new();
+    for item in items {
+        match item.kind {
+            ItemKind::Word(Word {
+                value: WordValue::Expr(e),
+                ..
+            }) => out.push(e),
+            ItemKind::Assign { target, value } => out.extend([target, value]),
+            ItemKind::OWord(o) => out.extend(program.expr_list(o.args).iter().copied()),
+            ItemKind::Macro(m) => match m {
+                M::Goto { target } => out.push(target),
+                M::IfGoto { cond, target } => out.extend([cond, target]),
+                M::IfThen { cond } => out.push(cond),
+                M::While { cond, m } => out.extend([cond, m]),
+                M::Do { m } | M::End { m } => out.push(m),
+                M::Output => {}
+            },
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The direct children of an expression node.
+pub fn expr_children(program: &Program, id: crate::syntax::ExprId) -> Vec<crate::syntax::ExprId> {
+    use crate::syntax::Expr as E;
+    match program.expr(id).expr {
+        E::Var { index } => vec![index],
+        E::Neg { arg } | E::Plus { arg } => vec![arg],
+        E::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+        E::Call { arg, arg2, .. } => std::iter::once(arg).chain(arg2).collect(),
+        E::Group { inner } => vec![inner],
+        E::Num(_) | E::Named { .. } | E::Error => Vec::new(),
+    }
+}
+
+/// Every node of an expression tree, parents before children.
+pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::syntax::ExprId> {
+    let mut out = Vec::new();
+    let mut stack = vec![root];
+    while let Some(id) = stack.pop() {
+        // Guards against malformed trees; the parser caps depth at 64 anyway.
+        if out.len() > 100_000 {
+            break;
+        }
+        out.push(id);
+        stack.extend(expr_children(program, id));
+    }
+    out
+}
