@@ -137,7 +137,7 @@ pub struct MachineProfile {
     pub feed_override: f64,
     /// Override applied to rapid moves (1.0 = 100 %).
     pub rapid_override: f64,
-    /// LinuxCNC `[TRAJ]ARC_BLEND_TANGENT_KINK_RATIO`: acceleration share given up at
+    /// LinuxCNC `[TRAJ]ARC_BLEND_KINK_RATIO`: acceleration share given up at
     /// corners that are not blended.
     pub tangent_kink_ratio: f64,
 }
@@ -256,7 +256,7 @@ impl MachineProfile {
     ///
     /// Reads `[TRAJ]` `COORDINATES`, `LINEAR_UNITS`, `MAX_LINEAR_VELOCITY` (or the older
     /// `MAX_VELOCITY`), `MAX_LINEAR_ACCELERATION`, `ARC_BLEND_OPTIMIZATION_DEPTH`,
-    /// `ARC_BLEND_TANGENT_KINK_RATIO`, `[EMCMOT]SERVO_PERIOD`, and per axis
+    /// `ARC_BLEND_KINK_RATIO`, `[EMCMOT]SERVO_PERIOD`, and per axis
     /// `[AXIS_<L>]` `MAX_VELOCITY`, `MAX_ACCELERATION`, `MIN_LIMIT`, `MAX_LIMIT`,
     /// falling back to the `[JOINT_<n>]` (or 2.7-style `[AXIS_<n>]`) section of the
     /// joint that drives the letter under trivkins. Inch machines are converted to mm.
@@ -366,7 +366,7 @@ impl MachineProfile {
         if let Some(d) = num("TRAJ", "ARC_BLEND_OPTIMIZATION_DEPTH")? {
             p.lookahead = d.max(0.0) as u32;
         }
-        if let Some(k) = num("TRAJ", "ARC_BLEND_TANGENT_KINK_RATIO")? {
+        if let Some(k) = num("TRAJ", "ARC_BLEND_KINK_RATIO")? {
             p.tangent_kink_ratio = k;
         }
         if let Some(ns) = num("EMCMOT", "SERVO_PERIOD")? {

@@ -167,6 +167,23 @@ fn evaluate() -> Vec<Row> {
             })
             .collect();
         let res = plan(&profile, events);
+        if std::env::var("PLAN_DEBUG").is_ok() {
+            let mut dips = 0;
+            let mut rises = 0;
+            for t in &res.timings {
+                if t.peak_speed > t.exit_speed + 1e-6 && t.exit_speed > 0.0 {
+                    dips += 1;
+                }
+                if t.peak_speed > t.entry_speed + 1e-6 && t.entry_speed > 0.0 {
+                    rises += 1;
+                }
+            }
+            println!(
+                "DBG {program} {mname} elems {} dips {dips} rises {rises} err_ms {:.1}",
+                res.timings.len(),
+                (res.totals.motion_s - lcnc) * 1000.0
+            );
+        }
         rows.push(Row {
             program: program.to_string(),
             machine: mname.to_string(),

@@ -97,3 +97,14 @@ write("inch_arc_g61", ["G20 G90 G17 G61", "G0 X0.5", "G3 X-0.5 Y0 I-0.5 J0 F60"]
 
 # A dwell between moves: motion_s must not include it.
 write("dwell_between", ["G21 G90 G17 G61", "G1 X10 F6000", "G4 P0.3", "G1 X0"])
+
+# Arcs followed by more motion (LinuxCNC then finalises the arc's acceleration split).
+write("arc_then_line_g61", ["G21 G90 G17 G61", "G0 X10", "G2 X10 Y0 I-10 J0 F3000", "G1 X30"])
+write("arc_then_line_g64", ["G21 G90 G17 G64", "G0 X10", "G2 X10 Y0 I-10 J0 F3000", "G1 X30"])
+# Rapids blend with each other in G64.
+write("rapid_corner_g64", ["G21 G90 G17 G64", "G0 X30", "G0 X30 Y30"])
+# A zigzag of 0.5 mm teeth: every junction is a sharp corner on a short segment.
+lines = ["G21 G90 G17 G64 P0.05", "F2400"]
+for i in range(1, 121):
+    lines.append("G1 X%s Y%s" % (fmt(i * 0.25), "0.5" if i % 2 else "0"))
+write("poly_zigzag_g64p005", lines)

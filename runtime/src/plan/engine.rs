@@ -863,7 +863,9 @@ impl Planner {
             blend: tc.ty == TcType::Blend,
             start_s: start,
             end_s: end,
+            entry_speed: v0,
             peak_speed: v_peak,
+            exit_speed: v_end,
             length: l,
         });
     }

@@ -223,8 +223,12 @@ pub struct SegmentTiming {
     pub blend: bool,
     pub start_s: f64,
     pub end_s: f64,
+    /// Path speed when the element starts, mm/s.
+    pub entry_speed: f64,
     /// Highest path speed on the element, mm/s.
     pub peak_speed: f64,
+    /// Path speed when the element ends, mm/s.
+    pub exit_speed: f64,
     /// Length actually travelled on this element, mm.
     pub length: f64,
 }
