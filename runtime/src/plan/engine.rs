@@ -487,7 +487,11 @@ impl Planner {
         if prev.ty == TcType::Circle || tc.ty == TcType::Circle {
             scale /= ACC_RATIO_TAN;
         }
-        let kink = self.p.tangent_kink_ratio.clamp(0.001, 0.7071);
+        // LinuxCNC bounds the ratio to [0.001, 0.7071].
+        let kink = self
+            .p
+            .tangent_kink_ratio
+            .clamp(0.001, std::f64::consts::FRAC_1_SQRT_2);
         if scale < kink {
             set_term(prev, Some(tc), Term::Tangent);
             set_kink(prev, tc, v_max, scale);
@@ -587,7 +591,12 @@ impl Planner {
         let r_plan = (v_plan * v_plan / a_n_max).max(r_blend);
         let d_plan = r_plan / theta.tan();
         let s_arc = r_plan * phi;
-        if !(r_plan >= POS_EPS) || s_arc < 1e-6 || !v_plan.is_finite() || v_plan <= 0.0 {
+        if r_plan.is_nan()
+            || r_plan < POS_EPS
+            || s_arc < 1e-6
+            || !v_plan.is_finite()
+            || v_plan <= 0.0
+        {
             return None;
         }
         let l_prev = prev.target - d_plan;
