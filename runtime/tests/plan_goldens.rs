@@ -178,8 +178,10 @@ fn evaluate() -> Vec<Row> {
                     rises += 1;
                 }
             }
+            let arcs = res.timings.iter().filter(|t| t.blend).count();
+            let stops = res.timings.iter().filter(|t| t.exit_speed == 0.0).count();
             println!(
-                "DBG {program} {mname} elems {} dips {dips} rises {rises} err_ms {:.1}",
+                "DBG {program} {mname} elems {} arcs {arcs} stops {stops} dips {dips} rises {rises} err_ms {:.1}",
                 res.timings.len(),
                 (res.totals.motion_s - lcnc) * 1000.0
             );

@@ -72,6 +72,9 @@ struct Tc {
     tool: u32,
     /// LinuxCNC model: a parabolic junction on either side halves the acceleration.
     halve_parabolic: bool,
+    /// The backward pass found this element's final speed capped by a speed limit
+    /// rather than by the look-ahead (LinuxCNC never clears the flag).
+    at_max: bool,
 }
 
 impl Tc {
@@ -266,6 +269,7 @@ impl Planner {
             block: seg.block,
             tool: seg.tool,
             halve_parabolic: lcnc,
+            at_max: false,
         };
         let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
         match seg.kind {
@@ -628,6 +632,7 @@ impl Planner {
             block: prev.block,
             tool: prev.tool,
             halve_parabolic: true,
+            at_max: false,
         };
         Some((arc, d_plan, consume))
     }
@@ -732,6 +737,8 @@ impl Planner {
     fn optimize(&mut self) {
         let len = self.queue.len();
         let mut hit_non_tangent = false;
+        let mut hit_peaks = 0;
+        let lazy = self.lcnc();
         for x in 1..self.depth + 2 {
             if x + 1 > len {
                 return;
