@@ -113,7 +113,8 @@ pub struct MachineProfile {
     pub circle_error_allowance: f64,
     /// Tolerated difference between start and end radius of an arc, mm.
     pub arc_radius_tolerance: f64,
-    /// Minimum time the control spends per block, s (0 = none).
+    /// Minimum time the control spends per motion block, s (0 = none): shorter
+    /// moves are slowed down to take this long.
     pub block_processing_time: f64,
     /// Duration of a tool change (M6), s.
     pub tool_change_time: f64,

@@ -244,6 +244,9 @@ fn goldens_match_linuxcnc() {
         .collect();
     let max_err = errs.iter().cloned().fold(0.0, f64::max);
     let max_rel = rel.iter().cloned().fold(0.0, f64::max);
+    let naive_median = median(naive.clone());
+    // The point of the planner: the naive estimate is far off, ours is not.
+    assert!(naive_median > 0.05 && median(rel.clone()) < 0.001);
     println!(
         "median |err| {:.1} ms, max |err| {:.1} ms, median rel {:.2} %, max rel {:.2} %; naive median rel {:.1} %, max rel {:.1} %",
         median(errs.clone()),
@@ -253,28 +256,36 @@ fn goldens_match_linuxcnc() {
         median(naive.clone()) * 100.0,
         naive.iter().cloned().fold(0.0, f64::max) * 100.0
     );
-    // Straight moves and arcs in exact-path mode are reproduced to the servo period.
+    // Straight moves and arcs in exact-path mode are reproduced to the servo period,
+    // G64 corners and squares to 2 ms.
     for r in &rows {
+        let err = (r.ours - r.lcnc).abs();
         let exact = r.program.starts_with("line_")
-            || r.program.starts_with("rapid_")
+            || r.program.starts_with("rapid_xyz")
             || r.program.starts_with("arc_r")
             || r.program.starts_with("inch_line")
             || r.program.starts_with("dwell_")
             || r.program.ends_with("_g61");
-        if exact {
-            assert!(
-                (r.ours - r.lcnc).abs() <= 0.0015,
-                "{} on {}: ours {:.4} s, LinuxCNC {:.4} s",
-                r.program,
-                r.machine,
-                r.ours,
-                r.lcnc
-            );
-        }
+        let (limit, why) = if exact {
+            (0.0015, "exact")
+        } else if r.program == "arc_then_line_g64" {
+            // FIXME: arc-to-line blends use the line-line blend geometry (LinuxCNC
+            // builds them differently); we are 8-24 ms fast.
+            (0.025, "arc-line blend")
+        } else if r.program.starts_with("poly_") {
+            // FIXME: long chains of short blended moves come out up to 3.3 % fast
+            // (poly_walk, poly_sine); the cause is not found yet.
+            (0.035 * r.lcnc, "short segments")
+        } else {
+            (0.002, "blend")
+        };
+        assert!(
+            err <= limit,
+            "{} on {} ({why}): ours {:.4} s, LinuxCNC {:.4} s",
+            r.program,
+            r.machine,
+            r.ours,
+            r.lcnc
+        );
     }
-    assert!(
-        max_rel < 0.10,
-        "max relative error {:.2} %",
-        max_rel * 100.0
-    );
 }

@@ -428,3 +428,19 @@ max_acceleration = 3000.0
     assert_eq!(p.lookahead, 40);
     assert!(MachineProfile::from_toml("[machine]\nbogus = 1\n", analyzer::Dialect::Fanuc).is_err());
 }
+
+#[test]
+fn block_processing_time_is_a_minimum_per_move() {
+    let mut m = lcnc_machine();
+    m.block_processing_time = 0.5;
+    let t = motion(
+        &m,
+        vec![Segment::line([0.0; 3], [1.0, 0.0, 0.0], f(6000.0), G61)],
+    );
+    assert_ms(t, 0.5);
+    let t = motion(
+        &m,
+        vec![Segment::line([0.0; 3], [50.0, 0.0, 0.0], f(3000.0), G61)],
+    );
+    assert_ms(t, 1.050);
+}

@@ -153,7 +153,6 @@ impl Planner {
                 if let Some(tc) = self.build(&seg) {
                     self.add(tc, out);
                 }
-                self.totals.other_s += self.p.block_processing_time;
             }
             Event::Dwell { seconds, .. } => {
                 self.flush(out);
@@ -831,6 +830,8 @@ impl Planner {
             }
             (t, pr.v_end, pr.v_peak)
         };
+        // A control that needs a minimum time per block cannot run shorter elements.
+        let time = time.max(self.p.block_processing_time);
         // A parabolic blend lets this element start while the previous one is
         // still decelerating.
         let start = self.t - self.overlap.min(time);

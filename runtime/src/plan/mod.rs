@@ -252,7 +252,7 @@ pub struct Totals {
     pub cutting_s: f64,
     pub dwell_s: f64,
     pub tool_change_s: f64,
-    /// Spindle ramps, M-code handshakes, program stops, block processing.
+    /// Spindle ramps, M-code handshakes, program stops.
     pub other_s: f64,
     /// Path length travelled (blend arcs cut corners, so this can be a little less
     /// than the programmed length).
