@@ -771,8 +771,19 @@ impl Planner {
                 if prev.kink_vel >= 0.0 {
                     limit = limit.min(prev.kink_vel);
                 }
+                if vs_back >= limit {
+                    prev.at_max = true;
+                }
                 prev.finalvel = vs_back.min(limit);
                 tc.maxvel = tc.maxvel.min(tc.target / (self.cycle * MIN_SEGMENT_CYCLES));
+            }
+            // LinuxCNC's lazy optimisation: stop after passing more than
+            // TP_OPTIMIZATION_CUTOFF (4) elements already at their speed limit.
+            if lazy && tc.at_max {
+                hit_peaks += 1;
+                if hit_peaks > 4 {
+                    return;
+                }
             }
         }
     }
