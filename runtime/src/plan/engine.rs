@@ -75,6 +75,8 @@ struct Tc {
     /// The backward pass found this element's final speed capped by a speed limit
     /// rather than by the look-ahead (LinuxCNC never clears the flag).
     at_max: bool,
+    /// The backward pass has set `finalvel` at least once.
+    optimized: bool,
 }
 
 impl Tc {
@@ -269,6 +271,7 @@ impl Planner {
             tool: seg.tool,
             halve_parabolic: lcnc,
             at_max: false,
+            optimized: false,
         };
         let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
         match seg.kind {
@@ -632,6 +635,7 @@ impl Planner {
             tool: prev.tool,
             halve_parabolic: true,
             at_max: false,
+            optimized: false,
         };
         Some((arc, d_plan, consume))
     }
@@ -774,8 +778,19 @@ impl Planner {
                 if vs_back >= limit {
                     prev.at_max = true;
                 }
-                prev.finalvel = vs_back.min(limit);
-                tc.maxvel = tc.maxvel.min(tc.target / (self.cycle * MIN_SEGMENT_CYCLES));
+                let fv = vs_back.min(limit);
+                let clamp = tc.maxvel.min(tc.target / (self.cycle * MIN_SEGMENT_CYCLES));
+                // Once a junction comes out as it was, every earlier one would too
+                // (their inputs are unchanged), so the rest of the pass is skipped.
+                // The result equals LinuxCNC's full pass; the cost is O(1) amortised
+                // on long chains instead of O(depth).
+                let unchanged = prev.optimized && fv == prev.finalvel && clamp == tc.maxvel;
+                prev.finalvel = fv;
+                prev.optimized = true;
+                tc.maxvel = clamp;
+                if unchanged {
+                    return;
+                }
             }
             // LinuxCNC's lazy optimisation: stop after passing more than
             // TP_OPTIMIZATION_CUTOFF (4) elements already at their speed limit.
