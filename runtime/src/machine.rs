@@ -141,6 +141,10 @@ pub struct MachineProfile {
     /// LinuxCNC `[TRAJ]ARC_BLEND_KINK_RATIO`: acceleration share given up at
     /// corners that are not blended.
     pub tangent_kink_ratio: f64,
+    /// `linuxcnc` model: execute period by period like LinuxCNC's servo thread
+    /// (exact to the period, cost proportional to machine time) instead of with
+    /// closed-form profiles (cost proportional to the number of moves).
+    pub servo_simulation: bool,
 }
 
 impl Default for MachineProfile {
@@ -190,6 +194,7 @@ impl MachineProfile {
             feed_override: 1.0,
             rapid_override: 1.0,
             tangent_kink_ratio: 0.1,
+            servo_simulation: false,
         };
         match dialect {
             // LinuxCNC 2.9: centre-format arcs may differ by 2·0.01·√2 mm in radius;

@@ -157,7 +157,8 @@ fn evaluate() -> Vec<Row> {
         let (program, mname, lcnc) = (f[0], f[1], f[2].parse::<f64>().expect("motion_s"));
         let text = std::fs::read_to_string(root().join("programs").join(format!("{program}.ngc")))
             .expect("program");
-        let profile = machine(mname);
+        let mut profile = machine(mname);
+        profile.servo_simulation = std::env::var("PLAN_SERVO").is_ok();
         let events = read_program(&text);
         let segs: Vec<Segment> = events
             .iter()

@@ -444,3 +444,51 @@ fn block_processing_time_is_a_minimum_per_move() {
     );
     assert_ms(t, 1.050);
 }
+
+#[test]
+fn servo_simulation_reproduces_expected_md() {
+    let mut m = lcnc_machine();
+    m.servo_simulation = true;
+    let line = |a: [f64; 3], b: [f64; 3], feed: f64, mode| Segment::line(a, b, f(feed), mode);
+    assert_ms(
+        motion(&m, vec![line([0.0; 3], [50.0, 0.0, 0.0], 3000.0, G61)]),
+        1.050,
+    );
+    assert_ms(
+        motion(&m, vec![line([0.0; 3], [1.0, 0.0, 0.0], 6000.0, G61)]),
+        0.064,
+    );
+    assert_ms(
+        motion(
+            &m,
+            vec![
+                line([0.0; 3], [50.0, 0.0, 0.0], 3000.0, G61),
+                line([50.0, 0.0, 0.0], [50.0, 50.0, 0.0], 3000.0, G61),
+            ],
+        ),
+        2.112,
+    );
+    let p = [
+        [0.0, 0.0, 0.0],
+        [50.0, 0.0, 0.0],
+        [50.0, 50.0, 0.0],
+        [0.0, 50.0, 0.0],
+    ];
+    let square: Vec<Segment> = (0..4)
+        .map(|i| line(p[i], p[(i + 1) % 4], 3000.0, G64))
+        .collect();
+    assert_ms(motion(&m, square), 3.994);
+    let circle = vec![
+        Segment::rapid([0.0; 3], [10.0, 0.0, 0.0], G61),
+        Segment::arc(
+            [10.0, 0.0, 0.0],
+            [0.0; 3],
+            [0.0, 0.0, 1.0],
+            -std::f64::consts::TAU,
+            0.0,
+            f(600.0),
+            G61,
+        ),
+    ];
+    assert_ms(motion(&m, circle), 6.504);
+}

@@ -7,6 +7,7 @@ use std::collections::VecDeque;
 use std::f64::consts::PI;
 
 use super::profile::{scurve_penalty, trapezoid};
+use super::servo::{self, Run, View};
 use super::{
     cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel, Segment,
     SegmentKind, SegmentTiming, Totals,
@@ -77,6 +78,8 @@ struct Tc {
     at_max: bool,
     /// The backward pass has set `finalvel` at least once.
     optimized: bool,
+    /// Servo-period execution state.
+    run: Run,
 }
 
 impl Tc {
@@ -272,6 +275,7 @@ impl Planner {
             halve_parabolic: lcnc,
             at_max: false,
             optimized: false,
+            run: Run::default(),
         };
         let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
         match seg.kind {
@@ -636,6 +640,7 @@ impl Planner {
             halve_parabolic: true,
             at_max: false,
             optimized: false,
+            run: Run::default(),
         };
         Some((arc, d_plan, consume))
     }
@@ -803,8 +808,102 @@ impl Planner {
         }
     }
 
+    fn view(&self, tc: &Tc) -> View {
+        View {
+            target: tc.target,
+            v_target: self.real_target_vel(tc),
+            finalvel: tc.finalvel,
+            tangent: tc.term == Term::Tangent,
+            stop: matches!(tc.term, Term::Stop | Term::Exact),
+            accel: tc.tangential_accel().max(1e-9),
+        }
+    }
+
     /// Executes the oldest queued element.
     fn execute_front(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        if self.lcnc() && self.p.servo_simulation {
+            self.execute_front_servo(out);
+        } else {
+            self.execute_front_analytic(out);
+        }
+    }
+
+    /// LinuxCNC model, period by period (see [`servo`]).
+    fn execute_front_servo(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        let Some(mut tc) = self.queue.pop_front() else {
+            return;
+        };
+        let cycle = self.cycle;
+        let start = self.t;
+        let v0 = tc.run.currentvel;
+        let view = self.view(&tc);
+        // A move that cannot move (zero feed) is skipped rather than run forever.
+        let budget = if view.v_target > 0.0 {
+            let pr = trapezoid(tc.target, 0.0, view.v_target, 0.0, view.accel);
+            (pr.time * 4.0 / cycle) as u64 + 10_000
+        } else {
+            0
+        };
+        let mut cycles: u64 = 0;
+        loop {
+            if tc.run.remove || cycles >= budget {
+                if tc.run.remove {
+                    cycles += 1;
+                }
+                break;
+            }
+            if !tc.run.active {
+                tc.run.active = true;
+                let dist = tc.target - tc.run.progress;
+                let denom = tc.run.currentvel + tc.finalvel.min(view.v_target);
+                let seg_time = if denom > 0.0 {
+                    2.0 * dist / denom
+                } else {
+                    f64::INFINITY
+                };
+                tc.run.ramp = seg_time < RAMP_CUTOFF_S
+                    && !tc.rapid
+                    && tc.term == Term::Tangent
+                    && dist != 0.0;
+            }
+            if tc.run.splitting {
+                // The element ends inside this period; the next one gets the rest.
+                let next2 = self.queue.get(1).map(|n| self.real_target_vel(n));
+                let next_view = self.queue.front().map(|n| self.view(n));
+                if let (Some(next), Some(nv)) = (self.queue.front_mut(), next_view) {
+                    if tc.term == Term::Tangent {
+                        next.run.cycle_time = cycle - tc.run.cycle_time;
+                        next.run.currentvel = tc.run.term_vel;
+                    } else if next.run.cycle_time == 0.0 {
+                        next.run.cycle_time = cycle;
+                    }
+                    servo::update_cycle(&mut next.run, &nv, next2, cycle);
+                }
+                cycles += 1;
+                break;
+            }
+            tc.run.cycle_time = cycle;
+            let next_t = self.queue.front().map(|n| self.real_target_vel(n));
+            servo::update_cycle(&mut tc.run, &view, next_t, cycle);
+            cycles += 1;
+            if tc.run.remove {
+                break;
+            }
+        }
+        let time = cycles as f64 * cycle;
+        let end = start + time;
+        self.t = end;
+        let v_end = if tc.term == Term::Tangent {
+            tc.run.term_vel
+        } else {
+            0.0
+        };
+        self.v_cur = v_end;
+        self.account(&tc, start, end, time, v0, tc.run.peak, v_end, out);
+    }
+
+    /// Executes the oldest queued element with closed-form profiles.
+    fn execute_front_analytic(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
         let Some(tc) = self.queue.pop_front() else {
             return;
         };
@@ -883,6 +982,23 @@ impl Planner {
         let added = (end - self.t).max(0.0);
         self.t = end;
         self.v_cur = v_end;
+        self.account(&tc, start, end, added, v0, v_peak, v_end, out);
+    }
+
+    /// Adds an executed element to the totals and reports it.
+    #[allow(clippy::too_many_arguments)]
+    fn account(
+        &mut self,
+        tc: &Tc,
+        start: f64,
+        end: f64,
+        added: f64,
+        v0: f64,
+        v_peak: f64,
+        v_end: f64,
+        out: &mut dyn FnMut(SegmentTiming),
+    ) {
+        let l = tc.target;
         let tot = &mut self.totals;
         tot.motion_s += added;
         if tc.rapid {

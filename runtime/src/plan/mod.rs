@@ -27,6 +27,7 @@
 
 mod engine;
 pub mod profile;
+mod servo;
 
 use std::collections::BTreeMap;
 
