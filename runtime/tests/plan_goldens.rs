@@ -11,8 +11,13 @@ use std::path::PathBuf;
 use runtime::machine::{Axis, MachineProfile};
 use runtime::plan::{naive_motion_time, plan, Event, PathMode, Segment};
 
+/// The validation data; `PLAN_GOLDENS_DIR` points the test at another set laid out
+/// the same way (for investigating new programs before they become goldens).
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/cycle_time")
+    match std::env::var("PLAN_GOLDENS_DIR") {
+        Ok(d) => PathBuf::from(d),
+        Err(_) => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../tests/cycle_time"),
+    }
 }
 
 /// The machines of regenerate.sh.
@@ -210,6 +215,16 @@ fn median(mut v: Vec<f64>) -> f64 {
 #[test]
 fn goldens_match_linuxcnc() {
     let rows = evaluate();
+    if std::env::var("PLAN_GOLDENS_DIR").is_ok() {
+        for r in &rows {
+            let err = (r.ours - r.lcnc) * 1000.0;
+            println!(
+                "{}\t{}\t{:.4}\t{:.4}\t{err:+.1}",
+                r.program, r.machine, r.lcnc, r.ours
+            );
+        }
+        return;
+    }
     assert!(
         rows.len() >= 60,
         "expected the full golden set, got {}",
