@@ -637,7 +637,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                             if val < 0.0 || val.fract().abs() > 1e-6 {
                                 return Err(self.err(codes::UNKNOWN_CODE, it.span, format!("M{val} is not an M code")));
                             }
-                            w.m.push((val.round() as u32, it.span));
+                            w.m.push(((val * 10.0).round() as u32, it.span));
                         }
                         b'N' => {
                             w.n = Some(val as i64);
@@ -1935,21 +1935,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             self.feed_to(end, span)?;
         }
-        // The programmed point is what later incremental moves build on.
-        self.st.pos = end;
+        // Later moves build on the programmed contour point, not the offset one.
         if self.st.modal.comp != 400 {
             self.st.pos = t;
-            self.comp_offset_pos(end);
         }
         Ok(())
-    }
-
-    fn comp_offset_pos(&mut self, end: [f64; 6]) {
-        // Keep the machine at the offset point while the programmed point is the contour.
-        self.st.mpos = self.to_machine(end);
-        if self.ngc() {
-            self.st.pos = end;
-        }
     }
 
     fn exec_arc(&mut self, w: &Words, cw: bool, bspan: Span) -> Result<(), Diagnostic> {
