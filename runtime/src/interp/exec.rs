@@ -1594,10 +1594,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     if origin == self.st.modal.origin {
                         self.st.pos = self.to_program(self.st.mpos);
+                        let g = self.g5x_of(origin);
+                        self.canon(format!("SET_G5X_OFFSET({origin}, {})", Canon::six(&scale6(g, u))));
+                        self.canon("SET_XY_ROTATION(0.0000)");
+                    } else {
+                        self.canon_comment("interpreter: setting coordinate system origin");
                     }
-                    let g = self.g5x_of(origin);
-                    self.canon(format!("SET_G5X_OFFSET({origin}, {})", Canon::six(&scale6(g, u))));
-                    self.canon("SET_XY_ROTATION(0.0000)");
                 }
                 1 | 10 | 11 => {
                     let t = p.max(0) as u32;
@@ -2269,6 +2271,9 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.dialect == Dialect::Fanuc && matches!(mode, 740 | 840) && w.has_m(290) && self.st.spindle <= 0.0 {
             self.diag(codes::RIGID_TAP, Severity::Error, span, "rigid tapping (M29) needs a spindle speed S (PS0203)");
         }
+        if ngc && matches!(mode, 860 | 870 | 880) && self.st.spindle_dir == 0 {
+            return Err(self.err(codes::CYCLE_STATE, span, format!("spindle not turning in G{}", mode / 10)));
+        }
         let repeats = if ngc {
             let l = w.get(b'L').unwrap_or(1.0).round() as i64;
             if l == 0 {
@@ -2303,20 +2308,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(());
         }
         let save_path = self.st.modal.path;
-        if ngc && save_path != 610 {
-            self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
-        }
         let mut cur_z = self.st.pos[n];
         let clear = if self.st.modal.retract_old_z { old_z.max(r) } else { r };
-        let clear = if ngc && self.st.modal.retract_old_z { if old_z > r { old_z } else { r } } else { clear };
         // NGC: climb to R first when below it.
-        let mut start_z = cur_z;
+        let start_z = cur_z;
         if ngc && old_z < r {
             let mut p = self.st.pos;
             p[n] = r;
             self.rapid_to(p);
             cur_z = r;
-            start_z = r;
+        }
+        if ngc && save_path != 610 {
+            self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
         }
         let mut pa = self.st.pos[a];
         let mut pb = self.st.pos[b];
