@@ -61,6 +61,8 @@ struct Words {
     pname: Option<String>,
     n: Option<i64>,
     ijk_order: Vec<(u8, f64)>,
+    /// K as written (a repeat count in FANUC/ServoWorks cycles).
+    raw_k: Option<f64>,
 }
 
 impl Words {
@@ -206,7 +208,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         let sw = dialect == Dialect::Servoworks;
         let st = State {
-            modal: Modal::power_on(sw),
+            modal: Modal::power_on(sw, dialect == Dialect::Fanuc),
             pos: [0.0; 6],
             mpos: [0.0; 6],
             g92: [0.0; 6],
@@ -472,7 +474,6 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn finish(mut self) -> RunOutput {
-        self.out.files = self.files.iter().skip(1).map(|f| self.file_names.iter().find(|(_, i)| **i == f.id.0 as usize).map(|(n, _)| n.clone()).unwrap_or_default()).collect();
         if let Some(c) = self.canon.take() {
             self.out.canon = c.lines;
         }
@@ -677,6 +678,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             return Ok(Flow::Stop);
         }
+        w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
         self.exec_words(fi, bi, &prog, &w, &comments, block.span)
     }
@@ -1446,8 +1448,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.scaling = true;
         }
         if w.has_g(501) {
-            self.st.modal.mirror = false;
-            self.st.mirror = ([false; 3], [0.0; 3]);
+            // G50.1 cancels the mirror of the axes it names (all when it names none).
+            let named: Vec<usize> = [b'X', b'Y', b'Z'].iter().enumerate().filter(|(_, c)| w.has(**c)).map(|(i, _)| i).collect();
+            if named.is_empty() {
+                self.st.mirror = ([false; 3], [0.0; 3]);
+            }
+            for i in named {
+                self.st.mirror.0[i] = false;
+            }
+            self.st.modal.mirror = self.st.mirror.0.iter().any(|b| *b);
         }
         if w.has_g(511) {
             for (i, c) in [b'X', b'Y', b'Z'].iter().enumerate() {
@@ -1575,6 +1584,10 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Non-modal codes that consume axis words. Returns whether they did.
     fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
+        // Scaling, mirror and rotation codes take their centre from the axis words.
+        if !self.ngc() && [510u32, 511, 501, 680].iter().any(|g| w.has_g(*g)) {
+            return Ok(true);
+        }
         let u = self.unit();
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
         let axis = |s: &Self, i: usize| -> Option<f64> { w.get(letters[i]).map(|v| if i < 3 { s.lin(v) } else { v }) };
@@ -2281,7 +2294,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             l.max(1)
         } else {
-            w.get(b'K').map(|k| k.round() as i64).unwrap_or(1).max(0)
+            w.raw_k.map(|k| k.round() as i64).unwrap_or(1).max(0)
         };
         self.st.modal.motion = mode;
         let old_z = if ngc {
@@ -2294,12 +2307,30 @@ impl<'a, 'i> Interp<'a, 'i> {
         };
         cyc.initial = Some(old_z);
         let inc = self.st.modal.incremental;
-        let (r, bottom) = if inc {
-            let r = old_z + cyc.r.unwrap_or(0.0);
-            (r, r + cyc.z.unwrap_or(0.0))
+        let (r, bottom) = if ngc {
+            if inc {
+                let r = old_z + cyc.r.unwrap_or(0.0);
+                (r, r + cyc.z.unwrap_or(0.0))
+            } else {
+                (cyc.r.unwrap_or(0.0), cyc.z.unwrap_or(0.0))
+            }
         } else {
-            (cyc.r.unwrap_or(0.0), cyc.z.unwrap_or(0.0))
+            // FANUC/ServoWorks keep the levels absolute once resolved; only words of this
+            // block are read incrementally (R from the initial level, Z from R).
+            let r = match w.get(b'R') {
+                Some(v) if inc => old_z + self.lin(v),
+                Some(v) => self.lin(v),
+                None => cyc.r_abs.unwrap_or(cyc.r.unwrap_or(0.0)),
+            };
+            let z = match w.get(zl) {
+                Some(v) if inc => r + self.lin(v),
+                Some(v) => self.lin(v),
+                None => cyc.z_abs.unwrap_or(cyc.z.unwrap_or(0.0)),
+            };
+            (r, z)
         };
+        cyc.r_abs = Some(r);
+        cyc.z_abs = Some(bottom);
         self.st.cycle = cyc.clone();
         if r < bottom && ngc {
             return Err(self.err(codes::CYCLE_STATE, span, "R value less than Z value in canned cycle"));

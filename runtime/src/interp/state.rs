@@ -45,6 +45,9 @@ pub struct CycleMem {
     pub k: Option<f64>,
     /// Initial level captured when the cycle mode began.
     pub initial: Option<f64>,
+    /// FANUC/ServoWorks: R and Z levels resolved to absolute values.
+    pub r_abs: Option<f64>,
+    pub z_abs: Option<f64>,
 }
 
 #[derive(Debug, Clone)]
@@ -82,9 +85,9 @@ pub struct State {
 }
 
 impl Modal {
-    pub fn power_on(servoworks: bool) -> Modal {
+    pub fn power_on(servoworks: bool, fanuc: bool) -> Modal {
         Modal {
-            motion: if servoworks { 0 } else { 0 },
+            motion: 0,
             plane: 170,
             inch: false,
             incremental: false,
@@ -94,7 +97,7 @@ impl Modal {
             tlo_mode: 490,
             path: 640,
             path_tol: None,
-            retract_old_z: servoworks,
+            retract_old_z: servoworks || fanuc,
             polar: false,
             scaling: false,
             rotation: false,
