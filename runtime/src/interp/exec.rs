@@ -1635,6 +1635,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             if self.st.modal.rotation {
                 self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "reference-position return (G28/G30) is not allowed while coordinate rotation (G68) is on");
             }
+            if !self.ngc() && self.st.modal.modal_cycle() {
+                self.diag(codes::CYCLE_STATE, Severity::Error, span, "reference-position return while a canned cycle is modal: cancel it with G80 first (PS0044)");
+                self.st.modal.motion = 800;
+                self.st.cycle = CycleMem::default();
+            }
             let mut mid = self.st.pos;
             for (i, m) in mid.iter_mut().enumerate() {
                 if let Some(v) = axis(self, i) {
@@ -2168,7 +2173,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 continue;
             }
             let items = p.items_of(b);
-            let only_heads = items.iter().all(|it| matches!(it.kind, ItemKind::Comment(_) | ItemKind::ProgramHead { .. }));
+            let only_heads = items.iter().all(|it| matches!(it.kind, ItemKind::Comment(_)));
             if items.is_empty() || only_heads {
                 continue;
             }
@@ -2354,8 +2359,19 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         let mut pa = self.st.pos[a];
         let mut pb = self.st.pos[b];
-        let da = w.get(letters[a]).map(|v| self.lin(v));
-        let db = w.get(letters[b]).map(|v| self.lin(v));
+        let mut da = w.get(letters[a]).map(|v| self.lin(v));
+        let mut db = w.get(letters[b]).map(|v| self.lin(v));
+        if !ngc && self.st.modal.polar {
+            // Polar hole positions: resolve radius/angle once, then step by the difference.
+            let t = self.target(w);
+            if inc {
+                da = Some(t[a] - pa);
+                db = Some(t[b] - pb);
+            } else {
+                da = Some(t[a]);
+                db = Some(t[b]);
+            }
+        }
         for k in 0..repeats {
             if inc {
                 pa += da.unwrap_or(0.0);
