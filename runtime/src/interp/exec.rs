@@ -1030,10 +1030,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
-            let inch = w.has_g(200);
-            if !ngc {
-                self.st.modal.inch = inch;
-            }
+            self.st.modal.inch = w.has_g(200);
         }
         // G96/G97.
         if w.has_g(960) {
