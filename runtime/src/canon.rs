@@ -42,7 +42,11 @@ impl Canon {
 
     pub fn preamble(&mut self, g5x_index: usize, g5x: &[f64; 6], g92: &[f64; 6]) {
         self.call("USE_LENGTH_UNITS(CANON_UNITS_MM)");
-        self.call(format!("SET_G5X_OFFSET({}, {})", g5x_index, Canon::six(g5x)));
+        self.call(format!(
+            "SET_G5X_OFFSET({}, {})",
+            g5x_index,
+            Canon::six(g5x)
+        ));
         self.call(format!("SET_G92_OFFSET({})", Canon::six(g92)));
         self.call("SET_XY_ROTATION(0.0000)");
         self.call("SET_FEED_REFERENCE(CANON_XYZ)");
@@ -64,7 +68,13 @@ mod tests {
         c.call("ON_RESET()");
         c.line_number = Some(10);
         c.call("ON_RESET()");
-        assert_eq!(c.lines, vec![" N..... ON_RESET()".to_string(), " N10    ON_RESET()".to_string()]);
+        assert_eq!(
+            c.lines,
+            vec![
+                " N..... ON_RESET()".to_string(),
+                " N10    ON_RESET()".to_string()
+            ]
+        );
         assert_eq!(f4(-0.00001), "-0.0000");
     }
 }

@@ -4,4 +4,7 @@ pub mod canon;
 pub mod interp;
 pub mod rules;
 
-pub use interp::{run, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver, RunInput, RunOutput};
+pub use interp::{
+    run, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver,
+    RunInput, RunOutput,
+};

@@ -58,7 +58,10 @@ fn check(name: &str) {
         for i in 0..got.len().max(expected.len()) {
             let g = got.get(i).map(String::as_str).unwrap_or("<none>");
             let e = expected.get(i).map(String::as_str).unwrap_or("<none>");
-            msg.push_str(&format!("{} {i:3} got {g}\n          want {e}\n", if g == e { " " } else { "!" }));
+            msg.push_str(&format!(
+                "{} {i:3} got {g}\n          want {e}\n",
+                if g == e { " " } else { "!" }
+            ));
         }
         panic!("{name}: canon differs (diagnostics {diags:?})\n{msg}");
     }

@@ -5,7 +5,8 @@ mod common;
 use common::*;
 use runtime::EventKind;
 
-const OFFSETS: &str = "[tools]\n11 = { length = 200.0 }\n15 = { length = 190.0 }\n31 = { length = 150.0 }\n";
+const OFFSETS: &str =
+    "[tools]\n11 = { length = 200.0 }\n15 = { length = 190.0 }\n31 = { length = 150.0 }\n";
 
 const EXAMPLE_8_1: &str = "%
 N001 G92 X0 Y0 Z0;
@@ -44,34 +45,72 @@ fn example_8_1_canned_cycles() {
     let out = run_fanuc(EXAMPLE_8_1, OFFSETS);
     // N025 G28 while G85 is modal (no G80 in the example): PS0044, the cycle is cancelled.
     assert_eq!(codes(&out), vec!["C003"], "{:?}", out.diagnostics);
-    let by_tool = |t: u32| out.motions.iter().filter(move |m| m.tool == t && is_feed(m));
+    let by_tool = |t: u32| {
+        out.motions
+            .iter()
+            .filter(move |m| m.tool == t && is_feed(m))
+    };
     // T11: 6 holes of 56 mm at F120.
     let t11: Vec<_> = by_tool(11).collect();
     assert_eq!(t11.len(), 6);
     let holes: Vec<[f64; 2]> = t11.iter().map(|m| [m.end[0], m.end[1]]).collect();
-    assert_eq!(holes, vec![[400.0, -350.0], [400.0, -550.0], [400.0, -750.0], [1200.0, -750.0], [1200.0, -550.0], [1200.0, -350.0]]);
+    assert_eq!(
+        holes,
+        vec![
+            [400.0, -350.0],
+            [400.0, -550.0],
+            [400.0, -750.0],
+            [1200.0, -750.0],
+            [1200.0, -550.0],
+            [1200.0, -350.0]
+        ]
+    );
     let feed11: f64 = t11.iter().map(|m| length(m)).sum();
     assert!(close(feed11, 336.0, 1e-9));
     assert!(t11.iter().all(|m| m.feed == 120.0));
     // Machine Z at the bottom: program −153 + H11 200.
     assert!(close(t11[0].end[2], 47.0, 1e-9));
     // G98 after hole 3 returns to the initial level (program 0 = machine 200).
-    let after3 = out.motions.iter().position(|m| m.tool == 11 && m.end[1] == -750.0 && is_feed(m)).unwrap_or(0) + 1;
+    let after3 = out
+        .motions
+        .iter()
+        .position(|m| m.tool == 11 && m.end[1] == -750.0 && is_feed(m))
+        .unwrap_or(0)
+        + 1;
     assert!(close(out.motions[after3].end[2], 200.0, 1e-9));
     // T15: 4 holes of 33 mm at F70, 0.3 s dwell each.
     let t15: Vec<_> = by_tool(15).collect();
     assert_eq!(t15.len(), 4);
     let feed15: f64 = t15.iter().map(|m| length(m)).sum();
     assert!(close(feed15, 132.0, 1e-9));
-    let dwell: f64 = out.events.iter().filter_map(|e| if let EventKind::Dwell(s) = e.kind { Some(s) } else { None }).sum();
+    let dwell: f64 = out
+        .events
+        .iter()
+        .filter_map(|e| {
+            if let EventKind::Dwell(s) = e.kind {
+                Some(s)
+            } else {
+                None
+            }
+        })
+        .sum();
     assert!(close(dwell, 1.2, 1e-12));
     // T31 G85: R47 above the initial level; holes at Y −350, −550, −750 (K2 in G91), 200 mm in and out.
     let t31: Vec<_> = by_tool(31).collect();
-    assert_eq!(t31.len(), 6, "{:?}", t31.iter().map(|m| (m.start, m.end)).collect::<Vec<_>>());
+    assert_eq!(
+        t31.len(),
+        6,
+        "{:?}",
+        t31.iter().map(|m| (m.start, m.end)).collect::<Vec<_>>()
+    );
     assert!(t31.iter().all(|m| close(length(m), 200.0, 1e-9)));
     let ys: Vec<f64> = t31.iter().step_by(2).map(|m| m.end[1]).collect();
     assert_eq!(ys, vec![-350.0, -550.0, -750.0]);
-    let stops = out.events.iter().filter(|e| matches!(e.kind, EventKind::Stop { optional: false })).count();
+    let stops = out
+        .events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Stop { optional: false }))
+        .count();
     assert_eq!(stops, 1);
 }
 
@@ -81,8 +120,17 @@ fn polar_bolt_hole_circle_absolute_and_incremental() {
     let inc = "G00 Z10.;\nN1 G17 G90 G16;\nN2 G81 X100.0 Y30.0 Z-20.0 R-5.0 F200.0;\nN3 G91 Y120.0;\nN4 Y120.0;\nN5 G15 G80;\nM30;\n";
     for prog in [abs, inc] {
         let out = run_fanuc(prog, "");
-        let holes: Vec<[f64; 3]> = out.motions.iter().filter(|m| is_feed(m)).map(|m| [m.end[0], m.end[1], m.end[2]]).collect();
-        let want = [[86.6025, 50.0, -20.0], [-86.6025, 50.0, -20.0], [0.0, -100.0, -20.0]];
+        let holes: Vec<[f64; 3]> = out
+            .motions
+            .iter()
+            .filter(|m| is_feed(m))
+            .map(|m| [m.end[0], m.end[1], m.end[2]])
+            .collect();
+        let want = [
+            [86.6025, 50.0, -20.0],
+            [-86.6025, 50.0, -20.0],
+            [0.0, -100.0, -20.0],
+        ];
         assert_eq!(holes.len(), 3, "{prog}");
         for (h, w) in holes.iter().zip(want.iter()) {
             assert!((0..3).all(|i| close(h[i], w[i], 1e-4)), "{prog}: {holes:?}");
@@ -107,14 +155,25 @@ fn vacant_semantics() {
     // #1 vacant: Y#1 is omitted; #1 + 1 = 1; #1 EQ 0 is false; #1 GE 0 compares as 0.
     let prog = "G90 G00 X100. Y5.;\nG00 X100. Y#1;\n#2 = #1 + 1;\nIF [#1 EQ 0] GOTO 10;\n#3 = 7;\nN10 IF [#1 GE #0] THEN #4 = 9;\nG00 X#2 Y#3 Z#4;\nM30;\n";
     let out = run_fanuc(prog, "");
-    assert_eq!(ends(&out), vec![[100.0, 5.0, 0.0], [100.0, 5.0, 0.0], [1.0, 7.0, 9.0]]);
+    assert_eq!(
+        ends(&out),
+        vec![[100.0, 5.0, 0.0], [100.0, 5.0, 0.0], [1.0, 7.0, 9.0]]
+    );
 }
 
 #[test]
 fn while_loop_and_goto() {
     let prog = "#1 = 0;\nWHILE [#1 LT 3] DO 1;\n#1 = #1 + 1;\nG91 G00 X1.;\nEND 1;\nGOTO 20;\nG00 X100.;\nN20 G90 G00 Y#1;\nM30;\n";
     let out = run_fanuc(prog, "");
-    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0], [3.0, 3.0, 0.0]]);
+    assert_eq!(
+        ends(&out),
+        vec![
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [3.0, 0.0, 0.0],
+            [3.0, 3.0, 0.0]
+        ]
+    );
 }
 
 #[test]
@@ -137,7 +196,10 @@ fn decimal_point_rules() {
 fn arc_tolerance_parameter_3410() {
     let prog = "G90 G00 X0 Y0;\nG02 X100. Y0 I49.99 J0 F100;\nM30;\n";
     assert!(codes(&run_fanuc(prog, "arc_radius_tolerance = 0.05")).is_empty());
-    assert_eq!(codes(&run_fanuc(prog, "arc_radius_tolerance = 0.01")), vec!["A001"]);
+    assert_eq!(
+        codes(&run_fanuc(prog, "arc_radius_tolerance = 0.01")),
+        vec!["A001"]
+    );
 }
 
 #[test]

@@ -44,7 +44,10 @@ fn tv_p1_p2_parameters_set_after_the_line() {
 #[test]
 fn tv_p3_indirection() {
     let out = run_ngc("#1=2\n#2=3\n#3=7\nG0 X[#1+2]\nG0 X#[1+2]\nG0 Y##2\nM2\n");
-    assert_eq!(ends(&out), vec![[4.0, 0.0, 0.0], [7.0, 0.0, 0.0], [7.0, 7.0, 0.0]]);
+    assert_eq!(
+        ends(&out),
+        vec![[4.0, 0.0, 0.0], [7.0, 0.0, 0.0], [7.0, 7.0, 0.0]]
+    );
 }
 
 #[test]
@@ -104,12 +107,23 @@ fn arc(out: &RunOutput, i: usize) -> ([f64; 3], f64) {
 
 #[test]
 fn tv_a1_radius_format() {
-    for (block, c, sweep) in [("G2 X10 Y15 R20", [19.855069, -2.403379], 53.5764f64), ("G2 X10 Y15 R-20", [-9.855069, 17.403379], 306.4236), ("G3 X10 Y15 R20", [-9.855069, 17.403379], 53.5764)] {
+    for (block, c, sweep) in [
+        ("G2 X10 Y15 R20", [19.855069, -2.403379], 53.5764f64),
+        ("G2 X10 Y15 R-20", [-9.855069, 17.403379], 306.4236),
+        ("G3 X10 Y15 R20", [-9.855069, 17.403379], 53.5764),
+    ] {
         let out = run_ngc(&format!("G21 F100\n{block}\nM2\n"));
         let (center, radius) = arc(&out, 0);
-        assert!(close(center[0], c[0], 1e-6) && close(center[1], c[1], 1e-6), "{block}: {center:?}");
+        assert!(
+            close(center[0], c[0], 1e-6) && close(center[1], c[1], 1e-6),
+            "{block}: {center:?}"
+        );
         let len = length(&out.motions[0]);
-        assert!(close(len / radius, sweep.to_radians(), 1e-6), "{block}: {}", (len / radius).to_degrees());
+        assert!(
+            close(len / radius, sweep.to_radians(), 1e-6),
+            "{block}: {}",
+            (len / radius).to_degrees()
+        );
     }
     let out = run_ngc("G21 F100\nG2 X10 Y15 R20\nM2\n");
     assert!(close(length(&out.motions[0]), 18.701701, 1e-6));
@@ -137,7 +151,11 @@ fn tv_a5_two_arcs_same_centre() {
     for i in 0..2 {
         let (c, r) = arc(&out, i);
         assert!(close(c[0], 1.0, 1e-12) && close(c[1], 0.5, 1e-12) && close(r, 1.118034, 1e-6));
-        assert!(close(length(&out.motions[i]) / r, 53.1301f64.to_radians(), 1e-5));
+        assert!(close(
+            length(&out.motions[i]) / r,
+            53.1301f64.to_radians(),
+            1e-5
+        ));
     }
 }
 
@@ -152,17 +170,34 @@ fn tv_a6_centre_tolerances_per_profile() {
         ("G2 X2000.3 Y0 I1000 J0", false, false),
     ];
     for (b, ok_linuxcnc, ok_emc2) in cases {
-        assert_eq!(run_profile(&prog(b), Variant::Linuxcnc, "").diagnostics.is_empty(), ok_linuxcnc, "linuxcnc {b}");
-        assert_eq!(run_profile(&prog(b), Variant::Emc2, "").diagnostics.is_empty(), ok_emc2, "emc2 {b}");
+        assert_eq!(
+            run_profile(&prog(b), Variant::Linuxcnc, "")
+                .diagnostics
+                .is_empty(),
+            ok_linuxcnc,
+            "linuxcnc {b}"
+        );
+        assert_eq!(
+            run_profile(&prog(b), Variant::Emc2, "")
+                .diagnostics
+                .is_empty(),
+            ok_emc2,
+            "emc2 {b}"
+        );
     }
     let mm = "G21 F10\nG2 X20.02 Y0 I10 J0\nM2\n";
-    assert!(run_profile(mm, Variant::Linuxcnc, "").diagnostics.is_empty());
+    assert!(run_profile(mm, Variant::Linuxcnc, "")
+        .diagnostics
+        .is_empty());
     assert_eq!(codes(&run_profile(mm, Variant::Emc2, "")), vec!["A001"]);
 }
 
 #[test]
 fn tv_a7_radius_too_small() {
-    assert_eq!(codes(&run_ngc("G20 F10\nG2 X10 Y0 R4.9\nM2\n")), vec!["A002"]);
+    assert_eq!(
+        codes(&run_ngc("G20 F10\nG2 X10 Y0 R4.9\nM2\n")),
+        vec!["A002"]
+    );
     let out = run_ngc("G20 F10\nG2 X10 Y0 R4.99996\nM2\n");
     assert!(out.diagnostics.is_empty());
     let (c, _) = arc(&out, 0);
@@ -178,14 +213,24 @@ fn tv_a9_full_circle_linuxcnc() {
 #[test]
 fn tv_a10_p_turns() {
     let out = run_ngc("G21\nG2 X0 Y1 Z-1 I1 J0.5 P2 F25\nM2\n");
-    let MotionKind::Arc { turns, radius, .. } = out.motions[0].kind else { panic!("arc") };
+    let MotionKind::Arc { turns, radius, .. } = out.motions[0].kind else {
+        panic!("arc")
+    };
     assert_eq!(turns, 1);
     let planar = (53.1301f64.to_radians() + std::f64::consts::TAU) * radius;
     assert!(close(length(&out.motions[0]), planar.hypot(1.0), 1e-3));
 }
 
 fn moves(out: &RunOutput) -> Vec<(char, [f64; 3])> {
-    out.motions.iter().map(|m| (if is_rapid(m) { 'r' } else { 'f' }, [m.end[0], m.end[1], m.end[2]])).collect()
+    out.motions
+        .iter()
+        .map(|m| {
+            (
+                if is_rapid(m) { 'r' } else { 'f' },
+                [m.end[0], m.end[1], m.end[2]],
+            )
+        })
+        .collect()
 }
 
 #[track_caller]
@@ -193,14 +238,26 @@ fn assert_moves(out: &RunOutput, want: &[(char, [f64; 3])]) {
     let got = moves(out);
     assert_eq!(got.len(), want.len(), "{got:?}");
     for (g, w) in got.iter().zip(want) {
-        assert!(g.0 == w.0 && (0..3).all(|i| close(g.1[i], w.1[i], 1e-9)), "{got:?}\nwant {want:?}");
+        assert!(
+            g.0 == w.0 && (0..3).all(|i| close(g.1[i], w.1[i], 1e-9)),
+            "{got:?}\nwant {want:?}"
+        );
     }
 }
 
 #[test]
 fn tv_c1_to_c4_g81() {
     let c1 = run_ngc("G21\nG0 X1 Y2 Z3\nG90 G81 G98 X4 Y5 Z1.5 R2.8 F10\nM2\n");
-    assert_moves(&c1, &[('r', [1., 2., 3.]), ('r', [4., 5., 3.]), ('r', [4., 5., 2.8]), ('f', [4., 5., 1.5]), ('r', [4., 5., 3.])]);
+    assert_moves(
+        &c1,
+        &[
+            ('r', [1., 2., 3.]),
+            ('r', [4., 5., 3.]),
+            ('r', [4., 5., 2.8]),
+            ('f', [4., 5., 1.5]),
+            ('r', [4., 5., 3.]),
+        ],
+    );
     let c2 = run_ngc("G21\nG0 X1 Y2 Z3\nG91 G81 G98 X4 Y5 Z-0.6 R1.8 L3 F10\nM2\n");
     assert_moves(
         &c2,
@@ -219,16 +276,48 @@ fn tv_c1_to_c4_g81() {
         ],
     );
     let c3 = run_ngc("G21 F10\nG0 X1 Y2 Z3\nG90 G99 G81 X4 Y5 Z1.5 R2.8\nM2\n");
-    assert_moves(&c3, &[('r', [1., 2., 3.]), ('r', [4., 5., 3.]), ('r', [4., 5., 2.8]), ('f', [4., 5., 1.5]), ('r', [4., 5., 2.8])]);
+    assert_moves(
+        &c3,
+        &[
+            ('r', [1., 2., 3.]),
+            ('r', [4., 5., 3.]),
+            ('r', [4., 5., 2.8]),
+            ('f', [4., 5., 1.5]),
+            ('r', [4., 5., 2.8]),
+        ],
+    );
     let c4 = run_ngc("G21 F10\nG90 G98 G81 X4 Y5 Z1.5 R2.8\nM2\n");
-    assert_moves(&c4, &[('r', [0., 0., 2.8]), ('r', [4., 5., 2.8]), ('f', [4., 5., 1.5]), ('r', [4., 5., 2.8])]);
+    assert_moves(
+        &c4,
+        &[
+            ('r', [0., 0., 2.8]),
+            ('r', [4., 5., 2.8]),
+            ('f', [4., 5., 1.5]),
+            ('r', [4., 5., 2.8]),
+        ],
+    );
 }
 
 #[test]
 fn tv_c5_g83_inch() {
     let out = run_ngc("G20\nG0 X0 Y0 Z1\nG90 G98 G83 X0 Y0 Z-1 R0.1 Q0.5 F10\nM2\n");
-    let z: Vec<(char, f64)> = moves(&out).iter().skip(1).map(|(k, p)| (*k, p[2] / 25.4)).collect();
-    let want = [('r', 1.0), ('r', 0.1), ('f', -0.4), ('r', 0.1), ('r', -0.39), ('f', -0.9), ('r', 0.1), ('r', -0.89), ('f', -1.0), ('r', 1.0)];
+    let z: Vec<(char, f64)> = moves(&out)
+        .iter()
+        .skip(1)
+        .map(|(k, p)| (*k, p[2] / 25.4))
+        .collect();
+    let want = [
+        ('r', 1.0),
+        ('r', 0.1),
+        ('f', -0.4),
+        ('r', 0.1),
+        ('r', -0.39),
+        ('f', -0.9),
+        ('r', 0.1),
+        ('r', -0.89),
+        ('f', -1.0),
+        ('r', 1.0),
+    ];
     assert_eq!(z.len(), want.len(), "{z:?}");
     for (g, w) in z.iter().zip(want) {
         assert!(g.0 == w.0 && close(g.1, w.1, 1e-9), "{z:?}");
@@ -277,7 +366,12 @@ fn tv_c7_cycle_errors() {
 #[test]
 fn tv_c8_sticky_cycle() {
     let out = run_ngc("G21\nG0 Z5\nG90 G98 G81 X1 Y1 Z-1 R0.1 F10\nX2\nM2\n");
-    let feeds: Vec<[f64; 3]> = out.motions.iter().filter(|m| is_feed(m)).map(|m| [m.end[0], m.end[1], m.end[2]]).collect();
+    let feeds: Vec<[f64; 3]> = out
+        .motions
+        .iter()
+        .filter(|m| is_feed(m))
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect();
     assert_eq!(feeds, vec![[1.0, 1.0, -1.0], [2.0, 1.0, -1.0]]);
 }
 
@@ -292,7 +386,11 @@ fn tv_c10_g85() {
 #[test]
 fn tv_g1_g92_offsets() {
     let mm = "machine_units = \"mm\"";
-    let out = run_profile("G21\nG0 X4\nG92 X7\nG0 Y#5211\nG92 X9\nG0 Y#5211\nG92.1\nG0 Y#5211\nG0 X4\nM2\n", Variant::Linuxcnc, mm);
+    let out = run_profile(
+        "G21\nG0 X4\nG92 X7\nG0 Y#5211\nG92 X9\nG0 Y#5211\nG92.1\nG0 Y#5211\nG0 X4\nM2\n",
+        Variant::Linuxcnc,
+        mm,
+    );
     let y: Vec<f64> = out.motions.iter().map(|m| m.end[1]).collect();
     assert_eq!(&y[1..4], &[-3.0, -5.0, 0.0]);
     // After G92.1 the program X reads the machine X again.
@@ -302,10 +400,18 @@ fn tv_g1_g92_offsets() {
 #[test]
 fn tv_g3_g4_work_offsets() {
     let mm = "machine_units = \"mm\"";
-    let out = run_profile("G21\nG10 L2 P1 X3.5 Y17.2\nG0 X#5221 Y#5222 Z#5223\nM2\n", Variant::Linuxcnc, mm);
+    let out = run_profile(
+        "G21\nG10 L2 P1 X3.5 Y17.2\nG0 X#5221 Y#5222 Z#5223\nM2\n",
+        Variant::Linuxcnc,
+        mm,
+    );
     // G54 is active, so the move lands at offset + value in machine coordinates.
     assert_pt(out.motions[0].end, &[7.0, 34.4, 0.0], 1e-12);
-    let out = run_profile("G21\n#5241=2\n#5242=1\n#5243=-2\nG55 G0 X0 Y0 Z0\nM2\n", Variant::Linuxcnc, mm);
+    let out = run_profile(
+        "G21\n#5241=2\n#5242=1\n#5243=-2\nG55 G0 X0 Y0 Z0\nM2\n",
+        Variant::Linuxcnc,
+        mm,
+    );
     assert_pt(out.motions[0].end, &[2.0, 1.0, -2.0], 1e-12);
 }
 
@@ -314,7 +420,13 @@ fn tv_o1_sawtooth_loop() {
     let prog = "G21 F10\n#1 = 0\no101 while [#1 LT 10]\n  G1 X0 Y[#1/10]\n  G1 X1\n  #1 = [#1+1]\no101 endwhile\nG0 Z#1\nM2\n";
     let out = run_ngc(prog);
     assert_eq!(out.motions.iter().filter(|m| is_feed(m)).count(), 20);
-    let last_feed = out.motions.iter().filter(|m| is_feed(m)).last().map(|m| m.end).unwrap_or_default();
+    let last_feed = out
+        .motions
+        .iter()
+        .filter(|m| is_feed(m))
+        .next_back()
+        .map(|m| m.end)
+        .unwrap_or_default();
     assert_pt(last_feed, &[1.0, 0.9], 1e-12);
     assert_eq!(out.motions.last().map(|m| m.end[2]), Some(10.0));
 }
@@ -322,7 +434,9 @@ fn tv_o1_sawtooth_loop() {
 #[test]
 fn tv_o2_if_else() {
     for (v, feed) in [(6.0, 100.0), (5.0, 200.0)] {
-        let prog = format!("G21\n#2 = {v}\no102 if [#2 GT 5]\n  F100\no102 else\n  F200\no102 endif\nG1 X1\nM2\n");
+        let prog = format!(
+            "G21\n#2 = {v}\no102 if [#2 GT 5]\n  F100\no102 else\n  F200\no102 endif\nG1 X1\nM2\n"
+        );
         let out = run_ngc(&prog);
         assert_eq!(out.motions[0].feed, feed);
     }
@@ -370,7 +484,10 @@ fn zero_feed_stops() {
 fn snapshots_report_modal_state() {
     let out = run_ngc("G20 G91 G1 X1 F10\nM2\n");
     let s = out.snapshots[0].as_ref().expect("snapshot");
-    assert_eq!(s.modal, vec!["G1", "G17", "G20", "G91", "G94", "G54", "G40", "G49", "G64", "G99"]);
+    assert_eq!(
+        s.modal,
+        vec!["G1", "G17", "G20", "G91", "G94", "G54", "G40", "G49", "G64", "G99"]
+    );
     assert_pt(s.position, &[25.4, 0.0, 0.0], 1e-12);
     assert_eq!(s.feed, 254.0);
 }

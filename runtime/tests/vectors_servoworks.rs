@@ -10,7 +10,10 @@ use runtime::{EventKind, MotionKind};
 fn tv01_integer_machine_unit() {
     let off = run_sw("G00 X14 Y14.5\nM30\n", "");
     assert_pt(off.motions[0].end, &[14.0, 14.5], 1e-12);
-    let on = run_sw("G00 X14 Y14.5\nM30\n", "integer_machine_unit = true\nmachine_unit = 0.001");
+    let on = run_sw(
+        "G00 X14 Y14.5\nM30\n",
+        "integer_machine_unit = true\nmachine_unit = 0.001",
+    );
     assert_pt(on.motions[0].end, &[0.014, 14.5], 1e-12);
 }
 
@@ -34,7 +37,17 @@ fn tv05_power_on_g00_and_modal_feed() {
 #[test]
 fn tv11_dwell_units() {
     let out = run_sw("G04 P5000\nG04 X3.0\nG04\nM30\n", "");
-    let dwells: Vec<f64> = out.events.iter().filter_map(|e| if let EventKind::Dwell(s) = e.kind { Some(s) } else { None }).collect();
+    let dwells: Vec<f64> = out
+        .events
+        .iter()
+        .filter_map(|e| {
+            if let EventKind::Dwell(s) = e.kind {
+                Some(s)
+            } else {
+                None
+            }
+        })
+        .collect();
     assert_eq!(dwells, vec![5.0, 3.0, 0.0]);
 }
 
@@ -59,8 +72,14 @@ fn tv13_m98_with_repeats_and_global_variables() {
 #[test]
 fn tv16_arc_centre_format() {
     let out = run_sw("X10 Y10\nG17 G3 Y30 I5 J10 F100\n%\n", "");
-    let MotionKind::Arc { center, radius, .. } = out.motions[1].kind else { panic!("not an arc") };
-    assert_pt([center[0], center[1], 0.0, 0.0, 0.0, 0.0], &[15.0, 20.0], 1e-12);
+    let MotionKind::Arc { center, radius, .. } = out.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert_pt(
+        [center[0], center[1], 0.0, 0.0, 0.0, 0.0],
+        &[15.0, 20.0],
+        1e-12,
+    );
     assert!(close(radius, 125f64.sqrt(), 1e-9));
     assert!(close(length(&out.motions[1]), 45.4915, 1e-4));
     assert!(!codes(&out).iter().any(|c| c.starts_with('A')));
@@ -70,7 +89,9 @@ fn tv16_arc_centre_format() {
 fn tv17_r_format_within_allowance() {
     let prog = "G91 G00 X0. Y0.\nG02 X100. R49. F100\nM30\n";
     let ok = run_sw(prog, "circle_error_allowance = 1.5");
-    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else { panic!("not an arc") };
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
     assert_eq!([center[0], center[1]], [50.0, 0.0]);
     assert_eq!(radius, 50.0);
     assert!(close(length(&ok.motions[1]), 157.0796, 1e-4));
@@ -84,7 +105,9 @@ fn tv17_r_format_within_allowance() {
 fn tv18_ijk_within_allowance() {
     let prog = "G91 G00 X0. Y0.\nG02 X100. I49. F100\nM30\n";
     let ok = run_sw(prog, "circle_error_allowance = 2.5");
-    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else { panic!("not an arc") };
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
     assert!(close(center[0], 50.0, 1e-9) && close(center[1], 0.0, 1e-9));
     assert!(close(radius, 50.0, 1e-12));
     assert_eq!(codes(&ok), vec!["A004"]);
@@ -96,7 +119,9 @@ fn tv18_ijk_within_allowance() {
 fn tv19_ijk_average_radius() {
     let prog = "G91 G00 X0. Y0.\nG02 X100. Y0. J-100. F100\nM30\n";
     let ok = run_sw(prog, "circle_error_allowance = 41.5");
-    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else { panic!("not an arc") };
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
     assert!(close(radius, 120.7107, 1e-4));
     assert!(close(center[0], 50.0, 1e-9) && close(center[1], -109.8684, 1e-4));
     assert!(close(length(&ok.motions[1]), 103.1059, 1e-4));
@@ -107,7 +132,9 @@ fn tv19_ijk_average_radius() {
 #[test]
 fn tv20_full_circle_and_r_same_point() {
     let full = run_sw("G02 I10. F100\nM30\n", "");
-    let MotionKind::Arc { center, .. } = full.motions[0].kind else { panic!("not an arc") };
+    let MotionKind::Arc { center, .. } = full.motions[0].kind else {
+        panic!("not an arc")
+    };
     assert_eq!([center[0], center[1]], [10.0, 0.0]);
     assert!(close(length(&full.motions[0]), 62.8319, 1e-4));
     let bad = run_sw("G02 X0 Y0 R10. F100\nM30\n", "");
@@ -116,11 +143,20 @@ fn tv20_full_circle_and_r_same_point() {
 
 #[test]
 fn tv22_r_sign() {
-    let cases = [("G02 X10. Y10. R10. F100", [10.0, 0.0], 15.7080), ("G02 X10. Y10. R-10. F100", [0.0, 10.0], 47.1239), ("G03 X10. Y10. R10. F100", [0.0, 10.0], 15.7080)];
+    let cases = [
+        ("G02 X10. Y10. R10. F100", [10.0, 0.0], 15.7080),
+        ("G02 X10. Y10. R-10. F100", [0.0, 10.0], 47.1239),
+        ("G03 X10. Y10. R10. F100", [0.0, 10.0], 15.7080),
+    ];
     for (block, c, len) in cases {
         let out = run_sw(&format!("{block}\nM30\n"), "");
-        let MotionKind::Arc { center, .. } = out.motions[0].kind else { panic!("not an arc") };
-        assert!(close(center[0], c[0], 1e-9) && close(center[1], c[1], 1e-9), "{block}: {center:?}");
+        let MotionKind::Arc { center, .. } = out.motions[0].kind else {
+            panic!("not an arc")
+        };
+        assert!(
+            close(center[0], c[0], 1e-9) && close(center[1], c[1], 1e-9),
+            "{block}: {center:?}"
+        );
         assert!(close(length(&out.motions[0]), len, 1e-4), "{block}");
     }
 }
@@ -129,7 +165,9 @@ fn tv22_r_sign() {
 fn tv23_helix() {
     let out = run_sw("G91 G17 G02 X20. Y0 R10. Z5. F100\nM30\n", "");
     let m = &out.motions[0];
-    let MotionKind::Arc { center, radius, .. } = m.kind else { panic!("not an arc") };
+    let MotionKind::Arc { center, radius, .. } = m.kind else {
+        panic!("not an arc")
+    };
     assert!(close(center[0], 10.0, 1e-12) && close(center[1], 0.0, 1e-12) && radius == 10.0);
     assert_pt(m.end, &[20.0, 0.0, 5.0], 1e-12);
     assert!(close(length(m), 31.8113, 1e-4));
@@ -140,7 +178,9 @@ fn tv24_mirror_turns_g02_into_g03() {
     let out = run_sw("G51.1 X0\nG02 X10. Y10. R10. F100\nM30\n", "");
     let m = &out.motions[0];
     assert_pt(m.end, &[-10.0, 10.0], 1e-12);
-    let MotionKind::Arc { normal, .. } = m.kind else { panic!("not an arc") };
+    let MotionKind::Arc { normal, .. } = m.kind else {
+        panic!("not an arc")
+    };
     assert_eq!(normal[2], 1.0, "counter-clockwise after the mirror");
 }
 
@@ -159,10 +199,34 @@ fn tv46_mirror_program() {
     let out = run_with(Dialect::Servoworks, main, "", &[("100", sub)], None);
     let xz: Vec<[f64; 2]> = out.motions.iter().map(|m| [m.end[0], m.end[2]]).collect();
     let want: [[f64; 2]; 28] = [
-        [50., 30.], [70., 30.], [70., 20.], [60., 20.], [60., 10.], [50., 10.], [50., 30.],
-        [30., 30.], [10., 30.], [10., 20.], [20., 20.], [20., 10.], [30., 10.], [30., 30.],
-        [30., 50.], [10., 50.], [10., 60.], [20., 60.], [20., 70.], [30., 70.], [30., 50.],
-        [50., 50.], [70., 50.], [70., 60.], [60., 60.], [60., 70.], [50., 70.], [50., 50.],
+        [50., 30.],
+        [70., 30.],
+        [70., 20.],
+        [60., 20.],
+        [60., 10.],
+        [50., 10.],
+        [50., 30.],
+        [30., 30.],
+        [10., 30.],
+        [10., 20.],
+        [20., 20.],
+        [20., 10.],
+        [30., 10.],
+        [30., 30.],
+        [30., 50.],
+        [10., 50.],
+        [10., 60.],
+        [20., 60.],
+        [20., 70.],
+        [30., 70.],
+        [30., 50.],
+        [50., 50.],
+        [70., 50.],
+        [70., 60.],
+        [60., 60.],
+        [60., 70.],
+        [50., 70.],
+        [50., 50.],
     ];
     assert_eq!(xz.len(), 28);
     for (g, w) in xz.iter().zip(want.iter()) {
@@ -176,10 +240,21 @@ fn tv47_rotation() {
     let main = "G68 X0. Y0. R45\nM98 P100\nM30\n";
     let sub = "%O100\nG00 X0. Y0.\nG00 G91 X10. Y40.\nY70.\nX-20.\nY-70.\nX20.\nG90\nM99\n";
     let out = run_with(Dialect::Servoworks, main, "", &[("100", sub)], None);
-    let want = [[0.0, 0.0], [-21.213, 35.355], [-70.711, 84.853], [-84.853, 70.711], [-35.355, 21.213], [-21.213, 35.355]];
+    let want = [
+        [0.0, 0.0],
+        [-21.213, 35.355],
+        [-70.711, 84.853],
+        [-84.853, 70.711],
+        [-35.355, 21.213],
+        [-21.213, 35.355],
+    ];
     assert_eq!(out.motions.len(), 6);
     for (m, w) in out.motions.iter().zip(want.iter()) {
-        assert!(close(m.end[0], w[0], 1e-3) && close(m.end[1], w[1], 1e-3), "{:?}", m.end);
+        assert!(
+            close(m.end[0], w[0], 1e-3) && close(m.end[1], w[1], 1e-3),
+            "{:?}",
+            m.end
+        );
     }
 }
 
@@ -191,7 +266,10 @@ fn tv48_g28_and_g54_during_rotation() {
 
 #[test]
 fn tv49_local_coordinate_system() {
-    let out = run_sw("G90 G52 X5.6 Z8.6\nG00 X0 Z0\nG52 X0 Z0\nG00 X0 Z0\nM30\n", "");
+    let out = run_sw(
+        "G90 G52 X5.6 Z8.6\nG00 X0 Z0\nG52 X0 Z0\nG00 X0 Z0\nM30\n",
+        "",
+    );
     assert_pt(out.motions[0].end, &[5.6, 0.0, 8.6], 1e-12);
     assert_pt(out.motions[1].end, &[0.0, 0.0, 0.0], 1e-12);
 }
@@ -210,32 +288,55 @@ fn tv52_per_axis_scaling() {
 
 fn cycle_stats(out: &runtime::RunOutput) -> (f64, f64, usize) {
     let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
-    let rapid_down: f64 = out.motions.iter().filter(|m| is_rapid(m) && m.end[2] < m.start[2]).map(|m| m.start[2] - m.end[2]).sum();
-    let retracts = out.motions.iter().filter(|m| is_rapid(m) && m.end[2] > m.start[2]).count();
+    let rapid_down: f64 = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] < m.start[2])
+        .map(|m| m.start[2] - m.end[2])
+        .sum();
+    let retracts = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] > m.start[2])
+        .count();
     (feed, rapid_down, retracts)
 }
 
 #[test]
 fn tv55_g73_high_speed_peck() {
-    let out = run_sw("M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n", "");
+    let out = run_sw(
+        "M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n",
+        "",
+    );
     let (feed, _, retracts) = cycle_stats(&out);
     assert!(close(feed, 109.0, 1e-9), "{feed}");
     assert_eq!(retracts, 10, "9 peck retracts and the return");
     let last = out.motions.last().map(|m| m.end).unwrap_or_default();
     assert_pt(last, &[200.0, 200.0, -20.0], 1e-9);
-    let next = run_sw("M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nY250;\nM30\n", "");
+    let next = run_sw(
+        "M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nY250;\nM30\n",
+        "",
+    );
     let last = next.motions.last().map(|m| m.end).unwrap_or_default();
     assert_pt(last, &[200.0, 450.0, -20.0], 1e-9);
 }
 
 #[test]
 fn tv56_g83_peck() {
-    let out = run_sw("M3 S500;\nG91 G99 G83 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n", "");
+    let out = run_sw(
+        "M3 S500;\nG91 G99 G83 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n",
+        "",
+    );
     let (feed, down, _) = cycle_stats(&out);
     assert!(close(feed, 109.0, 1e-9));
     // 20 to reach R, then Σ(10k − 1) for k = 1…9.
     assert!(close(down - 20.0, 441.0, 1e-9), "{down}");
-    let up: f64 = out.motions.iter().filter(|m| is_rapid(m) && m.end[2] > m.start[2]).map(|m| m.end[2] - m.start[2]).sum();
+    let up: f64 = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] > m.start[2])
+        .map(|m| m.end[2] - m.start[2])
+        .sum();
     assert!(close(up, 550.0, 1e-9), "{up}");
 }
 

@@ -50,14 +50,29 @@ pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
     let mid = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
     let half = hypot(mid, e).min(abs_r);
     let base = (e[1] - s[1]).atan2(e[0] - s[0]);
-    let theta = if (cw && r > 0.0) || (!cw && r < 0.0) { base - FRAC_PI_2 } else { base + FRAC_PI_2 };
-    let offset = if abs_r > 0.0 { abs_r * (half / abs_r).asin().cos() } else { 0.0 };
+    let theta = if (cw && r > 0.0) || (!cw && r < 0.0) {
+        base - FRAC_PI_2
+    } else {
+        base + FRAC_PI_2
+    };
+    let offset = if abs_r > 0.0 {
+        abs_r * (half / abs_r).asin().cos()
+    } else {
+        0.0
+    };
     [mid[0] + offset * theta.cos(), mid[1] + offset * theta.sin()]
 }
 
 /// LinuxCNC 2.9 checks (`profile linuxcnc`) or the 2007 EMC2 checks (`emc2`).
 /// `inch` selects the tolerance set of the program units; values in mm.
-pub fn solve_ngc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, inch: bool, emc2: bool) -> Result<ArcSolution, ArcError> {
+pub fn solve_ngc(
+    s: [f64; 2],
+    e: [f64; 2],
+    spec: ArcSpec,
+    cw: bool,
+    inch: bool,
+    emc2: bool,
+) -> Result<ArcSolution, ArcError> {
     let unit = if inch { 25.4 } else { 1.0 };
     match spec {
         ArcSpec::R(r) => {
@@ -78,7 +93,12 @@ pub fn solve_ngc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, inch: bool, 
             if half - r.abs() > tol {
                 return Err(ArcError::RadiusTooSmall(half - r.abs()));
             }
-            Ok(ArcSolution { center: r_center(s, e, r, cw), radius: r.abs(), corrected: false, mismatch: (half - r.abs()).max(0.0) })
+            Ok(ArcSolution {
+                center: r_center(s, e, r, cw),
+                radius: r.abs(),
+                corrected: false,
+                mismatch: (half - r.abs()).max(0.0),
+            })
         }
         ArcSpec::Center(c) => {
             let r1 = hypot(s, c);
@@ -94,13 +114,22 @@ pub fn solve_ngc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, inch: bool, 
                     return Err(ArcError::RadiusMismatch(r1, r2));
                 }
             } else {
-                let spiral = if inch { 2.0 * 0.001 * std::f64::consts::SQRT_2 * unit } else { 2.0 * 0.01 * std::f64::consts::SQRT_2 };
+                let spiral = if inch {
+                    2.0 * 0.001 * std::f64::consts::SQRT_2 * unit
+                } else {
+                    2.0 * 0.01 * std::f64::consts::SQRT_2
+                };
                 let rel = abs_err / r1.max(r2);
                 if abs_err > spiral * 100.0 || (rel > 0.001 && abs_err > spiral) {
                     return Err(ArcError::RadiusMismatch(r1, r2));
                 }
             }
-            Ok(ArcSolution { center: c, radius: r1, corrected: false, mismatch: abs_err })
+            Ok(ArcSolution {
+                center: c,
+                radius: r1,
+                corrected: false,
+                mismatch: abs_err,
+            })
         }
     }
 }
@@ -108,7 +137,13 @@ pub fn solve_ngc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, inch: bool, 
 /// FANUC: R format never fails by a small margin (the control makes a half
 /// circle when |R| is slightly short); IJK end-radius difference above
 /// `tolerance` (parameter 3410) is alarm PS0020.
-pub fn solve_fanuc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, tolerance: f64) -> Result<ArcSolution, ArcError> {
+pub fn solve_fanuc(
+    s: [f64; 2],
+    e: [f64; 2],
+    spec: ArcSpec,
+    cw: bool,
+    tolerance: f64,
+) -> Result<ArcSolution, ArcError> {
     match spec {
         ArcSpec::R(r) => {
             if s == e {
@@ -120,7 +155,12 @@ pub fn solve_fanuc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, tolerance:
             }
             let corrected = half > r.abs();
             let radius = r.abs().max(half);
-            Ok(ArcSolution { center: r_center(s, e, if r < 0.0 { -radius } else { radius }, cw), radius, corrected, mismatch: (half - r.abs()).max(0.0) })
+            Ok(ArcSolution {
+                center: r_center(s, e, if r < 0.0 { -radius } else { radius }, cw),
+                radius,
+                corrected,
+                mismatch: (half - r.abs()).max(0.0),
+            })
         }
         ArcSpec::Center(c) => {
             let r1 = hypot(s, c);
@@ -128,14 +168,25 @@ pub fn solve_fanuc(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, tolerance:
             if (r1 - r2).abs() > tolerance {
                 return Err(ArcError::RadiusMismatch(r1, r2));
             }
-            Ok(ArcSolution { center: c, radius: r1, corrected: false, mismatch: (r1 - r2).abs() })
+            Ok(ArcSolution {
+                center: c,
+                radius: r1,
+                corrected: false,
+                mismatch: (r1 - r2).abs(),
+            })
         }
     }
 }
 
 /// ServoWorks circle error allowance (§6.3.3): `allowance` is the larger of
 /// the configured allowance and the machine-unit bound.
-pub fn solve_servoworks(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, allowance: f64) -> Result<ArcSolution, ArcError> {
+pub fn solve_servoworks(
+    s: [f64; 2],
+    e: [f64; 2],
+    spec: ArcSpec,
+    cw: bool,
+    allowance: f64,
+) -> Result<ArcSolution, ArcError> {
     match spec {
         ArcSpec::R(r) => {
             if s == e {
@@ -143,13 +194,23 @@ pub fn solve_servoworks(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, allow
             }
             let h = hypot(s, e) / 2.0;
             if r.abs() >= h {
-                return Ok(ArcSolution { center: r_center(s, e, r, cw), radius: r.abs(), corrected: false, mismatch: 0.0 });
+                return Ok(ArcSolution {
+                    center: r_center(s, e, r, cw),
+                    radius: r.abs(),
+                    corrected: false,
+                    mismatch: 0.0,
+                });
             }
             let d = h - r.abs();
             if d <= allowance {
                 // Tolerated: a half circle about the chord's midpoint.
                 let mid = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
-                return Ok(ArcSolution { center: mid, radius: h, corrected: true, mismatch: d });
+                return Ok(ArcSolution {
+                    center: mid,
+                    radius: h,
+                    corrected: true,
+                    mismatch: d,
+                });
             }
             Err(ArcError::RadiusTooSmall(d))
         }
@@ -158,13 +219,23 @@ pub fn solve_servoworks(s: [f64; 2], e: [f64; 2], spec: ArcSpec, cw: bool, allow
             let r2 = hypot(e, c);
             let delta = (r1 - r2).abs();
             if delta == 0.0 {
-                return Ok(ArcSolution { center: c, radius: r1, corrected: false, mismatch: 0.0 });
+                return Ok(ArcSolution {
+                    center: c,
+                    radius: r1,
+                    corrected: false,
+                    mismatch: 0.0,
+                });
             }
             if delta > allowance {
                 return Err(ArcError::RadiusMismatch(r1, r2));
             }
             let r = (r1 + r2) / 2.0;
-            Ok(ArcSolution { center: bisector_center(s, e, r, c), radius: r, corrected: true, mismatch: delta })
+            Ok(ArcSolution {
+                center: bisector_center(s, e, r, c),
+                radius: r,
+                corrected: true,
+                mismatch: delta,
+            })
         }
     }
 }

@@ -1,9 +1,15 @@
 //! Block execution.
 
+// Axis arrays are indexed in parallel (program, machine, offsets), which reads
+// more clearly with indices than with zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use analyzer::syntax::{BlockKind, CommentKind, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, Program, WordValue};
+use analyzer::syntax::{
+    BlockKind, CommentKind, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, Program, WordValue,
+};
 use analyzer::{Diagnostic, Dialect, FileId, Severity, Span, Variant};
 
 use super::arc::{self, ArcError, ArcSpec};
@@ -73,13 +79,20 @@ impl Words {
         self.get(c).is_some()
     }
     fn sp(&self, c: u8) -> Span {
-        self.span.get((c - b'A') as usize).copied().unwrap_or_default()
+        self.span
+            .get((c - b'A') as usize)
+            .copied()
+            .unwrap_or_default()
     }
     fn has_g(&self, t: u32) -> bool {
         self.g.iter().any(|(g, _)| *g == t)
     }
     fn g_span(&self, t: u32) -> Span {
-        self.g.iter().find(|(g, _)| *g == t).map(|(_, s)| *s).unwrap_or_default()
+        self.g
+            .iter()
+            .find(|(g, _)| *g == t)
+            .map(|(_, s)| *s)
+            .unwrap_or_default()
     }
     fn has_m(&self, t: u32) -> bool {
         self.m.iter().any(|(m, _)| *m == t)
@@ -98,11 +111,23 @@ struct Vars<'s> {
 impl VarSource for Vars<'_> {
     fn get_num(&self, n: i64, span: Span) -> Result<Val, EvalError> {
         if n < 0 || n as usize >= NUM_PARAMS {
-            let code = if self.dialect == Dialect::Rs274ngc { "X006" } else { "X007" };
-            return Err(EvalError { span, message: format!("parameter number #{n} out of range"), code });
+            let code = if self.dialect == Dialect::Rs274ngc {
+                "X006"
+            } else {
+                "X007"
+            };
+            return Err(EvalError {
+                span,
+                message: format!("parameter number #{n} out of range"),
+                code,
+            });
         }
         let v = self.st.params.get(n as usize).copied().flatten();
-        Ok(if self.dialect == Dialect::Rs274ngc { Some(v.unwrap_or(0.0)) } else { v })
+        Ok(if self.dialect == Dialect::Rs274ngc {
+            Some(v.unwrap_or(0.0))
+        } else {
+            v
+        })
     }
     fn get_named(&self, name: &str, span: Span) -> Result<Val, EvalError> {
         if let Some(v) = self.locals.and_then(|l| l.get(name)) {
@@ -114,10 +139,16 @@ impl VarSource for Vars<'_> {
         if let Some(v) = predefined(self.st, name) {
             return Ok(Some(v));
         }
-        Err(EvalError { span, message: format!("named parameter #<{name}> not defined"), code: "X006" })
+        Err(EvalError {
+            span,
+            message: format!("named parameter #<{name}> not defined"),
+            code: "X006",
+        })
     }
     fn named_exists(&self, name: &str) -> bool {
-        self.locals.is_some_and(|l| l.contains_key(name)) || self.st.named.contains_key(name) || predefined(self.st, name).is_some()
+        self.locals.is_some_and(|l| l.contains_key(name))
+            || self.st.named.contains_key(name)
+            || predefined(self.st, name).is_some()
     }
 }
 
@@ -242,7 +273,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             st,
             frames: Vec::new(),
             repeats: Vec::new(),
-            out: RunOutput { snapshots: vec![None; input.program.blocks.len()], ..RunOutput::default() },
+            out: RunOutput {
+                snapshots: vec![None; input.program.blocks.len()],
+                ..RunOutput::default()
+            },
             canon: if emit { Some(Canon::default()) } else { None },
             steps: 0,
             cur: (0, 0),
@@ -292,11 +326,19 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn g5x_of(&self, origin: usize) -> [f64; 6] {
-        let base = if origin >= 100 { 7001 + 20 * (origin - 101) } else { 5201 + 20 * origin };
+        let base = if origin >= 100 {
+            7001 + 20 * (origin - 101)
+        } else {
+            5201 + 20 * origin
+        };
         let mut o = [0.0; 6];
         for (k, v) in o.iter_mut().enumerate() {
             let raw = self.param(base + k);
-            *v = if k < 3 { raw * self.cfg.param_unit } else { raw };
+            *v = if k < 3 {
+                raw * self.cfg.param_unit
+            } else {
+                raw
+            };
         }
         o
     }
@@ -374,7 +416,13 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn event(&mut self, kind: EventKind) {
-        let e = Event { kind, motion_index: self.out.motions.len(), file: self.file_id(), block: self.cur.1, line: self.cur_line };
+        let e = Event {
+            kind,
+            motion_index: self.out.motions.len(),
+            file: self.file_id(),
+            block: self.cur.1,
+            line: self.cur_line,
+        };
         self.out.events.push(e);
     }
 
@@ -402,7 +450,11 @@ impl<'a, 'i> Interp<'a, 'i> {
     fn run_main(&mut self) {
         let p = self.files[0].prog.clone();
         if self.ngc() {
-            if let Some(b) = p.blocks.iter().find(|b| !p.items_of(b).is_empty() || b.kind == BlockKind::Percent) {
+            if let Some(b) = p
+                .blocks
+                .iter()
+                .find(|b| !p.items_of(b).is_empty() || b.kind == BlockKind::Percent)
+            {
                 self.percent_open = b.kind == BlockKind::Percent;
             }
         }
@@ -464,8 +516,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         let span = Span::new(end, end);
         match self.dialect {
             Dialect::Rs274ngc => {
-                let msg = if self.percent_open { "file ended with no percent sign" } else { "file ended with no percent sign or program end (M2/M30)" };
-                self.out.diagnostics.push(Diagnostic::error(codes::MISSING_END, span, msg));
+                let msg = if self.percent_open {
+                    "file ended with no percent sign"
+                } else {
+                    "file ended with no percent sign or program end (M2/M30)"
+                };
+                self.out
+                    .diagnostics
+                    .push(Diagnostic::error(codes::MISSING_END, span, msg));
             }
             _ => {
                 self.out.diagnostics.push(Diagnostic::warning(codes::MISSING_END, span, "program has no end code (M02/M30): the control stops at the end of the file without the end-of-program resets"));
@@ -491,7 +549,11 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn block_span(&self, fi: usize, bi: u32) -> Span {
-        self.files.get(fi).and_then(|f| f.prog.blocks.get(bi as usize)).map(|b| b.span).unwrap_or_default()
+        self.files
+            .get(fi)
+            .and_then(|f| f.prog.blocks.get(bi as usize))
+            .map(|b| b.span)
+            .unwrap_or_default()
     }
 
     fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
@@ -503,8 +565,16 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn eval(&self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
-        let locals = self.frames.last().map(|f| &f.named_locals).or(Some(&self.main_locals));
-        let vars = Vars { st: &self.st, locals, dialect: self.dialect };
+        let locals = self
+            .frames
+            .last()
+            .map(|f| &f.named_locals)
+            .or(Some(&self.main_locals));
+        let vars = Vars {
+            st: &self.st,
+            locals,
+            dialect: self.dialect,
+        };
         expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
     }
 
@@ -516,7 +586,9 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn exec_block(&mut self, fi: usize, bi: u32) -> Result<Flow, Diagnostic> {
         let prog = self.files[fi].prog.clone();
-        let Some(block) = prog.blocks.get(bi as usize).copied() else { return Ok(Flow::Next) };
+        let Some(block) = prog.blocks.get(bi as usize).copied() else {
+            return Ok(Flow::Next);
+        };
         self.cur_line = block.line;
         if let Some(c) = self.canon.as_mut() {
             c.line_number = None;
@@ -524,11 +596,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         match block.kind {
             BlockKind::Normal => {}
             BlockKind::Percent => {
-                if self.ngc() && fi == 0 && self.percent_open && self.seen_content_before(&prog, bi) {
+                if self.ngc() && fi == 0 && self.percent_open && self.seen_content_before(&prog, bi)
+                {
                     self.saw_end = true;
                     return Ok(Flow::Stop);
                 }
-                if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi) {
+                if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
+                {
                     self.saw_end = true;
                     return Ok(Flow::Stop);
                 }
@@ -585,7 +659,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                         MacroStmt::While { cond, .. } => {
                             if self.eval(&prog, cond)?.unwrap_or(0.0) == 0.0 {
                                 let Some(end) = self.files[fi].loops.get(&bi).copied() else {
-                                    return Err(self.err(codes::FLOW, it.span, "WHILE … DO has no matching END (PS0124)"));
+                                    return Err(self.err(
+                                        codes::FLOW,
+                                        it.span,
+                                        "WHILE … DO has no matching END (PS0124)",
+                                    ));
                                 };
                                 return Ok(Flow::Goto(fi, end + 1));
                             }
@@ -593,7 +671,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                         MacroStmt::Do { .. } => {}
                         MacroStmt::End { .. } => {
                             let Some(head) = self.files[fi].loops.get(&bi).copied() else {
-                                return Err(self.err(codes::FLOW, it.span, "END has no matching DO (PS0126)"));
+                                return Err(self.err(
+                                    codes::FLOW,
+                                    it.span,
+                                    "END has no matching DO (PS0126)",
+                                ));
                             };
                             return Ok(Flow::Goto(fi, head));
                         }
@@ -632,11 +714,21 @@ impl<'a, 'i> Interp<'a, 'i> {
                     match word.letter {
                         b'G' => match analyzer::dialect::CodeNum::from_value(val) {
                             Some(c) => w.g.push((c.0, it.span)),
-                            None => return Err(self.err(codes::UNKNOWN_CODE, it.span, format!("G{val} is not a G code"))),
+                            None => {
+                                return Err(self.err(
+                                    codes::UNKNOWN_CODE,
+                                    it.span,
+                                    format!("G{val} is not a G code"),
+                                ))
+                            }
                         },
                         b'M' => {
                             if val < 0.0 || val.fract().abs() > 1e-6 {
-                                return Err(self.err(codes::UNKNOWN_CODE, it.span, format!("M{val} is not an M code")));
+                                return Err(self.err(
+                                    codes::UNKNOWN_CODE,
+                                    it.span,
+                                    format!("M{val} is not an M code"),
+                                ));
                             }
                             w.m.push(((val * 10.0).round() as u32, it.span));
                         }
@@ -649,7 +741,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                             w.v[i] = Some(val);
                             w.span[i] = it.span;
                             w.point[i] = point;
-                            if matches!(c, b'I' | b'J' | b'K' | b'A' | b'B' | b'C' | b'D' | b'E' | b'F' | b'H' | b'M' | b'Q' | b'R' | b'S' | b'T' | b'U' | b'V' | b'W' | b'X' | b'Y' | b'Z') {
+                            if matches!(
+                                c,
+                                b'I' | b'J'
+                                    | b'K'
+                                    | b'A'
+                                    | b'B'
+                                    | b'C'
+                                    | b'D'
+                                    | b'E'
+                                    | b'F'
+                                    | b'H'
+                                    | b'M'
+                                    | b'Q'
+                                    | b'R'
+                                    | b'S'
+                                    | b'T'
+                                    | b'U'
+                                    | b'V'
+                                    | b'W'
+                                    | b'X'
+                                    | b'Y'
+                                    | b'Z'
+                            ) {
                                 w.ijk_order.push((c, val));
                             }
                         }
@@ -674,7 +788,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.st.ended {
             if !self.after_end_reported {
                 self.after_end_reported = true;
-                self.diag(codes::AFTER_END, Severity::Warning, block.span, "code after the program end is never executed");
+                self.diag(
+                    codes::AFTER_END,
+                    Severity::Warning,
+                    block.span,
+                    "code after the program end is never executed",
+                );
             }
             return Ok(Flow::Stop);
         }
@@ -684,7 +803,10 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn seen_content_before(&self, p: &Program, bi: u32) -> bool {
-        p.blocks.iter().take(bi as usize).any(|b| b.kind == BlockKind::Normal && !p.items_of(b).is_empty())
+        p.blocks
+            .iter()
+            .take(bi as usize)
+            .any(|b| b.kind == BlockKind::Normal && !p.items_of(b).is_empty())
     }
 
     /// FANUC decimal-point rules and ServoWorks integer machine units.
@@ -716,22 +838,40 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
     }
 
-    fn assign(&mut self, p: &Program, target: ExprId, v: Val, span: Span) -> Result<(), Diagnostic> {
+    fn assign(
+        &mut self,
+        p: &Program,
+        target: ExprId,
+        v: Val,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
         match p.expr(target).expr {
             Expr::Var { index } => {
                 let n = self.eval_num(p, index)?.round();
                 if n < 0.0 || n as usize >= NUM_PARAMS {
-                    return Err(self.err(codes::EXPRESSION, span, format!("parameter number #{n} out of range")));
+                    return Err(self.err(
+                        codes::EXPRESSION,
+                        span,
+                        format!("parameter number #{n} out of range"),
+                    ));
                 }
                 if n == 0.0 && !self.ngc() {
                     return Err(self.err(codes::EXPRESSION, span, "#0 is read-only (PS0116)"));
                 }
-                let v = if self.ngc() { Some(v.unwrap_or(0.0)) } else { v };
+                let v = if self.ngc() {
+                    Some(v.unwrap_or(0.0))
+                } else {
+                    v
+                };
                 if self.dialect == Dialect::Fanuc && (n as usize == 3000 || n as usize == 3006) {
                     let stop = n as usize == 3000;
                     self.event(EventKind::Message(format!("#{} = {}", n, v.unwrap_or(0.0))));
                     if stop {
-                        return Err(self.err(codes::MACRO_ALARM, span, format!("macro alarm #3000 = {}", v.unwrap_or(0.0))));
+                        return Err(self.err(
+                            codes::MACRO_ALARM,
+                            span,
+                            format!("macro alarm #3000 = {}", v.unwrap_or(0.0)),
+                        ));
                     }
                 }
                 self.set_param(n as usize, v);
@@ -754,18 +894,35 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn goto_seq(&mut self, fi: usize, bi: u32, n: f64, span: Span) -> Result<Flow, Diagnostic> {
-        let blocks = self.files[fi].seq.get(&(n.max(0.0) as u64)).cloned().unwrap_or_default();
+        let blocks = self.files[fi]
+            .seq
+            .get(&(n.max(0.0) as u64))
+            .cloned()
+            .unwrap_or_default();
         // Search forward first, then from the top of the program.
         if let Some(b) = blocks.iter().find(|b| **b > bi).or(blocks.first()) {
             return Ok(Flow::Goto(fi, *b));
         }
-        Err(self.err(codes::FLOW, span, format!("sequence number N{n} not found (PS0128)")))
+        Err(self.err(
+            codes::FLOW,
+            span,
+            format!("sequence number N{n} not found (PS0128)"),
+        ))
     }
 
     // ----------------------------------------------------------------- O-words
 
-    fn exec_oword(&mut self, fi: usize, bi: u32, p: &Program, ow: analyzer::syntax::OWord, span: Span) -> Result<Flow, Diagnostic> {
-        let Some(kw) = ow.keyword else { return Ok(Flow::Next) };
+    fn exec_oword(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        p: &Program,
+        ow: analyzer::syntax::OWord,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
+        let Some(kw) = ow.keyword else {
+            return Ok(Flow::Next);
+        };
         let ctrl = self.files[fi].ctrl.get(&bi).cloned().unwrap_or_default();
         let args: Vec<ExprId> = p.expr_list(ow.args).to_vec();
         let cond = |s: &Self| -> Result<bool, Diagnostic> {
@@ -774,7 +931,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                 None => Ok(false),
             }
         };
-        let after = |b: Option<u32>| -> Result<u32, Diagnostic> { b.map(|b| b + 1).ok_or_else(|| self.err(codes::FLOW, span, format!("O-word `{}` has no matching end", kw.as_str()))) };
+        let after = |b: Option<u32>| -> Result<u32, Diagnostic> {
+            b.map(|b| b + 1).ok_or_else(|| {
+                self.err(
+                    codes::FLOW,
+                    span,
+                    format!("O-word `{}` has no matching end", kw.as_str()),
+                )
+            })
+        };
         match kw {
             OKeyword::Sub => {
                 // A definition met in flow is skipped.
@@ -807,13 +972,19 @@ impl<'a, 'i> Interp<'a, 'i> {
                     OLabel::Expr(e) => Some(format!("{}", self.eval_num(p, e)?.round() as i64)),
                     ref l => label_key(p, l),
                 };
-                let Some(key) = key else { return Err(self.err(codes::FLOW, span, "call without a subroutine name")) };
+                let Some(key) = key else {
+                    return Err(self.err(codes::FLOW, span, "call without a subroutine name"));
+                };
                 self.call_ngc(fi, bi, &key, vals, span)
             }
             OKeyword::While => {
                 if ctrl.closes_do {
                     let head = ctrl.partner.unwrap_or(bi);
-                    return Ok(if cond(self)? { Flow::Goto(fi, head + 1) } else { Flow::Next });
+                    return Ok(if cond(self)? {
+                        Flow::Goto(fi, head + 1)
+                    } else {
+                        Flow::Next
+                    });
                 }
                 if cond(self)? {
                     Ok(Flow::Next)
@@ -836,7 +1007,12 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             OKeyword::Endrepeat => {
                 let head = ctrl.partner.unwrap_or(bi);
-                if let Some(top) = self.repeats.iter_mut().rev().find(|r| r.0 == fi && r.1 == head) {
+                if let Some(top) = self
+                    .repeats
+                    .iter_mut()
+                    .rev()
+                    .find(|r| r.0 == fi && r.1 == head)
+                {
                     top.2 -= 1;
                     if top.2 > 0 {
                         return Ok(Flow::Goto(fi, head + 1));
@@ -872,7 +1048,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             OKeyword::Elseif | OKeyword::Else => Ok(Flow::Goto(fi, after(ctrl.partner)?)),
             OKeyword::Endif => Ok(Flow::Next),
             OKeyword::Break | OKeyword::Continue => {
-                let Some(head) = ctrl.partner else { return Err(self.err(codes::FLOW, span, format!("`{}` outside a loop", kw.as_str()))) };
+                let Some(head) = ctrl.partner else {
+                    return Err(self.err(
+                        codes::FLOW,
+                        span,
+                        format!("`{}` outside a loop", kw.as_str()),
+                    ));
+                };
                 let hc = self.files[fi].ctrl.get(&head).cloned().unwrap_or_default();
                 let end = hc.partner.unwrap_or(head);
                 if kw == OKeyword::Break {
@@ -897,10 +1079,16 @@ impl<'a, 'i> Interp<'a, 'i> {
         let from = self.file_id();
         let rf = self.input.resolver.resolve(name, from)?;
         let _ = span;
-        let opts = analyzer::syntax::ParseOptions { dialect: self.dialect, variant: self.variant };
+        let opts = analyzer::syntax::ParseOptions {
+            dialect: self.dialect,
+            variant: self.variant,
+        };
         let prog = analyzer::syntax::parse(opts, rf.text.clone());
         let idx = self.files.len();
-        self.files.push(FileEntry::new(ProgRef::Shared(Arc::new(prog)), FileId(idx as u32)));
+        self.files.push(FileEntry::new(
+            ProgRef::Shared(Arc::new(prog)),
+            FileId(idx as u32),
+        ));
         self.file_names.insert(key, idx);
         // Keep the resolved path for the output list.
         self.file_names.insert(rf.path.clone(), idx);
@@ -920,7 +1108,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
-    fn call_ngc(&mut self, fi: usize, bi: u32, key: &str, vals: Vec<f64>, span: Span) -> Result<Flow, Diagnostic> {
+    fn call_ngc(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        key: &str,
+        vals: Vec<f64>,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
         self.depth_check(span)?;
         let (tf, tb) = if let Some(b) = self.files[fi].subs.get(key).copied() {
             (fi, b)
@@ -935,22 +1130,36 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
-        let saved: Vec<Option<f64>> = (1..=30).map(|n| self.st.params.get(n).copied().flatten()).collect();
+        let saved: Vec<Option<f64>> = (1..=30)
+            .map(|n| self.st.params.get(n).copied().flatten())
+            .collect();
         for n in 1..=30usize {
             self.set_param(n, Some(vals.get(n - 1).copied().unwrap_or(0.0)));
         }
         Arc::make_mut(&mut self.st.named).remove("_value_returned");
-        self.frames.push(Frame { kind: FrameKind::NgcSub, ret_file: fi, ret_block: bi + 1, saved: Some(saved), named_locals: HashMap::new(), call_span: span });
+        self.frames.push(Frame {
+            kind: FrameKind::NgcSub,
+            ret_file: fi,
+            ret_block: bi + 1,
+            saved: Some(saved),
+            named_locals: HashMap::new(),
+            call_span: span,
+        });
         let start = if tb == u32::MAX { 0 } else { tb + 1 };
         Ok(Flow::Goto(tf, start))
     }
 
     /// Returns from the innermost frame; sets `self.cur`. `seq` is M99 P.
     fn ret_from_sub(&mut self, seq: Option<f64>) -> bool {
-        let Some(mut f) = self.frames.pop() else { return false };
+        let Some(mut f) = self.frames.pop() else {
+            return false;
+        };
         if let FrameKind::Sub { start, repeat } = f.kind {
             if repeat > 1 {
-                f.kind = FrameKind::Sub { start, repeat: repeat - 1 };
+                f.kind = FrameKind::Sub {
+                    start,
+                    repeat: repeat - 1,
+                };
                 let file = self.cur.0;
                 self.frames.push(f);
                 self.cur = (file, start);
@@ -958,14 +1167,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if let Some(saved) = f.saved {
-            let n0 = if self.ngc() { 1 } else { 1 };
+            let n0 = 1;
             for (k, v) in saved.into_iter().enumerate() {
                 self.set_param(n0 + k, v);
             }
         }
         self.cur = (f.ret_file, f.ret_block);
         if let Some(n) = seq {
-            if let Some(b) = self.files[f.ret_file].seq.get(&(n as u64)).and_then(|v| v.first()) {
+            if let Some(b) = self.files[f.ret_file]
+                .seq
+                .get(&(n as u64))
+                .and_then(|v| v.first())
+            {
                 self.cur = (f.ret_file, *b);
             }
         }
@@ -974,7 +1187,15 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     /// M98 / G65: `name` is the program name or number as written.
-    fn call_program(&mut self, fi: usize, bi: u32, name: &str, repeat: u32, args: Option<Vec<Option<f64>>>, span: Span) -> Result<Flow, Diagnostic> {
+    fn call_program(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        name: &str,
+        repeat: u32,
+        args: Option<Vec<Option<f64>>>,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
         self.depth_check(span)?;
         let number = name.parse::<u32>().ok();
         let (tf, tb) = if let Some(b) = number.and_then(|n| self.files[fi].heads.get(&n).copied()) {
@@ -982,22 +1203,34 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else if let Some(b) = number.and_then(|n| self.files[0].heads.get(&n).copied()) {
             (0, b + 1)
         } else {
-            let f = self.load_file(name, span).or_else(|| number.and_then(|n| self.load_file(&format!("{n:04}"), span)));
+            let f = self
+                .load_file(name, span)
+                .or_else(|| number.and_then(|n| self.load_file(&format!("{n:04}"), span)));
             match f {
                 Some(f) => {
                     let p = self.files[f].prog.clone();
                     // Start after the program head, if the file has one.
-                    let head = p.blocks.iter().position(|b| p.items_of(b).iter().any(|it| matches!(it.kind, ItemKind::ProgramHead { .. })));
+                    let head = p.blocks.iter().position(|b| {
+                        p.items_of(b)
+                            .iter()
+                            .any(|it| matches!(it.kind, ItemKind::ProgramHead { .. }))
+                    });
                     (f, head.map(|h| h as u32 + 1).unwrap_or(0))
                 }
                 None => {
-                    let what = if self.dialect == Dialect::Servoworks { format!("subprogram O{name} (file O{name}.dat) not found") } else { format!("program O{name} not found (PS0076)") };
+                    let what = if self.dialect == Dialect::Servoworks {
+                        format!("subprogram O{name} (file O{name}.dat) not found")
+                    } else {
+                        format!("program O{name} not found (PS0076)")
+                    };
                     return Err(self.err(codes::SUB_NOT_FOUND, span, what));
                 }
             }
         };
         let saved = if let Some(a) = &args {
-            let saved: Vec<Option<f64>> = (1..=33).map(|n| self.st.params.get(n).copied().flatten()).collect();
+            let saved: Vec<Option<f64>> = (1..=33)
+                .map(|n| self.st.params.get(n).copied().flatten())
+                .collect();
             for n in 1..=33usize {
                 self.set_param(n, a.get(n).copied().flatten());
             }
@@ -1006,7 +1239,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             None
         };
         self.frames.push(Frame {
-            kind: FrameKind::Sub { start: tb, repeat: repeat.max(1) },
+            kind: FrameKind::Sub {
+                start: tb,
+                repeat: repeat.max(1),
+            },
             ret_file: fi,
             ret_block: bi + 1,
             saved,
@@ -1022,7 +1258,15 @@ impl<'a, 'i> Interp<'a, 'i> {
         v * self.unit()
     }
 
-    fn exec_words(&mut self, fi: usize, bi: u32, p: &Program, w: &Words, comments: &[(CommentKind, Span)], bspan: Span) -> Result<Flow, Diagnostic> {
+    fn exec_words(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        p: &Program,
+        w: &Words,
+        comments: &[(CommentKind, Span)],
+        bspan: Span,
+    ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
         // Comments and messages.
         for (k, s) in comments {
@@ -1043,7 +1287,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.canon("SET_SPINDLE_MODE(0 0.0000)");
         }
         // Feed mode.
-        for (code, text, mode) in [(930u32, "inverse time", 0), (940, "units per minute", 0), (950, "units per revolution", 1)] {
+        for (code, text, mode) in [
+            (930u32, "inverse time", 0),
+            (940, "units per minute", 0),
+            (950, "units per revolution", 1),
+        ] {
             if w.has_g(code) {
                 self.canon_comment(&format!("interpreter: feed mode set to {text}"));
                 self.canon(format!("SET_FEED_MODE(0, {mode})"));
@@ -1055,8 +1303,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if let Some(f) = w.get(b'F') {
-            let u = if ngc { self.unit() } else if self.st.modal.inch { 25.4 } else { 1.0 };
-            self.st.feed = if self.st.modal.feed_mode == 930 { f } else { f * u };
+            let u = if ngc {
+                self.unit()
+            } else if self.st.modal.inch {
+                25.4
+            } else {
+                1.0
+            };
+            self.st.feed = if self.st.modal.feed_mode == 930 {
+                f
+            } else {
+                f * u
+            };
             if self.st.modal.feed_mode != 930 {
                 self.canon(format!("SET_FEED_RATE({})", f4(f)));
             }
@@ -1089,7 +1347,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(40) {
             self.exec_dwell(w)?;
         }
-        for (code, name, plane) in [(170u32, "CANON_PLANE_XY", 170u32), (180, "CANON_PLANE_XZ", 180), (190, "CANON_PLANE_YZ", 190)] {
+        for (code, name, plane) in [
+            (170u32, "CANON_PLANE_XY", 170u32),
+            (180, "CANON_PLANE_XZ", 180),
+            (190, "CANON_PLANE_YZ", 190),
+        ] {
             if w.has_g(code) {
                 self.st.modal.plane = plane;
                 self.canon(format!("SELECT_PLANE({name})"));
@@ -1098,7 +1360,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(200) || w.has_g(210) {
             let inch = w.has_g(200);
             self.st.modal.inch = inch;
-            self.canon(if inch { "USE_LENGTH_UNITS(CANON_UNITS_INCHES)" } else { "USE_LENGTH_UNITS(CANON_UNITS_MM)" });
+            self.canon(if inch {
+                "USE_LENGTH_UNITS(CANON_UNITS_INCHES)"
+            } else {
+                "USE_LENGTH_UNITS(CANON_UNITS_MM)"
+            });
         }
         self.exec_comp(w)?;
         self.exec_tlo(w)?;
@@ -1111,11 +1377,17 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(640) {
             self.st.modal.path = 640;
-            let pt = if ngc { w.get(b'P').map(|v| self.lin(v)) } else { None };
+            let pt = if ngc {
+                w.get(b'P').map(|v| self.lin(v))
+            } else {
+                None
+            };
             self.st.modal.path_tol = pt;
             let tol = pt.unwrap_or(0.0) / self.unit();
-            let q = w.get(b'Q').map(|v| v).unwrap_or(tol);
-            self.canon(format!("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"));
+            let q = w.get(b'Q').unwrap_or(tol);
+            self.canon(format!(
+                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
+            ));
             self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(q)));
         }
         if w.has_g(900) {
@@ -1161,14 +1433,17 @@ impl<'a, 'i> Interp<'a, 'i> {
         if text.starts_with(';') {
             return Ok(());
         }
-        let inner = text.trim_start_matches('(').trim_end_matches(')').to_string();
-        let after_comma = |t: &str| t.split_once(',').map(|(_, r)| r.to_string()).unwrap_or_default();
+        let inner = text
+            .trim_start_matches('(')
+            .trim_end_matches(')')
+            .to_string();
+        let after_comma = |t: &str| {
+            t.split_once(',')
+                .map(|(_, r)| r.to_string())
+                .unwrap_or_default()
+        };
         match k {
-            CommentKind::Plain | CommentKind::Partscope => {
-                if self.ngc() {
-                    self.canon_comment(&inner);
-                }
-            }
+            CommentKind::Plain | CommentKind::Partscope if self.ngc() => self.canon_comment(&inner),
             CommentKind::Msg => {
                 let m = after_comma(&inner);
                 self.canon(format!("MESSAGE(\"{m}\")"));
@@ -1203,8 +1478,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                 if b.get(i + 1) == Some(&b'<') {
                     if let Some(end) = text[i..].find('>') {
                         let name = expr::named_key(&text[i + 2..i + end]);
-                        let locals = self.frames.last().map(|f| &f.named_locals).unwrap_or(&self.main_locals);
-                        let v = locals.get(&name).copied().or_else(|| self.st.named.get(&name).copied()).or_else(|| predefined(&self.st, &name));
+                        let locals = self
+                            .frames
+                            .last()
+                            .map(|f| &f.named_locals)
+                            .unwrap_or(&self.main_locals);
+                        let v = locals
+                            .get(&name)
+                            .copied()
+                            .or_else(|| self.st.named.get(&name).copied())
+                            .or_else(|| predefined(&self.st, &name));
                         match v {
                             Some(v) => out.push_str(&format!("{v:.6}")),
                             None => out.push_str("######"),
@@ -1235,7 +1518,12 @@ impl<'a, 'i> Interp<'a, 'i> {
     fn check_tool(&mut self, t: u32, span: Span) {
         let have_table = self.input.tool_table.is_some() || !self.cfg.tools.is_empty();
         if have_table && t != 0 && !self.cfg.tools.contains_key(&t) {
-            self.diag(codes::UNKNOWN_TOOL, Severity::Warning, span, format!("tool T{t} is not in the tool table"));
+            self.diag(
+                codes::UNKNOWN_TOOL,
+                Severity::Warning,
+                span,
+                format!("tool T{t} is not in the tool table"),
+            );
         }
     }
 
@@ -1294,7 +1582,12 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.event(EventKind::Coolant { mist, flood });
         }
         if ngc {
-            for (m, text) in [(620u32, "SET_MOTION_OUTPUT_BIT"), (630, "CLEAR_MOTION_OUTPUT_BIT"), (640, "SET_AUX_OUTPUT_BIT"), (650, "CLEAR_AUX_OUTPUT_BIT")] {
+            for (m, text) in [
+                (620u32, "SET_MOTION_OUTPUT_BIT"),
+                (630, "CLEAR_MOTION_OUTPUT_BIT"),
+                (640, "SET_AUX_OUTPUT_BIT"),
+                (650, "CLEAR_AUX_OUTPUT_BIT"),
+            ] {
                 if w.has_m(m) {
                     let p = w.get(b'P').unwrap_or(0.0) as i32;
                     self.canon(format!("{text}({p})"));
@@ -1307,17 +1600,21 @@ impl<'a, 'i> Interp<'a, 'i> {
         let secs = match self.dialect {
             Dialect::Rs274ngc => match w.get(b'P') {
                 Some(p) => p,
-                None => return Err(self.err(codes::INTERP, w.g_span(40), "dwell time P word missing with G4")),
+                None => {
+                    return Err(self.err(
+                        codes::INTERP,
+                        w.g_span(40),
+                        "dwell time P word missing with G4",
+                    ))
+                }
             },
             _ => {
                 if let Some(x) = w.get(b'X') {
                     x
                 } else if let Some(p) = w.get(b'P') {
                     p / 1000.0
-                } else if let Some(u) = w.get(b'U') {
-                    u
                 } else {
-                    0.0
+                    w.get(b'U').unwrap_or(0.0)
                 }
             }
         };
@@ -1341,11 +1638,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             if w.has_g(code) {
                 self.st.modal.comp = code;
                 let dia = match w.get(b'D') {
-                    Some(d) if self.dialect == Dialect::Servoworks && w.point[(b'D' - b'A') as usize] => self.lin(d),
+                    Some(d)
+                        if self.dialect == Dialect::Servoworks
+                            && w.point[(b'D' - b'A') as usize] =>
+                    {
+                        self.lin(d)
+                    }
                     d => self.tool_diameter(d),
                 };
                 self.st.comp_radius = dia / 2.0;
-                self.canon_comment(&format!("interpreter: cutter radius compensation on {side}"));
+                self.canon_comment(&format!(
+                    "interpreter: cutter radius compensation on {side}"
+                ));
             }
         }
         Ok(())
@@ -1357,7 +1661,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             s.st.tlo = [x, 0.0, z, 0.0, 0.0, 0.0];
             s.st.pos = s.to_program(s.st.mpos);
             let u = s.unit();
-            s.canon(format!("USE_TOOL_LENGTH_OFFSET({} 0.0000 {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)", f4(x / u), f4(z / u)));
+            s.canon(format!(
+                "USE_TOOL_LENGTH_OFFSET({} 0.0000 {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
+                f4(x / u),
+                f4(z / u)
+            ));
         };
         if w.has_g(490) {
             self.st.modal.tlo_mode = 490;
@@ -1366,7 +1674,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         for code in [430u32, 440] {
             if w.has_g(code) {
                 self.st.modal.tlo_mode = code;
-                let h = w.get(b'H').map(|v| v.round() as u32).unwrap_or(self.st.tool);
+                let h = w
+                    .get(b'H')
+                    .map(|v| v.round() as u32)
+                    .unwrap_or(self.st.tool);
                 if w.has(b'H') {
                     self.check_tool(h, w.sp(b'H'));
                 }
@@ -1383,7 +1694,17 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn exec_coord_select(&mut self, w: &Words) -> Result<(), Diagnostic> {
         let mut origin = None;
-        for (code, o) in [(540u32, 1usize), (550, 2), (560, 3), (570, 4), (580, 5), (590, 6), (591, 7), (592, 8), (593, 9)] {
+        for (code, o) in [
+            (540u32, 1usize),
+            (550, 2),
+            (560, 3),
+            (570, 4),
+            (580, 5),
+            (590, 6),
+            (591, 7),
+            (592, 8),
+            (593, 9),
+        ] {
             if w.has_g(code) {
                 origin = Some(o);
             }
@@ -1394,7 +1715,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         let Some(o) = origin else { return Ok(()) };
         if self.st.modal.rotation {
-            let span = w.g.iter().find(|(g, _)| (540..=593).contains(g)).map(|x| x.1).unwrap_or_default();
+            let span =
+                w.g.iter()
+                    .find(|(g, _)| (540..=593).contains(g))
+                    .map(|x| x.1)
+                    .unwrap_or_default();
             self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "work coordinate systems cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         if o == self.st.modal.origin {
@@ -1407,7 +1732,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         let g = self.g5x_prog();
         let g92 = self.st.g92;
         if o < 100 {
-            self.canon(format!("SET_G5X_OFFSET({o}, {})", Canon::six(&scale6(g, u))));
+            self.canon(format!(
+                "SET_G5X_OFFSET({o}, {})",
+                Canon::six(&scale6(g, u))
+            ));
             self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
             self.canon("SET_XY_ROTATION(0.0000)");
         }
@@ -1432,21 +1760,38 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.scaling = false;
         }
         if w.has_g(510) {
-            let c = [w.get(b'X').map(|v| self.lin(v)).unwrap_or(self.st.pos[0]), w.get(b'Y').map(|v| self.lin(v)).unwrap_or(self.st.pos[1]), w.get(b'Z').map(|v| self.lin(v)).unwrap_or(self.st.pos[2])];
+            let c = [
+                w.get(b'X').map(|v| self.lin(v)).unwrap_or(self.st.pos[0]),
+                w.get(b'Y').map(|v| self.lin(v)).unwrap_or(self.st.pos[1]),
+                w.get(b'Z').map(|v| self.lin(v)).unwrap_or(self.st.pos[2]),
+            ];
             let p = w.get(b'P');
             let f = match p {
                 Some(p) => {
-                    let p = if w.point[(b'P' - b'A') as usize] { p } else { p * 0.001 };
+                    let p = if w.point[(b'P' - b'A') as usize] {
+                        p
+                    } else {
+                        p * 0.001
+                    };
                     [p; 3]
                 }
-                None => [w.get(b'I').unwrap_or(1.0), w.get(b'J').unwrap_or(1.0), w.get(b'K').unwrap_or(1.0)],
+                None => [
+                    w.get(b'I').unwrap_or(1.0),
+                    w.get(b'J').unwrap_or(1.0),
+                    w.get(b'K').unwrap_or(1.0),
+                ],
             };
             self.st.scale = (c, f);
             self.st.modal.scaling = true;
         }
         if w.has_g(501) {
             // G50.1 cancels the mirror of the axes it names (all when it names none).
-            let named: Vec<usize> = [b'X', b'Y', b'Z'].iter().enumerate().filter(|(_, c)| w.has(**c)).map(|(i, _)| i).collect();
+            let named: Vec<usize> = [b'X', b'Y', b'Z']
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| w.has(**c))
+                .map(|(i, _)| i)
+                .collect();
             if named.is_empty() {
                 self.st.mirror = ([false; 3], [0.0; 3]);
             }
@@ -1470,8 +1815,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(680) {
             let (a, b) = self.plane_axes();
             let letters = [b'X', b'Y', b'Z'];
-            let ca = w.get(letters[a]).map(|v| self.lin(v)).unwrap_or(self.st.pos[a]);
-            let cb = w.get(letters[b]).map(|v| self.lin(v)).unwrap_or(self.st.pos[b]);
+            let ca = w
+                .get(letters[a])
+                .map(|v| self.lin(v))
+                .unwrap_or(self.st.pos[a]);
+            let cb = w
+                .get(letters[b])
+                .map(|v| self.lin(v))
+                .unwrap_or(self.st.pos[b]);
             let r = w.get(b'R').unwrap_or(0.0);
             self.st.rotation = ([ca, cb], r);
             self.st.modal.rotation = true;
@@ -1490,7 +1841,10 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn check_dlacc(&mut self, w: &Words) {
         // Codes the ServoWorks manual allows while 3D-DLACC is on (§6.3.7).
-        const ALLOWED: &[u32] = &[0, 10, 20, 30, 40, 50, 80, 90, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490, 540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 900, 910, 940, 950];
+        const ALLOWED: &[u32] = &[
+            0, 10, 20, 30, 40, 50, 80, 90, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490,
+            540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 900, 910, 940, 950,
+        ];
         for (g, s) in &w.g {
             if !ALLOWED.contains(g) {
                 let name = analyzer::dialect::CodeNum(*g).display();
@@ -1500,15 +1854,26 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.st.modal.tlo_mode == 432 {
             let s = w.g_span(50);
             if w.has_g(50) {
-                self.diag(codes::DLACC_TCP, Severity::Error, s, "3D-DLACC (G05) cannot be combined with tool centre point control (G43.2)");
+                self.diag(
+                    codes::DLACC_TCP,
+                    Severity::Error,
+                    s,
+                    "3D-DLACC (G05) cannot be combined with tool centre point control (G43.2)",
+                );
             }
         }
     }
 
     fn exec_call_words(&mut self, fi: usize, bi: u32, w: &Words) -> Result<Flow, Diagnostic> {
-        let span = w.m.iter().find(|(m, _)| *m == 980).map(|x| x.1).unwrap_or(w.g_span(650));
+        let span =
+            w.m.iter()
+                .find(|(m, _)| *m == 980)
+                .map(|x| x.1)
+                .unwrap_or(w.g_span(650));
         if w.has_g(650) {
-            let Some(p) = w.get(b'P') else { return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)")) };
+            let Some(p) = w.get(b'P') else {
+                return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)"));
+            };
             let l = w.get(b'L').unwrap_or(1.0).max(1.0) as u32;
             // Argument specification I, with I/J/K sets of specification II.
             let mut args = vec![None; 34];
@@ -1567,14 +1932,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                 if self.dialect == Dialect::Fanuc && !w.has(b'L') && p > 9999 {
                     (format!("{}", p % 10000), (p / 10000) as f64)
                 } else {
-                    let r = if self.dialect == Dialect::Servoworks { w.get(b'R') } else { w.get(b'L') };
+                    let r = if self.dialect == Dialect::Servoworks {
+                        w.get(b'R')
+                    } else {
+                        w.get(b'L')
+                    };
                     (format!("{p}"), r.unwrap_or(1.0))
                 }
             }
-            (None, None) => return Err(self.err(codes::SUB_NOT_FOUND, span, "M98 without P (subprogram name)")),
+            (None, None) => {
+                return Err(self.err(
+                    codes::SUB_NOT_FOUND,
+                    span,
+                    "M98 without P (subprogram name)",
+                ))
+            }
         };
         if w.any_axis() {
-            self.diag(codes::INTERP, Severity::Warning, span, "M98 shares its block with axis words: the motion in this block is ignored");
+            self.diag(
+                codes::INTERP,
+                Severity::Warning,
+                span,
+                "M98 shares its block with axis words: the motion in this block is ignored",
+            );
         }
         self.call_program(fi, bi, &name, repeat.max(1.0) as u32, None, span)
     }
@@ -1587,25 +1967,38 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         let u = self.unit();
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
-        let axis = |s: &Self, i: usize| -> Option<f64> { w.get(letters[i]).map(|v| if i < 3 { s.lin(v) } else { v }) };
+        let axis = |s: &Self, i: usize| -> Option<f64> {
+            w.get(letters[i]).map(|v| if i < 3 { s.lin(v) } else { v })
+        };
         if w.has_g(100) {
             let l = w.get(b'L').unwrap_or(0.0).round() as i64;
             let p = w.get(b'P').unwrap_or(0.0).round() as i64;
             match l {
                 2 | 20 => {
-                    let origin = if p == 0 { self.st.modal.origin } else { p.clamp(1, 9) as usize };
+                    let origin = if p == 0 {
+                        self.st.modal.origin
+                    } else {
+                        p.clamp(1, 9) as usize
+                    };
                     let base = 5201 + 20 * origin;
                     let cur_machine = self.st.mpos;
                     for i in 0..6 {
                         let Some(v) = axis(self, i) else { continue };
                         let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
-                        let new = if l == 2 { v } else { cur_machine[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i] - v };
+                        let new = if l == 2 {
+                            v
+                        } else {
+                            cur_machine[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i] - v
+                        };
                         self.set_param(base + i, Some(new / scale));
                     }
                     if origin == self.st.modal.origin {
                         self.st.pos = self.to_program(self.st.mpos);
                         let g = self.g5x_of(origin);
-                        self.canon(format!("SET_G5X_OFFSET({origin}, {})", Canon::six(&scale6(g, u))));
+                        self.canon(format!(
+                            "SET_G5X_OFFSET({origin}, {})",
+                            Canon::six(&scale6(g, u))
+                        ));
                         self.canon("SET_XY_ROTATION(0.0000)");
                     } else {
                         self.canon_comment("interpreter: setting coordinate system origin");
@@ -1649,8 +2042,16 @@ impl<'a, 'i> Interp<'a, 'i> {
             let all = !w.any_axis() || self.ngc() && !w.any_axis();
             for (i, h) in home_m.iter_mut().enumerate() {
                 if all || w.has(letters[i]) {
-                    let raw = if self.ngc() { self.param(home_base + i) } else { 0.0 };
-                    *h = if i < 3 { raw * self.cfg.param_unit } else { raw };
+                    let raw = if self.ngc() {
+                        self.param(home_base + i)
+                    } else {
+                        0.0
+                    };
+                    *h = if i < 3 {
+                        raw * self.cfg.param_unit
+                    } else {
+                        raw
+                    };
                 }
             }
             let target = self.to_program(home_m);
@@ -1659,7 +2060,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(520) && !self.ngc() {
             if self.st.modal.rotation {
-                self.diag(codes::COORD_DURING_ROTATION, Severity::Error, w.g_span(520), "G52 is not allowed while coordinate rotation (G68) is on");
+                self.diag(
+                    codes::COORD_DURING_ROTATION,
+                    Severity::Error,
+                    w.g_span(520),
+                    "G52 is not allowed while coordinate rotation (G68) is on",
+                );
             }
             let mut g52 = self.st.g52;
             for (i, g) in g52.iter_mut().enumerate() {
@@ -1686,7 +2092,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             self.st.g92 = g92;
             for i in 0..6 {
-                self.set_param(5211 + i, Some(g92[i] / if i < 3 { self.cfg.param_unit } else { 1.0 }));
+                self.set_param(
+                    5211 + i,
+                    Some(g92[i] / if i < 3 { self.cfg.param_unit } else { 1.0 }),
+                );
             }
             self.set_param(5210, Some(1.0));
             self.st.pos = self.to_program(self.st.mpos);
@@ -1729,9 +2138,19 @@ impl<'a, 'i> Interp<'a, 'i> {
             let (a, b) = self.plane_axes();
             let pl = [b'X', b'Y', b'Z'];
             if w.has(pl[a]) || w.has(pl[b]) {
-                let (r0, t0) = (self.st.pos[a].hypot(self.st.pos[b]), self.st.pos[b].atan2(self.st.pos[a]).to_degrees());
-                let r = w.get(pl[a]).map(|v| self.lin(v)).map(|v| if inc { r0 + v } else { v }).unwrap_or(r0);
-                let th = w.get(pl[b]).map(|v| if inc { t0 + v } else { v }).unwrap_or(t0);
+                let (r0, t0) = (
+                    self.st.pos[a].hypot(self.st.pos[b]),
+                    self.st.pos[b].atan2(self.st.pos[a]).to_degrees(),
+                );
+                let r = w
+                    .get(pl[a])
+                    .map(|v| self.lin(v))
+                    .map(|v| if inc { r0 + v } else { v })
+                    .unwrap_or(r0);
+                let th = w
+                    .get(pl[b])
+                    .map(|v| if inc { t0 + v } else { v })
+                    .unwrap_or(t0);
                 t[a] = r * th.to_radians().cos();
                 t[b] = r * th.to_radians().sin();
             }
@@ -1759,9 +2178,17 @@ impl<'a, 'i> Interp<'a, 'i> {
             start,
             end,
             feed,
-            inverse_time: if self.st.modal.feed_mode == 930 && !matches!(kind, MotionKind::Rapid) { Some(self.st.feed) } else { None },
+            inverse_time: if self.st.modal.feed_mode == 930 && !matches!(kind, MotionKind::Rapid) {
+                Some(self.st.feed)
+            } else {
+                None
+            },
             exact_stop: exact,
-            blend_tolerance: if self.st.modal.path == 640 { self.st.modal.path_tol } else { None },
+            blend_tolerance: if self.st.modal.path == 640 {
+                self.st.modal.path_tol
+            } else {
+                None
+            },
             file: self.file_id(),
             block: self.cur.1,
             line: self.cur_line,
@@ -1808,9 +2235,15 @@ impl<'a, 'i> Interp<'a, 'i> {
     fn check_feed(&mut self, span: Span) -> Result<(), Diagnostic> {
         if self.st.feed <= 0.0 {
             let msg = match self.dialect {
-                Dialect::Rs274ngc => "cannot feed with zero feed rate: program F before the first feed move",
-                Dialect::Fanuc => "feed rate is zero (F0) on a cutting move: the control alarms (PS0011)",
-                Dialect::Servoworks => "feed rate is zero on a cutting move: program F before the first G01/G02/G03",
+                Dialect::Rs274ngc => {
+                    "cannot feed with zero feed rate: program F before the first feed move"
+                }
+                Dialect::Fanuc => {
+                    "feed rate is zero (F0) on a cutting move: the control alarms (PS0011)"
+                }
+                Dialect::Servoworks => {
+                    "feed rate is zero on a cutting move: program F before the first G01/G02/G03"
+                }
             };
             let e = self.err(codes::ZERO_FEED, span, msg);
             if self.ngc() {
@@ -1824,7 +2257,26 @@ impl<'a, 'i> Interp<'a, 'i> {
     fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
         for (g, _) in &w.g {
-            if matches!(g, 0 | 10 | 20 | 30 | 23 | 33 | 22 | 32 | 330 | 382 | 383 | 384 | 385 | 800 | 760 | 730 | 740 | 810..=890) {
+            if matches!(
+                g,
+                0 | 10
+                    | 20
+                    | 30
+                    | 23
+                    | 33
+                    | 22
+                    | 32
+                    | 330
+                    | 382
+                    | 383
+                    | 384
+                    | 385
+                    | 800
+                    | 760
+                    | 730
+                    | 740
+                    | 810..=890
+            ) {
                 motion = Some(*g);
             }
         }
@@ -1914,17 +2366,17 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let t = self.target(w);
                 self.check_feed(bspan)?;
                 let end = self.to_machine(t);
-                let kind = if mode == 23 || mode == 33 { MotionKind::Exponential } else { MotionKind::Involute };
+                let kind = if mode == 23 || mode == 33 {
+                    MotionKind::Exponential
+                } else {
+                    MotionKind::Involute
+                };
                 let m = self.motion_base(kind, self.st.mpos, end, self.st.feed);
                 self.out.motions.push(m);
                 self.st.mpos = end;
                 self.st.pos = t;
             }
-            m if is_cycle(m) => {
-                if motion.is_some() || has_axes {
-                    self.exec_cycle(m, w, bspan)?;
-                }
-            }
+            m if is_cycle(m) && (motion.is_some() || has_axes) => self.exec_cycle(m, w, bspan)?,
             _ => {}
         }
         Ok(())
@@ -1969,20 +2421,42 @@ impl<'a, 'i> Interp<'a, 'i> {
         let e2 = [t[a], t[b]];
         let has_r = w.has(b'R');
         let has_c = w.has(ca) || w.has(cb);
-        let span = w.g.iter().find(|(g, _)| *g == 20 || *g == 30).map(|x| x.1).unwrap_or(bspan);
+        let span =
+            w.g.iter()
+                .find(|(g, _)| *g == 20 || *g == 30)
+                .map(|x| x.1)
+                .unwrap_or(bspan);
         if self.st.modal.polar && !self.ngc() && has_c {
-            self.diag(codes::ARC_POLAR_IJK, Severity::Error, span, "I/J/K centre words cannot be used in polar coordinate mode (G16): use R");
+            self.diag(
+                codes::ARC_POLAR_IJK,
+                Severity::Error,
+                span,
+                "I/J/K centre words cannot be used in polar coordinate mode (G16): use R",
+            );
         }
         if !has_r && !has_c {
             if self.ngc() {
-                return Err(self.err(codes::ARC_NO_CENTER, span, "R, I, J and K words all missing for arc"));
+                return Err(self.err(
+                    codes::ARC_NO_CENTER,
+                    span,
+                    "R, I, J and K words all missing for arc",
+                ));
             }
-            self.diag(codes::ARC_NO_CENTER, Severity::Error, span, "arc without R or centre words (I/J/K)");
+            self.diag(
+                codes::ARC_NO_CENTER,
+                Severity::Error,
+                span,
+                "arc without R or centre words (I/J/K)",
+            );
             self.feed_to(t, bspan)?;
             return Ok(());
         }
         if has_r && has_c && self.dialect == Dialect::Servoworks {
-            return Err(self.err(codes::ARC_NO_CENTER, w.sp(b'R'), "R and I/J/K in one arc block: the control reports an error"));
+            return Err(self.err(
+                codes::ARC_NO_CENTER,
+                w.sp(b'R'),
+                "R and I/J/K in one arc block: the control reports an error",
+            ));
         }
         let spec = if has_r {
             ArcSpec::R(self.lin(w.get(b'R').unwrap_or(0.0)))
@@ -1993,7 +2467,9 @@ impl<'a, 'i> Interp<'a, 'i> {
         };
         let inch = self.st.modal.inch;
         let result = match self.dialect {
-            Dialect::Rs274ngc => arc::solve_ngc(s2, e2, spec, cw, inch, self.variant == Variant::Emc2),
+            Dialect::Rs274ngc => {
+                arc::solve_ngc(s2, e2, spec, cw, inch, self.variant == Variant::Emc2)
+            }
             Dialect::Fanuc => arc::solve_fanuc(s2, e2, spec, cw, self.cfg.arc_radius_tolerance),
             Dialect::Servoworks => {
                 let mu = self.cfg.machine_unit;
@@ -2006,7 +2482,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             Err(e) => return Err(self.arc_error(e, s2, e2, spec, span)),
         };
         if sol.corrected && self.dialect == Dialect::Servoworks {
-            let code = if has_r { codes::ARC_CORRECTED_R } else { codes::ARC_CORRECTED_IJK };
+            let code = if has_r {
+                codes::ARC_CORRECTED_R
+            } else {
+                codes::ARC_CORRECTED_IJK
+            };
             self.diag(
                 code,
                 Severity::Info,
@@ -2019,13 +2499,27 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         self.check_feed(bspan)?;
         let turns = match w.get(b'P') {
-            Some(p) if self.ngc() || self.dialect == Dialect::Fanuc && w.has(b'L') => (p.round() as i32).max(1),
-            _ => w.get(b'L').filter(|_| self.dialect == Dialect::Fanuc).map(|l| (l.round() as i32).max(1)).unwrap_or(1),
+            Some(p) if self.ngc() || self.dialect == Dialect::Fanuc && w.has(b'L') => {
+                (p.round() as i32).max(1)
+            }
+            _ => w
+                .get(b'L')
+                .filter(|_| self.dialect == Dialect::Fanuc)
+                .map(|l| (l.round() as i32).max(1))
+                .unwrap_or(1),
         };
         // Canon: ARC_FEED(first_end, second_end, first_centre, second_centre, rotation, normal_end, a, b, c).
         let u = self.unit();
         if self.st.modal.feed_mode == 930 {
-            let len = arc_len(s2, e2, sol.center, sol.radius, cw, turns - 1, t[n] - self.st.pos[n]);
+            let len = arc_len(
+                s2,
+                e2,
+                sol.center,
+                sol.radius,
+                cw,
+                turns - 1,
+                t[n] - self.st.pos[n],
+            );
             self.canon(format!("SET_FEED_RATE({})", f4(len * self.st.feed / u)));
         }
         let rot = if cw { -turns } else { turns };
@@ -2047,7 +2541,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         c3[b] = sol.center[1];
         let cm = self.to_machine(c3);
         let mut normal = [0.0; 3];
-        normal[n] = if self.st.modal.plane == 180 { -1.0 } else { 1.0 };
+        normal[n] = if self.st.modal.plane == 180 {
+            -1.0
+        } else {
+            1.0
+        };
         // G18 in LinuxCNC turns about -Y for the (Z, X) plane; with first axis Z the CCW normal is +Y.
         if self.st.modal.plane == 180 {
             normal[n] = 1.0;
@@ -2061,17 +2559,38 @@ impl<'a, 'i> Interp<'a, 'i> {
                 *x = -*x;
             }
         }
-        let scale = if self.st.modal.scaling { self.st.scale.1[a] } else { 1.0 };
+        let scale = if self.st.modal.scaling {
+            self.st.scale.1[a]
+        } else {
+            1.0
+        };
         let end = self.to_machine(t);
         let feed = self.effective_feed(0.0);
-        let m = self.motion_base(MotionKind::Arc { center: [cm[0], cm[1], cm[2]], normal, turns: turns - 1, radius: sol.radius * scale }, self.st.mpos, end, feed);
+        let m = self.motion_base(
+            MotionKind::Arc {
+                center: [cm[0], cm[1], cm[2]],
+                normal,
+                turns: turns - 1,
+                radius: sol.radius * scale,
+            },
+            self.st.mpos,
+            end,
+            feed,
+        );
         self.out.motions.push(m);
         self.st.mpos = end;
         self.st.pos = t;
         Ok(())
     }
 
-    fn arc_error(&self, e: ArcError, s: [f64; 2], en: [f64; 2], spec: ArcSpec, span: Span) -> Diagnostic {
+    fn arc_error(
+        &self,
+        e: ArcError,
+        s: [f64; 2],
+        en: [f64; 2],
+        spec: ArcSpec,
+        span: Span,
+    ) -> Diagnostic {
         let d = self.dialect;
         match e {
             ArcError::SameEndR => {
@@ -2139,7 +2658,15 @@ impl<'a, 'i> Interp<'a, 'i> {
         if !self.ngc() && w.has_m(990) {
             if self.frames.is_empty() {
                 // M99 in a main program: the control loops back to the start.
-                self.diag(codes::INTERP, Severity::Warning, w.m.iter().find(|m| m.0 == 990).map(|m| m.1).unwrap_or_default(), "M99 in the main program restarts it from the top: an endless loop");
+                self.diag(
+                    codes::INTERP,
+                    Severity::Warning,
+                    w.m.iter()
+                        .find(|m| m.0 == 990)
+                        .map(|m| m.1)
+                        .unwrap_or_default(),
+                    "M99 in the main program restarts it from the top: an endless loop",
+                );
                 self.saw_end = true;
                 return Ok(Flow::Goto(fi, 0));
             }
@@ -2170,18 +2697,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                 continue;
             }
             let items = p.items_of(b);
-            let only_heads = items.iter().all(|it| matches!(it.kind, ItemKind::Comment(_)));
+            let only_heads = items
+                .iter()
+                .all(|it| matches!(it.kind, ItemKind::Comment(_)));
             if items.is_empty() || only_heads {
                 continue;
             }
             // FANUC/ServoWorks files may hold subprograms after M30; they start with O.
-            if self.dialect != Dialect::Rs274ngc && items.iter().any(|it| matches!(it.kind, ItemKind::ProgramHead { .. })) {
+            if self.dialect != Dialect::Rs274ngc
+                && items
+                    .iter()
+                    .any(|it| matches!(it.kind, ItemKind::ProgramHead { .. }))
+            {
                 return;
             }
             if self.dialect == Dialect::Rs274ngc {
                 return;
             }
-            self.diag(codes::AFTER_END, Severity::Warning, b.span, "code after the program end (M02/M30) is never executed");
+            self.diag(
+                codes::AFTER_END,
+                Severity::Warning,
+                b.span,
+                "code after the program end (M02/M30) is never executed",
+            );
             return;
         }
     }
@@ -2227,7 +2765,11 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn exec_cycle(&mut self, mode: u32, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let ngc = self.ngc();
-        let span = w.g.iter().find(|(g, _)| is_cycle(*g)).map(|x| x.1).unwrap_or(bspan);
+        let span =
+            w.g.iter()
+                .find(|(g, _)| is_cycle(*g))
+                .map(|x| x.1)
+                .unwrap_or(bspan);
         let same = self.st.modal.motion == mode;
         let (a, b) = self.plane_axes();
         let n = self.normal_axis();
@@ -2237,7 +2779,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.check_feed(span)?;
         }
         if self.st.modal.comp != 400 && ngc {
-            return Err(self.err(codes::CYCLE_STATE, span, "cannot use canned cycles with cutter compensation on"));
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "cannot use canned cycles with cutter compensation on",
+            ));
         }
         let mut cyc = self.st.cycle.clone();
         if let Some(r) = w.get(b'R') {
@@ -2247,10 +2793,22 @@ impl<'a, 'i> Interp<'a, 'i> {
             cyc.z = Some(self.lin(z));
         }
         if cyc.r.is_none() || (ngc && !same && !w.has(b'R')) {
-            return Err(self.err(codes::CYCLE_MISSING, span, if ngc { "R clearance plane unspecified in canned cycle" } else { "canned cycle without R (point R level)" }));
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                if ngc {
+                    "R clearance plane unspecified in canned cycle"
+                } else {
+                    "canned cycle without R (point R level)"
+                },
+            ));
         }
         if cyc.z.is_none() || (ngc && !same && !w.has(zl)) {
-            return Err(self.err(codes::CYCLE_MISSING, span, format!("{} value unspecified in canned cycle", zl as char)));
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("{} value unspecified in canned cycle", zl as char),
+            ));
         }
         if let Some(p) = w.get(b'P') {
             cyc.p = Some(if ngc { p } else { p / 1000.0 });
@@ -2258,7 +2816,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(q) = w.get(b'Q') {
             let q = self.lin(q);
             if matches!(mode, 730 | 830) && q <= 0.0 {
-                let msg = if ngc { "negative or zero Q value used in G73/G83 peck cycle" } else { "peck depth Q must be positive" };
+                let msg = if ngc {
+                    "negative or zero Q value used in G73/G83 peck cycle"
+                } else {
+                    "peck depth Q must be positive"
+                };
                 if ngc {
                     return Err(self.err(codes::CYCLE_Q, w.sp(b'Q'), msg));
                 }
@@ -2280,14 +2842,31 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Err(self.err(codes::CYCLE_Q, span, "Q word missing with G73/G83"));
         }
         if matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none() {
-            return Err(self.err(codes::CYCLE_MISSING, span, format!("dwell time P word missing with G{}", mode / 10)));
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("dwell time P word missing with G{}", mode / 10),
+            ));
         }
         // Rigid tapping (FANUC M29) checks.
-        if self.dialect == Dialect::Fanuc && matches!(mode, 740 | 840) && w.has_m(290) && self.st.spindle <= 0.0 {
-            self.diag(codes::RIGID_TAP, Severity::Error, span, "rigid tapping (M29) needs a spindle speed S (PS0203)");
+        if self.dialect == Dialect::Fanuc
+            && matches!(mode, 740 | 840)
+            && w.has_m(290)
+            && self.st.spindle <= 0.0
+        {
+            self.diag(
+                codes::RIGID_TAP,
+                Severity::Error,
+                span,
+                "rigid tapping (M29) needs a spindle speed S (PS0203)",
+            );
         }
         if ngc && matches!(mode, 860 | 870 | 880) && self.st.spindle_dir == 0 {
-            return Err(self.err(codes::CYCLE_STATE, span, format!("spindle not turning in G{}", mode / 10)));
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                format!("spindle not turning in G{}", mode / 10),
+            ));
         }
         let repeats = if ngc {
             let l = w.get(b'L').unwrap_or(1.0).round() as i64;
@@ -2335,14 +2914,22 @@ impl<'a, 'i> Interp<'a, 'i> {
         cyc.z_abs = Some(bottom);
         self.st.cycle = cyc.clone();
         if r < bottom && ngc {
-            return Err(self.err(codes::CYCLE_STATE, span, "R value less than Z value in canned cycle"));
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "R value less than Z value in canned cycle",
+            ));
         }
         if repeats == 0 {
             return Ok(());
         }
         let save_path = self.st.modal.path;
         let mut cur_z = self.st.pos[n];
-        let clear = if self.st.modal.retract_old_z { old_z.max(r) } else { r };
+        let clear = if self.st.modal.retract_old_z {
+            old_z.max(r)
+        } else {
+            r
+        };
         // NGC: climb to R first when below it.
         let start_z = cur_z;
         if ngc && old_z < r {
@@ -2410,7 +2997,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             match save_path {
                 611 => self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)"),
                 _ => {
-                    self.canon(format!("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"));
+                    self.canon(format!(
+                        "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
+                    ));
                     self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(tol)));
                 }
             }
@@ -2419,7 +3008,16 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn cycle_body(&mut self, mode: u32, cyc: &CycleMem, r: f64, bottom: f64, clear: f64, at: &dyn Fn(&Self, f64) -> [f64; 6], span: Span) -> Result<(), Diagnostic> {
+    fn cycle_body(
+        &mut self,
+        mode: u32,
+        cyc: &CycleMem,
+        r: f64,
+        bottom: f64,
+        clear: f64,
+        at: &dyn Fn(&Self, f64) -> [f64; 6],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
         let ngc = self.ngc();
         let dwell = cyc.p.unwrap_or(0.0);
         let fanuc_ret = |s: &Self| if s.st.modal.retract_old_z { clear } else { r };
@@ -2443,8 +3041,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             730 | 830 => {
                 let q = cyc.q.unwrap_or(1.0).max(1e-6);
                 let g73 = mode == 730;
-                let d = if ngc { 0.254 / self.unit() * self.unit() * if self.st.modal.inch { 1.0 } else { 1.0 } } else if g73 { self.cfg.g73_retract } else { self.cfg.g83_clearance };
-                let d = if ngc { if self.st.modal.inch { 0.01 * 25.4 } else { 0.254 } } else { d };
+                // LinuxCNC's peck clearance is 0.01 inch in either unit system.
+                let d = if ngc {
+                    0.254
+                } else if g73 {
+                    self.cfg.g73_retract
+                } else {
+                    self.cfg.g83_clearance
+                };
                 let mut depth = r - q;
                 let mut guard = 0;
                 while depth > bottom && guard < 100_000 {
@@ -2523,12 +3127,20 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             870 => {
                 if ngc {
-                    let (i, j, k) = (cyc.i.unwrap_or(0.0), cyc.j.unwrap_or(0.0), cyc.k.unwrap_or(0.0));
+                    let (i, j, k) = (
+                        cyc.i.unwrap_or(0.0),
+                        cyc.j.unwrap_or(0.0),
+                        cyc.k.unwrap_or(0.0),
+                    );
                     let mut off = at(self, r);
                     let (a, b) = self.plane_axes();
                     off[a] += i;
                     off[b] += j;
-                    let middle = if self.st.modal.incremental { bottom + k } else { k };
+                    let middle = if self.st.modal.incremental {
+                        bottom + k
+                    } else {
+                        k
+                    };
                     self.rapid_to(off);
                     let mut o2 = off;
                     o2[self.normal_axis()] = bottom;

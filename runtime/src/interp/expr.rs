@@ -28,11 +28,21 @@ pub trait VarSource {
 pub const NGC_EQ_TOL: f64 = 1e-6;
 
 fn err(span: Span, code: &'static str, message: impl Into<String>) -> EvalError {
-    EvalError { span, message: message.into(), code }
+    EvalError {
+        span,
+        message: message.into(),
+        code,
+    }
 }
 
 /// Evaluates an expression node.
-pub fn eval(p: &Program, id: ExprId, dialect: Dialect, vars: &dyn VarSource, depth: u32) -> Result<Val, EvalError> {
+pub fn eval(
+    p: &Program,
+    id: ExprId,
+    dialect: Dialect,
+    vars: &dyn VarSource,
+    depth: u32,
+) -> Result<Val, EvalError> {
     let node = p.expr(id);
     let span = node.span;
     if depth > 200 {
@@ -45,7 +55,11 @@ pub fn eval(p: &Program, id: ExprId, dialect: Dialect, vars: &dyn VarSource, dep
             let i = num(eval(p, index, dialect, vars, depth + 1)?);
             let r = i.round();
             if (i - r).abs() > 1e-4 {
-                return Err(err(span, "X006", format!("parameter number {i} is not an integer")));
+                return Err(err(
+                    span,
+                    "X006",
+                    format!("parameter number {i} is not an integer"),
+                ));
             }
             vars.get_num(r as i64, span)
         }
@@ -66,7 +80,9 @@ pub fn eval(p: &Program, id: ExprId, dialect: Dialect, vars: &dyn VarSource, dep
                     _ => node,
                 };
                 return Ok(Some(match inner.expr {
-                    Expr::Named { name } => f64::from(u8::from(vars.named_exists(&named_key(&p.str_of(name))))),
+                    Expr::Named { name } => {
+                        f64::from(u8::from(vars.named_exists(&named_key(&p.str_of(name)))))
+                    }
                     _ => 0.0,
                 }));
             }
@@ -106,10 +122,23 @@ fn check(v: f64, span: Span) -> Result<f64, EvalError> {
     Ok(v)
 }
 
-fn call(func: Func, a: f64, b: Option<f64>, dialect: Dialect, span: Span) -> Result<f64, EvalError> {
+fn call(
+    func: Func,
+    a: f64,
+    b: Option<f64>,
+    dialect: Dialect,
+    span: Span,
+) -> Result<f64, EvalError> {
     let fanuc = dialect != Dialect::Rs274ngc;
     let range = |name: &str| {
-        err(span, if fanuc { "X007" } else { "X006" }, format!("argument to {name} out of range{}", if fanuc { " (PS0119)" } else { "" }))
+        err(
+            span,
+            if fanuc { "X007" } else { "X006" },
+            format!(
+                "argument to {name} out of range{}",
+                if fanuc { " (PS0119)" } else { "" }
+            ),
+        )
     };
     let v = match func {
         Func::Abs => a.abs(),
@@ -219,13 +248,25 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
         BinOp::Mul => x * y,
         BinOp::Div => {
             if y == 0.0 {
-                return Err(err(span, if ngc { "X006" } else { "X007" }, if ngc { "attempt to divide by zero" } else { "division by zero (PS0112)" }));
+                return Err(err(
+                    span,
+                    if ngc { "X006" } else { "X007" },
+                    if ngc {
+                        "attempt to divide by zero"
+                    } else {
+                        "division by zero (PS0112)"
+                    },
+                ));
             }
             x / y
         }
         BinOp::Mod => {
             if y == 0.0 {
-                return Err(err(span, "X006", "calculation resulted in 'not a number' (MOD by zero)"));
+                return Err(err(
+                    span,
+                    "X006",
+                    "calculation resulted in 'not a number' (MOD by zero)",
+                ));
             }
             let r = x % y;
             if r < 0.0 {
@@ -236,7 +277,11 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
         }
         BinOp::Pow => {
             if x < 0.0 && y.fract() != 0.0 {
-                return Err(err(span, "X006", "attempt to raise negative to non integer power"));
+                return Err(err(
+                    span,
+                    "X006",
+                    "attempt to raise negative to non integer power",
+                ));
             }
             x.powf(y)
         }

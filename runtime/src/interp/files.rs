@@ -106,7 +106,8 @@ impl<'a> FileEntry<'a> {
                             self.heads.entry(n).or_insert(bi);
                         }
                     }
-                    ItemKind::Macro(MacroStmt::While { m, .. }) | ItemKind::Macro(MacroStmt::Do { m }) => {
+                    ItemKind::Macro(MacroStmt::While { m, .. })
+                    | ItemKind::Macro(MacroStmt::Do { m }) => {
                         do_stack.push((literal(&p, *m).unwrap_or(-1.0) as i64, bi));
                     }
                     ItemKind::Macro(MacroStmt::End { m }) => {
@@ -120,7 +121,9 @@ impl<'a> FileEntry<'a> {
                     }
                     ItemKind::OWord(ow) => {
                         let Some(kw) = ow.keyword else { continue };
-                        let Some(key) = label_key(&p, &ow.label) else { continue };
+                        let Some(key) = label_key(&p, &ow.label) else {
+                            continue;
+                        };
                         self.index_oword(&mut stack, key, kw, bi);
                     }
                     _ => {}
@@ -129,8 +132,18 @@ impl<'a> FileEntry<'a> {
         }
     }
 
-    fn index_oword(&mut self, stack: &mut Vec<(String, OKeyword, u32)>, key: String, kw: OKeyword, bi: u32) {
-        let find = |stack: &Vec<(String, OKeyword, u32)>, kws: &[OKeyword]| stack.iter().rposition(|(k, w, _)| *k == key && kws.contains(w));
+    fn index_oword(
+        &mut self,
+        stack: &mut Vec<(String, OKeyword, u32)>,
+        key: String,
+        kw: OKeyword,
+        bi: u32,
+    ) {
+        let find = |stack: &Vec<(String, OKeyword, u32)>, kws: &[OKeyword]| {
+            stack
+                .iter()
+                .rposition(|(k, w, _)| *k == key && kws.contains(w))
+        };
         match kw {
             OKeyword::Sub => {
                 self.subs.entry(key.clone()).or_insert(bi);
@@ -161,7 +174,11 @@ impl<'a> FileEntry<'a> {
                     self.ctrl.entry(head).or_default().partner = Some(bi);
                     self.ctrl.entry(bi).or_default().partner = Some(head);
                     if open == OKeyword::If {
-                        let branches = self.ctrl.get(&head).map(|c| c.branches.clone()).unwrap_or_default();
+                        let branches = self
+                            .ctrl
+                            .get(&head)
+                            .map(|c| c.branches.clone())
+                            .unwrap_or_default();
                         for b in branches {
                             self.ctrl.entry(b).or_default().partner = Some(bi);
                         }

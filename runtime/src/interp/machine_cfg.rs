@@ -47,7 +47,11 @@ impl MachineCfg {
     pub fn read(t: &toml::Table, dialect: Dialect) -> MachineCfg {
         let f = |k: &str, d: f64| t.get(k).and_then(num).unwrap_or(d);
         let b = |k: &str, d: bool| t.get(k).and_then(|v| v.as_bool()).unwrap_or(d);
-        let default_param_unit = if dialect == Dialect::Rs274ngc { 25.4 } else { 1.0 };
+        let default_param_unit = if dialect == Dialect::Rs274ngc {
+            25.4
+        } else {
+            1.0
+        };
         let param_unit = match t.get("machine_units").and_then(|v| v.as_str()) {
             Some(s) if s.eq_ignore_ascii_case("mm") => 1.0,
             Some(s) if s.eq_ignore_ascii_case("inch") => 25.4,
@@ -56,11 +60,24 @@ impl MachineCfg {
         let mut tools = HashMap::new();
         if let Some(toml::Value::Table(tt)) = t.get("tools") {
             for (k, v) in tt {
-                let Ok(n) = k.trim_start_matches(['T', 't']).parse::<u32>() else { continue };
+                let Ok(n) = k.trim_start_matches(['T', 't']).parse::<u32>() else {
+                    continue;
+                };
                 let Some(v) = v.as_table() else { continue };
                 let length = v.get("length").and_then(num).unwrap_or(0.0);
-                let diameter = v.get("diameter").and_then(num).or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r)).unwrap_or(0.0);
-                tools.insert(n, Tool { length, diameter, x_offset: 0.0 });
+                let diameter = v
+                    .get("diameter")
+                    .and_then(num)
+                    .or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r))
+                    .unwrap_or(0.0);
+                tools.insert(
+                    n,
+                    Tool {
+                        length,
+                        diameter,
+                        x_offset: 0.0,
+                    },
+                );
             }
         }
         let mut work_offsets = Vec::new();
@@ -105,7 +122,11 @@ impl MachineCfg {
             g83_clearance: f("g83_clearance", 1.0),
             tools,
             work_offsets,
-            max_depth: t.get("max_call_depth").and_then(|v| v.as_integer()).map(|v| v.max(1) as usize).unwrap_or(max_default),
+            max_depth: t
+                .get("max_call_depth")
+                .and_then(|v| v.as_integer())
+                .map(|v| v.max(1) as usize)
+                .unwrap_or(max_default),
         }
     }
 }
@@ -120,7 +141,9 @@ pub fn parse_tool_table(text: &str, unit: f64, into: &mut HashMap<u32, Tool>) {
         for word in body.split_whitespace() {
             let mut chars = word.chars();
             let Some(letter) = chars.next() else { continue };
-            let Ok(v) = chars.as_str().parse::<f64>() else { continue };
+            let Ok(v) = chars.as_str().parse::<f64>() else {
+                continue;
+            };
             match letter.to_ascii_uppercase() {
                 'T' => n = Some(v as u32),
                 'Z' => tool.length = v * unit,

@@ -110,14 +110,26 @@ impl Modal {
     /// The codes in force, as strings.
     pub fn codes(&self, ngc: bool) -> Vec<String> {
         let g = |t: u32| {
-            if t % 10 == 0 {
+            if t.is_multiple_of(10) {
                 format!("G{}", t / 10)
             } else {
                 format!("G{}.{}", t / 10, t % 10)
             }
         };
-        let mut v = vec![g(self.motion), g(self.plane), if self.inch { "G20".into() } else { "G21".into() }];
-        v.push(if self.incremental { "G91".into() } else { "G90".into() });
+        let mut v = vec![
+            g(self.motion),
+            g(self.plane),
+            if self.inch {
+                "G20".into()
+            } else {
+                "G21".into()
+            },
+        ];
+        v.push(if self.incremental {
+            "G91".into()
+        } else {
+            "G90".into()
+        });
         v.push(g(self.feed_mode));
         v.push(match self.origin {
             1..=6 => format!("G5{}", 3 + self.origin),
@@ -128,7 +140,11 @@ impl Modal {
         v.push(g(self.tlo_mode));
         v.push(g(self.path));
         if ngc || self.modal_cycle() {
-            v.push(if self.retract_old_z { "G98".into() } else { "G99".into() });
+            v.push(if self.retract_old_z {
+                "G98".into()
+            } else {
+                "G99".into()
+            });
         }
         if self.polar {
             v.push("G16".into());

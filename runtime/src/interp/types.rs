@@ -53,7 +53,12 @@ pub enum MotionKind {
     Feed,
     /// Circular or helical arc. `normal` is a unit vector; the arc turns
     /// counter-clockwise about it. `turns` counts the extra full turns.
-    Arc { center: [f64; 3], normal: [f64; 3], turns: i32, radius: f64 },
+    Arc {
+        center: [f64; 3],
+        normal: [f64; 3],
+        turns: i32,
+        radius: f64,
+    },
     Exponential,
     Involute,
     /// Spindle-synchronised move (G33, G76 passes); `feed` is the pitch in mm/rev.
@@ -85,12 +90,22 @@ pub struct Motion {
 pub enum EventKind {
     /// Dwell in seconds.
     Dwell(f64),
-    ToolChange { tool: u32 },
+    ToolChange {
+        tool: u32,
+    },
     /// Spindle speed (rpm) and direction: 1 CW, -1 CCW, 0 stopped.
-    Spindle { rpm: f64, dir: i8 },
-    Coolant { mist: bool, flood: bool },
+    Spindle {
+        rpm: f64,
+        dir: i8,
+    },
+    Coolant {
+        mist: bool,
+        flood: bool,
+    },
     /// Program stop (M0) or optional stop (M1).
-    Stop { optional: bool },
+    Stop {
+        optional: bool,
+    },
     ProgramEnd,
     Message(String),
 }

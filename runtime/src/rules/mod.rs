@@ -4,31 +4,31 @@
 
 use analyzer::rules::RuleMeta;
 
-mod arc_radius_mismatch;
-mod arc_radius_too_small;
+mod after_end;
 mod arc_corrected;
 mod arc_no_center;
-mod arc_same_end_r;
 mod arc_polar_ijk;
-mod zero_feed;
-mod sub_not_found;
+mod arc_radius_mismatch;
+mod arc_radius_too_small;
+mod arc_same_end_r;
 mod call_depth;
-mod step_budget;
-mod after_end;
-mod missing_end;
-mod flow;
-mod unknown_tool;
+mod coord_during_rotation;
 mod cycle_missing;
 mod cycle_q;
 mod cycle_state;
-mod rigid_tap;
 mod dlacc_incompatible;
 mod dlacc_tcp;
-mod coord_during_rotation;
 mod expression;
-mod unknown_code;
+mod flow;
 mod interp;
 mod macro_alarm;
+mod missing_end;
+mod rigid_tap;
+mod step_budget;
+mod sub_not_found;
+mod unknown_code;
+mod unknown_tool;
+mod zero_feed;
 
 /// Diagnostic codes emitted by the interpreter.
 pub mod codes {
@@ -92,5 +92,8 @@ pub static REGISTRY: &[&RuleMeta] = &[
 
 /// Looks a runtime rule up by code or name.
 pub fn lookup(code: &str) -> Option<&'static RuleMeta> {
-    REGISTRY.iter().copied().find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+    REGISTRY
+        .iter()
+        .copied()
+        .find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
 }

@@ -12,15 +12,29 @@ pub struct MapResolver(pub HashMap<String, String>);
 impl Resolver for MapResolver {
     fn resolve(&self, name: &str, _from: FileId) -> Option<ResolvedFile> {
         let key = name.to_ascii_lowercase();
-        self.0.get(&key).map(|t| ResolvedFile { path: format!("{name}.dat"), text: t.as_bytes().to_vec().into() })
+        self.0.get(&key).map(|t| ResolvedFile {
+            path: format!("{name}.dat"),
+            text: t.as_bytes().to_vec().into(),
+        })
     }
 }
 
-pub fn run_with(dialect: Dialect, text: &str, machine: &str, files: &[(&str, &str)], tools: Option<&str>) -> RunOutput {
+pub fn run_with(
+    dialect: Dialect,
+    text: &str,
+    machine: &str,
+    files: &[(&str, &str)],
+    tools: Option<&str>,
+) -> RunOutput {
     let settings = Settings::new(dialect);
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
     let machine: toml::Table = toml::from_str(machine).expect("machine toml");
-    let resolver = MapResolver(files.iter().map(|(n, t)| (n.to_ascii_lowercase(), t.to_string())).collect());
+    let resolver = MapResolver(
+        files
+            .iter()
+            .map(|(n, t)| (n.to_ascii_lowercase(), t.to_string()))
+            .collect(),
+    );
     let input = RunInput {
         program: &a.program,
         settings: &settings,
@@ -53,7 +67,10 @@ pub fn close(a: f64, b: f64, tol: f64) -> bool {
 #[track_caller]
 pub fn assert_pt(got: [f64; 6], want: &[f64], tol: f64) {
     for (i, w) in want.iter().enumerate() {
-        assert!(close(got[i], *w, tol), "axis {i}: got {got:?}, want {want:?}");
+        assert!(
+            close(got[i], *w, tol),
+            "axis {i}: got {got:?}, want {want:?}"
+        );
     }
 }
 
@@ -64,7 +81,10 @@ pub fn codes(out: &RunOutput) -> Vec<&'static str> {
 
 /// Ends of the motions (XYZ).
 pub fn ends(out: &RunOutput) -> Vec<[f64; 3]> {
-    out.motions.iter().map(|m| [m.end[0], m.end[1], m.end[2]]).collect()
+    out.motions
+        .iter()
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect()
 }
 
 pub fn is_rapid(m: &Motion) -> bool {
@@ -78,8 +98,19 @@ pub fn is_feed(m: &Motion) -> bool {
 /// Length of a motion (arcs: in-plane sweep × radius, combined with the helix rise).
 pub fn length(m: &Motion) -> f64 {
     match m.kind {
-        MotionKind::Arc { center, normal, turns, radius } => {
-            let n = if normal[2] != 0.0 { 2 } else if normal[1] != 0.0 { 1 } else { 0 };
+        MotionKind::Arc {
+            center,
+            normal,
+            turns,
+            radius,
+        } => {
+            let n = if normal[2] != 0.0 {
+                2
+            } else if normal[1] != 0.0 {
+                1
+            } else {
+                0
+            };
             let (a, b) = match n {
                 2 => (0, 1),
                 1 => (2, 0),
