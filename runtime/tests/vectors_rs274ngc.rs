@@ -423,8 +423,7 @@ fn tv_o1_sawtooth_loop() {
     let last_feed = out
         .motions
         .iter()
-        .filter(|m| is_feed(m))
-        .next_back()
+        .rfind(|m| is_feed(m))
         .map(|m| m.end)
         .unwrap_or_default();
     assert_pt(last_feed, &[1.0, 0.9], 1e-12);
