@@ -1750,6 +1750,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.ngc() {
             return Ok(());
         }
+        if w.has_m(290) {
+            let span =
+                w.m.iter()
+                    .find(|m| m.0 == 290)
+                    .map(|m| m.1)
+                    .unwrap_or_default();
+            if matches!(self.st.modal.motion, 740 | 840) {
+                self.diag(codes::RIGID_TAP, Severity::Error, span, "M29 given while a tapping cycle is already modal: give M29 before G84/G74 (PS0204)");
+            }
+            self.st.modal.rigid_tap = true;
+        }
+        if w.has_g(800) || w.g.iter().any(|(g, _)| matches!(g, 0 | 10 | 20 | 30)) {
+            self.st.modal.rigid_tap = false;
+        }
         if w.has_g(150) {
             self.st.modal.polar = false;
         }
@@ -2851,7 +2865,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         // Rigid tapping (FANUC M29) checks.
         if self.dialect == Dialect::Fanuc
             && matches!(mode, 740 | 840)
-            && w.has_m(290)
+            && self.st.modal.rigid_tap
             && self.st.spindle <= 0.0
         {
             self.diag(

@@ -31,6 +31,8 @@ pub struct Modal {
     pub dlacc: bool,
     /// G96 constant surface speed.
     pub css: bool,
+    /// FANUC rigid tapping requested with M29.
+    pub rigid_tap: bool,
 }
 
 /// Memory of a canned cycle's modal data (program frame, mm).
@@ -104,6 +106,7 @@ impl Modal {
             mirror: false,
             dlacc: false,
             css: false,
+            rigid_tap: false,
         }
     }
 
