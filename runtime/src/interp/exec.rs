@@ -1390,6 +1390,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             ));
             self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(q)));
         }
+        for (code, abs) in [(901u32, true), (911, false)] {
+            if w.has_g(code) {
+                if self.st.modal.ijk_abs != abs {
+                    self.canon_comment(if abs {
+                        "interpreter: IJK distance mode changed to absolute"
+                    } else {
+                        "interpreter: IJK distance mode changed to incremental"
+                    });
+                }
+                self.st.modal.ijk_abs = abs;
+            }
+        }
         if w.has_g(900) {
             if self.st.modal.incremental {
                 self.canon_comment("interpreter: distance mode changed to absolute");
@@ -1689,6 +1701,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(432) {
             self.st.modal.tlo_mode = 432;
         }
+        if w.has_g(431) && self.ngc() {
+            // Dynamic tool length offset from the block's axis words.
+            self.st.modal.tlo_mode = 431;
+            let x = w.get(b'X').map(|v| self.lin(v)).unwrap_or(0.0);
+            let z = w.get(b'Z').map(|v| self.lin(v)).unwrap_or(0.0);
+            set(self, z, x);
+        }
         Ok(())
     }
 
@@ -1979,6 +1998,9 @@ impl<'a, 'i> Interp<'a, 'i> {
         if !self.ngc() && [510u32, 511, 501, 680].iter().any(|g| w.has_g(*g)) {
             return Ok(true);
         }
+        if self.ngc() && w.has_g(431) {
+            return Ok(true);
+        }
         let u = self.unit();
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
         let axis = |s: &Self, i: usize| -> Option<f64> {
@@ -2099,9 +2121,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             let base_machine = self.st.mpos;
             let o = self.g5x_prog();
             let mut g92 = self.st.g92;
+            let g52_ngc = w.has_g(520);
             for (i, g) in g92.iter_mut().enumerate() {
                 if let Some(v) = axis(self, i) {
-                    *g = base_machine[i] - o[i] - self.st.g52[i] - self.st.tlo[i] - v;
+                    // LinuxCNC's G52 sets the offset itself; G92 makes the current point read `v`.
+                    *g = if g52_ngc {
+                        v
+                    } else {
+                        base_machine[i] - o[i] - self.st.g52[i] - self.st.tlo[i] - v
+                    };
                 }
             }
             self.st.g92 = g92;
@@ -2477,7 +2505,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             let oa = w.get(ca).map(|v| self.lin(v)).unwrap_or(0.0);
             let ob = w.get(cb).map(|v| self.lin(v)).unwrap_or(0.0);
-            ArcSpec::Center([s2[0] + oa, s2[1] + ob])
+            if self.st.modal.ijk_abs {
+                ArcSpec::Center([oa, ob])
+            } else {
+                ArcSpec::Center([s2[0] + oa, s2[1] + ob])
+            }
         };
         let inch = self.st.modal.inch;
         let result = match self.dialect {
@@ -2632,17 +2664,27 @@ impl<'a, 'i> Interp<'a, 'i> {
                 };
                 let u = self.unit();
                 let msg = match d {
-                    Dialect::Rs274ngc => format!(
-                        "radius to end of arc differs from radius to start: start=({:.4},{:.4}) center=({:.4},{:.4}) end=({:.4},{:.4}) r1={:.4} r2={:.4}",
-                        s[0] / u,
-                        s[1] / u,
-                        c[0] / u,
-                        c[1] / u,
-                        en[0] / u,
-                        en[1] / u,
-                        r1 / u,
-                        r2 / u
-                    ),
+                    Dialect::Rs274ngc => {
+                        let (a, b) = match self.st.modal.plane {
+                            180 => ('Z', 'X'),
+                            190 => ('Y', 'Z'),
+                            _ => ('X', 'Y'),
+                        };
+                        let abs_err = (r1 - r2).abs() / u;
+                        format!(
+                            "Radius to end of arc differs from radius to start: start=({a}{:.4},{b}{:.4}) center=({a}{:.4},{b}{:.4}) end=({a}{:.4},{b}{:.4}) r1={:.4} r2={:.4} abs_err={} rel_err={:.4}%",
+                            s[0] / u,
+                            s[1] / u,
+                            c[0] / u,
+                            c[1] / u,
+                            en[0] / u,
+                            en[1] / u,
+                            r1 / u,
+                            r2 / u,
+                            fmt_g4(abs_err),
+                            abs_err / (r1.max(r2) / u) * 100.0
+                        )
+                    }
                     Dialect::Fanuc => format!(
                         "end-point radius differs from start radius by {:.4} mm, more than parameter 3410 ({:.4} mm) (PS0020)",
                         (r1 - r2).abs(),
@@ -3199,4 +3241,31 @@ fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 fn arc_len(s: [f64; 2], e: [f64; 2], c: [f64; 2], r: f64, cw: bool, turns: i32, dz: f64) -> f64 {
     let sw = arc::sweep(s, e, c, cw, turns);
     (sw * r).hypot(dz)
+}
+
+/// C's `%.4g`.
+fn fmt_g4(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let exp = v.abs().log10().floor() as i32;
+    if !(-4..4).contains(&exp) {
+        let s = format!("{v:.3e}");
+        // Rust prints `1.235e-5`; C prints `1.235e-05` and drops trailing zeros.
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
+        let e: i32 = e.parse().unwrap_or(0);
+        return format!("{m}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs());
+    }
+    let decimals = (3 - exp).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
 }

@@ -33,6 +33,8 @@ pub struct Modal {
     pub css: bool,
     /// FANUC rigid tapping requested with M29.
     pub rigid_tap: bool,
+    /// G90.1: arc centres are absolute.
+    pub ijk_abs: bool,
 }
 
 /// Memory of a canned cycle's modal data (program frame, mm).
@@ -107,6 +109,7 @@ impl Modal {
             dlacc: false,
             css: false,
             rigid_tap: false,
+            ijk_abs: false,
         }
     }
 
