@@ -246,6 +246,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             g52: [0.0; 6],
             tlo: [0.0; 6],
             comp_radius: 0.0,
+            comp_first: true,
+            comp_tip: [0.0; 6],
+            comp_pending: None,
             feed: 0.0,
             spindle: 0.0,
             spindle_dir: 0,
@@ -1644,6 +1647,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(400) {
             self.st.modal.comp = 400;
             self.st.comp_radius = 0.0;
+            self.st.comp_pending = None;
             self.canon_comment("interpreter: cutter radius compensation off");
         }
         for (code, side) in [(410u32, "left"), (420, "right")] {
@@ -1658,7 +1662,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     d => self.tool_diameter(d),
                 };
-                self.st.comp_radius = dia / 2.0;
+                // A negative diameter puts the tool on the other side.
+                if dia < 0.0 {
+                    self.st.modal.comp = if code == 410 { 420 } else { 410 };
+                }
+                self.st.comp_radius = dia.abs() / 2.0;
+                self.st.comp_first = true;
+                self.st.comp_pending = None;
                 self.canon_comment(&format!(
                     "interpreter: cutter radius compensation on {side}"
                 ));
@@ -2425,31 +2435,163 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     /// A straight move, offset for cutter radius compensation when it is on.
+    /// A straight move, offset for cutter radius compensation when it is on
+    /// (LinuxCNC's algorithm: entry move perpendicular to the path, arcs around
+    /// convex corners, pulled-back end points at concave ones).
     fn comp_move(&mut self, t: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
-        let mut end = t;
-        if self.st.modal.comp != 400 && self.st.comp_radius > 0.0 {
-            let (a, b) = self.plane_axes();
-            let (dx, dy) = (t[a] - self.st.pos[a], t[b] - self.st.pos[b]);
-            let len = dx.hypot(dy);
-            if len > 1e-12 {
-                let r = self.st.comp_radius;
-                let s = if self.st.modal.comp == 410 { 1.0 } else { -1.0 };
-                end[a] += -dy / len * r * s;
-                end[b] += dx / len * r * s;
+        if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
+            if rapid {
+                self.rapid_to(t);
             } else {
-                end[a] = self.st.pos[a];
-                end[b] = self.st.pos[b];
+                self.feed_to(t, span)?;
             }
+            return Ok(());
         }
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (a, b) = self.plane_axes();
+        let r = self.st.comp_radius;
+        let left = self.st.modal.comp == 410;
+        let op = self.st.pos;
+        // Directions along the axes come out exact, as the reference output shows.
+        let snap = |v: f64| if v.abs() < 1e-15 { 0.0 } else { v };
+        let dir = |ang: f64| (snap(ang.cos()), snap(ang.sin()));
+        if self.st.comp_first {
+            let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
+            if dist <= r && self.ngc() {
+                return Err(self.err(codes::INTERP, span, "length of cutter compensation entry move is not greater than the tool radius"));
+            }
+            let alpha = (t[b] - op[b]).atan2(t[a] - op[a]) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
+            let mut end = t;
+            end[a] += r * alpha.cos();
+            end[b] += r * alpha.sin();
+            self.comp_emit(end, rapid, span)?;
+            self.st.comp_first = false;
+            self.st.pos = t;
+            self.st.comp_tip = end;
+            return Ok(());
+        }
+        let c = self.st.comp_tip;
+        if t[a] == op[a] && t[b] == op[b] {
+            let mut end = t;
+            end[a] = c[a];
+            end[b] = c[b];
+            self.comp_emit(end, rapid, span)?;
+            self.st.pos = t;
+            self.st.comp_tip = end;
+            return Ok(());
+        }
+        let mut theta = (c[b] - op[b]).atan2(c[a] - op[a]);
+        let mut alpha = (t[b] - op[b]).atan2(t[a] - op[a]);
+        let (beta, gamma) = if left {
+            if theta < alpha {
+                theta += 2.0 * PI;
+            }
+            (theta - alpha - FRAC_PI_2, FRAC_PI_2)
+        } else {
+            if alpha < theta {
+                alpha += 2.0 * PI;
+            }
+            (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
+        };
+        let (ex, ey) = dir(alpha + gamma);
+        let mut end = t;
+        end[a] += r * ex;
+        end[b] += r * ey;
+        let mut mid = c;
+        mid[a] = op[a] + r * ex;
+        mid[b] = op[b] + r * ey;
+        let small = 0.05;
+        let concave = beta < -small || beta > PI + small;
+        if !concave && beta > small {
+            self.st.comp_pending = None;
+            if rapid {
+                self.rapid_to(mid);
+            } else {
+                self.comp_corner_arc(c, mid, op, left, span)?;
+            }
+        } else if concave {
+            let half = (beta + PI) / 2.0;
+            if half.abs() < 1e-12 {
+                return Err(self.err(codes::INTERP, span, "zero degree inside corner is invalid for cutter compensation"));
+            }
+            let retreat = r / half.tan();
+            let (rx, ry) = dir(theta + gamma);
+            let mut back = c;
+            back[a] = c[a] + retreat * rx;
+            back[b] = c[b] + retreat * ry;
+            self.comp_move_pending(back);
+        }
+        self.st.comp_pending = None;
+        self.comp_emit(end, rapid, span)?;
+        self.st.pos = t;
+        self.st.comp_tip = end;
+        Ok(())
+    }
+
+    /// Emits a compensated straight move and remembers it as pending.
+    fn comp_emit(&mut self, end: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
         if rapid {
             self.rapid_to(end);
         } else {
             self.feed_to(end, span)?;
         }
-        // Later moves build on the programmed contour point, not the offset one.
-        if self.st.modal.comp != 400 {
-            self.st.pos = t;
+        let ci = self.canon.as_ref().map(|c| c.lines.len().saturating_sub(1)).unwrap_or(0);
+        self.st.comp_pending = Some((ci, self.out.motions.len().saturating_sub(1), rapid));
+        Ok(())
+    }
+
+    /// Moves the end point of the pending compensated move.
+    fn comp_move_pending(&mut self, end: [f64; 6]) {
+        let Some((ci, mi, rapid)) = self.st.comp_pending.take() else { return };
+        let text = format!("{}({})", if rapid { "STRAIGHT_TRAVERSE" } else { "STRAIGHT_FEED" }, self.canon_pos(&end));
+        if let Some(c) = self.canon.as_mut() {
+            if let Some(line) = c.lines.get_mut(ci) {
+                if let Some(p) = line.find(if rapid { "STRAIGHT_TRAVERSE(" } else { "STRAIGHT_FEED(" }) {
+                    line.truncate(p);
+                    line.push_str(&text);
+                }
+            }
         }
+        let m_end = self.to_machine(end);
+        if let Some(m) = self.out.motions.get_mut(mi) {
+            m.end = m_end;
+        }
+        self.st.mpos = m_end;
+        self.st.comp_tip = end;
+    }
+
+    /// The arc LinuxCNC inserts around a convex corner (radius = tool radius).
+    fn comp_corner_arc(&mut self, from: [f64; 6], to: [f64; 6], center: [f64; 6], left: bool, span: Span) -> Result<(), Diagnostic> {
+        self.check_feed(span)?;
+        let (a, b) = self.plane_axes();
+        let n = self.normal_axis();
+        let u = self.unit();
+        let rot = if left { -1 } else { 1 };
+        self.canon(format!(
+            "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
+            f4(to[a] / u),
+            f4(to[b] / u),
+            f4(center[a] / u),
+            f4(center[b] / u),
+            rot,
+            f4(from[n] / u),
+            f4(to[3]),
+            f4(to[4]),
+            f4(to[5])
+        ));
+        let mut c3 = from;
+        c3[a] = center[a];
+        c3[b] = center[b];
+        let cm = self.to_machine(c3);
+        let mut normal = [0.0; 3];
+        normal[n] = if left { -1.0 } else { 1.0 };
+        let mut end_p = to;
+        end_p[n] = from[n];
+        let end = self.to_machine(end_p);
+        let radius = (from[a] - center[a]).hypot(from[b] - center[b]);
+        let m = self.motion_base(MotionKind::Arc { center: [cm[0], cm[1], cm[2]], normal, turns: 0, radius }, self.st.mpos, end, self.st.feed);
+        self.out.motions.push(m);
+        self.st.mpos = end;
         Ok(())
     }
 

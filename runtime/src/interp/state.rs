@@ -66,6 +66,13 @@ pub struct State {
     /// Tool length offset (Z) and X offset, mm.
     pub tlo: [f64; 6],
     pub comp_radius: f64,
+    /// Cutter compensation: the next move is the entry move.
+    pub comp_first: bool,
+    /// Cutter compensation: the tool tip (program frame), when it differs from `pos`.
+    pub comp_tip: [f64; 6],
+    /// Cutter compensation: the last move, whose end point a concave corner may
+    /// still pull back: (canon line index, motion index, rapid).
+    pub comp_pending: Option<(usize, usize, bool)>,
     /// Programmed feed (mm/min, or mm/rev under G95; inverse-time value under G93).
     pub feed: f64,
     pub spindle: f64,
