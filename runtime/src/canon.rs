@@ -8,8 +8,8 @@
 #[derive(Debug, Clone, Default)]
 pub struct Canon {
     pub lines: Vec<String>,
-    /// The N number of the block being executed.
-    pub line_number: Option<i64>,
+    /// The N word of the block being executed, as written (`0010`).
+    pub line_number: Option<String>,
 }
 
 /// `%.4f`.
@@ -19,10 +19,15 @@ pub fn f4(v: f64) -> String {
 
 impl Canon {
     fn prefix(&self) -> String {
-        match self.line_number {
+        match &self.line_number {
             Some(n) => format!(" N{n:<6}"),
             None => " N..... ".to_string(),
         }
+    }
+
+    /// The ` N….. ` prefix of the current block.
+    pub fn current_prefix(&self) -> String {
+        self.prefix()
     }
 
     /// Emits one call line.
@@ -66,7 +71,7 @@ mod tests {
     fn prefixes() {
         let mut c = Canon::default();
         c.call("ON_RESET()");
-        c.line_number = Some(10);
+        c.line_number = Some("10".into());
         c.call("ON_RESET()");
         assert_eq!(
             c.lines,

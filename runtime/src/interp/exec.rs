@@ -67,6 +67,8 @@ struct Words {
     pname: Option<String>,
     n: Option<i64>,
     ijk_order: Vec<(u8, f64)>,
+    /// The N number as written.
+    n_text: Option<String>,
     /// K as written (a repeat count in FANUC/ServoWorks cycles).
     raw_k: Option<f64>,
 }
@@ -216,7 +218,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let dialect = input.settings.dialect;
         let mut cfg = MachineCfg::read(input.machine, dialect);
         if let Some(t) = input.tool_table {
-            parse_tool_table(t, cfg.param_unit, &mut cfg.tools);
+            parse_tool_table(t, cfg.param_unit, &mut cfg.tools, &mut cfg.tool_order);
         }
         let mut params = vec![None; NUM_PARAMS];
         if dialect == Dialect::Rs274ngc {
@@ -737,6 +739,14 @@ impl<'a, 'i> Interp<'a, 'i> {
                         }
                         b'N' => {
                             w.n = Some(val as i64);
+                            w.n_text = Some(match word.num() {
+                                Some(n) => prog
+                                    .str_of(n.span)
+                                    .chars()
+                                    .filter(|c| !c.is_whitespace())
+                                    .collect(),
+                                None => format!("{}", val as i64),
+                            });
                         }
                         b'O' => {}
                         c @ b'A'..=b'Z' if !word.comma => {
@@ -785,7 +795,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         for (t, v, s) in assigns {
             self.assign(&prog, t, v, s)?;
         }
-        if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n) {
+        if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
             c.line_number = Some(n);
         }
         if self.st.ended {
@@ -1548,7 +1558,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             let t = self.st.next_tool;
             self.canon("START_CHANGE()");
             self.canon("STOP_SPINDLE_TURNING(0)");
-            self.canon(format!("CHANGE_TOOL({t})"));
+            // rs274 prints the tool's slot in the tool table, not its number.
+            let slot = if self.cfg.tool_order.is_empty() {
+                t as usize
+            } else {
+                self.cfg
+                    .tool_order
+                    .iter()
+                    .position(|x| *x == t)
+                    .map(|i| i + 1)
+                    .unwrap_or(0)
+            };
+            self.canon(format!("CHANGE_TOOL({slot})"));
             self.st.tool = t;
             self.event(EventKind::ToolChange { tool: t });
         }
@@ -1647,10 +1668,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(400) {
             self.st.modal.comp = 400;
             self.st.comp_radius = 0.0;
-            self.st.comp_pending = None;
+            self.comp_flush();
             self.canon_comment("interpreter: cutter radius compensation off");
         }
-        for (code, side) in [(410u32, "left"), (420, "right")] {
+        for code in [410u32, 420] {
             if w.has_g(code) {
                 self.st.modal.comp = code;
                 let dia = match w.get(b'D') {
@@ -1667,8 +1688,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.st.modal.comp = if code == 410 { 420 } else { 410 };
                 }
                 self.st.comp_radius = dia.abs() / 2.0;
+                let side = if self.st.modal.comp == 410 {
+                    "left"
+                } else {
+                    "right"
+                };
                 self.st.comp_first = true;
-                self.st.comp_pending = None;
+                self.comp_flush();
                 self.canon_comment(&format!(
                     "interpreter: cutter radius compensation on {side}"
                 ));
@@ -2458,9 +2484,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.st.comp_first {
             let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
             if dist <= r && self.ngc() {
-                return Err(self.err(codes::INTERP, span, "length of cutter compensation entry move is not greater than the tool radius"));
+                return Err(self.err(
+                    codes::INTERP,
+                    span,
+                    "length of cutter compensation entry move is not greater than the tool radius",
+                ));
             }
-            let alpha = (t[b] - op[b]).atan2(t[a] - op[a]) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
+            let alpha =
+                (t[b] - op[b]).atan2(t[a] - op[a]) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
             let mut end = t;
             end[a] += r * alpha.cos();
             end[b] += r * alpha.sin();
@@ -2503,7 +2534,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let small = 0.05;
         let concave = beta < -small || beta > PI + small;
         if !concave && beta > small {
-            self.st.comp_pending = None;
+            self.comp_flush();
             if rapid {
                 self.rapid_to(mid);
             } else {
@@ -2512,7 +2543,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else if concave {
             let half = (beta + PI) / 2.0;
             if half.abs() < 1e-12 {
-                return Err(self.err(codes::INTERP, span, "zero degree inside corner is invalid for cutter compensation"));
+                return Err(self.err(
+                    codes::INTERP,
+                    span,
+                    "zero degree inside corner is invalid for cutter compensation",
+                ));
             }
             let retreat = r / half.tan();
             let (rx, ry) = dir(theta + gamma);
@@ -2521,7 +2556,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             back[b] = c[b] + retreat * ry;
             self.comp_move_pending(back);
         }
-        self.st.comp_pending = None;
+        self.comp_flush();
         self.comp_emit(end, rapid, span)?;
         self.st.pos = t;
         self.st.comp_tip = end;
@@ -2535,33 +2570,87 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             self.feed_to(end, span)?;
         }
-        let ci = self.canon.as_ref().map(|c| c.lines.len().saturating_sub(1)).unwrap_or(0);
-        self.st.comp_pending = Some((ci, self.out.motions.len().saturating_sub(1), rapid));
+        let ci = self
+            .canon
+            .as_ref()
+            .map(|c| c.lines.len().saturating_sub(1))
+            .unwrap_or(0);
+        self.st.comp_pending = Some((
+            ci,
+            self.out.motions.len().saturating_sub(1),
+            u8::from(rapid),
+        ));
         Ok(())
+    }
+
+    /// Releases the pending compensated move. LinuxCNC queues it (and every
+    /// canonical call after it) until now, so they carry this block's N number.
+    fn comp_flush(&mut self) {
+        let Some((ci, _, _)) = self.st.comp_pending.take() else {
+            return;
+        };
+        if let Some(c) = self.canon.as_mut() {
+            let prefix = c.current_prefix();
+            for line in c.lines.iter_mut().skip(ci) {
+                if line.starts_with(" N") && line.len() >= 8 && line.is_char_boundary(8) {
+                    line.replace_range(..8, &prefix);
+                }
+            }
+        }
     }
 
     /// Moves the end point of the pending compensated move.
     fn comp_move_pending(&mut self, end: [f64; 6]) {
-        let Some((ci, mi, rapid)) = self.st.comp_pending.take() else { return };
-        let text = format!("{}({})", if rapid { "STRAIGHT_TRAVERSE" } else { "STRAIGHT_FEED" }, self.canon_pos(&end));
-        if let Some(c) = self.canon.as_mut() {
-            if let Some(line) = c.lines.get_mut(ci) {
-                if let Some(p) = line.find(if rapid { "STRAIGHT_TRAVERSE(" } else { "STRAIGHT_FEED(" }) {
+        let Some((ci, mi, kind)) = self.st.comp_pending else {
+            return;
+        };
+        self.comp_flush();
+        let (a, b) = self.plane_axes();
+        let u = self.unit();
+        if let Some(line) = self.canon.as_mut().and_then(|c| c.lines.get_mut(ci)) {
+            if kind == 2 {
+                // ARC_FEED(first_end, second_end, …): only the end point moves.
+                if let Some(p) = line.find("ARC_FEED(") {
+                    let head = line[..p + 9].to_string();
+                    let args: Vec<String> = line[p + 9..].split(", ").map(str::to_string).collect();
+                    if args.len() > 2 {
+                        let rest = args[2..].join(", ");
+                        *line = format!("{head}{}, {}, {rest}", f4(end[a] / u), f4(end[b] / u));
+                    }
+                }
+            } else {
+                let name = if kind == 1 {
+                    "STRAIGHT_TRAVERSE("
+                } else {
+                    "STRAIGHT_FEED("
+                };
+                if let Some(p) = line.find(name) {
+                    let v = [end[0] / u, end[1] / u, end[2] / u, end[3], end[4], end[5]];
                     line.truncate(p);
-                    line.push_str(&text);
+                    line.push_str(&format!("{name}{})", Canon::six(&v)));
                 }
             }
         }
         let m_end = self.to_machine(end);
         if let Some(m) = self.out.motions.get_mut(mi) {
-            m.end = m_end;
+            m.end[a] = m_end[a];
+            m.end[b] = m_end[b];
         }
-        self.st.mpos = m_end;
-        self.st.comp_tip = end;
+        self.st.mpos[a] = m_end[a];
+        self.st.mpos[b] = m_end[b];
+        self.st.comp_tip[a] = end[a];
+        self.st.comp_tip[b] = end[b];
     }
 
     /// The arc LinuxCNC inserts around a convex corner (radius = tool radius).
-    fn comp_corner_arc(&mut self, from: [f64; 6], to: [f64; 6], center: [f64; 6], left: bool, span: Span) -> Result<(), Diagnostic> {
+    fn comp_corner_arc(
+        &mut self,
+        from: [f64; 6],
+        to: [f64; 6],
+        center: [f64; 6],
+        left: bool,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
         self.check_feed(span)?;
         let (a, b) = self.plane_axes();
         let n = self.normal_axis();
@@ -2589,7 +2678,17 @@ impl<'a, 'i> Interp<'a, 'i> {
         end_p[n] = from[n];
         let end = self.to_machine(end_p);
         let radius = (from[a] - center[a]).hypot(from[b] - center[b]);
-        let m = self.motion_base(MotionKind::Arc { center: [cm[0], cm[1], cm[2]], normal, turns: 0, radius }, self.st.mpos, end, self.st.feed);
+        let m = self.motion_base(
+            MotionKind::Arc {
+                center: [cm[0], cm[1], cm[2]],
+                normal,
+                turns: 0,
+                radius,
+            },
+            self.st.mpos,
+            end,
+            self.st.feed,
+        );
         self.out.motions.push(m);
         self.st.mpos = end;
         Ok(())
@@ -2711,6 +2810,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.canon(format!("SET_FEED_RATE({})", f4(len * self.st.feed / u)));
         }
         let rot = if cw { -turns } else { turns };
+        let pe = e2;
+        let (e2, t, radius) = self.comp_arc(t, e2, sol.center, sol.radius, cw, span)?;
         self.canon(format!(
             "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
             f4(e2[0] / u),
@@ -2728,16 +2829,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         c3[a] = sol.center[0];
         c3[b] = sol.center[1];
         let cm = self.to_machine(c3);
+        // Counter-clockwise in each plane's (first, second) axes turns about the
+        // positive normal axis, including G18's (Z, X).
         let mut normal = [0.0; 3];
-        normal[n] = if self.st.modal.plane == 180 {
-            -1.0
-        } else {
-            1.0
-        };
-        // G18 in LinuxCNC turns about -Y for the (Z, X) plane; with first axis Z the CCW normal is +Y.
-        if self.st.modal.plane == 180 {
-            normal[n] = 1.0;
-        }
+        normal[n] = 1.0;
         let mirrored = self.st.modal.mirror && {
             let m = self.st.mirror.0;
             (m[a] as u8 + m[b] as u8) % 2 == 1
@@ -2759,7 +2854,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 center: [cm[0], cm[1], cm[2]],
                 normal,
                 turns: turns - 1,
-                radius: sol.radius * scale,
+                radius: radius * scale,
             },
             self.st.mpos,
             end,
@@ -2767,8 +2862,116 @@ impl<'a, 'i> Interp<'a, 'i> {
         );
         self.out.motions.push(m);
         self.st.mpos = end;
-        self.st.pos = t;
+        if self.st.modal.comp != 400 && self.st.comp_radius > 0.0 {
+            // The programmed point stays on the contour; the tool tip is offset.
+            let ci = self
+                .canon
+                .as_ref()
+                .map(|c| c.lines.len().saturating_sub(1))
+                .unwrap_or(0);
+            self.st.comp_pending = Some((ci, self.out.motions.len().saturating_sub(1), 2));
+            self.st.comp_tip = t;
+            self.st.pos[a] = pe[0];
+            self.st.pos[b] = pe[1];
+            for i in 0..6 {
+                if i != a && i != b {
+                    self.st.pos[i] = t[i];
+                }
+            }
+        } else {
+            self.st.pos = t;
+        }
         Ok(())
+    }
+
+    /// Cutter compensation of an arc: the offset end point (plane), the offset
+    /// target, the offset radius. Handles the corner at the arc's start.
+    fn comp_arc(
+        &mut self,
+        t: [f64; 6],
+        e2: [f64; 2],
+        c: [f64; 2],
+        r: f64,
+        cw: bool,
+        span: Span,
+    ) -> Result<([f64; 2], [f64; 6], f64), Diagnostic> {
+        if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
+            return Ok((e2, t, r));
+        }
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (a, b) = self.plane_axes();
+        let rt = self.st.comp_radius;
+        let left = self.st.modal.comp == 410;
+        let inside = left != cw;
+        let new_r = if inside { r - rt } else { r + rt };
+        if new_r <= 0.0 {
+            return Err(self.err(
+                codes::INTERP,
+                span,
+                "tool radius not less than arc radius with cutter compensation",
+            ));
+        }
+        let unit = |p: [f64; 2]| {
+            let l = (p[0] - c[0]).hypot(p[1] - c[1]);
+            if l > 0.0 {
+                [(p[0] - c[0]) / l, (p[1] - c[1]) / l]
+            } else {
+                [1.0, 0.0]
+            }
+        };
+        let ue = unit(e2);
+        let e_out = [c[0] + ue[0] * new_r, c[1] + ue[1] * new_r];
+        let op = self.st.pos;
+        if self.st.comp_first {
+            self.st.comp_first = false;
+        } else {
+            let tip = self.st.comp_tip;
+            let us = unit([op[a], op[b]]);
+            let mid2 = [c[0] + us[0] * new_r, c[1] + us[1] * new_r];
+            let mut theta = (tip[b] - op[b]).atan2(tip[a] - op[a]);
+            let mut alpha = us[1].atan2(us[0]) + if cw { -FRAC_PI_2 } else { FRAC_PI_2 };
+            let (beta, gamma) = if left {
+                while theta < alpha {
+                    theta += 2.0 * PI;
+                }
+                (theta - alpha - FRAC_PI_2, FRAC_PI_2)
+            } else {
+                while alpha < theta {
+                    alpha += 2.0 * PI;
+                }
+                (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
+            };
+            let small = 0.05;
+            let concave = beta < -small || beta > PI + small;
+            let mut mid = tip;
+            mid[a] = mid2[0];
+            mid[b] = mid2[1];
+            if !concave && beta > small {
+                self.comp_flush();
+                self.comp_corner_arc(tip, mid, op, left, span)?;
+            } else if concave {
+                // Pull the previous line back to where it meets the offset circle.
+                let d = [(theta - gamma).cos(), (theta - gamma).sin()];
+                let w0 = [tip[a] - c[0], tip[b] - c[1]];
+                let bq = d[0] * w0[0] + d[1] * w0[1];
+                let cq = w0[0] * w0[0] + w0[1] * w0[1] - new_r * new_r;
+                let disc = bq * bq - cq;
+                if disc >= 0.0 {
+                    let s1 = -bq - disc.sqrt();
+                    let s2 = -bq + disc.sqrt();
+                    let sl = if s1.abs() < s2.abs() { s1 } else { s2 };
+                    let mut back = tip;
+                    back[a] = tip[a] + sl * d[0];
+                    back[b] = tip[b] + sl * d[1];
+                    self.comp_move_pending(back);
+                }
+            }
+        }
+        self.comp_flush();
+        let mut t_out = t;
+        t_out[a] = e_out[0];
+        t_out[b] = e_out[1];
+        Ok((e_out, t_out, new_r))
     }
 
     fn arc_error(
@@ -2923,6 +3126,7 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn program_end(&mut self, m30: bool) {
+        self.comp_flush();
         if self.ngc() {
             // LinuxCNC resets: origin G54, plane XY, absolute, feed mode, spindle, coolant.
             self.st.modal.origin = 1;

@@ -33,6 +33,8 @@ pub struct MachineCfg {
     pub g73_retract: f64,
     pub g83_clearance: f64,
     pub tools: HashMap<u32, Tool>,
+    /// Tool numbers in tool-table order (LinuxCNC slots).
+    pub tool_order: Vec<u32>,
     /// Work offsets from the profile: (origin index 1..=9, values in mm).
     pub work_offsets: Vec<(usize, [f64; 6])>,
     /// Maximum subprogram/macro nesting.
@@ -121,6 +123,7 @@ impl MachineCfg {
             g73_retract: f("g73_retract", 1.0),
             g83_clearance: f("g83_clearance", 1.0),
             tools,
+            tool_order: Vec::new(),
             work_offsets,
             max_depth: t
                 .get("max_call_depth")
@@ -133,7 +136,12 @@ impl MachineCfg {
 
 /// Reads a LinuxCNC tool table (`T1 P1 D0.125 Z+0.511 ;comment`); values in
 /// machine units, scaled by `unit` to mm.
-pub fn parse_tool_table(text: &str, unit: f64, into: &mut HashMap<u32, Tool>) {
+pub fn parse_tool_table(
+    text: &str,
+    unit: f64,
+    into: &mut HashMap<u32, Tool>,
+    order: &mut Vec<u32>,
+) {
     for line in text.lines() {
         let body = line.split(';').next().unwrap_or("");
         let mut n = None;
@@ -154,6 +162,7 @@ pub fn parse_tool_table(text: &str, unit: f64, into: &mut HashMap<u32, Tool>) {
         }
         if let Some(n) = n {
             into.insert(n, tool);
+            order.push(n);
         }
     }
 }

@@ -71,8 +71,8 @@ pub struct State {
     /// Cutter compensation: the tool tip (program frame), when it differs from `pos`.
     pub comp_tip: [f64; 6],
     /// Cutter compensation: the last move, whose end point a concave corner may
-    /// still pull back: (canon line index, motion index, rapid).
-    pub comp_pending: Option<(usize, usize, bool)>,
+    /// still pull back: (canon line index, motion index, kind: 0 feed, 1 rapid, 2 arc).
+    pub comp_pending: Option<(usize, usize, u8)>,
     /// Programmed feed (mm/min, or mm/rev under G95; inverse-time value under G93).
     pub feed: f64,
     pub spindle: f64,
