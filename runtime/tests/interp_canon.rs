@@ -96,3 +96,58 @@ fn pr_print_msg() {
 fn err_no_ijk() {
     check("err_no_ijk");
 }
+
+/// Our own programs with goldens from `rs274` (see tests/data/interp_canon/README.md).
+fn check_local(name: &str) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/interp_canon");
+    let ngc = std::fs::read_to_string(dir.join(format!("{name}.ngc"))).expect("ngc");
+    let golden = std::fs::read_to_string(dir.join(format!("{name}.canon"))).expect("canon");
+    let tbl = std::fs::read_to_string(dir.join(format!("{name}.tbl"))).expect("tbl");
+    let settings = Settings::new(Dialect::Rs274ngc);
+    let a = analyzer::analyze(ngc.as_bytes().to_vec(), &settings);
+    let machine = toml::Table::new();
+    let input = RunInput {
+        program: &a.program,
+        settings: &settings,
+        machine: &machine,
+        resolver: &NoResolver,
+        step_budget: 1_000_000,
+        emit_canon: true,
+        tool_table: Some(&tbl),
+        var_file: None,
+    };
+    let out = run(&input);
+    let expected: Vec<&str> = golden.lines().collect();
+    let got: Vec<&str> = out.canon.iter().map(String::as_str).collect();
+    assert_eq!(got, expected, "{name}: {:?}", out.diagnostics);
+}
+
+#[test]
+fn local_o_words() {
+    check_local("o_words");
+}
+
+#[test]
+fn local_cycles_offsets() {
+    check_local("cycles_offsets");
+}
+
+#[test]
+fn local_comp_tlo_modes() {
+    check_local("comp_tlo_modes");
+}
+
+#[test]
+fn local_g28_g52_g43_1() {
+    check_local("g28_g52_g43_1");
+}
+
+#[test]
+fn local_comp_convex_concave() {
+    check_local("comp_convex_concave");
+}
+
+#[test]
+fn local_comp_arcs() {
+    check_local("comp_arcs");
+}
