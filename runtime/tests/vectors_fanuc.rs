@@ -234,3 +234,21 @@ fn recursion_hits_depth_limit() {
     let out = run_fanuc("M98 P1;\nM30;\nO0001;\nM98 P1;\nM99;\n", "");
     assert_eq!(codes(&out), vec!["F003"]);
 }
+
+#[test]
+fn system_variables_read_the_state() {
+    // #5001 end point, #4003 distance mode, #4001 motion group, #5021 machine position.
+    let prog = "G90 G54 G01 X12. Y3. F100;\n#1 = #5001;\n#2 = #4003;\n#3 = #4001;\nG92 X0 Y0;\nG00 X#1 Y#2 Z#3;\n#4 = #5021;\nG00 X#4;\nM30;\n";
+    let out = run_fanuc(prog, "");
+    assert_eq!(
+        ends(&out),
+        vec![[12.0, 3.0, 0.0], [24.0, 93.0, 1.0], [36.0, 93.0, 1.0]]
+    );
+}
+
+#[test]
+fn m99_in_main_stops_the_dry_run() {
+    let out = run_fanuc("G00 X1.;\nM99;\n", "");
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(out.motions.len(), 1);
+}

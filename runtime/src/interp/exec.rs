@@ -124,6 +124,9 @@ impl VarSource for Vars<'_> {
                 code,
             });
         }
+        if let Some(v) = system_var(self.st, self.dialect, n) {
+            return Ok(Some(v));
+        }
         let v = self.st.params.get(n as usize).copied().flatten();
         Ok(if self.dialect == Dialect::Rs274ngc {
             Some(v.unwrap_or(0.0))
@@ -151,6 +154,46 @@ impl VarSource for Vars<'_> {
         self.locals.is_some_and(|l| l.contains_key(name))
             || self.st.named.contains_key(name)
             || predefined(self.st, name).is_some()
+    }
+}
+
+/// Read-only system variables computed from the state: FANUC/ServoWorks
+/// #4001… modal codes, #5001… end point, #5021… machine, #5041… work
+/// position; LinuxCNC #5420… current position.
+fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
+    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    let axis = |v: &[f64; 6], i: usize| if i < 3 { v[i] / u } else { v[i] };
+    match d {
+        Dialect::Rs274ngc => match n {
+            5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
+            _ => None,
+        },
+        _ => match n {
+            4001 => Some(f64::from(st.modal.motion) / 10.0),
+            4002 => Some(f64::from(st.modal.plane) / 10.0),
+            4003 => Some(if st.modal.incremental { 91.0 } else { 90.0 }),
+            4005 => Some(f64::from(st.modal.feed_mode) / 10.0),
+            4006 => Some(if st.modal.inch { 20.0 } else { 21.0 }),
+            4007 => Some(f64::from(st.modal.comp) / 10.0),
+            4008 => Some(f64::from(st.modal.tlo_mode) / 10.0),
+            4009 => Some(if st.modal.modal_cycle() {
+                f64::from(st.modal.motion) / 10.0
+            } else {
+                80.0
+            }),
+            4010 => Some(if st.modal.retract_old_z { 98.0 } else { 99.0 }),
+            4014 => Some(match st.modal.origin {
+                o @ 1..=6 => 53.0 + o as f64,
+                _ => 54.1,
+            }),
+            4109 => Some(st.feed / u),
+            4119 => Some(st.spindle),
+            4120 => Some(f64::from(st.tool)),
+            5001..=5006 | 5041..=5046 => Some(axis(&st.pos, ((n - 1) % 20) as usize)),
+            5021..=5026 => Some(axis(&st.mpos, (n - 5021) as usize)),
+            5081..=5086 => Some(axis(&st.tlo, (n - 5081) as usize)),
+            _ => None,
+        },
     }
 }
 
@@ -3066,14 +3109,25 @@ impl<'a, 'i> Interp<'a, 'i> {
                         .find(|m| m.0 == 990)
                         .map(|m| m.1)
                         .unwrap_or_default(),
-                    "M99 in the main program restarts it from the top: an endless loop",
+                    "M99 in the main program restarts it from the top: an endless loop (the dry run stops here)",
                 );
                 self.saw_end = true;
-                return Ok(Flow::Goto(fi, 0));
+                self.st.ended = true;
+                self.event(EventKind::ProgramEnd);
+                let _ = fi;
+                return Ok(Flow::Stop);
             }
             let seq = w.get(b'P');
             self.ret_from_sub(seq);
             return Ok(Flow::Goto(self.cur.0, self.cur.1));
+        }
+        if self.ngc() && w.has_m(990) && self.frames.is_empty() {
+            // LinuxCNC ends the program at M99 in the main file, like M2.
+            self.program_end(false);
+            self.saw_end = true;
+            self.st.ended = true;
+            self.event(EventKind::ProgramEnd);
+            return Ok(Flow::Stop);
         }
         if w.has_m(20) || w.has_m(300) {
             self.program_end(w.has_m(300));
