@@ -647,6 +647,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 if self.ngc() && fi == 0 && self.percent_open && self.seen_content_before(&prog, bi)
                 {
                     self.saw_end = true;
+                    self.canon("FINISH()");
                     return Ok(Flow::Stop);
                 }
                 if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
@@ -660,6 +661,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if block.skip.is_some() && self.cfg.block_skip {
             return Ok(Flow::Next);
+        }
+        // RS274/NGC and FANUC stop at a block they cannot read; the parser
+        // already reported why (ServoWorks skips unknown data).
+        if self.dialect != Dialect::Servoworks && self.files[fi].error_blocks.contains(&bi) {
+            return Ok(Flow::Stop);
         }
         let items = prog.items_of(&block);
         if items.is_empty() {
@@ -1141,6 +1147,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         };
         let prog = analyzer::syntax::parse(opts, rf.text.clone());
         let idx = self.files.len();
+        for d in &prog.diagnostics {
+            self.out
+                .diagnostics
+                .push(d.clone().in_file(FileId(idx as u32)));
+        }
         self.files.push(FileEntry::new(
             ProgRef::Shared(Arc::new(prog)),
             FileId(idx as u32),
@@ -3317,6 +3328,20 @@ impl<'a, 'i> Interp<'a, 'i> {
                 "rigid tapping (M29) needs a spindle speed S (PS0203)",
             );
         }
+        if ngc && mode == 840 && self.st.spindle_dir != 1 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "spindle not turning clockwise in G84",
+            ));
+        }
+        if ngc && mode == 740 && self.st.spindle_dir != -1 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "spindle not turning counterclockwise in G74",
+            ));
+        }
         if ngc && matches!(mode, 860 | 870 | 880) && self.st.spindle_dir == 0 {
             return Err(self.err(
                 codes::CYCLE_STATE,
@@ -3521,11 +3546,58 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.feed_to(at(self, bottom), span)?;
                 self.rapid_to(at(self, ret));
             }
+            740 | 840 if ngc => {
+                // LinuxCNC: overrides off, reverse the spindle at the bottom, feed out to the clear level.
+                let (rev, fwd) = if mode == 840 {
+                    (
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)",
+                        "START_SPINDLE_CLOCKWISE(0)",
+                    )
+                } else {
+                    (
+                        "START_SPINDLE_CLOCKWISE(0)",
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)",
+                    )
+                };
+                // LinuxCNC 2.9 passes the coordinates to its feed helper in a rotated
+                // order in the XZ and YZ planes; reproduce the points it really commands.
+                let (a, b) = self.plane_axes();
+                let tap = |s: &Self, level: f64| {
+                    let base = at(s, level);
+                    let (pa, pb) = (base[a], base[b]);
+                    let mut p = base;
+                    match s.st.modal.plane {
+                        180 => {
+                            p[0] = level;
+                            p[1] = pa;
+                            p[2] = pb;
+                        }
+                        190 => {
+                            p[0] = pb;
+                            p[1] = level;
+                            p[2] = pa;
+                        }
+                        _ => {}
+                    }
+                    p
+                };
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                self.canon("DISABLE_SPEED_OVERRIDE(0)");
+                self.feed_to(tap(self, bottom), span)?;
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.canon(rev);
+                dwell_ev(self);
+                self.feed_to(tap(self, clear), span)?;
+                // The interpreter records the hole position at the clear level.
+                self.st.pos = at(self, clear);
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.canon(fwd);
+                self.canon("ENABLE_FEED_OVERRIDE()");
+                self.canon("ENABLE_SPEED_OVERRIDE(0)");
+            }
             740 | 840 => {
                 self.feed_to(at(self, bottom), span)?;
-                if !ngc {
-                    dwell_ev(self);
-                }
+                dwell_ev(self);
                 self.feed_to(at(self, r), span)?;
                 if ret > r {
                     self.rapid_to(at(self, ret));
@@ -3543,7 +3615,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 dwell_ev(self);
                 self.canon("STOP_SPINDLE_TURNING(0)");
                 self.rapid_to(at(self, ret));
-                self.canon("START_SPINDLE_CLOCKWISE(0)");
+                self.canon(if self.st.spindle_dir < 0 {
+                    "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                } else {
+                    "START_SPINDLE_CLOCKWISE(0)"
+                });
             }
             880 => {
                 self.feed_to(at(self, bottom), span)?;

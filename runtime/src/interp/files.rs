@@ -49,6 +49,8 @@ pub struct FileEntry<'a> {
     pub seq: HashMap<u64, Vec<u32>>,
     /// Macro B loop pairs: WHILE/DO block ↔ END block.
     pub loops: HashMap<u32, u32>,
+    /// Blocks with a syntax error (the control stops there).
+    pub error_blocks: std::collections::HashSet<u32>,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -78,8 +80,17 @@ impl<'a> FileEntry<'a> {
             heads: HashMap::new(),
             seq: HashMap::new(),
             loops: HashMap::new(),
+            error_blocks: Default::default(),
         };
         f.index();
+        let p = f.prog.clone();
+        for d in &p.diagnostics {
+            if d.severity == analyzer::Severity::Error {
+                if let Some(b) = p.block_at(d.span.start) {
+                    f.error_blocks.insert(b as u32);
+                }
+            }
+        }
         f
     }
 
