@@ -45,7 +45,7 @@ impl Canon {
         v.iter().map(|x| f4(*x)).collect::<Vec<_>>().join(", ")
     }
 
-    pub fn preamble(&mut self, g5x_index: usize, g5x: &[f64; 6], g92: &[f64; 6]) {
+    pub fn preamble(&mut self, g5x_index: usize, g5x: &[f64; 6], g92: &[f64; 6], rotation: f64) {
         self.call("USE_LENGTH_UNITS(CANON_UNITS_MM)");
         self.call(format!(
             "SET_G5X_OFFSET({}, {})",
@@ -53,7 +53,7 @@ impl Canon {
             Canon::six(g5x)
         ));
         self.call(format!("SET_G92_OFFSET({})", Canon::six(g92)));
-        self.call("SET_XY_ROTATION(0.0000)");
+        self.call(format!("SET_XY_ROTATION({})", f4(rotation)));
         self.call("SET_FEED_REFERENCE(CANON_XYZ)");
         self.call("ON_RESET()");
     }

@@ -222,6 +222,7 @@ fn predefined(st: &State, name: &str) -> Option<f64> {
         "_motion_mode" => f64::from(st.modal.motion),
         "_plane" => f64::from(st.modal.plane),
         "_value" | "_value_returned" => 0.0,
+        "_line" => f64::from(st.line),
         _ => return None,
     })
 }
@@ -308,6 +309,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             mirror: ([false; 3], [0.0; 3]),
             rotation: ([0.0; 2], 0.0),
             ended: false,
+            line: 0,
         };
         let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
         let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
@@ -339,9 +341,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         it.st.pos = it.to_program(it.st.mpos);
         let (g5x, g92) = (it.g5x_prog(), it.st.g92);
         let u = it.unit();
+        let rot = it.rotation_of(1);
         if let Some(c) = it.canon.as_mut() {
             let g = g5x.map(|v| v);
-            c.preamble(1, &scale6(g, u), &scale6(g92, u));
+            c.preamble(1, &scale6(g, u), &scale6(g92, u), rot);
         }
         it
     }
@@ -393,22 +396,66 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Program-frame commanded point → machine.
     fn to_machine(&self, p: [f64; 6]) -> [f64; 6] {
-        let q = self.transform(p);
+        let mut q = self.transform(p);
+        for i in 0..6 {
+            q[i] += self.st.g92[i] + self.st.g52[i];
+        }
+        let rot = self.xy_rotation();
+        if rot != 0.0 {
+            // LinuxCNC rotates the offset point about the work origin (G10 L2 R).
+            let (s, c) = rot.to_radians().sin_cos();
+            let (x, y) = (q[0], q[1]);
+            q[0] = x * c - y * s;
+            q[1] = x * s + y * c;
+        }
         let o = self.g5x_prog();
         let mut m = [0.0; 6];
         for i in 0..6 {
-            m[i] = q[i] + o[i] + self.st.g92[i] + self.st.g52[i] + self.st.tlo[i];
+            m[i] = q[i] + o[i] + self.st.tlo[i];
+            if rot != 0.0 && m[i].abs() < 1e-12 {
+                // Round-off from the rotation would print as -0.000000.
+                m[i] = 0.0;
+            }
         }
         m
     }
 
     fn to_program(&self, m: [f64; 6]) -> [f64; 6] {
         let o = self.g5x_prog();
-        let mut p = [0.0; 6];
+        let mut q = [0.0; 6];
         for i in 0..6 {
-            p[i] = m[i] - o[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i];
+            q[i] = m[i] - o[i] - self.st.tlo[i];
         }
-        p
+        let rot = self.xy_rotation();
+        if rot != 0.0 {
+            let (s, c) = (-rot).to_radians().sin_cos();
+            let (x, y) = (q[0], q[1]);
+            // Round-off from the rotation would print as -0.000000.
+            let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
+            q[0] = snap(x * c - y * s);
+            q[1] = snap(x * s + y * c);
+        }
+        for i in 0..6 {
+            q[i] -= self.st.g92[i] + self.st.g52[i];
+        }
+        q
+    }
+
+    /// XY rotation (degrees) of the active RS274/NGC coordinate system.
+    fn xy_rotation(&self) -> f64 {
+        self.rotation_of(self.st.modal.origin)
+    }
+
+    fn rotation_of(&self, origin: usize) -> f64 {
+        if self.ngc() && (1..=9).contains(&origin) {
+            self.param(5210 + 20 * origin)
+        } else {
+            0.0
+        }
+    }
+
+    fn rotation_canon(&self, origin: usize) -> String {
+        format!("SET_XY_ROTATION({})", f4(self.rotation_of(origin)))
     }
 
     /// Mirror, scaling and rotation (FANUC/ServoWorks).
@@ -638,6 +685,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Next);
         };
         self.cur_line = block.line;
+        self.st.line = block.line + 1;
         if let Some(c) = self.canon.as_mut() {
             c.line_number = None;
         }
@@ -1522,7 +1570,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                 .unwrap_or_default()
         };
         match k {
-            CommentKind::Plain | CommentKind::Partscope if self.ngc() => self.canon_comment(&inner),
+            CommentKind::Plain | CommentKind::Partscope if self.ngc() => {
+                self.canon_comment(inner.trim_start())
+            }
             CommentKind::Msg => {
                 let m = after_comma(&inner);
                 self.canon(format!("MESSAGE(\"{m}\")"));
@@ -1846,7 +1896,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Canon::six(&scale6(g, u))
             ));
             self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
-            self.canon("SET_XY_ROTATION(0.0000)");
+            let r = self.rotation_canon(o);
+            self.canon(r);
         }
         Ok(())
     }
@@ -2107,6 +2158,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                         p.clamp(1, 9) as usize
                     };
                     let base = 5201 + 20 * origin;
+                    if let Some(r) = w.get(b'R').filter(|_| self.ngc()) {
+                        if l == 20 {
+                            return Err(self.err(
+                                codes::INTERP,
+                                w.sp(b'R'),
+                                "R not allowed in G10 L20",
+                            ));
+                        }
+                        self.set_param(5210 + 20 * origin, Some(r));
+                    }
                     let cur_machine = self.st.mpos;
                     for i in 0..6 {
                         let Some(v) = axis(self, i) else { continue };
@@ -2125,7 +2186,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                             "SET_G5X_OFFSET({origin}, {})",
                             Canon::six(&scale6(g, u))
                         ));
-                        self.canon("SET_XY_ROTATION(0.0000)");
+                        let r = self.rotation_canon(origin);
+                        self.canon(r);
                     } else {
                         self.canon_comment("interpreter: setting coordinate system origin");
                     }
@@ -2144,6 +2206,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                 _ => {}
             }
             return Ok(true);
+        }
+        for (code, base) in [(281u32, 5161usize), (301, 5181)] {
+            if w.has_g(code) && self.ngc() {
+                // Store the current absolute position as the G28/G30 home.
+                for i in 0..6 {
+                    let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                    self.set_param(base + i, Some(self.st.mpos[i] / scale));
+                }
+                return Ok(true);
+            }
         }
         if w.has_g(280) || w.has_g(300) {
             let g30 = w.has_g(300);
@@ -2208,18 +2280,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                 return Ok(true);
             }
             // Make the current point read as the given values.
-            let base_machine = self.st.mpos;
-            let o = self.g5x_prog();
+            let cur = self.st.pos;
             let mut g92 = self.st.g92;
             let g52_ngc = w.has_g(520);
             for (i, g) in g92.iter_mut().enumerate() {
                 if let Some(v) = axis(self, i) {
                     // LinuxCNC's G52 sets the offset itself; G92 makes the current point read `v`.
-                    *g = if g52_ngc {
-                        v
-                    } else {
-                        base_machine[i] - o[i] - self.st.g52[i] - self.st.tlo[i] - v
-                    };
+                    *g = if g52_ngc { v } else { cur[i] + *g - v };
                 }
             }
             self.st.g92 = g92;
@@ -2448,14 +2515,15 @@ impl<'a, 'i> Interp<'a, 'i> {
         match mode {
             0 => {
                 self.st.modal.motion = 0;
-                if has_axes {
+                // LinuxCNC commands a zero-length move for a bare G0/G1.
+                if has_axes || (self.ngc() && motion.is_some()) {
                     let t = self.target(w);
                     self.comp_move(t, true, bspan)?;
                 }
             }
             10 => {
                 self.st.modal.motion = 10;
-                if has_axes {
+                if has_axes || (self.ngc() && motion.is_some()) {
                     let t = self.target(w);
                     self.comp_move(t, false, bspan)?;
                 }
@@ -3199,7 +3267,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             let u = self.unit();
             let g = self.g5x_prog();
             self.canon(format!("SET_G5X_OFFSET(1, {})", Canon::six(&scale6(g, u))));
-            self.canon("SET_XY_ROTATION(0.0000)");
+            let r = self.rotation_canon(1);
+            self.canon(r);
             if self.st.modal.plane != 170 {
                 self.canon("SELECT_PLANE(CANON_PLANE_XY)");
             }

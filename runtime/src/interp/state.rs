@@ -93,6 +93,8 @@ pub struct State {
     /// Rotation centre (plane coordinates) and angle (degrees).
     pub rotation: ([f64; 2], f64),
     pub ended: bool,
+    /// 1-based line of the block being executed (`#<_line>`).
+    pub line: u32,
 }
 
 impl Modal {
