@@ -719,6 +719,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         if items.is_empty() {
             return Ok(Flow::Next);
         }
+        // A bare O-word line (program title, M98 target) does nothing, not even its comments.
+        if self.ngc()
+            && items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::OWord(ow) if ow.keyword.is_none()))
+        {
+            return Ok(Flow::Next);
+        }
         // O-word statements (RS274/NGC) own their block.
         if let Some((ow, span)) = items.iter().find_map(|it| match &it.kind {
             ItemKind::OWord(ow) if ow.keyword.is_some() => Some((*ow, it.span)),
@@ -1539,7 +1547,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         self.exec_fanuc_modes(w)?;
         // Subprogram call blocks (FANUC / ServoWorks): the motion in the block is ignored.
-        if !ngc && (w.has_m(980) || w.has_g(650)) {
+        if w.has_m(980) || (!ngc && w.has_g(650)) {
             return self.exec_call_words(fi, bi, w);
         }
         // One-shot codes that consume axis words.
@@ -3178,7 +3186,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.canon("OPTIONAL_PROGRAM_STOP()");
             self.event(EventKind::Stop { optional: true });
         }
-        if !self.ngc() && w.has_m(990) {
+        if w.has_m(990) && (!self.ngc() || !self.frames.is_empty()) {
             if self.frames.is_empty() {
                 // M99 in a main program: the control loops back to the start.
                 self.diag(

@@ -85,7 +85,9 @@ impl<'a> FileEntry<'a> {
         f.index();
         let p = f.prog.clone();
         for d in &p.diagnostics {
-            if d.severity == analyzer::Severity::Error {
+            // A bare O-word (`O1`, `O<name>`) is a program title or M98 target for
+            // LinuxCNC 2.9, which runs on; the parser's L010 is stricter.
+            if d.severity == analyzer::Severity::Error && d.code != "L010" {
                 if let Some(b) = p.block_at(d.span.start) {
                     f.error_blocks.insert(b as u32);
                 }
@@ -131,7 +133,13 @@ impl<'a> FileEntry<'a> {
                         }
                     }
                     ItemKind::OWord(ow) => {
-                        let Some(kw) = ow.keyword else { continue };
+                        let Some(kw) = ow.keyword else {
+                            // `O1` alone starts a FANUC-style program (LinuxCNC M98 subs).
+                            if let OLabel::Number(n) = ow.label {
+                                self.heads.entry(n).or_insert(bi);
+                            }
+                            continue;
+                        };
                         let Some(key) = label_key(&p, &ow.label) else {
                             continue;
                         };
