@@ -2,3 +2,11 @@
 
 pub mod machine;
 pub mod plan;
+pub mod canon;
+pub mod interp;
+pub mod rules;
+
+pub use interp::{
+    run, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver,
+    RunInput, RunOutput,
+};
