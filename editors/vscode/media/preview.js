@@ -50,17 +50,24 @@
     return "rgb(" + c[0] + "," + c[1] + "," + c[2] + ")";
   }
 
+  // Same format as the status bar (src/dryrun.ts): m:ss.s below an hour, h:mm:ss above.
   function formatDuration(s) {
     if (typeof s !== "number" || !isFinite(s)) return "–";
-    var neg = s < 0;
-    s = Math.abs(s);
-    var h = Math.floor(s / 3600);
-    var m = Math.floor((s % 3600) / 60);
-    var sec = s - h * 3600 - m * 60;
-    var secText = sec.toFixed(1);
-    if (sec < 10) secText = "0" + secText;
-    var text = h > 0 ? h + ":" + (m < 10 ? "0" : "") + m + ":" + secText : m + ":" + secText;
-    return (neg ? "-" : "") + text;
+    var abs = Math.abs(s);
+    var text;
+    if (abs < 3599.95) {
+      var tenths = Math.round(abs * 10);
+      var m = Math.floor(tenths / 600);
+      var rest = ((tenths - m * 600) / 10).toFixed(1);
+      text = m + ":" + (rest.length < 4 ? "0" : "") + rest;
+    } else {
+      var whole = Math.round(abs);
+      var h = Math.floor(whole / 3600);
+      var mm = Math.floor((whole % 3600) / 60);
+      var ss = whole % 60;
+      text = h + ":" + (mm < 10 ? "0" : "") + mm + ":" + (ss < 10 ? "0" : "") + ss;
+    }
+    return (s < 0 ? "-" : "") + text;
   }
 
   function distToSegmentSq(px, py, ax, ay, bx, by) {
