@@ -3,22 +3,22 @@
 local bin = os.getenv("PARTSCOPE_BIN")
 local sample = os.getenv("PARTSCOPE_SAMPLE")
 local timeout_ms = tonumber(os.getenv("PARTSCOPE_TIMEOUT_MS") or "20000")
-local deadline = vim.loop.now() + timeout_ms
+local deadline = (vim.uv or vim.loop).now() + timeout_ms
 
 local function finish(ok, msg)
   io.stderr:write((ok and "ok: " or "FAIL: ") .. msg .. "\n")
   io.stderr:flush()
-  for _, c in pairs(vim.lsp.get_active_clients and vim.lsp.get_active_clients() or vim.lsp.get_clients()) do
+  for _, c in pairs(vim.lsp.get_clients and vim.lsp.get_clients() or vim.lsp.get_active_clients()) do
     vim.lsp.stop_client(c.id)
   end
   vim.wait(500, function()
-    return #(vim.lsp.get_active_clients and vim.lsp.get_active_clients() or vim.lsp.get_clients()) == 0
+    return #(vim.lsp.get_clients and vim.lsp.get_clients() or vim.lsp.get_active_clients()) == 0
   end, 20)
   vim.cmd(ok and "qall!" or "cquit 1")
 end
 
 local function remaining()
-  return math.max(0, deadline - vim.loop.now())
+  return math.max(0, deadline - (vim.uv or vim.loop).now())
 end
 
 local ok, err = pcall(function()

@@ -112,7 +112,8 @@ function M.attach(bufnr)
     return nil
   end
   local root = find_root(vim.api.nvim_buf_get_name(bufnr))
-  if vim.lsp.start then
+  -- vim.lsp.start honours opts.bufnr from 0.9 on; 0.8's always attaches the current buffer.
+  if vim.lsp.start and (vim.fn.has("nvim-0.9") == 1 or bufnr == vim.api.nvim_get_current_buf()) then
     return vim.lsp.start(client_config(root), { bufnr = bufnr })
   end
   local id = clients_by_root[root]
@@ -129,8 +130,12 @@ end
 
 local function partscope_clients(bufnr)
   local out = {}
-  local get = vim.lsp.get_clients or vim.lsp.get_active_clients
-  local all = vim.lsp.get_clients and get({ bufnr = bufnr }) or vim.lsp.buf_get_clients(bufnr)
+  local all
+  if vim.lsp.get_clients then
+    all = vim.lsp.get_clients({ bufnr = bufnr })
+  else
+    all = vim.lsp.buf_get_clients(bufnr)
+  end
   for _, c in pairs(all) do
     if c.name == "partscope" then
       table.insert(out, c)
