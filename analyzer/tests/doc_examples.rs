@@ -1,7 +1,8 @@
 //! Every rule's documented examples are checked: the fenced blocks under
 //! `## Example` must produce the rule's code, the ones under `Use instead:`
 //! must not. The fence tag (`ngc`, `servoworks`, `fanuc`) names the dialect;
-//! an optional `variant=NAME` after it selects the variant or profile.
+//! an optional `variant=NAME` after it selects the variant or profile, and
+//! `integer_machine_unit` turns that ServoWorks machine option on.
 
 use analyzer::dialect::{Dialect, Variant};
 use analyzer::rules::registry::RULES;
@@ -14,7 +15,7 @@ enum Part {
     Other,
 }
 
-type Fence = (Dialect, Option<Variant>);
+type Fence = (Dialect, Option<Variant>, bool);
 
 /// (dialect and variant, code text, expect the rule's code) for each fenced block.
 fn examples(doc: &str) -> Vec<(Fence, String, bool)> {
@@ -43,10 +44,13 @@ fn examples(doc: &str) -> Vec<(Fence, String, bool)> {
                 "fanuc" => Dialect::Fanuc,
                 _ => panic!("fence tag `{tag}` is not a dialect"),
             };
-            let v = parts
+            let opts: Vec<&str> = parts.collect();
+            let v = opts
+                .iter()
                 .find_map(|p| p.strip_prefix("variant="))
                 .map(|v| Variant::parse(v).expect("known variant"));
-            fence = Some(((d, v), String::new()));
+            let imu = opts.contains(&"integer_machine_unit");
+            fence = Some(((d, v, imu), String::new()));
         } else if t.starts_with("## Example") {
             part = Part::Example;
         } else if t.starts_with("Use instead") {
@@ -70,8 +74,9 @@ fn rule_doc_examples() {
                 meta.code
             ));
         }
-        for ((dialect, variant), text, expect) in ex {
+        for ((dialect, variant, imu), text, expect) in ex {
             let mut settings = Settings::new(dialect);
+            settings.integer_machine_unit = imu;
             if let Some(v) = variant {
                 settings.variant = v;
             }

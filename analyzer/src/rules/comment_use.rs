@@ -129,9 +129,7 @@ impl Rule for CommentUse {
                     .trim_start()
                     .to_ascii_lowercase();
                 let kw = KEYWORDS.iter().find(|k| {
-                    body.starts_with(*k)
-                        && body[k.len()..]
-                            .starts_with([' ', '\t', ')', ','])
+                    body.starts_with(*k) && body[k.len()..].starts_with([' ', '\t', ')', ','])
                 });
                 if let Some(kw) =
                     kw.filter(|k| !matches!(**k, "logclose" | "probeopen" | "probeclose"))

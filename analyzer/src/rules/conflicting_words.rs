@@ -14,7 +14,8 @@ declare_rule! {
     /// overall factor `P` and per-axis factors `I`/`J`/`K`; ServoWorks dwell `G04` with
     /// both `P` (milliseconds) and `X` (seconds); LinuxCNC `G4` on a line with `G2`/`G3`
     /// (both read `P`); `F` with `G33`/`G33.1`; `G43.2` with both or neither of `H` and axis
-    /// words; words in a ServoWorks `G41.1`/`G42.1` block, which takes none.
+    /// words; words in a ServoWorks `G41.1`/`G42.1` block, which takes none; ServoWorks
+    /// `G10` mixing its P/R and X/Y/Z forms; a LinuxCNC 2.9 `G73`/`G83` with `D`.
     ///
     /// ## Why is this bad?
     /// The two forms describe the same thing twice and can disagree. LinuxCNC and
@@ -37,12 +38,12 @@ declare_rule! {
     /// Arcs: error in RS274/NGC and ServoWorks, warning in FANUC. `G51 P`+`I/J/K`: ServoWorks
     /// error. `G04 P`+`X`: ServoWorks warning. `G4` with `G2`/`G3`: `linuxcnc` error.
     ///
-    /// Implements: SW031, SW053, SW089, SW100, NGC114, NGC204, NGC222, NGC806, FAN032
+    /// Implements: SW031, SW053, SW067, SW089, SW100, NGC114, NGC204, NGC222, NGC806, NGC823, FAN032
     pub static CONFLICTING_WORDS = {
         code: "W002",
         name: "conflicting-words",
         summary: "Words that exclude each other in one block",
-        implements: &["SW031", "SW053", "SW089", "SW100", "NGC114", "NGC204", "NGC222", "NGC806", "FAN032"],
+        implements: &["SW031", "SW053", "SW067", "SW089", "SW100", "NGC114", "NGC204", "NGC222", "NGC806", "NGC823", "FAN032"],
         origin: Static,
         default_enabled: true,
     }
@@ -102,6 +103,19 @@ impl Rule for ConflictingWords {
                     .with_related(g33.span, "synchronised motion"),
                 );
             }
+            if !super::util::is_emc2(cx.settings) {
+                if let (Some(peck), Some((dw, _))) = (first_g(cx, &[730, 830]), word_item(cx, b'D'))
+                {
+                    out.push(
+                        Diagnostic::warning(
+                            "W002",
+                            dw.span,
+                            "A D peck clearance in G73/G83 exists only in LinuxCNC development versions; 2.9 does not accept it. Remove it.",
+                        )
+                        .with_related(peck.span, "peck drilling cycle"),
+                    );
+                }
+            }
             if let Some(tcp) = first_g(cx, &[432]).filter(|_| !super::util::is_emc2(cx.settings)) {
                 let axes = !super::util::axis_words(cx).is_empty();
                 let h = word_item(cx, b'H').is_some();
@@ -117,6 +131,18 @@ impl Rule for ConflictingWords {
         }
         if d != Dialect::Servoworks {
             return;
+        }
+        if has(cx, 'G', 100) && word_item(cx, b'R').is_some() {
+            if let Some((a, _)) = [b'X', b'Y', b'Z']
+                .into_iter()
+                .find_map(|l| word_item(cx, l))
+            {
+                out.push(Diagnostic::warning(
+                    "W002",
+                    a.span,
+                    "G10 with both the P/R form and axis words: the manual documents them as separate formats. Use `G10 L… P… R…` or `G10 L… X… Y… Z…`.",
+                ));
+            }
         }
         if let Some(ndc) = first_g(cx, &[411, 421]) {
             let extra = cx

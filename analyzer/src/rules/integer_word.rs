@@ -111,7 +111,12 @@ impl Rule for IntegerWord {
                     }
                 }
                 Dialect::Rs274ngc => {
-                    let int_here = matches!(w.letter, b'M' | b'T' | b'D' | b'H' | b'L')
+                    // LinuxCNC's D is a diameter, speed or clearance with these codes.
+                    let real_d = [411, 421, 960, 730, 830, 700, 710, 720]
+                        .into_iter()
+                        .any(|t| has(cx, 'G', t));
+                    let int_here = matches!(w.letter, b'M' | b'T' | b'H' | b'L')
+                        || (w.letter == b'D' && !real_d)
                         || (w.letter == b'P' && has(cx, 'G', 100));
                     if int_here && !near_integer(n.value) {
                         out.push(Diagnostic::error(

@@ -43,12 +43,12 @@ declare_rule! {
     /// without P or X is a valid exact stop and is not flagged. Errors, except the
     /// ServoWorks exponential-interpolation feeds (warning).
     ///
-    /// Implements: SW020, SW028, SW032, SW046, SW060, SW068, SW075, SW080, SW101, SW105, SW114, NGC109, NGC115, NGC203, NGC218, NGC219, NGC223, NGC225, NGC300, NGC333, NGC409, NGC508, NGC800, NGC801, NGC803, NGC804, NGC807, NGC810, NGC811, NGC812, NGC817, NGC818, FAN030, FAN072
+    /// Implements: SW020, SW028, SW032, SW046, SW060, SW068, SW075, SW080, SW101, SW105, SW114, NGC109, NGC115, NGC203, NGC218, NGC219, NGC223, NGC225, NGC300, NGC333, NGC409, NGC424, NGC508, NGC800, NGC801, NGC803, NGC804, NGC807, NGC810, NGC811, NGC812, NGC817, NGC818, FAN030, FAN072
     pub static MISSING_REQUIRED_WORD = {
         code: "W003",
         name: "missing-required-word",
         summary: "Code without a word it needs",
-        implements: &["SW020", "SW028", "SW032", "SW046", "SW060", "SW068", "SW075", "SW080", "SW101", "SW105", "SW114", "NGC109", "NGC115", "NGC203", "NGC218", "NGC219", "NGC223", "NGC225", "NGC300", "NGC333", "NGC409", "NGC508", "NGC800", "NGC801", "NGC803", "NGC804", "NGC807", "NGC810", "NGC811", "NGC812", "NGC817", "NGC818", "FAN030", "FAN072"],
+        implements: &["SW020", "SW028", "SW032", "SW046", "SW060", "SW068", "SW075", "SW080", "SW101", "SW105", "SW114", "NGC109", "NGC115", "NGC203", "NGC218", "NGC219", "NGC223", "NGC225", "NGC300", "NGC333", "NGC409", "NGC424", "NGC508", "NGC800", "NGC801", "NGC803", "NGC804", "NGC807", "NGC810", "NGC811", "NGC812", "NGC817", "NGC818", "FAN030", "FAN072"],
         origin: Static,
         default_enabled: true,
     }
@@ -228,6 +228,13 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
         (Dialect::Rs274ngc, 'G', 51) if !emc2 && !has_word(cx, b'I') && !has_word(cx, b'J') => {
             missing(cx, c, "I or J", "the control point of the quadratic spline.", out)
         }
+        (Dialect::Rs274ngc, 'G', 410 | 420) if emc2 && !has_word(cx, b'D') => note(
+            cx,
+            c,
+            Severity::Warning,
+            format!("{name} without D: the 2007 interpreter's manual requires a D number on every G41/G42 line."),
+            out,
+        ),
         (Dialect::Servoworks, 'G', 370) if axis_words(cx).len() != 1 => note(
             cx,
             c,

@@ -58,6 +58,11 @@ mod expression_form;
 mod parameter_same_line;
 mod comment_use;
 mod oword_calls;
+mod cycle_words;
+mod eq_non_integer;
+mod integer_machine_unit;
+mod control_notes;
+mod endless_loop;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

@@ -13,11 +13,16 @@ use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
 use super::comment_use::{CommentUse, COMMENT_USE};
 use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
 use super::constant_expression::{ConstantExpression, CONSTANT_EXPRESSION};
+use super::control_notes::{ControlNotes, CONTROL_NOTES};
+use super::cycle_words::{CycleWords, CYCLE_WORDS};
 use super::dlacc_form::{DlaccForm, DLACC_FORM};
 use super::duplicate_word::{DuplicateWord, DUPLICATE_WORD};
+use super::endless_loop::{EndlessLoop, ENDLESS_LOOP};
+use super::eq_non_integer::{EqNonInteger, EQ_NON_INTEGER};
 use super::expression_form::{ExpressionForm, EXPRESSION_FORM};
 use super::g54_with_words::{G54WithWords, G54_WITH_WORDS};
 use super::goto_target::{GotoTarget, GOTO_TARGET};
+use super::integer_machine_unit::{IntegerMachineUnit, INTEGER_MACHINE_UNIT};
 use super::integer_word::{IntegerWord, INTEGER_WORD};
 use super::m98_with_motion::{M98WithMotion, M98_WITH_MOTION};
 use super::m_group_conflict::{MGroupConflict, M_GROUP_CONFLICT};
@@ -87,6 +92,10 @@ pub static RULES: &[&RuleMeta] = &[
     &EXPRESSION_FORM,
     &PARAMETER_SAME_LINE,
     &COMMENT_USE,
+    &CYCLE_WORDS,
+    &EQ_NON_INTEGER,
+    &INTEGER_MACHINE_UNIT,
+    &CONTROL_NOTES,
     &OWORD_STRUCTURE,
     &MACRO_LOOP_STRUCTURE,
     &GOTO_TARGET,
@@ -95,6 +104,7 @@ pub static RULES: &[&RuleMeta] = &[
     &UNREACHABLE_AFTER_END,
     &SEQUENCE_NUMBER,
     &OWORD_CALLS,
+    &ENDLESS_LOOP,
     &LINE_NUMBERS,
     &LINE_NUMBER_ORDER,
     &RADIUS_ARC,
@@ -134,6 +144,10 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &ExpressionForm,
     &ParameterSameLine,
     &CommentUse,
+    &CycleWords,
+    &EqNonInteger,
+    &IntegerMachineUnit,
+    &ControlNotes,
     &OwordStructure,
     &MacroLoopStructure,
     &GotoTarget,
@@ -142,6 +156,7 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &UnreachableAfterEnd,
     &SequenceNumber,
     &OwordCalls,
+    &EndlessLoop,
     &LineNumbers,
     &LineNumberOrder,
     &RadiusArc,

@@ -168,12 +168,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored).
     ///
-    /// Implements: SW008, NGC002, NGC011
+    /// Implements: SW008, NGC002, NGC011, NGC111
     pub static UNKNOWN_CHARACTER = {
         code: "L005",
         name: "unknown-character",
         summary: "Character that is not part of the language",
-        implements: &["SW008", "NGC002", "NGC011"],
+        implements: &["SW008", "NGC002", "NGC011", "NGC111"],
         origin: Syntax,
         default_enabled: true,
     }

@@ -15,7 +15,8 @@ declare_rule! {
     /// peck depths that are not positive; and the dialect's specific limits (ServoWorks
     /// `T`/`H` 0–256, `M98 R` 1–999,999, `G30 P2`–`P4`, `G54.1 P1`–`P58`, direct output `L`
     /// 0–65535, spindle number 1–16; LinuxCNC `G10 L2 P`, `M50`–`M53 P`, `G76` values;
-    /// FANUC program numbers 1–9999 and cycle repeats `K` 0–9999).
+    /// FANUC program numbers 1–9999 and cycle repeats `K` 0–9999; ServoWorks `G10` axis
+    /// numbers, axis types, smoothing modes and position-loop gains).
     ///
     /// ## Why is this bad?
     /// The control stops with a range error or alarm when it reaches the block, or —
@@ -38,17 +39,12 @@ declare_rule! {
     /// All; errors where the control stops, warnings where it changes the value. Values
     /// given by parameters or expressions are checked when the program runs.
     ///
-    /// Implements: SW022, SW030, SW041, SW044, SW054, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
+    /// Implements: SW022, SW030, SW041, SW044, SW054, SW061, SW062, SW063, SW065, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC426, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
     pub static WORD_VALUE_RANGE = {
         code: "W007",
         name: "word-value-range",
         summary: "Literal word value outside the accepted range",
-        implements: &[
-            "SW022", "SW030", "SW041", "SW044", "SW054", "SW073", "SW091", "SW102", "SW110", "SW122", "SW123", "SW130",
-            "SW136", "SW137", "SW138", "SW140", "SW141", "SW143", "NGC215", "NGC224", "NGC304", "NGC305", "NGC308",
-            "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN003", "FAN005", "FAN011",
-            "FAN073", "FAN074", "FAN076",
-        ],
+        implements: &["SW022", "SW030", "SW041", "SW044", "SW054", "SW061", "SW062", "SW063", "SW065", "SW073", "SW091", "SW102", "SW110", "SW122", "SW123", "SW130", "SW136", "SW137", "SW138", "SW140", "SW141", "SW143", "NGC215", "NGC224", "NGC304", "NGC305", "NGC308", "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC426", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN003", "FAN005", "FAN011", "FAN073", "FAN074", "FAN076"],
         origin: Static,
         default_enabled: true,
     }
@@ -102,6 +98,55 @@ impl Rule for WordValueRange {
         let mut k = Ctx { cx, out };
         match d {
             Dialect::Servoworks => {
+                if has(cx, 'G', 100) {
+                    let l = word_item(cx, b'L').and_then(|(_, w)| lit(w));
+                    let axis_max = match l {
+                        Some(v) if [10.0, 11.0, 20.0, 30.0].contains(&v) => Some(8.0),
+                        Some(v) if v == 108.0 || v == 10909.0 => Some(16.0),
+                        _ => None,
+                    };
+                    if let Some(max) = axis_max {
+                        k.check(
+                            b'P',
+                            E,
+                            |v| int_in(v, 1.0, max),
+                            |t| {
+                                format!(
+                                    "`{t}`: the axis number of this G10 category is 1 to {max}."
+                                )
+                            },
+                        );
+                    }
+                    // The category as a whole number (G10 L values are integers).
+                    match l.map(|v| v as i64) {
+                        Some(20) => {
+                            k.check(
+                                b'R',
+                                E,
+                                |v| [1.0, 2.0, 3.0, 10.0, 12.0].contains(&v),
+                                |t| format!("`{t}`: the G10 L20 axis type is 1, 2, 3, 10 or 12."),
+                            );
+                            k.check(b'R', W, |v| v != 12.0, |t| format!("`{t}`: axis type 12 (torque axis) needs MECHATROLINK II/III with Sigma III/V drives."));
+                        }
+                        Some(106) | Some(107) => {
+                            k.check(
+                                b'R',
+                                E,
+                                |v| int_in(v, 0.0, 3.0),
+                                |t| format!("`{t}`: the smoothing mode is 0 to 3."),
+                            );
+                        }
+                        Some(10909) => {
+                            k.check(
+                                b'R',
+                                E,
+                                |v| (0.0..=999_999.9).contains(&v),
+                                |t| format!("`{t}`: the position-loop gain is 0 to 999999.9 Hz."),
+                            );
+                        }
+                        _ => {}
+                    }
+                }
                 let macro_call = has(cx, 'G', 650);
                 if has(cx, 'M', 980) {
                     k.check(
@@ -316,6 +361,14 @@ impl Rule for WordValueRange {
                     k.check(b'R', sev, |v| v >= 1.0, |t| format!("`{t}`: the G76 degression R must be at least 1.0 (LinuxCNC uses 1.0 instead)."));
                 }
                 if !is_emc2(cx.settings) {
+                    if has(cx, 'G', 411) || has(cx, 'G', 421) {
+                        k.check(
+                            b'L',
+                            E,
+                            |v| int_in(v, 0.0, 9.0),
+                            |t| format!("`{t}`: the G41.1/G42.1 tool orientation L is 0 to 9."),
+                        );
+                    }
                     if has(cx, 'G', 20) || has(cx, 'G', 30) {
                         k.check(b'P', E, |v| near_integer(v) && v >= 1.0, |t| format!("`{t}`: the number of arc turns P must be an integer of at least 1."));
                     }
