@@ -35,8 +35,9 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: warning for a malformed active comment, an unknown format and an O-line
-    /// comment (`linuxcnc`); info for a disabled active comment.
+    /// RS274/NGC: warning for a malformed active comment and an unknown format (`linuxcnc`);
+    /// info for a disabled active comment and an O-line comment (`linuxcnc`; LinuxCNC's own
+    /// examples use them, and they work in 2.9).
     ///
     /// Implements: NGC023, NGC032, NGC034, NGC112, NGC711
     pub static COMMENT_USE = {
@@ -124,12 +125,20 @@ impl Rule for CommentUse {
                 );
             }
             if *kind == CommentKind::Plain {
-                let body = text
-                    .trim_start_matches(['(', ';'])
-                    .trim_start()
-                    .to_ascii_lowercase();
+                // Only parenthesised comments: a `;` comment is often commented-out code.
+                let raw = text.strip_prefix('(').unwrap_or("").trim_start();
+                let body = raw.to_ascii_lowercase();
                 let kw = KEYWORDS.iter().find(|k| {
-                    body.starts_with(*k) && body[k.len()..].starts_with([' ', '\t', ')', ','])
+                    let after = &body[k.len().min(body.len())..];
+                    let upper = raw
+                        .get(..k.len())
+                        .is_some_and(|w| w.bytes().all(|b| b.is_ascii_uppercase()));
+                    // `(MSG ,x)` (a blank before the comma), or `(MSG text)` in capitals;
+                    // prose such as `(abort the run here)` is left alone.
+                    body.starts_with(*k)
+                        && (after.trim_start_matches([' ', '\t']).starts_with(',')
+                            && after.starts_with([' ', '\t'])
+                            || upper && after.starts_with([' ', '\t', ')']))
                 });
                 if let Some(kw) =
                     kw.filter(|k| !matches!(**k, "logclose" | "probeopen" | "probeclose"))
@@ -158,7 +167,7 @@ impl Rule for CommentUse {
         }
         if modern && items.iter().any(|i| matches!(i.kind, ItemKind::OWord(_))) {
             if let Some((c, _)) = comments.first() {
-                out.push(Diagnostic::warning("W019", c.span, "A comment on an O-word line is undefined behaviour in LinuxCNC. Put the comment on its own line."));
+                out.push(Diagnostic::info("W019", c.span, "A comment on an O-word line is undefined behaviour in LinuxCNC. Put the comment on its own line."));
             }
         }
     }

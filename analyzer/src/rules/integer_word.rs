@@ -112,7 +112,7 @@ impl Rule for IntegerWord {
                 }
                 Dialect::Rs274ngc => {
                     // LinuxCNC's D is a diameter, speed or clearance with these codes.
-                    let real_d = [411, 421, 960, 730, 830, 700, 710, 720]
+                    let real_d = [411, 421, 960, 730, 830, 700, 710, 711, 712, 720, 721, 722]
                         .into_iter()
                         .any(|t| has(cx, 'G', t));
                     let int_here = matches!(w.letter, b'M' | b'T' | b'H' | b'L')

@@ -157,7 +157,12 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         return;
     }
     let mut codes = Vec::new();
+    // Lines LinuxCNC never reads are only reported as unreachable (P006).
+    let dead = util::dead_blocks(cx.program);
     for (i, block) in cx.program.blocks.iter().enumerate() {
+        if dead.get(i).copied().unwrap_or(false) {
+            continue;
+        }
         codes.clear();
         context::collect_codes(cx.program, block, &mut codes);
         let bcx = BlockCx {

@@ -13,9 +13,12 @@ declare_rule! {
     /// ## What it does
     /// Checks RS274/NGC subroutine calls and labels: a call with more than 30 arguments;
     /// a call to a subroutine defined further down the file; a subroutine that calls
-    /// itself, directly or through others; a label opened by two different blocks; a
+    /// itself unconditionally, directly or through others; a label opened by two blocks of
+    /// the same subroutine (or two subroutines); a
     /// program mixing `M98`/`M99` subprograms with O-word subroutines; and a line that
-    /// starts with the digit `0` where the letter `O` was meant (`0100 sub`).
+    /// starts with the digit `0` where the letter `O` was meant (`0100 sub`). Only calls
+    /// outside any `if` or loop count for recursion; labels repeat freely across
+    /// subroutines.
     ///
     /// ## Why is this bad?
     /// Subroutines take at most 30 arguments (#1–#30). The documentation requires a
@@ -81,7 +84,11 @@ impl Rule for OwordCalls {
         let mut defs: Vec<(String, u32, Span)> = Vec::new();
         // Calls: (label, position, span, enclosing sub).
         let mut calls: Vec<(String, u32, Span, Option<String>)> = Vec::new();
-        let mut openers: Vec<(String, Span)> = Vec::new();
+        // Labels of blocks: (scope, label, span). Subroutines share one scope; the loops
+        // and ifs of each subroutine (and of the main program) have their own.
+        let mut openers: Vec<(String, String, Span)> = Vec::new();
+        // Open control-flow blocks in the current scope; a call inside one is conditional.
+        let mut depth = 0usize;
         let mut open_do: Vec<String> = Vec::new();
         let mut current_sub: Option<String> = None;
         let mut has_osub = false;
@@ -115,9 +122,13 @@ impl Rule for OwordCalls {
                                 has_osub = true;
                                 defs.push((l.clone(), item.span.start, item.span));
                                 current_sub = Some(l.clone());
-                                openers.push((l, item.span));
+                                depth = 0;
+                                openers.push(("sub".into(), l, item.span));
                             }
-                            Some(OKeyword::Endsub) => current_sub = None,
+                            Some(OKeyword::Endsub) => {
+                                current_sub = None;
+                                depth = 0;
+                            }
                             Some(OKeyword::Call) => {
                                 has_osub = true;
                                 let n = p.expr_list(o.args).len();
@@ -128,11 +139,19 @@ impl Rule for OwordCalls {
                                         format!("{n} call arguments: a subroutine receives at most 30 (#1–#30)."),
                                     ));
                                 }
-                                calls.push((l, item.span.start, item.span, current_sub.clone()));
+                                // A call inside an if or loop may be the bounded case of a recursion.
+                                let caller = current_sub.clone().filter(|_| depth == 0);
+                                calls.push((l, item.span.start, item.span, caller));
                             }
                             Some(OKeyword::While) if open_do.last() == Some(&l) => {
                                 // `o1 do … o1 while` is one block: the closing while reuses the label.
                                 open_do.pop();
+                                depth = depth.saturating_sub(1);
+                            }
+                            Some(OKeyword::Endwhile)
+                            | Some(OKeyword::Endif)
+                            | Some(OKeyword::Endrepeat) => {
+                                depth = depth.saturating_sub(1);
                             }
                             Some(OKeyword::While)
                             | Some(OKeyword::Do)
@@ -141,7 +160,9 @@ impl Rule for OwordCalls {
                                 if o.keyword == Some(OKeyword::Do) {
                                     open_do.push(l.clone());
                                 }
-                                openers.push((l, item.span));
+                                depth += 1;
+                                let scope = current_sub.clone().unwrap_or_default();
+                                openers.push((scope, l, item.span));
                             }
                             _ => {}
                         }
@@ -162,8 +183,11 @@ impl Rule for OwordCalls {
                 "M98/M99 subprograms and O-word subroutines are mixed in one program; LinuxCNC accepts one style per program. Use `o… call` and `o… sub`.",
             ));
         }
-        for (j, (l, span)) in openers.iter().enumerate() {
-            if let Some((_, first)) = openers[..j].iter().find(|(ol, _)| ol == l) {
+        for (j, (scope, l, span)) in openers.iter().enumerate() {
+            if let Some((_, _, first)) = openers[..j]
+                .iter()
+                .find(|(os, ol, _)| ol == l && os == scope)
+            {
                 out.push(
                     Diagnostic::warning("P008", *span, format!("Label o{l} already names another block; give every sub, loop and if its own label."))
                         .with_related(*first, "first use of the label"),
@@ -202,7 +226,7 @@ impl Rule for OwordCalls {
                 out.push(Diagnostic::warning(
                     "P008",
                     *dspan,
-                    format!("o{name} calls itself (directly or through other subroutines); unless a condition stops it, this exceeds LinuxCNC's 10 call levels."),
+                    format!("o{name} calls itself unconditionally (directly or through other subroutines): the recursion never stops and exceeds LinuxCNC's 10 call levels."),
                 ));
             }
         }

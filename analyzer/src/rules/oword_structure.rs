@@ -163,14 +163,13 @@ impl Rule for OwordStructure {
                     out,
                 ),
                 OKeyword::Return => {
-                    if !stack
-                        .iter()
-                        .any(|f| f.kind == Open::Sub && same(&f.label, &label))
-                    {
+                    // LinuxCNC accepts `return` with the label of any block inside the
+                    // subroutine (its own examples use the label of an enclosing `if`).
+                    if !stack.iter().any(|f| f.kind == Open::Sub) {
                         out.push(Diagnostic::error(
                             "P001",
                             span,
-                            format!("`{name} return` is not inside the subroutine `{name}`: return only leaves a subroutine of the same label."),
+                            format!("`{name} return` is not inside a subroutine: return leaves the subroutine that is running."),
                         ));
                     }
                 }

@@ -192,3 +192,40 @@ pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::
     }
     out
 }
+
+/// RS274/NGC blocks the interpreter never reads: top-level lines after the first
+/// top-level `M2`/`M30` (subroutine definitions further down stay reachable,
+/// because a call searches the file for them). Other dialects: none.
+pub fn dead_blocks(program: &Program) -> Vec<bool> {
+    use crate::dialect::Dialect;
+    use crate::syntax::OKeyword;
+    let mut dead = vec![false; program.blocks.len()];
+    if program.dialect != Dialect::Rs274ngc {
+        return dead;
+    }
+    let mut ended = false;
+    let mut depth = 0i32;
+    for (i, b) in program.blocks.iter().enumerate() {
+        let kw = program.items_of(b).iter().find_map(|it| match it.kind {
+            ItemKind::OWord(o) => o.keyword,
+            _ => None,
+        });
+        if kw == Some(OKeyword::Sub) {
+            depth += 1;
+        }
+        if ended && depth <= 0 {
+            dead[i] = true;
+        }
+        if kw == Some(OKeyword::Endsub) {
+            depth -= 1;
+        }
+        if depth <= 0
+            && program.words(b).any(|(_, w)| {
+                w.letter == b'M' && matches!(lit(w), Some(v) if v == 2.0 || v == 30.0)
+            })
+        {
+            ended = true;
+        }
+    }
+    dead
+}

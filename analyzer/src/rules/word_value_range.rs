@@ -117,8 +117,9 @@ impl Rule for WordValueRange {
                             },
                         );
                     }
-                    match l {
-                        Some(v) if v == 20.0 => {
+                    // The category as a whole number (G10 L values are integers).
+                    match l.map(|v| v as i64) {
+                        Some(20) => {
                             k.check(
                                 b'R',
                                 E,
@@ -127,7 +128,7 @@ impl Rule for WordValueRange {
                             );
                             k.check(b'R', W, |v| v != 12.0, |t| format!("`{t}`: axis type 12 (torque axis) needs MECHATROLINK II/III with Sigma III/V drives."));
                         }
-                        Some(v) if v == 106.0 || v == 107.0 => {
+                        Some(106) | Some(107) => {
                             k.check(
                                 b'R',
                                 E,
@@ -135,7 +136,7 @@ impl Rule for WordValueRange {
                                 |t| format!("`{t}`: the smoothing mode is 0 to 3."),
                             );
                         }
-                        Some(v) if v == 10909.0 => {
+                        Some(10909) => {
                             k.check(
                                 b'R',
                                 E,
