@@ -252,3 +252,10 @@ fn m99_in_main_stops_the_dry_run() {
     assert_eq!(codes(&out), vec!["X003"]);
     assert_eq!(out.motions.len(), 1);
 }
+
+#[test]
+fn g09_exact_stop_is_one_shot() {
+    let out = run_fanuc("G64 G01 X10. F100;\nG09 X20.;\nX30.;\nM30;\n", "");
+    let exact: Vec<bool> = out.motions.iter().map(|m| m.exact_stop).collect();
+    assert_eq!(exact, vec![false, true, false]);
+}

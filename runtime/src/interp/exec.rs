@@ -251,6 +251,9 @@ struct Interp<'a, 'i> {
     after_end_reported: bool,
     /// Locals of the main level (RS274/NGC named parameters without `_`).
     main_locals: HashMap<String, f64>,
+    limit_reports: u32,
+    /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
+    block_exact: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -336,6 +339,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             nblocks_main: input.program.blocks.len(),
             after_end_reported: false,
             main_locals: HashMap::new(),
+            limit_reports: 0,
+            block_exact: false,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -579,7 +584,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 );
                 break;
             }
-            match self.exec_block(fi, bi) {
+            let first_motion = self.out.motions.len();
+            let result = self.exec_block(fi, bi);
+            self.check_limits(fi, bi, first_motion);
+            match result {
                 Ok(Flow::Next) => self.cur = (self.cur.0, self.cur.1 + 1),
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
@@ -599,6 +607,35 @@ impl<'a, 'i> Interp<'a, 'i> {
             c.line_number = None;
             c.call("ON_RESET()");
             c.call("ON_RESET()");
+        }
+    }
+
+    /// Soft limits: end points of the block's motions against the profile's travel.
+    fn check_limits(&mut self, fi: usize, bi: u32, first: usize) {
+        if self.cfg.limits.iter().all(Option::is_none) || self.limit_reports >= 100 {
+            return;
+        }
+        let mut hit = [false; 6];
+        for m in self.out.motions.iter().skip(first) {
+            for (i, lim) in self.cfg.limits.iter().enumerate() {
+                if let Some((lo, hi)) = lim {
+                    if m.end[i] < lo - 1e-9 || m.end[i] > hi + 1e-9 {
+                        hit[i] = true;
+                    }
+                }
+            }
+        }
+        let span = self.block_span(fi, bi);
+        let file = self.files.get(fi).map(|f| f.id).unwrap_or_default();
+        for (i, h) in hit.iter().enumerate() {
+            if !h || self.limit_reports >= 100 {
+                continue;
+            }
+            self.limit_reports += 1;
+            let (lo, hi) = self.cfg.limits[i].unwrap_or((0.0, 0.0));
+            let letter = ['X', 'Y', 'Z', 'A', 'B', 'C'][i];
+            let d = Diagnostic::warning(codes::TRAVEL_LIMIT, span, format!("this block moves {letter} outside its travel ({lo} to {hi} in machine coordinates): the control stops with a soft-limit alarm")).in_file(file);
+            self.out.diagnostics.push(d);
         }
     }
 
@@ -1391,6 +1428,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         bspan: Span,
     ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
+        self.block_exact = !ngc && w.has_g(90);
         // Comments and messages.
         for (k, s) in comments {
             self.exec_comment(p, *k, *s)?;
@@ -2379,7 +2417,7 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn motion_base(&self, kind: MotionKind, start: [f64; 6], end: [f64; 6], feed: f64) -> Motion {
-        let exact = matches!(self.st.modal.path, 610 | 611);
+        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
         Motion {
             kind,
             start,

@@ -39,6 +39,8 @@ pub struct MachineCfg {
     pub work_offsets: Vec<(usize, [f64; 6])>,
     /// Maximum subprogram/macro nesting.
     pub max_depth: usize,
+    /// Travel limits per axis index (X Y Z A B C), machine frame.
+    pub limits: [Option<(f64, f64)>; 6],
 }
 
 fn num(v: &toml::Value) -> Option<f64> {
@@ -112,11 +114,40 @@ impl MachineCfg {
             Dialect::Fanuc => 15,
             Dialect::Rs274ngc => 64,
         };
+        let mut limits = [None; 6];
+        let mut axis_unit = None;
+        if let Some(toml::Value::Array(axes)) = t.get("axes") {
+            for a in axes.iter().filter_map(|a| a.as_table()) {
+                let Some(letter) = a
+                    .get("letter")
+                    .and_then(|l| l.as_str())
+                    .and_then(|s| s.chars().next())
+                else {
+                    continue;
+                };
+                let Some(i) = "XYZABC".find(letter.to_ascii_uppercase()) else {
+                    continue;
+                };
+                let lo = a.get("min_travel").and_then(num);
+                let hi = a.get("max_travel").and_then(num);
+                if let (Some(lo), Some(hi)) = (lo, hi) {
+                    limits[i] = Some((lo, hi));
+                }
+                if i == 0 {
+                    axis_unit = a.get("machine_unit").and_then(num);
+                }
+            }
+        }
         MachineCfg {
+            limits,
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),
             integer_machine_unit: b("integer_machine_unit", false),
-            machine_unit: f("machine_unit", 0.001),
+            machine_unit: t
+                .get("machine_unit")
+                .and_then(num)
+                .or(axis_unit)
+                .unwrap_or(0.001),
             block_skip: b("block_skip", false),
             param_unit,
             decimal_point_input: b("decimal_point_input", false),
