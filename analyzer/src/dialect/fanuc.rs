@@ -1,8 +1,11 @@
 //! The fanuc code table. (Placeholder: filled from the spec digest.)
 
-use super::{CodeInfo, CodeKind, CodeNum, Param, variants};
+use super::{AddressInfo, CodeInfo, CodeKind, CodeNum, Param, variants};
+
+pub static ADDRESSES: &[AddressInfo] = &[];
 
 pub static CODES: &[CodeInfo] = &[];
 
 #[allow(dead_code)]
-const _USE: (Option<CodeKind>, Option<CodeNum>, Option<Param>, u8) = (None, None, None, variants::ALL_SW);
+const _USE: (Option<CodeKind>, Option<CodeNum>, Option<Param>, u8) =
+    (None, None, None, variants::ALL_SW);

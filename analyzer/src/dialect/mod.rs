@@ -94,7 +94,11 @@ impl Variant {
     }
 
     pub fn parse(s: &str) -> Option<Variant> {
-        let k: String = s.chars().filter(|c| *c != '-' && *c != '_').collect::<String>().to_ascii_lowercase();
+        let k: String = s
+            .chars()
+            .filter(|c| *c != '-' && *c != '_')
+            .collect::<String>()
+            .to_ascii_lowercase();
         Some(match k.as_str() {
             "s100m" => Variant::S100M,
             "s120m" => Variant::S120M,
@@ -148,7 +152,7 @@ impl CodeNum {
     /// The code for a programmed value, when it is within 0.001 of a tenth
     /// (the RS274/NGC rule; FANUC and ServoWorks literals are exact anyway).
     pub fn from_value(v: f64) -> Option<CodeNum> {
-        if !v.is_finite() || v < 0.0 || v > 400_000_000.0 {
+        if !v.is_finite() || !(0.0..=400_000_000.0).contains(&v) {
             return None;
         }
         let t = v * 10.0;
@@ -165,7 +169,7 @@ impl CodeNum {
 
     /// Formats as the dialect writes it: `2`, `2.3`, `54.1`.
     pub fn display(self) -> String {
-        if self.0 % 10 == 0 {
+        if self.0.is_multiple_of(10) {
             format!("{}", self.0 / 10)
         } else {
             format!("{}.{}", self.0 / 10, self.0 % 10)
@@ -206,7 +210,8 @@ pub struct CodeInfo {
     pub letter: char,
     pub num: CodeNum,
     /// Modal group as the dialect's manual numbers it (`0` = non-modal / group 00).
-    /// `None` for codes outside every group.
+    /// `None` for codes outside every group. M-code groups (RS274/NGC only) are a
+    /// separate numbering from G-code groups: compare with [`CodeInfo::same_group`].
     pub group: Option<u8>,
     pub kind: CodeKind,
     /// Variants that have this code (a [`variants`] mask).
@@ -225,6 +230,12 @@ impl CodeInfo {
         format!("{}{}", self.letter, self.num.display())
     }
 
+    /// Whether `self` and `other` are in the same modal group (G and M groups
+    /// are separate numberings, so the letters must match too).
+    pub fn same_group(&self, other: &CodeInfo) -> bool {
+        self.letter == other.letter && self.group.is_some() && self.group == other.group
+    }
+
     pub fn on_variant(&self, v: Variant) -> bool {
         self.variants & v.bit() != 0
     }
@@ -232,5 +243,259 @@ impl CodeInfo {
 
 /// Looks a code up in a dialect's table.
 pub fn lookup(dialect: Dialect, letter: char, num: CodeNum) -> Option<&'static CodeInfo> {
-    dialect.codes().iter().find(|c| c.letter == letter && c.num == num)
+    dialect
+        .codes()
+        .iter()
+        .find(|c| c.letter == letter && c.num == num)
+}
+
+/// The meaning of one address letter (a non-G/M word) in a dialect, for hover.
+#[derive(Debug, Clone, Copy)]
+pub struct AddressInfo {
+    /// The address letter, upper case (`'#'` for macro variables where a dialect has them).
+    pub letter: char,
+    /// Meaning(s) in our own words; several meanings are separated by "; ".
+    pub doc: &'static str,
+}
+
+impl Dialect {
+    /// The address-letter table of this dialect (meanings of non-G/M words).
+    pub fn addresses(self) -> &'static [AddressInfo] {
+        match self {
+            Dialect::Servoworks => servoworks::ADDRESSES,
+            Dialect::Rs274ngc => rs274ngc::ADDRESSES,
+            Dialect::Fanuc => fanuc::ADDRESSES,
+        }
+    }
+}
+
+/// Looks an address letter up in a dialect's address table (case-insensitive).
+pub fn lookup_address(dialect: Dialect, letter: char) -> Option<&'static AddressInfo> {
+    let up = letter.to_ascii_uppercase();
+    dialect.addresses().iter().find(|a| a.letter == up)
+}
+
+/// Every G code of `dialect` in modal group `group`, in table order. G and M
+/// groups are numbered separately (RS274/NGC's M groups 4–10 are not G groups
+/// 4–10); use [`codes_in_letter_group`] for M-code groups.
+pub fn codes_in_group(dialect: Dialect, group: u8) -> impl Iterator<Item = &'static CodeInfo> {
+    codes_in_letter_group(dialect, 'G', group)
+}
+
+/// Every code with `letter` (`'G'` or `'M'`) of `dialect` in modal group `group`.
+pub fn codes_in_letter_group(
+    dialect: Dialect,
+    letter: char,
+    group: u8,
+) -> impl Iterator<Item = &'static CodeInfo> {
+    dialect
+        .codes()
+        .iter()
+        .filter(move |c| c.letter == letter && c.group == Some(group))
+}
+
+/// The power-on default codes of `dialect` (at most one per group), in table order.
+pub fn default_codes(dialect: Dialect) -> impl Iterator<Item = &'static CodeInfo> {
+    dialect.codes().iter().filter(|c| c.default)
+}
+
+/// The distinct modal groups of `letter` codes in `dialect`'s table, ascending.
+pub fn groups(dialect: Dialect, letter: char) -> Vec<u8> {
+    let mut g: Vec<u8> = dialect
+        .codes()
+        .iter()
+        .filter(|c| c.letter == letter)
+        .filter_map(|c| c.group)
+        .collect();
+    g.sort_unstable();
+    g.dedup();
+    g
+}
+
+/// Checks shared by every dialect's table tests: no duplicate (letter, num), at
+/// most one default per group, non-empty texts, upper-case params without repeats.
+#[cfg(test)]
+pub(crate) fn check_table_invariants(dialect: Dialect) {
+    let codes = dialect.codes();
+    for (i, a) in codes.iter().enumerate() {
+        for b in &codes[i + 1..] {
+            assert!(
+                !(a.letter == b.letter && a.num == b.num),
+                "{}: duplicate {}",
+                dialect.as_str(),
+                a.name()
+            );
+        }
+        assert!(
+            a.letter == 'G' || a.letter == 'M',
+            "{}: bad letter in {}",
+            dialect.as_str(),
+            a.name()
+        );
+        assert!(
+            !a.summary.is_empty() && !a.doc.is_empty(),
+            "{}: empty text for {}",
+            dialect.as_str(),
+            a.name()
+        );
+        assert!(
+            a.variants != 0,
+            "{}: {} on no variant",
+            dialect.as_str(),
+            a.name()
+        );
+        if a.letter == 'M' {
+            assert_eq!(
+                a.kind,
+                CodeKind::Misc,
+                "{}: {} kind",
+                dialect.as_str(),
+                a.name()
+            );
+        }
+        if a.default {
+            assert!(
+                a.group.is_some_and(|g| g != 0),
+                "{}: default {} outside a modal group",
+                dialect.as_str(),
+                a.name()
+            );
+        }
+        for (j, p) in a.params.iter().enumerate() {
+            assert!(
+                p.letter.is_ascii_uppercase(),
+                "{}: {} param {:?}",
+                dialect.as_str(),
+                a.name(),
+                p.letter
+            );
+            assert!(
+                !p.doc.is_empty(),
+                "{}: {} param {} undocumented",
+                dialect.as_str(),
+                a.name(),
+                p.letter
+            );
+            assert!(
+                a.params[j + 1..].iter().all(|q| q.letter != p.letter),
+                "{}: {} repeats param {}",
+                dialect.as_str(),
+                a.name(),
+                p.letter
+            );
+        }
+    }
+    for letter in ['G', 'M'] {
+        for g in groups(dialect, letter) {
+            let n = codes_in_letter_group(dialect, letter, g)
+                .filter(|c| c.default)
+                .count();
+            assert!(
+                n <= 1,
+                "{}: {letter} group {} has {} defaults",
+                dialect.as_str(),
+                g,
+                n
+            );
+        }
+    }
+    let letters: Vec<char> = dialect.addresses().iter().map(|a| a.letter).collect();
+    for (i, l) in letters.iter().enumerate() {
+        assert!(
+            !letters[i + 1..].contains(l),
+            "{}: address {} twice",
+            dialect.as_str(),
+            l
+        );
+    }
+    assert!(dialect.addresses().iter().all(|a| !a.doc.is_empty()));
+}
+
+/// Asserts that every name in `names` (like `"G2.3"`, `"M30"`) is in the table.
+#[cfg(test)]
+pub(crate) fn assert_all_present(dialect: Dialect, names: &[&str]) {
+    for n in names {
+        let (letter, rest) = n.split_at(1);
+        let letter = letter.chars().next().unwrap_or('?');
+        let v: f64 = rest.parse().unwrap_or(-1.0);
+        let num = CodeNum::from_value(v).unwrap_or(CodeNum(u32::MAX));
+        assert!(
+            lookup(dialect, letter, num).is_some(),
+            "{}: {} missing",
+            dialect.as_str(),
+            n
+        );
+    }
+}
+
+impl Param {
+    /// An optional word.
+    pub const fn opt(letter: char, doc: &'static str) -> Param {
+        Param {
+            letter,
+            doc,
+            required: false,
+        }
+    }
+
+    /// A word without which the code is an error.
+    pub const fn req(letter: char, doc: &'static str) -> Param {
+        Param {
+            letter,
+            doc,
+            required: true,
+        }
+    }
+
+    /// Looks a word up in a code's parameter list.
+    pub fn find(params: &'static [Param], letter: char) -> Option<&'static Param> {
+        let up = letter.to_ascii_uppercase();
+        params.iter().find(|p| p.letter == up)
+    }
+}
+
+impl CodeInfo {
+    /// A table row; `default` starts false (see [`CodeInfo::dflt`]).
+    #[allow(clippy::too_many_arguments)]
+    pub const fn new(
+        letter: char,
+        num: CodeNum,
+        group: Option<u8>,
+        kind: CodeKind,
+        variants: u8,
+        summary: &'static str,
+        doc: &'static str,
+        params: &'static [Param],
+    ) -> CodeInfo {
+        CodeInfo {
+            letter,
+            num,
+            group,
+            kind,
+            variants,
+            default: false,
+            summary,
+            doc,
+            params,
+        }
+    }
+
+    /// The same row marked as its group's power-on default.
+    pub const fn dflt(self) -> CodeInfo {
+        let mut c = self;
+        c.default = true;
+        c
+    }
+
+    /// The same row restricted to the variants in `mask`.
+    pub const fn only(self, mask: u8) -> CodeInfo {
+        let mut c = self;
+        c.variants = mask;
+        c
+    }
+
+    /// The parameter entry for `letter`, if this code documents one.
+    pub fn param(&self, letter: char) -> Option<&'static Param> {
+        Param::find(self.params, letter)
+    }
 }
