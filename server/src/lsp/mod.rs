@@ -16,6 +16,7 @@ mod semantic;
 mod server;
 mod signature;
 mod snapshot;
+mod stdio;
 mod symbols;
 mod workspace;
 
@@ -40,7 +41,7 @@ pub fn run() -> ExitCode {
         let (service, socket) = LspService::build(server::Backend::new)
             .custom_method("partscope/dryRun", server::Backend::dry_run)
             .finish();
-        Server::new(tokio::io::stdin(), tokio::io::stdout(), socket)
+        Server::new(stdio::filtered_stdin(), tokio::io::stdout(), socket)
             .serve(service)
             .await;
     });
