@@ -1,1 +1,10 @@
 //! Partscope runtime: interpreter, interpolator and motion planner. Pure: no IO.
+
+pub mod canon;
+pub mod interp;
+pub mod rules;
+
+pub use interp::{
+    run, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver,
+    RunInput, RunOutput,
+};
