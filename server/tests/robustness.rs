@@ -126,7 +126,11 @@ fn repo_root() -> PathBuf {
 fn seeds() -> Vec<(PathBuf, Vec<u8>)> {
     let root = repo_root();
     let mut out = Vec::new();
-    for dir in ["examples", "tests/robustness/seeds", "tests/robustness/crashes"] {
+    for dir in [
+        "examples",
+        "tests/robustness/seeds",
+        "tests/robustness/crashes",
+    ] {
         let Ok(rd) = std::fs::read_dir(root.join(dir)) else {
             continue;
         };
@@ -177,7 +181,10 @@ fn mutate(rng: &mut Rng, dialect: Dialect, text: &[u8]) -> (&'static str, Vec<u8
         2 => {
             let starts = line_starts(&t);
             let s = *rng.pick(&starts);
-            let e = t[s..].iter().position(|b| *b == b'\n').map_or(t.len(), |i| s + i + 1);
+            let e = t[s..]
+                .iter()
+                .position(|b| *b == b'\n')
+                .map_or(t.len(), |i| s + i + 1);
             let line = t[s..e].to_vec();
             let times = 1 + rng.below(200);
             for _ in 0..times {
@@ -186,7 +193,18 @@ fn mutate(rng: &mut Rng, dialect: Dialect, text: &[u8]) -> (&'static str, Vec<u8
             "duplicated line"
         }
         3 => {
-            let junk: &[u8] = rng.pick(&[&b"["[..], b"(", b"#", b"]", b")", b"[[[", b"((", b"#[", b"<", b"o"]);
+            let junk: &[u8] = rng.pick(&[
+                &b"["[..],
+                b"(",
+                b"#",
+                b"]",
+                b")",
+                b"[[[",
+                b"((",
+                b"#[",
+                b"<",
+                b"o",
+            ]);
             for _ in 0..1 + rng.below(5) {
                 let p = rng.below(t.len() + 1);
                 t.splice(p..p, junk.iter().copied());
@@ -206,7 +224,12 @@ fn mutate(rng: &mut Rng, dialect: Dialect, text: &[u8]) -> (&'static str, Vec<u8
                 b"1.7976931348623157e308",
             ]);
             // Replace the digits of some number in the text.
-            if let Some(start) = t.iter().skip(pos).position(|b| b.is_ascii_digit()).map(|i| i + pos) {
+            if let Some(start) = t
+                .iter()
+                .skip(pos)
+                .position(|b| b.is_ascii_digit())
+                .map(|i| i + pos)
+            {
                 let end = t[start..]
                     .iter()
                     .position(|b| !(b.is_ascii_digit() || *b == b'.'))
@@ -438,7 +461,9 @@ fn mutated_programs_never_crash_or_hang() {
     let next = AtomicUsize::new(0);
     let failures = Mutex::new(Vec::<String>::new());
     let slowest = Mutex::new(Duration::ZERO);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get()).clamp(2, 4);
+    let workers = std::thread::available_parallelism()
+        .map_or(2, |n| n.get())
+        .clamp(2, 4);
     std::thread::scope(|s| {
         for _ in 0..workers {
             s.spawn(|| loop {
@@ -521,7 +546,11 @@ fn crash_fixtures_stay_fixed() {
                 settings.variant = variant;
                 let analysis = analyzer::analyze(bytes.clone(), &settings);
                 for d in &analysis.diagnostics {
-                    assert!(d.span.end as usize <= bytes.len(), "{}: {d:?}", path.display());
+                    assert!(
+                        d.span.end as usize <= bytes.len(),
+                        "{}: {d:?}",
+                        path.display()
+                    );
                 }
             }
         }
