@@ -168,7 +168,9 @@ fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
 /// The planner segment of a motion; `index` is stored as the segment's block so
 /// timings map back to motions.
 pub fn segment_of(m: &Motion, index: u32) -> Segment {
-    let mode = if m.exact_stop {
+    let mode = if m.exact_path {
+        PathMode::ExactPath
+    } else if m.exact_stop {
         PathMode::ExactStop
     } else {
         PathMode::Blend {
