@@ -184,6 +184,20 @@ fn evaluate() -> Vec<Row> {
                     rises += 1;
                 }
             }
+            if std::env::var("PLAN_DEBUG").as_deref() == Ok(program) {
+                for t in res.timings.iter().take(40) {
+                    println!(
+                        "  blk {} blend {} len {:.4} v0 {:.2} vp {:.2} ve {:.2} dt {:.4}",
+                        t.block,
+                        t.blend,
+                        t.length,
+                        t.entry_speed,
+                        t.peak_speed,
+                        t.exit_speed,
+                        t.end_s - t.start_s
+                    );
+                }
+            }
             let arcs = res.timings.iter().filter(|t| t.blend).count();
             let stops = res.timings.iter().filter(|t| t.exit_speed == 0.0).count();
             println!(

@@ -120,6 +120,8 @@ pub struct Planner {
     /// Time the next element may start before the previous one ends (parabolic blend).
     overlap: f64,
     totals: Totals,
+    /// Straight feed moves held back by the `linuxcnc` model's naive-CAM detector.
+    chain: Vec<Segment>,
 }
 
 impl Planner {
@@ -143,6 +145,7 @@ impl Planner {
             run_start: 0.0,
             overlap: 0.0,
             totals: Totals::default(),
+            chain: Vec::new(),
         }
     }
 
@@ -155,8 +158,14 @@ impl Planner {
     pub fn push(&mut self, ev: Event, out: &mut dyn FnMut(SegmentTiming)) {
         match ev {
             Event::Motion(seg) => {
-                if let Some(tc) = self.build(&seg) {
-                    self.add(tc, out);
+                if self.lcnc() && chainable(&seg) {
+                    if !self.chain.is_empty() && !self.linkable(&seg) {
+                        self.flush_chain(out);
+                    }
+                    self.chain.push(seg);
+                } else {
+                    self.flush_chain(out);
+                    self.add_segment(&seg, out);
                 }
             }
             Event::Dwell { seconds, .. } => {
@@ -185,14 +194,67 @@ impl Planner {
 
     /// Runs out the queue and returns the totals.
     pub fn finish(mut self, out: &mut dyn FnMut(SegmentTiming)) -> Totals {
+        self.flush_chain(out);
         self.flush(out);
         let t = &mut self.totals;
         t.cycle_time_s = t.motion_s + t.dwell_s + t.tool_change_s + t.other_s;
         self.totals
     }
 
+    fn add_segment(&mut self, seg: &Segment, out: &mut dyn FnMut(SegmentTiming)) {
+        if let Some(tc) = self.build(seg) {
+            self.add(tc, out);
+        }
+    }
+
+    /// LinuxCNC's canonical layer joins consecutive G64 P… straight moves into one
+    /// while every intermediate point stays within the tolerance (its "naive CAM
+    /// detector", Q defaulting to P), up to 100 points.
+    fn linkable(&self, seg: &Segment) -> bool {
+        let Some(first) = self.chain.first() else {
+            return false;
+        };
+        let last = &self.chain[self.chain.len() - 1];
+        if self.chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
+            return false;
+        }
+        let PathMode::Blend { tolerance } = seg.mode else {
+            return false;
+        };
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [seg.end[0], seg.end[1], seg.end[2]];
+        if b == e {
+            return false;
+        }
+        let m = sub3(&e, &b);
+        let mm = dot3(&m, &m);
+        self.chain.iter().all(|p| {
+            let pt = [p.end[0], p.end[1], p.end[2]];
+            let t0 = (dot3(&m, &sub3(&pt, &b)) / mm).clamp(0.0, 1.0);
+            let q = [b[0] + t0 * m[0], b[1] + t0 * m[1], b[2] + t0 * m[2]];
+            norm3(&sub3(&pt, &q)) <= tolerance
+        })
+    }
+
+    /// Sends the held-back moves on as one straight move.
+    fn flush_chain(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        if self.chain.is_empty() {
+            return;
+        }
+        let first = self.chain[0];
+        let last = self.chain[self.chain.len() - 1];
+        self.chain.clear();
+        let mut seg = last;
+        seg.start = first.start;
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [last.end[0], last.end[1], last.end[2]];
+        seg.length = norm3(&sub3(&e, &b));
+        self.add_segment(&seg, out);
+    }
+
     /// Brings motion to a stop at the end of the queued path and executes it.
     fn flush(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        self.flush_chain(out);
         // LinuxCNC leaves the last move's junction type alone (a G64 move keeps its
         // halved acceleration); its final speed is zero either way.
         if !self.lcnc() {
@@ -1037,6 +1099,13 @@ impl Planner {
             .map(|a| a.jerk)
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// A straight feed move of the linear axes in G64 with a tolerance.
+fn chainable(seg: &Segment) -> bool {
+    matches!(seg.kind, SegmentKind::Line)
+        && matches!(seg.mode, PathMode::Blend { tolerance } if tolerance > 0.0)
+        && seg.start[3..] == seg.end[3..]
 }
 
 fn set_term(prev: &mut Tc, tc: Option<&mut Tc>, term: Term) {
