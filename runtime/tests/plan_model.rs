@@ -492,3 +492,42 @@ fn servo_simulation_reproduces_expected_md() {
     ];
     assert_ms(motion(&m, circle), 6.504);
 }
+
+#[test]
+fn naive_cam_joins_nearly_straight_g64p_moves() {
+    let m = lcnc_machine();
+    let pts = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.004, 0.0],
+        [2.0, 0.0, 0.0],
+        [3.0, 0.003, 0.0],
+    ];
+    let segs = |tol: f64| -> Vec<Event> {
+        (0..3)
+            .map(|i| {
+                Event::Motion(
+                    Segment::line(
+                        pts[i],
+                        pts[i + 1],
+                        f(3000.0),
+                        PathMode::Blend { tolerance: tol },
+                    )
+                    .with_block(i as u32),
+                )
+            })
+            .collect()
+    };
+    // P0.01: all points lie within 0.01 mm of the chord, so one straight move.
+    let joined = plan(&m, segs(0.01));
+    assert_eq!(joined.timings.len(), 1);
+    assert_eq!(joined.timings[0].block, 2);
+    let chord = (9.0f64 + 0.003 * 0.003).sqrt();
+    assert!((joined.timings[0].length - chord).abs() < 1e-12);
+    // Without P nothing is joined: two blend arcs, and the middle move is so short
+    // after both blends trimmed it that the second blend swallows its rest.
+    let apart = plan(&m, segs(0.0));
+    let kinds: Vec<(u32, bool)> = apart.timings.iter().map(|t| (t.block, t.blend)).collect();
+    assert_eq!(kinds, vec![(0, false), (0, true), (1, true), (2, false)]);
+    // P0.001 is tighter than the 0.004 mm bump: no joining either.
+    assert!(plan(&m, segs(0.001)).timings.len() > 1);
+}
