@@ -108,3 +108,23 @@ lines = ["G21 G90 G17 G64 P0.05", "F2400"]
 for i in range(1, 121):
     lines.append("G1 X%s Y%s" % (fmt(i * 0.25), "0.5" if i % 2 else "0"))
 write("poly_zigzag_g64p005", lines)
+
+
+def walk(n, lengths, turns):
+    x = y = h = 0.0
+    pts = []
+    for i in range(n):
+        h += math.radians(turns(i))
+        step = lengths(i)
+        x += step * math.cos(h)
+        y += step * math.sin(h)
+        pts.append("G1 X%s Y%s" % (fmt(x), fmt(y)))
+    return pts
+
+
+# Alternating 30° turns with varying lengths: blend arcs swallow most lines here.
+rng = random.Random(4)
+write("walk_randlen_alt30_g64", ["G21 G90 G17 G64", "F6000"]
+      + walk(150, lambda i: rng.uniform(0.2, 1.0), lambda i: 30 if i % 2 else -30))
+write("walk_len4_alt30_g64", ["G21 G90 G17 G64", "F6000"]
+      + walk(120, lambda i: [0.4, 0.5, 0.6, 0.7][i % 4], lambda i: 30 if i % 2 else -30))
