@@ -675,6 +675,9 @@ impl Planner {
         let consume = prev.ty == TcType::Line
             && !prev.blend_prev
             && l_prev / v_plan < GAP_CYCLES * self.cycle;
+        // A swallowed rest of the previous line becomes a straight lead-in of the
+        // blend element, run under the blend's limits.
+        let length = s_arc + if consume { l_prev.max(0.0) } else { 0.0 };
         let arc = Tc {
             ty: TcType::Blend,
             rapid: prev.rapid,
@@ -683,10 +686,10 @@ impl Planner {
             u_start: u1,
             u_end: u2,
             radius: r_plan,
-            target: s_arc,
-            nominal: s_arc,
+            target: length,
+            nominal: length,
             reqvel: v_req,
-            maxvel: v_plan.min(s_arc / self.cycle),
+            maxvel: v_plan.min(length / self.cycle),
             maxaccel: a_max,
             term: Term::Tangent,
             tolerance: prev.tolerance,
