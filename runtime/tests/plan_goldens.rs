@@ -288,7 +288,7 @@ fn goldens_match_linuxcnc() {
         naive.iter().cloned().fold(0.0, f64::max) * 100.0
     );
     // Straight moves and arcs in exact-path mode are reproduced to the servo period,
-    // G64 corners and squares to 2 ms.
+    // G64 corners (line-line, line-arc, arc-line, arc-arc) and squares to 2 ms.
     for r in &rows {
         let err = (r.ours - r.lcnc).abs();
         let exact = r.program.starts_with("line_")
@@ -299,10 +299,6 @@ fn goldens_match_linuxcnc() {
             || r.program.ends_with("_g61");
         let (limit, why) = if exact {
             (0.0015, "exact")
-        } else if r.program == "arc_then_line_g64" {
-            // FIXME: arc-to-line blends use the line-line blend geometry (LinuxCNC
-            // builds them differently); we are 8-24 ms fast.
-            (0.025, "arc-line blend")
         } else if r.program.starts_with("poly_") || r.program.starts_with("walk_") {
             // Chains of short blended moves: within 2 ms, except walk_len4_alt30_g64 on
             // the mixed machine (16 ms fast, 0.5 %; FIXME: cause not found).

@@ -128,3 +128,10 @@ write("walk_randlen_alt30_g64", ["G21 G90 G17 G64", "F6000"]
       + walk(150, lambda i: rng.uniform(0.2, 1.0), lambda i: 30 if i % 2 else -30))
 write("walk_len4_alt30_g64", ["G21 G90 G17 G64", "F6000"]
       + walk(120, lambda i: [0.4, 0.5, 0.6, 0.7][i % 4], lambda i: 30 if i % 2 else -30))
+
+# Corners between lines and arcs in G64 (LinuxCNC builds dedicated blend arcs).
+write("line_then_arc_g64", ["G21 G90 G17 G64", "G1 X20 F3000", "G3 X40 Y0 I10 J0", "G1 Y20"])
+write("arc_arc_g64p01", ["G21 G90 G17 G64 P0.1", "G1 X10 F3000", "G2 X30 Y0 I10 J0",
+                         "G2 X50 Y0 I10 J0", "G1 X60"])
+write("arc_then_line_g64p001", ["G21 G90 G17 G64 P0.01", "G0 X10",
+                                "G2 X10 Y0 I-10 J0 F3000", "G1 X30"])

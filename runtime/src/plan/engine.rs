@@ -55,6 +55,8 @@ struct Tc {
     u_start: [f64; 3],
     u_end: [f64; 3],
     radius: f64,
+    /// Geometry of a planar arc (None for lines, helices and blends).
+    circ: Option<Circ>,
     target: f64,
     nominal: f64,
     reqvel: f64,
@@ -318,6 +320,7 @@ impl Planner {
             u_start: unit3(&dxyz),
             u_end: unit3(&dxyz),
             radius: 0.0,
+            circ: None,
             target: 0.0,
             nominal: 0.0,
             reqvel: 0.0,
@@ -430,6 +433,27 @@ impl Planner {
                 };
                 tc.u_start = tangent(&s3);
                 tc.u_end = tangent(&e3);
+                if rise.abs() < 1e-9 {
+                    let n_eff = if sweep >= 0.0 {
+                        n
+                    } else {
+                        [-n[0], -n[1], -n[2]]
+                    };
+                    let r0 = sub3(&s3, &center);
+                    let along = dot3(&r0, &n);
+                    let c_plane = [
+                        center[0] + along * n[0],
+                        center[1] + along * n[1],
+                        center[2] + along * n[2],
+                    ];
+                    tc.circ = Some(Circ {
+                        center: c_plane,
+                        normal: n_eff,
+                        start: s3,
+                        angle: sweep.abs(),
+                        radius,
+                    });
+                }
                 if !lcnc {
                     tc.acc_ratio_tan = 1.0;
                     tc.maxaccel = tc.maxaccel.min(a_axes);
@@ -575,18 +599,26 @@ impl Planner {
             return (None, false);
         }
         if !prev.finalized && !tc.finalized {
-            if let Some((arc, trim, consume)) = self.blend_arc(prev, tc) {
-                let perf_arc = arc.maxvel;
+            if let Some(b) = self.blend_arc(prev, tc) {
+                let perf_arc = b.arc.maxvel;
                 let perf_par = self.parabolic_performance(prev, tc) / 2.0;
                 let perf_tan = prev.kink_vel;
                 if perf_arc > perf_par && perf_arc > perf_tan {
                     remove_kink(prev, tc);
-                    tc.target = (tc.target - trim).max(0.0);
-                    set_term(prev, Some(tc), Term::Tangent);
-                    if !consume {
-                        prev.target = (prev.target - trim).max(0.0);
+                    tc.target = (tc.target - b.trim_next).max(0.0);
+                    if let Some(c) = b.next_circ {
+                        tc.circ = Some(c);
+                        tc.u_start = c.tangent(0.0);
                     }
-                    return (Some(arc), consume);
+                    set_term(prev, Some(tc), Term::Tangent);
+                    if !b.consume {
+                        prev.target = (prev.target - b.trim_prev).max(0.0);
+                        if let Some(c) = b.prev_circ {
+                            prev.circ = Some(c);
+                            prev.u_end = c.tangent(c.angle);
+                        }
+                    }
+                    return (Some(b.arc), b.consume);
                 }
             }
         }
@@ -601,16 +633,42 @@ impl Planner {
         (None, false)
     }
 
-    /// `tpCreateLineLineBlend` (also used, as an approximation, when an arc is
-    /// involved): the blend arc, the length it trims from each move, and whether
-    /// the rest of the previous move is short enough to be swallowed.
-    fn blend_arc(&self, prev: &Tc, tc: &Tc) -> Option<(Tc, f64, bool)> {
+    /// Builds the blend element for a G64 corner (`tpCreate…Blend`): line-line,
+    /// arc-line and line-arc corners follow LinuxCNC; arc-arc corners use the
+    /// line-line construction on the tangents as an approximation.
+    fn blend_arc(&self, prev: &Tc, tc: &Tc) -> Option<Blend> {
+        match (prev.ty, tc.ty, &prev.circ, &tc.circ) {
+            (TcType::Circle, TcType::Line, Some(c), _) => self.blend_arc_line(prev, tc, c),
+            (TcType::Line, TcType::Circle, _, Some(c)) => self.blend_line_arc(prev, tc, c),
+            _ => self.blend_line_line(prev, tc),
+        }
+    }
+
+    /// `blendGeom3Init`: tangents at the corner, intersection half-angle, binormal.
+    fn corner_geometry(prev: &Tc, tc: &Tc) -> Option<Corner> {
         let u1 = prev.u_end;
         let u2 = tc.u_start;
         let theta = (-dot3(&u1, &u2)).clamp(-1.0, 1.0).acos() / 2.0;
         if PI / 2.0 - theta < ANGLE_EPS || theta < ANGLE_EPS {
             return None;
         }
+        Some((u1, u2, theta, unit3(&cross3(&u1, &u2))))
+    }
+
+    /// `blendParamKinematics` + `blendComputeParameters`. `u1`, `u2` are the
+    /// directions used for the speed triangle (secants for convex arcs).
+    #[allow(clippy::too_many_arguments)]
+    fn blend_params(
+        &self,
+        prev: &Tc,
+        tc: &Tc,
+        u1: &[f64; 3],
+        u2: &[f64; 3],
+        binormal: &[f64; 3],
+        theta: f64,
+        l1: f64,
+        l2: f64,
+    ) -> Option<BlendParams> {
         let phi = PI - 2.0 * theta;
         let t1 = if prev.tolerance == 0.0 {
             prev.nominal * 0.25
@@ -623,14 +681,12 @@ impl Planner {
             tc.tolerance
         };
         let tolerance = t1.min(t2).min(prev.nominal * 0.25).min(tc.nominal * 0.25);
-        let binormal = unit3(&cross3(&u1, &u2));
         let acc_b = [self.acc[0], self.acc[1], self.acc[2]];
         let vel_b = [self.vel[0], self.vel[1], self.vel[2]];
-        let a_max = inscribed(&binormal, &acc_b);
+        let a_max = inscribed(binormal, &acc_b);
         let a_n_max = a_max * acc_ratio_normal();
         let v_req = prev.max_target_vel().max(tc.max_target_vel());
-        let mut v_goal = v_req;
-        let v_planar_max = inscribed(&binormal, &vel_b);
+        let v_planar_max = inscribed(binormal, &vel_b);
         let phi_eff = phi.min(PI * 0.49);
         let v_max1 = prev.maxvel.min(tc.maxvel / phi_eff.cos());
         let v_max2 = tc.maxvel.min(prev.maxvel / phi_eff.cos());
@@ -645,10 +701,7 @@ impl Planner {
         if prev.ty != TcType::Line || tc.ty != TcType::Line {
             v_alt = 0.0;
         }
-        v_goal = v_goal.min(v_alt.max(v_planar_max));
-        let l1 = prev.target.min(prev.nominal * 0.5);
-        let l2 = tc.target * 0.5;
-        // blendComputeParameters
+        let v_goal = v_req.min(v_alt.max(v_planar_max));
         let h_tol = tolerance / (1.0 - theta.sin());
         let d_tol = theta.cos() * h_tol;
         let d_geom = l1.min(l2).min(d_tol);
@@ -671,26 +724,33 @@ impl Planner {
         {
             return None;
         }
-        let l_prev = prev.target - d_plan;
-        let consume = prev.ty == TcType::Line
-            && !prev.blend_prev
-            && l_prev / v_plan < GAP_CYCLES * self.cycle;
-        // A swallowed rest of the previous line becomes a straight lead-in of the
-        // blend element, run under the blend's limits.
-        let length = s_arc + if consume { l_prev.max(0.0) } else { 0.0 };
-        let arc = Tc {
+        Some(BlendParams {
+            tolerance,
+            a_max,
+            v_req,
+            v_plan,
+            r_plan,
+            d_plan,
+            s_arc,
+        })
+    }
+
+    /// The blend element itself (`tpInitBlendArcFromPrev`).
+    fn blend_tc(&self, prev: &Tc, bp: &BlendParams, length: f64, u1: [f64; 3], u2: [f64; 3]) -> Tc {
+        Tc {
             ty: TcType::Blend,
             rapid: prev.rapid,
             rotary: false,
             pure_rotary: false,
             u_start: u1,
             u_end: u2,
-            radius: r_plan,
+            radius: bp.r_plan,
+            circ: None,
             target: length,
             nominal: length,
-            reqvel: v_req,
-            maxvel: v_plan.min(length / self.cycle),
-            maxaccel: a_max,
+            reqvel: bp.v_req,
+            maxvel: bp.v_plan.min(length / self.cycle),
+            maxaccel: bp.a_max,
             term: Term::Tangent,
             tolerance: prev.tolerance,
             kink_vel: -1.0,
@@ -706,8 +766,196 @@ impl Planner {
             at_max: false,
             optimized: false,
             run: Run::default(),
+        }
+    }
+
+    /// `tpCreateLineLineBlend`.
+    fn blend_line_line(&self, prev: &Tc, tc: &Tc) -> Option<Blend> {
+        let (u1, u2, theta, binormal) = Self::corner_geometry(prev, tc)?;
+        let l1 = prev.target.min(prev.nominal * 0.5);
+        let l2 = tc.target * 0.5;
+        let bp = self.blend_params(prev, tc, &u1, &u2, &binormal, theta, l1, l2)?;
+        let l_prev = prev.target - bp.d_plan;
+        let consume = prev.ty == TcType::Line
+            && !prev.blend_prev
+            && l_prev / bp.v_plan < GAP_CYCLES * self.cycle;
+        // A swallowed rest of the previous line becomes a straight lead-in of the
+        // blend element (`arcFromBlendPoints3`), run under the blend's limits.
+        let length = bp.s_arc + if consume { l_prev.max(0.0) } else { 0.0 };
+        Some(Blend {
+            arc: self.blend_tc(prev, &bp, length, u1, u2),
+            trim_prev: bp.d_plan,
+            trim_next: bp.d_plan,
+            consume,
+            prev_circ: None,
+            next_circ: None,
+        })
+    }
+
+    /// `tpCreateArcLineBlend`: the arc is shortened at its end, the line at its start.
+    fn blend_arc_line(&self, prev: &Tc, tc: &Tc, c1: &Circ) -> Option<Blend> {
+        let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
+        let p = c1.point(c1.angle);
+        let center1 = c1.center;
+        let radius1 = c1.radius;
+        // Convex when the line leaves the circle's outside.
+        let convex1 = dot3(&sub3(&p, &center1), &u_tan2) < 0.0;
+        let blend_angle_1 = if convex1 { theta_tan } else { PI / 2.0 };
+        let phi1_max = (c1.angle * 2.0 / 3.0).min(blend_angle_1);
+        let mut theta = theta_tan;
+        let mut u1 = u_tan1;
+        if convex1 {
+            let bpnt = c1.point(c1.angle - phi1_max / 2.0);
+            u1 = unit3(&sub3(&p, &bpnt));
+            theta = theta.min(theta_tan - phi1_max / 4.0);
+        }
+        let l1 = if convex1 {
+            (phi1_max / 4.0).sin() * radius1
+        } else {
+            phi1_max * radius1
         };
-        Some((arc, d_plan, consume))
+        let l2 = tc.nominal / 2.0;
+        if !colinear(&binormal, &c1.normal) {
+            return None;
+        }
+        let bp = self.blend_params(prev, tc, &u1, &u_tan2, &binormal, theta, l1, l2)?;
+        // blendArcLinePostProcess: centre of the blend circle tangent to both.
+        let d1 = if convex1 { -bp.r_plan } else { bp.r_plan } + radius1;
+        let n2 = unit3(&cross3(&binormal, &u_tan2));
+        let r_pc1 = sub3(&center1, &p);
+        let c1_u = dot3(&r_pc1, &u_tan2);
+        let c1_n = dot3(&r_pc1, &n2);
+        let (root0, root1) = quadratic(
+            1.0,
+            2.0 * c1_u,
+            c1_u * c1_u - d1 * d1 + (bp.r_plan - c1_n).powi(2),
+        )?;
+        let d_l = root0.abs().min(root1.abs());
+        let r_pc = [
+            u_tan2[0] * d_l + n2[0] * bp.r_plan,
+            u_tan2[1] * d_l + n2[1] * bp.r_plan,
+            u_tan2[2] * d_l + n2[2] * bp.r_plan,
+        ];
+        let arc_center = [p[0] + r_pc[0], p[1] + r_pc[1], p[2] + r_pc[2]];
+        if norm3(&r_pc) - bp.r_plan > bp.tolerance {
+            return None;
+        }
+        let trim1 = trim_angle(&p, &arc_center, &center1);
+        if trim1 > phi1_max {
+            return None;
+        }
+        let new_angle = c1.angle - trim1;
+        if new_angle <= 0.0 || d_l >= tc.target {
+            return None;
+        }
+        let arc_start = c1.point(new_angle);
+        let line_start = [
+            p[0] + u_tan2[0] * d_l,
+            p[1] + u_tan2[1] * d_l,
+            p[2] + u_tan2[2] * d_l,
+        ];
+        let (length, t_start, t_end) =
+            spherical_arc(&arc_start, &line_start, &arc_center, &binormal)?;
+        // checkTangentAngle: the arc must leave the circle (nearly) tangentially.
+        let u_circ = c1.tangent(new_angle);
+        let angle = dot3(&u_circ, &t_start).clamp(-1.0, 1.0).acos();
+        let angle_max = acc_ratio_normal() * 0.25 * bp.a_max / (bp.v_plan / self.cycle).max(1e-12);
+        if angle > angle_max {
+            return None;
+        }
+        let mut prev_circ = *c1;
+        prev_circ.angle = new_angle;
+        Some(Blend {
+            arc: self.blend_tc(prev, &bp, length, t_start, t_end),
+            trim_prev: trim1 * radius1,
+            trim_next: d_l,
+            consume: false,
+            prev_circ: Some(prev_circ),
+            next_circ: None,
+        })
+    }
+
+    /// `tpCreateLineArcBlend`: the line is shortened at its end, the arc at its start.
+    fn blend_line_arc(&self, prev: &Tc, tc: &Tc, c2: &Circ) -> Option<Blend> {
+        let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
+        let p = c2.start;
+        let center2 = c2.center;
+        let radius2 = c2.radius;
+        let convex2 = dot3(&sub3(&p, &center2), &u_tan1) >= 0.0;
+        let blend_angle_2 = if convex2 { theta_tan } else { PI / 2.0 };
+        let phi2_max = (c2.angle / 3.0).min(blend_angle_2);
+        let mut theta = theta_tan;
+        let mut u2 = u_tan2;
+        if convex2 {
+            let bpnt = c2.point(phi2_max / 2.0);
+            u2 = unit3(&sub3(&bpnt, &p));
+            theta = theta.min(theta_tan - phi2_max / 4.0);
+        }
+        let l1 = prev.target.min(prev.nominal / 2.0);
+        let l2 = if convex2 {
+            (phi2_max / 4.0).sin() * radius2
+        } else {
+            phi2_max * radius2
+        };
+        if !colinear(&binormal, &c2.normal) {
+            return None;
+        }
+        let bp = self.blend_params(prev, tc, &u_tan1, &u2, &binormal, theta, l1, l2)?;
+        // blendLineArcPostProcess
+        let d2 = if convex2 { -bp.r_plan } else { bp.r_plan } + radius2;
+        let n1 = unit3(&cross3(&binormal, &u_tan1));
+        let r_pc2 = sub3(&center2, &p);
+        let c2_u = dot3(&r_pc2, &u_tan1);
+        let c2_n = dot3(&r_pc2, &n1);
+        let (root0, root1) = quadratic(
+            1.0,
+            2.0 * c2_u,
+            c2_u * c2_u - d2 * d2 + (bp.r_plan - c2_n).powi(2),
+        )?;
+        let d_l = root0.abs().min(root1.abs());
+        let r_pc = [
+            -u_tan1[0] * d_l + n1[0] * bp.r_plan,
+            -u_tan1[1] * d_l + n1[1] * bp.r_plan,
+            -u_tan1[2] * d_l + n1[2] * bp.r_plan,
+        ];
+        let arc_center = [p[0] + r_pc[0], p[1] + r_pc[1], p[2] + r_pc[2]];
+        if norm3(&r_pc) - bp.r_plan > bp.tolerance {
+            return None;
+        }
+        let trim2 = trim_angle(&p, &arc_center, &center2);
+        if trim2 > phi2_max || trim2 >= c2.angle {
+            return None;
+        }
+        let l_prev = prev.target - d_l;
+        let consume = !prev.blend_prev && l_prev / bp.v_plan < GAP_CYCLES * self.cycle;
+        if l_prev < 0.0 {
+            return None;
+        }
+        let line_end = [
+            p[0] - u_tan1[0] * d_l,
+            p[1] - u_tan1[1] * d_l,
+            p[2] - u_tan1[2] * d_l,
+        ];
+        let mut next_circ = *c2;
+        next_circ.start = c2.point(trim2);
+        next_circ.angle = c2.angle - trim2;
+        let (arc_len, t_start, t_end) =
+            spherical_arc(&line_end, &next_circ.start, &arc_center, &binormal)?;
+        let u_circ = next_circ.tangent(0.0);
+        let angle = dot3(&u_circ, &t_end).clamp(-1.0, 1.0).acos();
+        let angle_max = acc_ratio_normal() * 0.25 * bp.a_max / (bp.v_plan / self.cycle).max(1e-12);
+        if angle > angle_max {
+            return None;
+        }
+        let length = arc_len + if consume { l_prev } else { 0.0 };
+        Some(Blend {
+            arc: self.blend_tc(prev, &bp, length, t_start, t_end),
+            trim_prev: d_l,
+            trim_next: trim2 * radius2,
+            consume,
+            prev_circ: None,
+            next_circ: Some(next_circ),
+        })
     }
 
     /// `estimateParabolicBlendPerformance`: net speed through a parabolic blend.
@@ -1170,4 +1418,123 @@ fn pair_mut<'a>(
     } else {
         (&mut head[i], &mut tail[j - h])
     }
+}
+
+/// Tangent at the end of the first move, at the start of the second, the
+/// intersection half-angle, and the unit binormal of their plane.
+type Corner = ([f64; 3], [f64; 3], f64, [f64; 3]);
+
+/// A planar arc as the blend code sees it: it turns counter-clockwise about
+/// `normal` by `angle` from `start`.
+#[derive(Debug, Clone, Copy)]
+struct Circ {
+    center: [f64; 3],
+    normal: [f64; 3],
+    start: [f64; 3],
+    angle: f64,
+    radius: f64,
+}
+
+impl Circ {
+    /// Point reached after turning by `a` from the start (`pmCirclePoint`).
+    fn point(&self, a: f64) -> [f64; 3] {
+        let r = sub3(&self.start, &self.center);
+        let perp = cross3(&self.normal, &r);
+        let (s, c) = a.sin_cos();
+        [
+            self.center[0] + r[0] * c + perp[0] * s,
+            self.center[1] + r[1] * c + perp[1] * s,
+            self.center[2] + r[2] * c + perp[2] * s,
+        ]
+    }
+
+    /// Unit direction of travel after turning by `a`.
+    fn tangent(&self, a: f64) -> [f64; 3] {
+        let r = sub3(&self.start, &self.center);
+        let perp = cross3(&self.normal, &r);
+        let (s, c) = a.sin_cos();
+        unit3(&[
+            -r[0] * s + perp[0] * c,
+            -r[1] * s + perp[1] * c,
+            -r[2] * s + perp[2] * c,
+        ])
+    }
+}
+
+/// Result of a blend construction: the element to insert and what it removes
+/// from its neighbours.
+struct Blend {
+    arc: Tc,
+    /// Length removed from the end of the previous move.
+    trim_prev: f64,
+    /// Length removed from the start of the next move.
+    trim_next: f64,
+    consume: bool,
+    prev_circ: Option<Circ>,
+    next_circ: Option<Circ>,
+}
+
+/// The blend parameters LinuxCNC derives for a corner.
+struct BlendParams {
+    tolerance: f64,
+    a_max: f64,
+    v_req: f64,
+    v_plan: f64,
+    r_plan: f64,
+    d_plan: f64,
+    s_arc: f64,
+}
+
+/// Parallel or anti-parallel unit vectors (`pmUnitCartsColinear`).
+fn colinear(a: &[f64; 3], b: &[f64; 3]) -> bool {
+    let d = sub3(a, b);
+    let s = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+    dot3(&d, &d) < ANGLE_EPS * ANGLE_EPS || dot3(&s, &s) < ANGLE_EPS * ANGLE_EPS
+}
+
+/// Real roots of `a·x² + b·x + c`.
+fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let t = disc.sqrt();
+    Some(((-b + t) / (2.0 * a), (-b - t) / (2.0 * a)))
+}
+
+/// Angle at `center` between the corner point and the blend centre (`findTrimAngle`).
+fn trim_angle(p: &[f64; 3], arc_center: &[f64; 3], center: &[f64; 3]) -> f64 {
+    let up = unit3(&sub3(p, center));
+    let uc = unit3(&sub3(arc_center, center));
+    dot3(&uc, &up).clamp(-1.0, 1.0).acos()
+}
+
+/// `arcInitFromPoints` + `arcTangent`: length of the blend arc from `start` to
+/// `end` about `center`, and its unit tangents at both ends.
+fn spherical_arc(
+    start: &[f64; 3],
+    end: &[f64; 3],
+    center: &[f64; 3],
+    binormal: &[f64; 3],
+) -> Option<(f64, [f64; 3], [f64; 3])> {
+    let r0 = sub3(start, center);
+    let r1 = sub3(end, center);
+    let (m0, m1) = (norm3(&r0), norm3(&r1));
+    if m0 < 1e-12 || m1 < 1e-12 {
+        return None;
+    }
+    let angle = (dot3(&r0, &r1) / (m0 * m1)).clamp(-1.0, 1.0).acos();
+    if angle < 1e-6 {
+        return None;
+    }
+    let dr = (m1 - m0) / angle;
+    let tan = |r: &[f64; 3], m: f64| {
+        let t = cross3(binormal, r);
+        unit3(&[
+            t[0] + r[0] / m * dr,
+            t[1] + r[1] / m * dr,
+            t[2] + r[2] / m * dr,
+        ])
+    };
+    Some((m0 * angle, tan(&r0, m0), tan(&r1, m1)))
 }
