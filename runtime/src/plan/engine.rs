@@ -1203,7 +1203,8 @@ impl Planner {
                 break;
             }
         }
-        let time = cycles as f64 * cycle;
+        // A control that needs a minimum time per block cannot run shorter elements.
+        let time = (cycles as f64 * cycle).max(self.p.block_processing_time);
         let end = start + time;
         self.t = end;
         let v_end = if tc.term == Term::Tangent {
