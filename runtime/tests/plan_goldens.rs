@@ -5,7 +5,6 @@
 //! so this test reads them with a deliberately tiny reader instead of the
 //! interpreter; the lead's integration replaces it with the real interpreter.
 
-use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 use runtime::machine::{Axis, MachineProfile};
