@@ -164,7 +164,7 @@ fn evaluate() -> Vec<Row> {
         let (program, mname, lcnc) = (f[0], f[1], f[2].parse::<f64>().expect("motion_s"));
         let text = std::fs::read_to_string(root().join("programs").join(format!("{program}.ngc")))
             .expect("program");
-        let mut profile = machine(mname);
+        let profile = machine(mname);
         let dbg_machine = std::env::var("PLAN_DEBUG_MACHINE").unwrap_or_default();
         let events = read_program(&text);
         let segs: Vec<Segment> = events
