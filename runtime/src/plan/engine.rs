@@ -640,6 +640,9 @@ impl Planner {
         match (prev.ty, tc.ty, &prev.circ, &tc.circ) {
             (TcType::Circle, TcType::Line, Some(c), _) => self.blend_arc_line(prev, tc, c),
             (TcType::Line, TcType::Circle, _, Some(c)) => self.blend_line_arc(prev, tc, c),
+            // A helix is not coplanar with its neighbour's corner plane, so LinuxCNC
+            // builds no blend arc for it.
+            (TcType::Circle, _, None, _) | (_, TcType::Circle, _, None) => None,
             _ => self.blend_line_line(prev, tc),
         }
     }

@@ -31,7 +31,8 @@
 //!   jerk-limited ramps.
 //!
 //! Known gaps of the `linuxcnc` model: arc-arc corners use the line-line blend
-//! construction on the tangents; helical arcs are never blended with an arc; the
+//! construction on the tangents; helices at G64 corners get a parabolic or tangent
+//! junction, never a blend arc (as in LinuxCNC, but not checked against it); the
 //! parabolic blend (only used when no blend arc can be built, e.g. with rotary axes)
 //! is approximated; spindle-synchronised motion (G33, G76, rigid tapping) and
 //! feed override changes are not modelled.
