@@ -530,3 +530,14 @@ fn naive_cam_joins_nearly_straight_g64p_moves() {
     // P0.001 is tighter than the 0.004 mm bump: no joining either.
     assert!(plan(&m, segs(0.001)).timings.len() > 1);
 }
+
+#[test]
+fn absurdly_slow_feed_finishes_quickly() {
+    // 1 m at 0.001 mm/min would be 60 million seconds: planned in closed form.
+    let m = lcnc_machine();
+    let t = motion(
+        &m,
+        vec![Segment::line([0.0; 3], [1000.0, 0.0, 0.0], f(0.001), G61)],
+    );
+    assert!((t - 6.0e7).abs() / 6.0e7 < 1e-6, "{t}");
+}

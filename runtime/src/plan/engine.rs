@@ -24,6 +24,8 @@ const RAMP_CUTOFF_S: f64 = 0.01;
 /// Minimum number of servo cycles per optimised segment (`TP_MIN_SEGMENT_CYCLES`).
 const MIN_SEGMENT_CYCLES: f64 = 1.02;
 const POS_EPS: f64 = 1e-12;
+/// Longest element (in servo periods at its target speed) run period by period.
+const MAX_SERVO_CYCLES: f64 = 1e7;
 const ANGLE_EPS: f64 = 1e-6;
 
 fn acc_ratio_normal() -> f64 {
@@ -1137,7 +1139,13 @@ impl Planner {
 
     /// Executes the oldest queued element.
     fn execute_front(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
-        if self.lcnc() && self.p.servo_simulation {
+        // Servo periods cost machine time; an absurdly slow move (a feed of a few
+        // µm/min over metres) would take billions of them, so it runs in closed form.
+        let servo_ok = self.queue.front().is_some_and(|tc| {
+            let v = self.real_target_vel(tc);
+            v > 0.0 && tc.target / v / self.cycle < MAX_SERVO_CYCLES
+        });
+        if self.lcnc() && self.p.servo_simulation && servo_ok {
             self.execute_front_servo(out);
         } else {
             self.execute_front_analytic(out);
@@ -1151,6 +1159,10 @@ impl Planner {
         };
         let cycle = self.cycle;
         let start = self.t;
+        if !tc.run.active && tc.run.progress == 0.0 && tc.run.currentvel == 0.0 {
+            // Entered from a closed-form element (or from rest).
+            tc.run.currentvel = self.v_cur;
+        }
         let v0 = tc.run.currentvel;
         let view = self.view(&tc);
         // A move that cannot move (zero feed) is skipped rather than run forever.
@@ -1216,6 +1228,9 @@ impl Planner {
             0.0
         };
         self.v_cur = v_end;
+        if v_end <= 0.0 {
+            self.run_start = end;
+        }
         self.account(&tc, start, end, time, v0, tc.run.peak, v_end, out);
     }
 
