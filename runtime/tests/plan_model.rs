@@ -541,3 +541,107 @@ fn absurdly_slow_feed_finishes_quickly() {
     );
     assert!((t - 6.0e7).abs() / 6.0e7 < 1e-6, "{t}");
 }
+
+/// Deterministic pseudo-random numbers for the robustness test.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn random_programs_plan_to_finite_monotonic_times() {
+    for (model, servo) in [
+        (PlannerModel::Linuxcnc, true),
+        (PlannerModel::Linuxcnc, false),
+        (PlannerModel::Trapezoid, false),
+        (PlannerModel::Scurve, false),
+    ] {
+        let mut m = lcnc_machine();
+        m.planner = model;
+        m.servo_simulation = servo;
+        m.axes.push(Axis::rotary('A', 360.0, 3600.0));
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let mut p = [0.0f64; 6];
+        let mut events = Vec::new();
+        for i in 0..3000u32 {
+            let r = rng.next();
+            let mode = match (rng.next() * 4.0) as u32 {
+                0 => PathMode::ExactStop,
+                1 => PathMode::ExactPath,
+                2 => PathMode::Blend { tolerance: 0.0 },
+                _ => PathMode::Blend {
+                    tolerance: rng.next() * 0.1,
+                },
+            };
+            let scale = if rng.next() < 0.5 { 0.05 } else { 20.0 };
+            let mut q = p;
+            for v in q.iter_mut().take(3) {
+                *v += (rng.next() - 0.5) * scale;
+            }
+            if rng.next() < 0.1 {
+                q[3] += (rng.next() - 0.5) * 90.0;
+            }
+            let feed = 1.0 + rng.next() * 150.0;
+            let mut seg = if r < 0.1 {
+                Segment::rapid([p[0], p[1], p[2]], [q[0], q[1], q[2]], mode)
+            } else if r < 0.3 {
+                let c = [
+                    p[0] + (rng.next() - 0.5) * scale,
+                    p[1] + (rng.next() - 0.5) * scale,
+                    p[2],
+                ];
+                let sweep = (rng.next() - 0.5) * 4.0 * std::f64::consts::PI;
+                let rise = if rng.next() < 0.2 { rng.next() } else { 0.0 };
+                let s = Segment::arc(
+                    [p[0], p[1], p[2]],
+                    c,
+                    [0.0, 0.0, 1.0],
+                    sweep,
+                    rise,
+                    feed,
+                    mode,
+                );
+                q = [s.end[0], s.end[1], s.end[2], p[3], p[4], p[5]];
+                s
+            } else {
+                Segment::line([p[0], p[1], p[2]], [q[0], q[1], q[2]], feed, mode)
+            };
+            seg.start[3] = p[3];
+            seg.end[3] = q[3];
+            events.push(Event::Motion(seg.with_block(i)));
+            if rng.next() < 0.01 {
+                events.push(Event::Dwell {
+                    seconds: 0.1,
+                    block: i,
+                });
+            }
+            p = q;
+        }
+        let r = plan(&m, events);
+        let t = &r.totals;
+        assert!(
+            t.motion_s.is_finite() && t.motion_s > 0.0,
+            "{model:?}: {t:?}"
+        );
+        assert!((t.rapid_s + t.cutting_s - t.motion_s).abs() < 1e-6);
+        assert!((t.cycle_time_s - t.motion_s - t.dwell_s).abs() < 1e-6);
+        let mut last_end = 0.0;
+        for s in &r.timings {
+            assert!(
+                s.start_s.is_finite() && s.end_s >= s.start_s,
+                "{model:?}: {s:?}"
+            );
+            assert!(
+                s.end_s >= last_end - 1e-9,
+                "{model:?}: time went back at {s:?}"
+            );
+            assert!(s.peak_speed.is_finite() && s.peak_speed >= 0.0);
+            last_end = s.end_s;
+        }
+    }
+}
