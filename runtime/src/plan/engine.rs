@@ -1214,6 +1214,23 @@ impl Planner {
             let next_t = self.queue.front().map(|n| self.real_target_vel(n));
             servo::update_cycle(&mut tc.run, &view, next_t, cycle);
             cycles += 1;
+            if tc.term == Term::Parabolic {
+                // Parabolic blend: once this element decelerates below the blend
+                // speed, the next one starts moving in the same periods.
+                if let Some(next) = self.queue.front() {
+                    let (blend_vel, _, _) = self.parabolic_blend_vel(&tc, next);
+                    tc.run.blending_next |= tc.run.on_final_decel && tc.run.currentvel < blend_vel;
+                    if tc.run.blending_next {
+                        let nv = self.view(next);
+                        if let Some(next) = self.queue.front_mut() {
+                            if next.run.cycle_time == 0.0 {
+                                next.run.cycle_time = cycle;
+                            }
+                            servo::update_cycle(&mut next.run, &nv, None, cycle);
+                        }
+                    }
+                }
+            }
             if tc.run.remove {
                 break;
             }
