@@ -23,7 +23,7 @@
 //!   the previous line, joining of nearly collinear G64 P moves (the "naive CAM"
 //!   detector), the optimisation depth and lazy cut-off of the backward pass, and by
 //!   default execution period by period with LinuxCNC's velocity update, ramps and
-//!   split cycles ([`MachineProfile::servo_simulation`]). All 129 measured goldens
+//!   split cycles ([`MachineProfile::servo_simulation`]). All 133 measured goldens
 //!   in `tests/cycle_time` are reproduced within 1 ms.
 //! * `trapezoid` and `scurve` are generic look-ahead planners: corner speed from
 //!   the blend tolerance (the largest arc that stays within it), full tangential
@@ -33,9 +33,9 @@
 //! Known gaps of the `linuxcnc` model: arc-arc corners use the line-line blend
 //! construction on the tangents; helices at G64 corners get a parabolic or tangent
 //! junction, never a blend arc (as in LinuxCNC, but not checked against it); the
-//! parabolic blend (only used when no blend arc can be built, e.g. with rotary axes)
-//! is approximated; spindle-synchronised motion (G33, G76, rigid tapping) and
-//! feed override changes are not modelled.
+//! closed-form execution approximates parabolic blends (used when no blend arc can
+//! be built, e.g. with rotary axes) and ramp decisions; spindle-synchronised motion
+//! (G33, G76, rigid tapping) and feed override changes are not modelled.
 
 mod engine;
 pub mod profile;
