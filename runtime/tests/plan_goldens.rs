@@ -21,6 +21,13 @@ fn root() -> PathBuf {
 
 /// The machines of regenerate.sh.
 fn machine(name: &str) -> MachineProfile {
+    if name == "inch" {
+        // Read from the INI LinuxCNC ran with (4 in/s, 40 in/s² per axis).
+        let ini = include_str!("../../tests/cycle_time/machines/inch.ini");
+        let (p, extras) = MachineProfile::from_linuxcnc_ini(ini).expect("inch.ini");
+        assert_eq!(extras.linear_units.as_deref(), Some("inch"));
+        return p;
+    }
     let mut p = MachineProfile::default_for(analyzer::Dialect::Rs274ngc);
     let (xa, ya, za) = match name {
         "m100" => ((100.0, 1000.0), (100.0, 1000.0), (100.0, 1000.0)),

@@ -28,10 +28,20 @@ run m100 "--vel 100 --acc 1000" "${xyz[@]}"
 run m60 "--vel 60 --acc 800" "${xyz[@]}"
 run mixed "--vel 100 --acc 1000 --axis Y=50,500 --axis Z=20,200" "${xyz[@]}"
 run rot "--coords XYZA --vel 100 --acc 1000" "${rot[@]}"
+# An inch machine (4 in/s, 40 in/s²); the test reads its generated INI with
+# MachineProfile::from_linuxcnc_ini, so that file is kept (paths made relative).
+keep=$(mktemp -d)
+inch=(line_x20_f3000 corner090_g64 inch_square_g64 arc_r5_f1200_full poly_zigzag_g64p005 rapid_xyz)
+inch_paths=()
+for n in "${inch[@]}"; do inch_paths+=("$HERE/programs/$n.ngc"); done
+run inch "--units inch --vel 4 --acc 40 --keep $keep" "${inch_paths[@]}"
+mkdir -p "$HERE/machines"
+sed "s|$keep|.|g" "$keep/sim.ini" > "$HERE/machines/inch.ini"
+rm -rf "$keep"
 
 {
   printf 'program\tmachine\tmotion_s\n'
-  for m in m100 m60 mixed rot; do
+  for m in m100 m60 mixed rot inch; do
     awk -F'\t' -v m="$m" 'NR > 1 && $2 == "ok" { sub(/^.*\//, "", $1); sub(/\.ngc$/, "", $1); printf "%s\t%s\t%s\n", $1, m, $3 }' "$HERE/raw/$m.tsv"
   done
 } > "$HERE/goldens.tsv"

@@ -23,7 +23,7 @@
 //!   the previous line, joining of nearly collinear G64 P moves (the "naive CAM"
 //!   detector), the optimisation depth and lazy cut-off of the backward pass, and by
 //!   default execution period by period with LinuxCNC's velocity update, ramps and
-//!   split cycles ([`MachineProfile::servo_simulation`]). All 133 measured goldens
+//!   split cycles ([`MachineProfile::servo_simulation`]). All 139 measured goldens
 //!   in `tests/cycle_time` are reproduced within 1 ms.
 //! * `trapezoid` and `scurve` are generic look-ahead planners: corner speed from
 //!   the blend tolerance (the largest arc that stays within it), full tangential
