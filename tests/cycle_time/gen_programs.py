@@ -146,3 +146,5 @@ lines = ["G21 G90 G17 G64", "F2400"]
 for i in range(1, 41):
     lines.append("G1 X%s Y%s A%s" % (fmt(i * 1.0), "1" if i % 2 else "0", fmt(i * 2.0)))
 write("rot_zigzag_g64", lines)
+write("arc_arc_corner_g64", ["G21 G90 G17 G64", "G1 X10 F3000", "G3 X20 Y10 I0 J10",
+                             "G2 X30 Y0 I0 J-10", "G1 X40"])

@@ -636,12 +636,15 @@ impl Planner {
     }
 
     /// Builds the blend element for a G64 corner (`tpCreate…Blend`): line-line,
-    /// arc-line and line-arc corners follow LinuxCNC; arc-arc corners use the
-    /// line-line construction on the tangents as an approximation.
+    /// arc-line, line-arc and arc-arc corners follow LinuxCNC; corners next to
+    /// other curves use the line-line construction on the tangents.
     fn blend_arc(&self, prev: &Tc, tc: &Tc) -> Option<Blend> {
         match (prev.ty, tc.ty, &prev.circ, &tc.circ) {
             (TcType::Circle, TcType::Line, Some(c), _) => self.blend_arc_line(prev, tc, c),
             (TcType::Line, TcType::Circle, _, Some(c)) => self.blend_line_arc(prev, tc, c),
+            (TcType::Circle, TcType::Circle, Some(c1), Some(c2)) => {
+                self.blend_arc_arc(prev, tc, c1, c2)
+            }
             // A helix is not coplanar with its neighbour's corner plane, so LinuxCNC
             // builds no blend arc for it.
             (TcType::Circle, _, None, _) | (_, TcType::Circle, _, None) => None,
@@ -877,6 +880,127 @@ impl Planner {
             consume: false,
             prev_circ: Some(prev_circ),
             next_circ: None,
+        })
+    }
+
+    /// `tpCreateArcArcBlend`: the first arc is shortened at its end, the second at
+    /// its start.
+    fn blend_arc_arc(&self, prev: &Tc, tc: &Tc, c1: &Circ, c2: &Circ) -> Option<Blend> {
+        if !colinear(&c1.normal, &c2.normal) {
+            return None;
+        }
+        let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
+        let normal = unit3(&sub3(&u_tan2, &u_tan1));
+        let p = c2.start;
+        let (center1, radius1) = (c1.center, c1.radius);
+        let (center2, radius2) = (c2.center, c2.radius);
+        let convex1 = dot3(&sub3(&p, &center1), &u_tan2) < 0.0;
+        let convex2 = dot3(&sub3(&p, &center2), &u_tan1) >= 0.0;
+        let blend_angle_1 = if convex1 { theta_tan } else { PI / 2.0 };
+        let blend_angle_2 = if convex2 { theta_tan } else { PI / 2.0 };
+        let phi1_max = (c1.angle * 2.0 / 3.0).min(blend_angle_1);
+        let phi2_max = (c2.angle / 3.0).min(blend_angle_2);
+        let mut theta = theta_tan;
+        let (mut u1, mut u2) = (u_tan1, u_tan2);
+        if convex1 {
+            let bpnt = c1.point(c1.angle - phi1_max / 2.0);
+            u1 = unit3(&sub3(&p, &bpnt));
+            theta = theta.min(theta_tan - phi1_max / 4.0);
+        }
+        if convex2 {
+            let bpnt = c2.point(phi2_max / 2.0);
+            u2 = unit3(&sub3(&bpnt, &p));
+            theta = theta.min(theta_tan - phi2_max / 4.0);
+        }
+        if theta < PI / 12.0 {
+            return None;
+        }
+        let l1 = if convex1 {
+            (phi1_max / 4.0).sin() * radius1
+        } else {
+            phi1_max * radius1
+        };
+        let l2 = if convex2 {
+            (phi2_max / 4.0).sin() * radius2
+        } else {
+            phi2_max * radius2
+        };
+        if !colinear(&binormal, &c1.normal) || !colinear(&binormal, &c2.normal) {
+            return None;
+        }
+        let bp = self.blend_params(prev, tc, &u1, &u2, &binormal, theta, l1, l2)?;
+        // blendArcArcPostProcess: the blend circle's centre is at distance d1 from
+        // the first centre and d2 from the second.
+        let d1 = if convex1 { -bp.r_plan } else { bp.r_plan } + radius1;
+        let d2 = if convex2 { -bp.r_plan } else { bp.r_plan } + radius2;
+        let r_c1c2 = sub3(&center2, &center1);
+        let c2x = norm3(&r_c1c2);
+        if c2x < 1e-12 {
+            return None;
+        }
+        let cx = (-d1 * d1 + d2 * d2 - c2x * c2x) / (-2.0 * c2x);
+        let cy = (d1 * d1 - cx * cx).sqrt();
+        if cy.is_nan() {
+            return None;
+        }
+        let uc = unit3(&r_c1c2);
+        let mut nc = cross3(&binormal, &uc);
+        if dot3(&normal, &nc) < 0.0 {
+            nc = [-nc[0], -nc[1], -nc[2]];
+        }
+        let nc = unit3(&nc);
+        let c_x = [uc[0] * cx, uc[1] * cx, uc[2] * cx];
+        let mut c_y = [nc[0] * cy, nc[1] * cy, nc[2] * cy];
+        let r_pc1 = sub3(&center1, &p);
+        let base = [r_pc1[0] + c_x[0], r_pc1[1] + c_x[1], r_pc1[2] + c_x[2]];
+        let t1 = [base[0] + c_y[0], base[1] + c_y[1], base[2] + c_y[2]];
+        let t2 = [base[0] - c_y[0], base[1] - c_y[1], base[2] - c_y[2]];
+        if norm3(&t2) < norm3(&t1) {
+            c_y = [-c_y[0], -c_y[1], -c_y[2]];
+        }
+        let arc_center = [
+            center1[0] + c_x[0] + c_y[0],
+            center1[1] + c_x[1] + c_y[1],
+            center1[2] + c_x[2] + c_y[2],
+        ];
+        if norm3(&sub3(&arc_center, &p)) - bp.r_plan > bp.tolerance {
+            return None;
+        }
+        let trim1 = trim_angle(&p, &arc_center, &center1);
+        let trim2 = trim_angle(&p, &arc_center, &center2);
+        if trim1 > phi1_max || trim2 > phi2_max {
+            return None;
+        }
+        let new1 = c1.angle - trim1;
+        let new2 = c2.angle - trim2;
+        if new1 <= 0.0 || new2 <= 0.0 {
+            return None;
+        }
+        let mut prev_circ = *c1;
+        prev_circ.angle = new1;
+        let mut next_circ = *c2;
+        next_circ.start = c2.point(trim2);
+        next_circ.angle = new2;
+        let arc_start = prev_circ.point(new1);
+        let (length, t_start, t_end) =
+            spherical_arc(&arc_start, &next_circ.start, &arc_center, &binormal)?;
+        let angle_max = acc_ratio_normal() * 0.25 * bp.a_max / (bp.v_plan / self.cycle).max(1e-12);
+        let a1 = dot3(&prev_circ.tangent(new1), &t_start)
+            .clamp(-1.0, 1.0)
+            .acos();
+        let a2 = dot3(&next_circ.tangent(0.0), &t_end)
+            .clamp(-1.0, 1.0)
+            .acos();
+        if a1 > angle_max || a2 > angle_max {
+            return None;
+        }
+        Some(Blend {
+            arc: self.blend_tc(prev, &bp, length, t_start, t_end),
+            trim_prev: trim1 * radius1,
+            trim_next: trim2 * radius2,
+            consume: false,
+            prev_circ: Some(prev_circ),
+            next_circ: Some(next_circ),
         })
     }
 
