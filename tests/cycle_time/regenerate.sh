@@ -2,9 +2,15 @@
 # Regenerates goldens.tsv by running the programs in programs/ through the real
 # LinuxCNC 2.9 trajectory planner (measure_cycle_time.sh) on each validation machine.
 # Real time (--speedup 1) is used because faster runs can starve the motion queue.
-# Takes about 6 minutes.
+# Takes about 6 minutes. Run it on an otherwise idle machine: LinuxCNC runs without
+# real-time scheduling here, and under heavy load (load average above the number of
+# cores) the task queues moves late, which makes a few blended corners 1-3 ms slower.
 # Usage: tests/cycle_time/regenerate.sh [path/to/measure_cycle_time.sh]
 set -euo pipefail
+load=$(cut -d' ' -f1 /proc/loadavg)
+if awk -v l="$load" -v n="$(nproc)" 'BEGIN { exit !(l > n) }'; then
+  echo "regenerate.sh: warning: load average $load exceeds $(nproc) cores; results may be slow by a few ms" >&2
+fi
 HERE=$(cd "$(dirname "$0")" && pwd)
 MEASURE=${1:-/work/shared/oracle/measure_cycle_time.sh}
 python3 "$HERE/gen_programs.py"
