@@ -125,6 +125,7 @@ pub struct MachineProfile {
     /// Time charged for a program stop (M0) or optional stop (M1), s.
     pub program_stop_time: f64,
     /// Settling time added at every exact stop (FANUC in-position check), s.
+    /// Applied by the generic models and the closed-form `linuxcnc` execution.
     pub in_position_time: f64,
     pub planner: PlannerModel,
     /// Number of segments the planner looks ahead (LinuxCNC

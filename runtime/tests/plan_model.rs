@@ -645,3 +645,38 @@ fn random_programs_plan_to_finite_monotonic_times() {
         }
     }
 }
+
+#[test]
+fn rapid_rate_and_in_position_time_in_generic_models() {
+    let mut m = MachineProfile::default_for(analyzer::Dialect::Fanuc);
+    assert_eq!(m.planner, PlannerModel::Trapezoid);
+    for a in &mut m.axes {
+        a.rapid_rate = 50.0;
+    }
+    m.in_position_time = 0.25;
+    let r = plan(
+        &m,
+        vec![
+            Event::Motion(Segment::rapid(
+                [0.0; 3],
+                [100.0, 0.0, 0.0],
+                PathMode::ExactStop,
+            )),
+            Event::Motion(Segment::line(
+                [100.0, 0.0, 0.0],
+                [50.0, 0.0, 0.0],
+                f(3000.0),
+                PathMode::ExactStop,
+            )),
+        ],
+    );
+    // Rapid at 50 mm/s: 100/50 + 50/1000; feed: 50/50 + 50/1000; two settles.
+    assert!(
+        (r.totals.motion_s - (2.05 + 1.05)).abs() < 1e-9,
+        "{:?}",
+        r.totals
+    );
+    assert!((r.totals.other_s - 0.5).abs() < 1e-12);
+    assert!((r.totals.cycle_time_s - 3.6).abs() < 1e-9);
+    assert!((r.timings[1].start_s - 2.3).abs() < 1e-9);
+}

@@ -117,6 +117,8 @@ pub struct Planner {
     p: MachineProfile,
     model: PlannerModel,
     vel: [f64; 6],
+    /// Per-axis rapid rates (G0), X Y Z A B C.
+    rapid: [f64; 6],
     acc: [f64; 6],
     cycle: f64,
     depth: usize,
@@ -134,6 +136,12 @@ pub struct Planner {
 impl Planner {
     pub fn new(profile: &MachineProfile) -> Planner {
         let (vel, acc) = profile.xyzabc_limits();
+        let rapid: [f64; 6] = std::array::from_fn(|i| {
+            profile
+                .axis(['X', 'Y', 'Z', 'A', 'B', 'C'][i])
+                .map(|a| a.rapid_rate)
+                .unwrap_or(0.0)
+        });
         let cycle = if profile.servo_period > 0.0 {
             profile.servo_period
         } else {
@@ -143,6 +151,7 @@ impl Planner {
             p: profile.clone(),
             model: profile.planner,
             vel,
+            rapid,
             acc,
             cycle,
             depth: profile.lookahead.max(1) as usize,
@@ -354,7 +363,9 @@ impl Planner {
                     return None;
                 }
                 let dtot = if cart { xyz_len } else { abc_len };
-                let tv = axis_time(&self.vel, sel);
+                // G0 runs each axis at most at its rapid rate (LinuxCNC: the same as
+                // its maximum velocity).
+                let tv = axis_time(if rapid { &self.rapid } else { &self.vel }, sel);
                 let ta = axis_time(&self.acc, sel);
                 let vmax = if tv > 0.0 {
                     dtot / tv
@@ -1007,6 +1018,12 @@ impl Planner {
         self.t = end;
         self.v_cur = v_end;
         self.account(&tc, start, end, added, v0, v_peak, v_end, out);
+        if v_end <= 0.0 && self.overlap == 0.0 && self.p.in_position_time > 0.0 {
+            // Settling into the in-position window before the next block starts.
+            self.t += self.p.in_position_time;
+            self.run_start = self.t;
+            self.totals.other_s += self.p.in_position_time;
+        }
     }
 
     /// Adds an executed element to the totals and reports it.

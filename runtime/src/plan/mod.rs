@@ -85,7 +85,9 @@ pub enum PathMode {
     /// LinuxCNC G61 ("exact path"): stop at corners, run through tangent joints.
     ExactPath,
     /// Continuous path (G64): round the corner within `tolerance` mm
-    /// (0 = as much as the geometry allows).
+    /// (0 = as much as the geometry allows). In the `linuxcnc` model a non-zero
+    /// tolerance is also the naive-CAM tolerance (LinuxCNC's Q, which defaults to P):
+    /// consecutive straight feed moves that stay within it are joined into one.
     Blend { tolerance: f64 },
 }
 
