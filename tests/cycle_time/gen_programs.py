@@ -108,3 +108,43 @@ lines = ["G21 G90 G17 G64 P0.05", "F2400"]
 for i in range(1, 121):
     lines.append("G1 X%s Y%s" % (fmt(i * 0.25), "0.5" if i % 2 else "0"))
 write("poly_zigzag_g64p005", lines)
+
+
+def walk(n, lengths, turns):
+    x = y = h = 0.0
+    pts = []
+    for i in range(n):
+        h += math.radians(turns(i))
+        step = lengths(i)
+        x += step * math.cos(h)
+        y += step * math.sin(h)
+        pts.append("G1 X%s Y%s" % (fmt(x), fmt(y)))
+    return pts
+
+
+# Alternating 30° turns with varying lengths: blend arcs swallow most lines here.
+rng = random.Random(4)
+write("walk_randlen_alt30_g64", ["G21 G90 G17 G64", "F6000"]
+      + walk(150, lambda i: rng.uniform(0.2, 1.0), lambda i: 30 if i % 2 else -30))
+write("walk_len4_alt30_g64", ["G21 G90 G17 G64", "F6000"]
+      + walk(120, lambda i: [0.4, 0.5, 0.6, 0.7][i % 4], lambda i: 30 if i % 2 else -30))
+
+# Corners between lines and arcs in G64 (LinuxCNC builds dedicated blend arcs).
+write("line_then_arc_g64", ["G21 G90 G17 G64", "G1 X20 F3000", "G3 X40 Y0 I10 J0", "G1 Y20"])
+write("arc_arc_g64p01", ["G21 G90 G17 G64 P0.1", "G1 X10 F3000", "G2 X30 Y0 I10 J0",
+                         "G2 X50 Y0 I10 J0", "G1 X60"])
+write("arc_then_line_g64p001", ["G21 G90 G17 G64 P0.01", "G0 X10",
+                                "G2 X10 Y0 I-10 J0 F3000", "G1 X30"])
+
+# Moves with a rotary axis (machine "rot": XYZA). LinuxCNC never builds blend arcs
+# for them: G64 uses parabolic blends.
+write("rot_only_g61", ["G21 G90 G17 G61", "G1 A90 F3600", "G1 A0"])
+write("rot_mixed_g61", ["G21 G90 G17 G61", "G1 X20 A45 F1200", "G1 X40 A0"])
+write("rot_mixed_g64", ["G21 G90 G17 G64", "G1 X20 A45 F1200", "G1 X40 A0",
+                        "G1 X40 Y20 A30", "G1 X0 Y0 A0"])
+lines = ["G21 G90 G17 G64", "F2400"]
+for i in range(1, 41):
+    lines.append("G1 X%s Y%s A%s" % (fmt(i * 1.0), "1" if i % 2 else "0", fmt(i * 2.0)))
+write("rot_zigzag_g64", lines)
+write("arc_arc_corner_g64", ["G21 G90 G17 G64", "G1 X10 F3000", "G3 X20 Y10 I0 J10",
+                             "G2 X30 Y0 I0 J-10", "G1 X40"])

@@ -8,10 +8,13 @@ use std::f64::consts::PI;
 
 use super::profile::{scurve_penalty, trapezoid};
 use super::servo::{self, Run, View};
+
+mod blend;
 use super::{
     cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel, Segment,
     SegmentKind, SegmentTiming, Totals,
 };
+use blend::Circ;
 
 /// Share of the acceleration arcs keep for the tangential direction until LinuxCNC
 /// finalises them (`BLEND_ACC_RATIO_TANGENTIAL`).
@@ -24,6 +27,8 @@ const RAMP_CUTOFF_S: f64 = 0.01;
 /// Minimum number of servo cycles per optimised segment (`TP_MIN_SEGMENT_CYCLES`).
 const MIN_SEGMENT_CYCLES: f64 = 1.02;
 const POS_EPS: f64 = 1e-12;
+/// Longest element (in servo periods at its target speed) run period by period.
+const MAX_SERVO_CYCLES: f64 = 1e7;
 const ANGLE_EPS: f64 = 1e-6;
 
 fn acc_ratio_normal() -> f64 {
@@ -55,6 +60,8 @@ struct Tc {
     u_start: [f64; 3],
     u_end: [f64; 3],
     radius: f64,
+    /// Geometry of a planar arc (None for lines, helices and blends).
+    circ: Option<Circ>,
     target: f64,
     nominal: f64,
     reqvel: f64,
@@ -110,6 +117,8 @@ pub struct Planner {
     p: MachineProfile,
     model: PlannerModel,
     vel: [f64; 6],
+    /// Per-axis rapid rates (G0), X Y Z A B C.
+    rapid: [f64; 6],
     acc: [f64; 6],
     cycle: f64,
     depth: usize,
@@ -120,11 +129,19 @@ pub struct Planner {
     /// Time the next element may start before the previous one ends (parabolic blend).
     overlap: f64,
     totals: Totals,
+    /// Straight feed moves held back by the `linuxcnc` model's naive-CAM detector.
+    chain: Vec<Segment>,
 }
 
 impl Planner {
     pub fn new(profile: &MachineProfile) -> Planner {
         let (vel, acc) = profile.xyzabc_limits();
+        let rapid: [f64; 6] = std::array::from_fn(|i| {
+            profile
+                .axis(['X', 'Y', 'Z', 'A', 'B', 'C'][i])
+                .map(|a| a.rapid_rate)
+                .unwrap_or(0.0)
+        });
         let cycle = if profile.servo_period > 0.0 {
             profile.servo_period
         } else {
@@ -134,6 +151,7 @@ impl Planner {
             p: profile.clone(),
             model: profile.planner,
             vel,
+            rapid,
             acc,
             cycle,
             depth: profile.lookahead.max(1) as usize,
@@ -143,6 +161,7 @@ impl Planner {
             run_start: 0.0,
             overlap: 0.0,
             totals: Totals::default(),
+            chain: Vec::new(),
         }
     }
 
@@ -155,8 +174,14 @@ impl Planner {
     pub fn push(&mut self, ev: Event, out: &mut dyn FnMut(SegmentTiming)) {
         match ev {
             Event::Motion(seg) => {
-                if let Some(tc) = self.build(&seg) {
-                    self.add(tc, out);
+                if self.lcnc() && chainable(&seg) {
+                    if !self.chain.is_empty() && !self.linkable(&seg) {
+                        self.flush_chain(out);
+                    }
+                    self.chain.push(seg);
+                } else {
+                    self.flush_chain(out);
+                    self.add_segment(&seg, out);
                 }
             }
             Event::Dwell { seconds, .. } => {
@@ -185,14 +210,67 @@ impl Planner {
 
     /// Runs out the queue and returns the totals.
     pub fn finish(mut self, out: &mut dyn FnMut(SegmentTiming)) -> Totals {
+        self.flush_chain(out);
         self.flush(out);
         let t = &mut self.totals;
         t.cycle_time_s = t.motion_s + t.dwell_s + t.tool_change_s + t.other_s;
         self.totals
     }
 
+    fn add_segment(&mut self, seg: &Segment, out: &mut dyn FnMut(SegmentTiming)) {
+        if let Some(tc) = self.build(seg) {
+            self.add(tc, out);
+        }
+    }
+
+    /// LinuxCNC's canonical layer joins consecutive G64 P… straight moves into one
+    /// while every intermediate point stays within the tolerance (its "naive CAM
+    /// detector", Q defaulting to P), up to 100 points.
+    fn linkable(&self, seg: &Segment) -> bool {
+        let Some(first) = self.chain.first() else {
+            return false;
+        };
+        let last = &self.chain[self.chain.len() - 1];
+        if self.chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
+            return false;
+        }
+        let PathMode::Blend { tolerance } = seg.mode else {
+            return false;
+        };
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [seg.end[0], seg.end[1], seg.end[2]];
+        if b == e {
+            return false;
+        }
+        let m = sub3(&e, &b);
+        let mm = dot3(&m, &m);
+        self.chain.iter().all(|p| {
+            let pt = [p.end[0], p.end[1], p.end[2]];
+            let t0 = (dot3(&m, &sub3(&pt, &b)) / mm).clamp(0.0, 1.0);
+            let q = [b[0] + t0 * m[0], b[1] + t0 * m[1], b[2] + t0 * m[2]];
+            norm3(&sub3(&pt, &q)) <= tolerance
+        })
+    }
+
+    /// Sends the held-back moves on as one straight move.
+    fn flush_chain(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        if self.chain.is_empty() {
+            return;
+        }
+        let first = self.chain[0];
+        let last = self.chain[self.chain.len() - 1];
+        self.chain.clear();
+        let mut seg = last;
+        seg.start = first.start;
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [last.end[0], last.end[1], last.end[2]];
+        seg.length = norm3(&sub3(&e, &b));
+        self.add_segment(&seg, out);
+    }
+
     /// Brings motion to a stop at the end of the queued path and executes it.
     fn flush(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        self.flush_chain(out);
         // LinuxCNC leaves the last move's junction type alone (a G64 move keeps its
         // halved acceleration); its final speed is zero either way.
         if !self.lcnc() {
@@ -256,6 +334,7 @@ impl Planner {
             u_start: unit3(&dxyz),
             u_end: unit3(&dxyz),
             radius: 0.0,
+            circ: None,
             target: 0.0,
             nominal: 0.0,
             reqvel: 0.0,
@@ -284,7 +363,9 @@ impl Planner {
                     return None;
                 }
                 let dtot = if cart { xyz_len } else { abc_len };
-                let tv = axis_time(&self.vel, sel);
+                // G0 runs each axis at most at its rapid rate (LinuxCNC: the same as
+                // its maximum velocity).
+                let tv = axis_time(if rapid { &self.rapid } else { &self.vel }, sel);
                 let ta = axis_time(&self.acc, sel);
                 let vmax = if tv > 0.0 {
                     dtot / tv
@@ -368,6 +449,27 @@ impl Planner {
                 };
                 tc.u_start = tangent(&s3);
                 tc.u_end = tangent(&e3);
+                if rise.abs() < 1e-9 {
+                    let n_eff = if sweep >= 0.0 {
+                        n
+                    } else {
+                        [-n[0], -n[1], -n[2]]
+                    };
+                    let r0 = sub3(&s3, &center);
+                    let along = dot3(&r0, &n);
+                    let c_plane = [
+                        center[0] + along * n[0],
+                        center[1] + along * n[1],
+                        center[2] + along * n[2],
+                    ];
+                    tc.circ = Some(Circ {
+                        center: c_plane,
+                        normal: n_eff,
+                        start: s3,
+                        angle: sweep.abs(),
+                        radius,
+                    });
+                }
                 if !lcnc {
                     tc.acc_ratio_tan = 1.0;
                     tc.maxaccel = tc.maxaccel.min(a_axes);
@@ -513,18 +615,26 @@ impl Planner {
             return (None, false);
         }
         if !prev.finalized && !tc.finalized {
-            if let Some((arc, trim, consume)) = self.blend_arc(prev, tc) {
-                let perf_arc = arc.maxvel;
+            if let Some(b) = self.blend_arc(prev, tc) {
+                let perf_arc = b.arc.maxvel;
                 let perf_par = self.parabolic_performance(prev, tc) / 2.0;
                 let perf_tan = prev.kink_vel;
                 if perf_arc > perf_par && perf_arc > perf_tan {
                     remove_kink(prev, tc);
-                    tc.target = (tc.target - trim).max(0.0);
-                    set_term(prev, Some(tc), Term::Tangent);
-                    if !consume {
-                        prev.target = (prev.target - trim).max(0.0);
+                    tc.target = (tc.target - b.trim_next).max(0.0);
+                    if let Some(c) = b.next_circ {
+                        tc.circ = Some(c);
+                        tc.u_start = c.tangent(0.0);
                     }
-                    return (Some(arc), consume);
+                    set_term(prev, Some(tc), Term::Tangent);
+                    if !b.consume {
+                        prev.target = (prev.target - b.trim_prev).max(0.0);
+                        if let Some(c) = b.prev_circ {
+                            prev.circ = Some(c);
+                            prev.u_end = c.tangent(c.angle);
+                        }
+                    }
+                    return (Some(b.arc), b.consume);
                 }
             }
         }
@@ -537,112 +647,6 @@ impl Planner {
             set_term(prev, Some(tc), Term::Tangent);
         }
         (None, false)
-    }
-
-    /// `tpCreateLineLineBlend` (also used, as an approximation, when an arc is
-    /// involved): the blend arc, the length it trims from each move, and whether
-    /// the rest of the previous move is short enough to be swallowed.
-    fn blend_arc(&self, prev: &Tc, tc: &Tc) -> Option<(Tc, f64, bool)> {
-        let u1 = prev.u_end;
-        let u2 = tc.u_start;
-        let theta = (-dot3(&u1, &u2)).clamp(-1.0, 1.0).acos() / 2.0;
-        if PI / 2.0 - theta < ANGLE_EPS || theta < ANGLE_EPS {
-            return None;
-        }
-        let phi = PI - 2.0 * theta;
-        let t1 = if prev.tolerance == 0.0 {
-            prev.nominal * 0.25
-        } else {
-            prev.tolerance
-        };
-        let t2 = if tc.tolerance == 0.0 {
-            tc.nominal * 0.25
-        } else {
-            tc.tolerance
-        };
-        let tolerance = t1.min(t2).min(prev.nominal * 0.25).min(tc.nominal * 0.25);
-        let binormal = unit3(&cross3(&u1, &u2));
-        let acc_b = [self.acc[0], self.acc[1], self.acc[2]];
-        let vel_b = [self.vel[0], self.vel[1], self.vel[2]];
-        let a_max = inscribed(&binormal, &acc_b);
-        let a_n_max = a_max * acc_ratio_normal();
-        let v_req = prev.max_target_vel().max(tc.max_target_vel());
-        let mut v_goal = v_req;
-        let v_planar_max = inscribed(&binormal, &vel_b);
-        let phi_eff = phi.min(PI * 0.49);
-        let v_max1 = prev.maxvel.min(tc.maxvel / phi_eff.cos());
-        let v_max2 = tc.maxvel.min(prev.maxvel / phi_eff.cos());
-        let v_area = v_max1 * v_max2 / 2.0 * phi.sin();
-        let diff = [
-            u2[0] * v_max2 - u1[0] * v_max1,
-            u2[1] * v_max2 - u1[1] * v_max1,
-            u2[2] * v_max2 - u1[2] * v_max1,
-        ];
-        let base = norm3(&diff);
-        let mut v_alt = if base > 0.0 { 2.0 * v_area / base } else { 0.0 };
-        if prev.ty != TcType::Line || tc.ty != TcType::Line {
-            v_alt = 0.0;
-        }
-        v_goal = v_goal.min(v_alt.max(v_planar_max));
-        let l1 = prev.target.min(prev.nominal * 0.5);
-        let l2 = tc.target * 0.5;
-        // blendComputeParameters
-        let h_tol = tolerance / (1.0 - theta.sin());
-        let d_tol = theta.cos() * h_tol;
-        let d_geom = l1.min(l2).min(d_tol);
-        let r_geom = theta.tan() * d_geom;
-        let v_normal = (a_n_max * r_geom).sqrt();
-        let v_plan = v_normal.min(v_goal);
-        let a_par = a_max * 0.5;
-        let v_tri = (2.0 * a_par * d_geom).sqrt();
-        let t_blend = v_tri.min(v_plan) / a_par;
-        let s_blend = t_blend * v_plan;
-        let r_blend = (s_blend / phi).min(r_geom);
-        let r_plan = (v_plan * v_plan / a_n_max).max(r_blend);
-        let d_plan = r_plan / theta.tan();
-        let s_arc = r_plan * phi;
-        if r_plan.is_nan()
-            || r_plan < POS_EPS
-            || s_arc < 1e-6
-            || !v_plan.is_finite()
-            || v_plan <= 0.0
-        {
-            return None;
-        }
-        let l_prev = prev.target - d_plan;
-        let consume = prev.ty == TcType::Line
-            && !prev.blend_prev
-            && l_prev / v_plan < GAP_CYCLES * self.cycle;
-        let arc = Tc {
-            ty: TcType::Blend,
-            rapid: prev.rapid,
-            rotary: false,
-            pure_rotary: false,
-            u_start: u1,
-            u_end: u2,
-            radius: r_plan,
-            target: s_arc,
-            nominal: s_arc,
-            reqvel: v_req,
-            maxvel: v_plan.min(s_arc / self.cycle),
-            maxaccel: a_max,
-            term: Term::Tangent,
-            tolerance: prev.tolerance,
-            kink_vel: -1.0,
-            kink_reduce: 0.0,
-            kink_reduce_prev: 0.0,
-            blend_prev: false,
-            acc_ratio_tan: ACC_RATIO_TAN,
-            finalized: true,
-            finalvel: 0.0,
-            block: prev.block,
-            tool: prev.tool,
-            halve_parabolic: true,
-            at_max: false,
-            optimized: false,
-            run: Run::default(),
-        };
-        Some((arc, d_plan, consume))
     }
 
     /// `estimateParabolicBlendPerformance`: net speed through a parabolic blend.
@@ -821,7 +825,13 @@ impl Planner {
 
     /// Executes the oldest queued element.
     fn execute_front(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
-        if self.lcnc() && self.p.servo_simulation {
+        // Servo periods cost machine time; an absurdly slow move (a feed of a few
+        // µm/min over metres) would take billions of them, so it runs in closed form.
+        let servo_ok = self.queue.front().is_some_and(|tc| {
+            let v = self.real_target_vel(tc);
+            v > 0.0 && tc.target / v / self.cycle < MAX_SERVO_CYCLES
+        });
+        if self.lcnc() && self.p.servo_simulation && servo_ok {
             self.execute_front_servo(out);
         } else {
             self.execute_front_analytic(out);
@@ -835,6 +845,10 @@ impl Planner {
         };
         let cycle = self.cycle;
         let start = self.t;
+        if !tc.run.active && tc.run.progress == 0.0 && tc.run.currentvel == 0.0 {
+            // Entered from a closed-form element (or from rest).
+            tc.run.currentvel = self.v_cur;
+        }
         let v0 = tc.run.currentvel;
         let view = self.view(&tc);
         // A move that cannot move (zero feed) is skipped rather than run forever.
@@ -886,11 +900,29 @@ impl Planner {
             let next_t = self.queue.front().map(|n| self.real_target_vel(n));
             servo::update_cycle(&mut tc.run, &view, next_t, cycle);
             cycles += 1;
+            if tc.term == Term::Parabolic {
+                // Parabolic blend: once this element decelerates below the blend
+                // speed, the next one starts moving in the same periods.
+                if let Some(next) = self.queue.front() {
+                    let (blend_vel, _, _) = self.parabolic_blend_vel(&tc, next);
+                    tc.run.blending_next |= tc.run.on_final_decel && tc.run.currentvel < blend_vel;
+                    if tc.run.blending_next {
+                        let nv = self.view(next);
+                        if let Some(next) = self.queue.front_mut() {
+                            if next.run.cycle_time == 0.0 {
+                                next.run.cycle_time = cycle;
+                            }
+                            servo::update_cycle(&mut next.run, &nv, None, cycle);
+                        }
+                    }
+                }
+            }
             if tc.run.remove {
                 break;
             }
         }
-        let time = cycles as f64 * cycle;
+        // A control that needs a minimum time per block cannot run shorter elements.
+        let time = (cycles as f64 * cycle).max(self.p.block_processing_time);
         let end = start + time;
         self.t = end;
         let v_end = if tc.term == Term::Tangent {
@@ -899,6 +931,9 @@ impl Planner {
             0.0
         };
         self.v_cur = v_end;
+        if v_end <= 0.0 {
+            self.run_start = end;
+        }
         self.account(&tc, start, end, time, v0, tc.run.peak, v_end, out);
     }
 
@@ -983,6 +1018,12 @@ impl Planner {
         self.t = end;
         self.v_cur = v_end;
         self.account(&tc, start, end, added, v0, v_peak, v_end, out);
+        if v_end <= 0.0 && self.overlap == 0.0 && self.p.in_position_time > 0.0 {
+            // Settling into the in-position window before the next block starts.
+            self.t += self.p.in_position_time;
+            self.run_start = self.t;
+            self.totals.other_s += self.p.in_position_time;
+        }
     }
 
     /// Adds an executed element to the totals and reports it.
@@ -1039,6 +1080,13 @@ impl Planner {
     }
 }
 
+/// A straight feed move of the linear axes in G64 with a tolerance.
+fn chainable(seg: &Segment) -> bool {
+    matches!(seg.kind, SegmentKind::Line)
+        && matches!(seg.mode, PathMode::Blend { tolerance } if tolerance > 0.0)
+        && seg.start[3..] == seg.end[3..]
+}
+
 fn set_term(prev: &mut Tc, tc: Option<&mut Tc>, term: Term) {
     if let Some(tc) = tc {
         tc.blend_prev = term == Term::Parabolic;
@@ -1056,29 +1104,6 @@ fn remove_kink(prev: &mut Tc, tc: &mut Tc) {
     prev.kink_vel = -1.0;
     prev.kink_reduce = 0.0;
     tc.kink_reduce_prev = 0.0;
-}
-
-/// `calculateInscribedDiameter`: the largest vector length in the plane with
-/// unit normal `n` that stays within the per-axis `bounds` (0 = axis absent).
-fn inscribed(n: &[f64; 3], bounds: &[f64; 3]) -> f64 {
-    let mut extents = [0.0; 3];
-    for i in 0..3 {
-        let mut planar = [-n[0] * n[i], -n[1] * n[i], -n[2] * n[i]];
-        planar[i] += 1.0;
-        let mut p = planar.map(f64::abs);
-        p[i] = p[i].max(POS_EPS);
-        let scale = norm3(&p);
-        if bounds[i] != 0.0 {
-            extents[i] = bounds[i] / scale;
-        }
-    }
-    let mut d = extents[0].max(extents[1]).max(extents[2]);
-    for i in 0..3 {
-        if bounds[i] != 0.0 {
-            d = d.min(extents[i]);
-        }
-    }
-    d
 }
 
 /// Two distinct mutable elements `i < j` of a `VecDeque`'s slices.

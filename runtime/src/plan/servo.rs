@@ -18,6 +18,10 @@ pub(super) struct Run {
     pub ramp: bool,
     pub remove: bool,
     pub peak: f64,
+    /// The last update was limited by the deceleration towards the final speed.
+    pub on_final_decel: bool,
+    /// A parabolic blend into the next element has started (latched).
+    pub blending_next: bool,
 }
 
 /// What one cycle update needs to know about an element.
@@ -67,7 +71,7 @@ pub(super) fn update_cycle(r: &mut Run, v: &View, next_target: Option<f64>, cycl
         let acc = saturate((vf - r.currentvel) / dt, v.accel);
         acc_vel = Some((acc, vf));
     }
-    let (acc, _vel_desired) = acc_vel.unwrap_or_else(|| {
+    let (acc, vel_desired) = acc_vel.unwrap_or_else(|| {
         // Trapezoid: the highest speed from which the final speed is still reachable,
         // accounting for the one-period delay of the update.
         let a = v.accel;
@@ -97,6 +101,7 @@ pub(super) fn update_cycle(r: &mut Run, v: &View, next_target: Option<f64>, cycl
     }
     r.currentvel = v_next;
     r.peak = r.peak.max(v_next);
+    r.on_final_decel = (vel_desired - v_next).abs() < VEL_EPS && acc < 0.0;
     check_end(r, v, next_target, cycle);
 }
 
