@@ -190,13 +190,25 @@ pub fn run(args: RunArgs) -> ExitCode {
             None => Ok(None),
         }
     };
+    // Files named on the command line must exist; files an INI or config refers to
+    // are optional (a copied INI often names a tool table that is not beside it).
+    let explicit_tbl = args.tool_table.is_some();
+    let explicit_var = args.var_file.is_some();
     let tool_table = match read_opt(&tool_table_path) {
         Ok(t) => t,
-        Err(e) => return fail(e),
+        Err(e) if explicit_tbl => return fail(e),
+        Err(e) => {
+            eprintln!("partscope: warning: {e}; running without a tool table");
+            None
+        }
     };
     let var_file = match read_opt(&var_path) {
         Ok(t) => t,
-        Err(e) => return fail(e),
+        Err(e) if explicit_var => return fail(e),
+        Err(e) => {
+            eprintln!("partscope: warning: {e}; running without a parameter file");
+            None
+        }
     };
 
     let text: Arc<[u8]> = bytes.into();
