@@ -55,7 +55,7 @@ pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let mut program = Program {
         dialect: opts.dialect,
         text: text.clone(),
-        tokens: Vec::with_capacity(text.len() / 3 + 1),
+        tokens: Vec::with_capacity(text.len() / 2 + 1),
         blocks: Vec::with_capacity(text.len() / 16 + 1),
         items: Vec::with_capacity(text.len() / 5 + 1),
         exprs: Vec::new(),
@@ -84,7 +84,9 @@ pub struct Parser {
 /// Per-block working state.
 struct Cx<'p> {
     p: &'p mut Program,
-    text: Arc<[u8]>,
+    /// The file's text up to the end of this block's content: nothing a block
+    /// item reads lies beyond it, and one bound check covers both limits.
+    text: &'p [u8],
     pos: usize,
     /// Byte where the block ends (before its terminator).
     limit: usize,
@@ -133,17 +135,22 @@ impl Parser {
         let t = &self.text;
         let mut i = self.pos;
         let semicolon_ends = self.opts.dialect == Dialect::Fanuc;
-        // A comment may contain `;` without ending the block; parentheses do not span lines.
-        let mut in_comment = false;
-        while i < t.len() {
-            match t[i] {
-                b'\n' | b'\r' => break,
-                b'(' => in_comment = true,
-                b')' => in_comment = false,
-                b';' if semicolon_ends && !in_comment => break,
-                _ => {}
+        if !semicolon_ends {
+            // Only a line break ends the block: a vectorised search.
+            i = memchr::memchr2(b'\n', b'\r', &t[i..]).map_or(t.len(), |k| i + k);
+        } else {
+            // A comment may contain `;` without ending the block; parentheses do not span lines.
+            let mut in_comment = false;
+            while i < t.len() {
+                match t[i] {
+                    b'\n' | b'\r' => break,
+                    b'(' => in_comment = true,
+                    b')' => in_comment = false,
+                    b';' if !in_comment => break,
+                    _ => {}
+                }
+                i += 1;
             }
-            i += 1;
         }
         let content_end = i;
         let mut end = i;
@@ -191,7 +198,7 @@ impl Parser {
         let mut skip = None;
         let mut cx = Cx {
             p,
-            text: text.clone(),
+            text: &text[..content_end],
             pos: start,
             limit: content_end,
             dialect,
@@ -300,11 +307,7 @@ impl Parser {
 
 impl<'p> Cx<'p> {
     fn at(&self, i: usize) -> Option<u8> {
-        if i < self.limit {
-            self.text.get(i).copied()
-        } else {
-            None
-        }
+        self.text.get(i).copied()
     }
 
     fn peek(&self) -> Option<u8> {
@@ -691,8 +694,7 @@ impl<'p> Cx<'p> {
     fn number(&mut self, allow_sign: bool) -> Num {
         let start = self.pos;
         let inner_ws = self.dialect != Dialect::Servoworks;
-        let text = self.text.clone();
-        let t = &text[..self.limit.min(text.len())];
+        let t = self.text;
         let mut i = self.pos;
         let mut signed = false;
         let mut negative = false;
@@ -710,13 +712,20 @@ impl<'p> Cx<'p> {
         let mut bad = false;
         let mut had_ws = false;
         loop {
-            while i < t.len() && t[i].is_ascii_digit() {
-                mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
-                digits = digits.saturating_add(1);
-                if has_point {
-                    frac_digits += 1;
+            // Integer and fraction digits in separate loops keep the common path tight.
+            if !has_point {
+                while i < t.len() && t[i].is_ascii_digit() {
+                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
+                    digits = digits.saturating_add(1);
+                    i += 1;
                 }
-                i += 1;
+            } else {
+                while i < t.len() && t[i].is_ascii_digit() {
+                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
+                    digits = digits.saturating_add(1);
+                    frac_digits += 1;
+                    i += 1;
+                }
             }
             if i < t.len() && t[i] == b'.' {
                 // A second decimal point makes the literal malformed; keep consuming it.
@@ -764,27 +773,7 @@ impl<'p> Cx<'p> {
         };
         let value = match value {
             Some(v) if v.is_finite() => v,
-            _ => {
-                let what = if bad {
-                    "more than one decimal point in a number"
-                } else if digits == 0 {
-                    "no digits where a number should be"
-                } else {
-                    "number out of range"
-                };
-                let (code, span) = if end == start {
-                    (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
-                } else {
-                    (codes::MALFORMED_NUMBER, span)
-                };
-                self.diag(
-                    code,
-                    Severity::Error,
-                    span,
-                    format!("bad number format: {what}"),
-                );
-                f64::NAN
-            }
+            _ => self.bad_number(bad, digits, start, end),
         };
         Num {
             value,
@@ -793,6 +782,31 @@ impl<'p> Cx<'p> {
             signed,
             digits,
         }
+    }
+
+    /// Reports a number that cannot be read; kept out of line so the hot path stays small.
+    #[cold]
+    #[inline(never)]
+    fn bad_number(&mut self, bad: bool, digits: u16, start: usize, end: usize) -> f64 {
+        let what = if bad {
+            "more than one decimal point in a number"
+        } else if digits == 0 {
+            "no digits where a number should be"
+        } else {
+            "number out of range"
+        };
+        let (code, span) = if end == start {
+            (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
+        } else {
+            (codes::MALFORMED_NUMBER, Span::new(start as u32, end as u32))
+        };
+        self.diag(
+            code,
+            Severity::Error,
+            span,
+            format!("bad number format: {what}"),
+        );
+        f64::NAN
     }
 
     /// Reads a real value after a letter: number, `#…`, `[expr]`, function, signed forms.
@@ -1082,9 +1096,12 @@ impl<'p> Cx<'p> {
     /// An item starting with a letter: keyword statement, program head, O-word or word.
     fn letter_item(&mut self, first: bool) {
         let start = self.pos;
-        let mut j = self.pos;
-        while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
-            j += 1;
+        let mut j = self.pos + 1;
+        // Only FANUC and ServoWorks have multi-letter statements (IF, GOTO, WHILE …).
+        if self.dialect != Dialect::Rs274ngc {
+            while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                j += 1;
+            }
         }
         let run = Span::new(start as u32, j as u32).slice(&self.text);
         let c = run.first().map(|c| c.to_ascii_uppercase()).unwrap_or(b'?');
