@@ -55,7 +55,7 @@ fn surfacing(dialect: Dialect, lines: usize) -> Vec<u8> {
             y += 0.25;
             dir = -dir;
             let _ = writeln!(s, "Y{:.4} Z{:.4}", y, surface_z(x, y));
-        } else if n % 500 == 0 {
+        } else if n.is_multiple_of(500) {
             let _ = writeln!(s, "G1 X{:.4} Y{:.4} Z{:.4} F2000.", x, y, surface_z(x, y));
         } else {
             let _ = writeln!(s, "X{:.4} Z{:.4}", x, surface_z(x, y));

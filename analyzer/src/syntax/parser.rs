@@ -480,7 +480,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let span = Span::new(start as u32, self.pos as u32);
-        let text = String::from_utf8_lossy(span.slice(&self.text)).into_owned();
+        let text = String::from_utf8_lossy(span.slice(self.text)).into_owned();
         let sev = self.sev_for_unknown();
         let msg = match self.dialect {
             Dialect::Servoworks => format!(
@@ -550,7 +550,7 @@ impl<'p> Cx<'p> {
                 );
             }
         }
-        let kind = comment_kind(span.slice(&self.text));
+        let kind = comment_kind(span.slice(self.text));
         self.push_item(ItemKind::Comment(kind), start);
     }
 
@@ -560,7 +560,7 @@ impl<'p> Cx<'p> {
             Dialect::Rs274ngc => {
                 self.pos = self.limit;
                 self.token(start, TokenKind::LineComment);
-                let kind = comment_kind(Span::new(start as u32, self.pos as u32).slice(&self.text));
+                let kind = comment_kind(Span::new(start as u32, self.pos as u32).slice(self.text));
                 self.push_item(ItemKind::Comment(kind), start);
             }
             _ => {
@@ -917,7 +917,7 @@ impl<'p> Cx<'p> {
                     j += 1;
                 }
                 let w = Span::new(self.pos as u32, j as u32)
-                    .slice(&self.text)
+                    .slice(self.text)
                     .to_ascii_uppercase();
                 let op = match w.as_slice() {
                     b"MOD" => BinOp::Mod,
@@ -996,7 +996,7 @@ impl<'p> Cx<'p> {
         while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
             j += 1;
         }
-        let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text))
+        let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(self.text))
             .into_owned();
         let func = Func::from_name(&name).filter(|f| f.in_dialect(self.dialect));
         let Some(func) = func else {
@@ -1103,7 +1103,7 @@ impl<'p> Cx<'p> {
                 j += 1;
             }
         }
-        let run = Span::new(start as u32, j as u32).slice(&self.text);
+        let run = Span::new(start as u32, j as u32).slice(self.text);
         let c = run.first().map(|c| c.to_ascii_uppercase()).unwrap_or(b'?');
         match self.dialect {
             Dialect::Rs274ngc if c == b'O' => return self.oword(),
@@ -1185,7 +1185,7 @@ impl<'p> Cx<'p> {
             .rposition(|c| *c == b'\n' || *c == b'\r')
             .map(|i| i + 1)
             .unwrap_or(0);
-        let s = Span::new(line_start as u32, b.end).slice(&self.text);
+        let s = Span::new(line_start as u32, b.end).slice(self.text);
         let up: Vec<u8> = s.iter().map(|c| c.to_ascii_uppercase()).collect();
         up.windows(3)
             .enumerate()
@@ -1258,7 +1258,7 @@ impl<'p> Cx<'p> {
                     j += 1;
                 }
                 let name =
-                    String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text))
+                    String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(self.text))
                         .into_owned();
                 if Func::from_name(&name).is_some_and(|f| f.in_dialect(self.dialect))
                     && self.next_non_ws(j) == Some(b'[')
@@ -1297,7 +1297,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let name = Span::new(ns as u32, self.pos as u32);
-        let number = std::str::from_utf8(name.slice(&self.text))
+        let number = std::str::from_utf8(name.slice(self.text))
             .ok()
             .and_then(|s| s.parse::<u32>().ok());
         if self.pos > ns {
@@ -1354,7 +1354,7 @@ impl<'p> Cx<'p> {
                 "program name missing after O",
             );
         }
-        let number = std::str::from_utf8(name.slice(&self.text))
+        let number = std::str::from_utf8(name.slice(self.text))
             .ok()
             .and_then(|s| s.parse::<u32>().ok());
         self.push_item(ItemKind::ProgramHead { name, number }, start);
@@ -1415,7 +1415,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let kw_span = Span::new(ks as u32, self.pos as u32);
-        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(&self.text)));
+        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(self.text)));
         if self.pos > ks {
             self.token(ks, TokenKind::Keyword);
         }
@@ -1425,7 +1425,7 @@ impl<'p> Cx<'p> {
             } else {
                 format!(
                     "unknown o-word keyword `{}`",
-                    String::from_utf8_lossy(kw_span.slice(&self.text))
+                    String::from_utf8_lossy(kw_span.slice(self.text))
                 )
             };
             self.diag(
@@ -1505,7 +1505,7 @@ impl<'p> Cx<'p> {
                     j += 1;
                 }
                 let w = Span::new(ks as u32, j as u32)
-                    .slice(&self.text)
+                    .slice(self.text)
                     .to_ascii_uppercase();
                 if w == b"GOTO" {
                     self.pos = j;
@@ -1538,7 +1538,7 @@ impl<'p> Cx<'p> {
                     j += 1;
                 }
                 let w = Span::new(ks as u32, j as u32)
-                    .slice(&self.text)
+                    .slice(self.text)
                     .to_ascii_uppercase();
                 if w == b"DO" {
                     self.pos = j;
