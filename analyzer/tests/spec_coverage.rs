@@ -132,6 +132,11 @@ fn ledger_covers_every_spec_id() {
             }
             continue;
         }
+        // Runtime rules (A, C, D, F, K, T, X codes) live in the runtime crate; the
+        // server's spec_coverage test checks them against the combined registry.
+        if value.starts_with(['A', 'C', 'D', 'F', 'K', 'T', 'X']) {
+            continue;
+        }
         let Some(meta) = analyzer::rules::registry::lookup(value).filter(|m| m.code == value)
         else {
             errors.push(format!("{id}: rule {value} is not in the registry"));

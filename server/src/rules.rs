@@ -5,6 +5,7 @@ use analyzer::rules::RuleMeta;
 
 pub fn all() -> Vec<&'static RuleMeta> {
     let mut v: Vec<&'static RuleMeta> = analyzer::rules::registry::RULES.to_vec();
+    v.extend(runtime::rules::REGISTRY.iter().copied());
     v.sort_by_key(|r| r.code);
     v
 }

@@ -84,6 +84,9 @@ enum Command {
         code: Option<String>,
         #[arg(long)]
         all: bool,
+        /// Print as JSON (code, name, summary, origin, default, implements, doc).
+        #[arg(long)]
+        json: bool,
     },
     /// Run the language server on stdio.
     Lsp,
@@ -104,13 +107,33 @@ pub fn main() -> ExitCode {
     match cli.command {
         Command::Check(args) => check::run(args),
         Command::Run(args) => run::run(args),
-        Command::Rule { code, all } => rule(code, all),
+        Command::Rule { code, all, json } => rule(code, all, json),
         Command::Lsp => crate::lsp::run(),
     }
 }
 
-fn rule(code: Option<String>, all: bool) -> ExitCode {
+fn rule(code: Option<String>, all: bool, json: bool) -> ExitCode {
     let rules = crate::rules::all();
+    if json {
+        let pick: Vec<_> = rules
+            .iter()
+            .filter(|r| {
+                all || code.as_deref().is_none_or(|c| {
+                    r.code.eq_ignore_ascii_case(c) || r.name.eq_ignore_ascii_case(c)
+                })
+            })
+            .map(|r| {
+                serde_json::json!({
+                    "code": r.code, "name": r.name, "summary": r.summary,
+                    "origin": format!("{:?}", r.origin).to_ascii_lowercase(),
+                    "default_enabled": r.default_enabled, "implements": r.implements,
+                    "doc": crate::rules::clean_doc(r.doc),
+                })
+            })
+            .collect();
+        println!("{}", serde_json::Value::Array(pick));
+        return ExitCode::SUCCESS;
+    }
     if all || code.is_none() {
         for r in &rules {
             let off = if r.default_enabled {
