@@ -157,3 +157,65 @@ fn rule_fixtures() {
         failures.join("\n")
     );
 }
+
+/// Applies one fix's edits to a text (edits do not overlap; applied back to front).
+fn apply(text: &[u8], fix: &analyzer::Fix) -> Vec<u8> {
+    let mut edits = fix.edits.clone();
+    edits.sort_by_key(|e| std::cmp::Reverse(e.span.start));
+    let mut out = text.to_vec();
+    for e in edits {
+        out.splice(e.span.range(), e.new_text.bytes());
+    }
+    out
+}
+
+#[test]
+fn fixes_remove_their_diagnostic() {
+    let mut checked = 0;
+    let mut failures = Vec::new();
+    for (code, path) in fixtures() {
+        let text = std::fs::read(&path).expect("read fixture");
+        let Some(dialect) = fixture_dialect(&path, &text) else {
+            continue;
+        };
+        let settings = settings_for(&path, dialect, &code);
+        let before = analyze(text.clone(), &settings).diagnostics;
+        let count =
+            |ds: &[analyzer::Diagnostic], c: &str| ds.iter().filter(|d| d.code == c).count();
+        for d in &before {
+            for fix in &d.fixes {
+                checked += 1;
+                let fixed = apply(&text, fix);
+                let after = analyze(fixed.clone(), &settings).diagnostics;
+                if count(&after, d.code) >= count(&before, d.code) {
+                    failures.push(format!(
+                        "{}: fix `{}` for {} leaves as many {} diagnostics:\n{}",
+                        path.display(),
+                        fix.title,
+                        d.code,
+                        d.code,
+                        String::from_utf8_lossy(&fixed)
+                    ));
+                }
+                let new_errors = after
+                    .iter()
+                    .filter(|a| a.severity == analyzer::Severity::Error)
+                    .count();
+                let old_errors = before
+                    .iter()
+                    .filter(|b| b.severity == analyzer::Severity::Error)
+                    .count();
+                if new_errors > old_errors {
+                    failures.push(format!(
+                        "{}: fix `{}` introduces errors:\n{}",
+                        path.display(),
+                        fix.title,
+                        render(&fixed, &after)
+                    ));
+                }
+            }
+        }
+    }
+    assert!(checked >= 5, "only {checked} fixes exercised");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
