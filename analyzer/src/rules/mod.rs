@@ -63,6 +63,7 @@ mod eq_non_integer;
 mod integer_machine_unit;
 mod control_notes;
 mod endless_loop;
+mod word_without_user;
 pub(crate) mod util;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};

@@ -4,9 +4,9 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::span::Span;
-use crate::syntax::{BlockKind, ItemKind, OKeyword, OLabel, Program};
+use crate::syntax::{BlockKind, Expr, ItemKind, OKeyword, OLabel, Program};
 
-use super::util::{is_emc2, lit};
+use super::util::{block_exprs, expr_nodes, is_emc2, lit};
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -18,7 +18,8 @@ declare_rule! {
     /// program mixing `M98`/`M99` subprograms with O-word subroutines; and a line that
     /// starts with the digit `0` where the letter `O` was meant (`0100 sub`). Only calls
     /// outside any `if` or loop count for recursion; labels repeat freely across
-    /// subroutines.
+    /// subroutines. Info notes: a subroutine that writes a global parameter (#31 and up,
+    /// `#<_name>`), or reads an argument that some call does not pass.
     ///
     /// ## Why is this bad?
     /// Subroutines take at most 30 arguments (#1–#30). The documentation requires a
@@ -49,12 +50,12 @@ declare_rule! {
     /// RS274/NGC: error for too many arguments and mixed styles (`linuxcnc`), warnings
     /// otherwise. Calls to subroutines in other files are resolved when the program runs.
     ///
-    /// Implements: NGC606, NGC607, NGC608, NGC610, NGC617, NGC618
+    /// Implements: NGC606, NGC607, NGC608, NGC610, NGC613, NGC614, NGC617, NGC618
     pub static OWORD_CALLS = {
         code: "P008",
         name: "oword-calls",
         summary: "Subroutine calls and O labels",
-        implements: &["NGC606", "NGC607", "NGC608", "NGC610", "NGC617", "NGC618"],
+        implements: &["NGC606", "NGC607", "NGC608", "NGC610", "NGC613", "NGC614", "NGC617", "NGC618"],
         origin: Static,
         default_enabled: true,
     }
@@ -92,6 +93,12 @@ impl Rule for OwordCalls {
         let mut open_do: Vec<String> = Vec::new();
         let mut current_sub: Option<String> = None;
         let mut has_osub = false;
+        // Global writes already reported, per subroutine (once each).
+        let mut written: Vec<(String, String)> = Vec::new();
+        // Per subroutine: the highest local parameter #1–#30 it reads, with its span.
+        let mut reads: Vec<(String, u32, Span)> = Vec::new();
+        // Per call: (label, number of arguments).
+        let mut arg_counts: Vec<(String, usize)> = Vec::new();
         let mut fanuc_style: Option<Span> = None;
         for b in &p.blocks {
             if b.kind == BlockKind::Normal {
@@ -110,6 +117,27 @@ impl Rule for OwordCalls {
                             b.span,
                             format!("`{}` starts with the digit 0; an O-word label starts with the letter o, as in `o{}`.", &t[..digits], &t[1..digits]),
                         ));
+                    }
+                }
+            }
+            if let Some(sub) = &current_sub {
+                let items = p.items_of(b);
+                for root in block_exprs(p, items) {
+                    for id in expr_nodes(p, root) {
+                        let Expr::Var { index } = p.expr(id).expr else {
+                            continue;
+                        };
+                        let Expr::Num(n) = p.expr(index).expr else {
+                            continue;
+                        };
+                        if (1.0..=30.0).contains(&n.value) && n.value.fract() == 0.0 {
+                            let v = n.value as u32;
+                            match reads.iter_mut().find(|(s, _, _)| s == sub) {
+                                Some(r) if r.1 >= v => {}
+                                Some(r) => *r = (sub.clone(), v, p.expr(id).span),
+                                None => reads.push((sub.clone(), v, p.expr(id).span)),
+                            }
+                        }
                     }
                 }
             }
@@ -141,6 +169,7 @@ impl Rule for OwordCalls {
                                 }
                                 // A call inside an if or loop may be the bounded case of a recursion.
                                 let caller = current_sub.clone().filter(|_| depth == 0);
+                                arg_counts.push((l.clone(), n));
                                 calls.push((l, item.span.start, item.span, caller));
                             }
                             Some(OKeyword::While) if open_do.last() == Some(&l) => {
@@ -172,7 +201,50 @@ impl Rule for OwordCalls {
                     {
                         fanuc_style.get_or_insert(item.span);
                     }
+                    ItemKind::Assign { target, .. } if current_sub.is_some() => {
+                        let global = match p.expr(target).expr {
+                            Expr::Var { index } => {
+                                matches!(p.expr(index).expr, Expr::Num(n) if n.value >= 31.0)
+                            }
+                            Expr::Named { name } => p.str_of(name).trim_start().starts_with('_'),
+                            _ => false,
+                        };
+                        let key = (
+                            current_sub.clone().unwrap_or_default(),
+                            p.str_of(p.expr(target).span).to_ascii_lowercase(),
+                        );
+                        if global && !written.contains(&key) {
+                            written.push(key);
+                            out.push(Diagnostic::info(
+                                "P008",
+                                p.expr(target).span,
+                                format!(
+                                    "The subroutine writes the global parameter `{}`; the caller sees the change after the call returns.",
+                                    p.str_of(p.expr(target).span)
+                                ),
+                            ));
+                        }
+                    }
                     _ => {}
+                }
+            }
+        }
+        for (sub, highest, span) in &reads {
+            let passed: Vec<usize> = arg_counts
+                .iter()
+                .filter(|(l, _)| l == sub)
+                .map(|(_, n)| *n)
+                .collect();
+            if let Some(fewest) = passed.iter().min() {
+                if (*highest as usize) > *fewest {
+                    out.push(Diagnostic::info(
+                        "P008",
+                        *span,
+                        format!(
+                            "o{sub} reads #{highest}, but a call passes only {fewest} argument{}: the parameter keeps whatever value it had.",
+                            if *fewest == 1 { "" } else { "s" }
+                        ),
+                    ));
                 }
             }
         }
