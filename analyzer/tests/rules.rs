@@ -219,3 +219,110 @@ fn fixes_remove_their_diagnostic() {
     assert!(checked >= 5, "only {checked} fixes exercised");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+mod robustness {
+    use analyzer::dialect::{Dialect, Variant};
+    use analyzer::{analyze, Settings};
+    use proptest::prelude::*;
+
+    /// Fragments that reach the rules' corner cases: codes, words, O-words, macro
+    /// statements, comments, brackets, multi-byte text.
+    const PIECES: &[&str] = &[
+        "G0 ",
+        "G1 ",
+        "G2 ",
+        "G3 ",
+        "G4 ",
+        "G10 L2 P1 ",
+        "G28 ",
+        "G43.2 ",
+        "G65 P9010 ",
+        "G81 ",
+        "G83 ",
+        "G80 ",
+        "G92 ",
+        "G54 ",
+        "G02.3 ",
+        "G05 ",
+        "G51 ",
+        "M98 ",
+        "M99 ",
+        "M3 ",
+        "M30 ",
+        "M2 ",
+        "X1 ",
+        "Y-2.5 ",
+        "Z ",
+        "R0 ",
+        "I1 ",
+        "K2 ",
+        "P1.5 ",
+        "Q-1 ",
+        "L0 ",
+        "D0.5 ",
+        "E1 ",
+        "@1 ",
+        "N10 ",
+        "N#1 ",
+        "T1.5 ",
+        "S2_100 ",
+        "#1=",
+        "#<a>=",
+        "[1/0]",
+        "SQRT[-1]",
+        "EXISTS[#1]",
+        "o100 sub",
+        "o100 endsub",
+        "o100 while [1]",
+        "o100 endwhile",
+        "o100 call [1]",
+        "o1 do",
+        "o1 while [1]",
+        "o2 if [1]",
+        "o2 else",
+        "o2 endif",
+        "WHILE [#1 LT 3] DO 1",
+        "DO 4",
+        "END 1",
+        "GOTO 10",
+        "IF [#1 EQ 0.5] GOTO 7",
+        "(MSG hi)",
+        "(DEBUG,%x)",
+        ";(debug x)",
+        "(ünïcödé 😀)",
+        "(",
+        ")",
+        "[",
+        "]",
+        "%",
+        "/",
+        ";",
+        "\n",
+        "\r\n",
+        "O0",
+        "0100 sub",
+    ];
+
+    fn program() -> impl Strategy<Value = String> {
+        prop::collection::vec(0..PIECES.len(), 0..40)
+            .prop_map(|ix| ix.into_iter().map(|i| PIECES[i]).collect())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        #[test]
+        fn rules_never_panic(text in program(), d in 0usize..3, v in 0usize..2, raw in prop::collection::vec(any::<u8>(), 0..64)) {
+            let dialect = Dialect::ALL[d];
+            let variants = [[Variant::S100M, Variant::S140M], [Variant::Linuxcnc, Variant::Emc2], [Variant::Fanuc30i, Variant::Fanuc30i]];
+            let mut settings = Settings::new(dialect);
+            settings.variant = variants[d][v];
+            settings.select = vec!["ALL".into(), "S".into(), "W023".into()];
+            settings.integer_machine_unit = v == 1;
+            let a = analyze(text.into_bytes(), &settings);
+            for diag in &a.diagnostics {
+                prop_assert!(diag.span.start <= diag.span.end);
+            }
+            let _ = analyze(raw, &settings);
+        }
+    }
+}
