@@ -13,58 +13,58 @@
 //! compensation, `K` coordinates/kinematics/limits, `D` look-ahead modes,
 //! `F` flow/subprograms/feed, `X` execution.
 
-pub mod context;
-pub mod registry;
-mod syntax_rules;
-mod modal_group_conflict;
-mod m_group_conflict;
-mod too_many_m_words;
-mod unknown_code;
-mod code_not_on_variant;
-mod duplicate_word;
-mod conflicting_words;
-mod missing_required_word;
 mod axis_word_conflict;
-mod unknown_address;
-mod integer_word;
-mod oword_structure;
-mod macro_loop_structure;
-mod goto_target;
-mod macro_with_nc_words;
-mod program_end;
-mod unreachable_after_end;
-mod word_value_range;
-mod dlacc_form;
-mod g54_with_words;
-mod m98_with_motion;
 mod block_too_long;
-mod macro_call_arguments;
-mod subprogram_name_glued;
-mod sequence_number;
 mod bracket_nesting;
-mod style_line_numbers;
-mod style_radius_arc;
-mod style_number_whitespace;
-mod style_decimals;
-mod style_units;
-mod style_preamble;
-mod style_order_of_execution;
-mod style_lowercase_o;
-mod style_g92;
-mod style_start_with_g40;
-mod constant_expression;
-mod parameter_number;
-mod expression_form;
-mod parameter_same_line;
+mod code_not_on_variant;
 mod comment_use;
-mod oword_calls;
-mod cycle_words;
-mod eq_non_integer;
-mod integer_machine_unit;
+mod conflicting_words;
+mod constant_expression;
+pub mod context;
 mod control_notes;
+mod cycle_words;
+mod dlacc_form;
+mod duplicate_word;
 mod endless_loop;
-mod word_without_user;
+mod eq_non_integer;
+mod expression_form;
+mod g54_with_words;
+mod goto_target;
+mod integer_machine_unit;
+mod integer_word;
+mod m98_with_motion;
+mod m_group_conflict;
+mod macro_call_arguments;
+mod macro_loop_structure;
+mod macro_with_nc_words;
+mod missing_required_word;
+mod modal_group_conflict;
+mod oword_calls;
+mod oword_structure;
+mod parameter_number;
+mod parameter_same_line;
+mod program_end;
+pub mod registry;
+mod sequence_number;
+mod style_decimals;
+mod style_g92;
+mod style_line_numbers;
+mod style_lowercase_o;
+mod style_number_whitespace;
+mod style_order_of_execution;
+mod style_preamble;
+mod style_radius_arc;
+mod style_start_with_g40;
+mod style_units;
+mod subprogram_name_glued;
+mod syntax_rules;
+mod too_many_m_words;
+mod unknown_address;
+mod unknown_code;
+mod unreachable_after_end;
 pub(crate) mod util;
+mod word_value_range;
+mod word_without_user;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};
 
@@ -150,7 +150,10 @@ macro_rules! declare_rule {
 /// Runs every enabled static rule over a parsed program.
 pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     let rules = registry::STATIC_RULES;
-    let enabled: Vec<&&dyn Rule> = rules.iter().filter(|r| cx.settings.rule_enabled(r.meta())).collect();
+    let enabled: Vec<&&dyn Rule> = rules
+        .iter()
+        .filter(|r| cx.settings.rule_enabled(r.meta()))
+        .collect();
     if enabled.is_empty() {
         return;
     }
@@ -163,7 +166,13 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         }
         codes.clear();
         context::collect_codes(cx.program, block, &mut codes);
-        let bcx = BlockCx { program: cx.program, block, index: i, settings: cx.settings, codes: &codes };
+        let bcx = BlockCx {
+            program: cx.program,
+            block,
+            index: i,
+            settings: cx.settings,
+            codes: &codes,
+        };
         for r in &enabled {
             r.check_block(&bcx, out);
         }
