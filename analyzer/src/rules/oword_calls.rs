@@ -14,8 +14,8 @@ declare_rule! {
     /// Checks RS274/NGC subroutine calls and labels: a call with more than 30 arguments;
     /// a call to a subroutine defined further down the file; a subroutine that calls
     /// itself unconditionally, directly or through others; a label opened by two blocks of
-    /// the same subroutine (or two subroutines); a
-    /// program mixing `M98`/`M99` subprograms with O-word subroutines; and a line that
+    /// the same subroutine (or two subroutines); an `o… sub` ended by `M99` (the two
+    /// subroutine styles mixed in one definition); and a line that
     /// starts with the digit `0` where the letter `O` was meant (`0100 sub`). Only calls
     /// outside any `if` or loop count for recursion; labels repeat freely across
     /// subroutines. Info notes: a subroutine that writes a global parameter (#31 and up,
@@ -25,8 +25,9 @@ declare_rule! {
     /// Subroutines take at most 30 arguments (#1–#30). The documentation requires a
     /// definition before its call (the interpreter searches forward, slowly). Recursion
     /// exceeds the 10 call levels unless it is bounded. Reused labels make `endwhile`,
-    /// `break` and friends ambiguous. LinuxCNC refuses Fanuc-style `M98` in a file that
-    /// uses O-word subroutines. `0100` is a number, not a label.
+    /// `break` and friends ambiguous. LinuxCNC 2.9 accepts `M98`/`M99` programs next to
+    /// `o… sub` ones, but not a definition that starts as one and ends as the other.
+    /// `0100` is a number, not a label.
     ///
     /// ## Example
     /// ```ngc
@@ -47,8 +48,8 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: error for too many arguments and mixed styles (`linuxcnc`), warnings
-    /// otherwise. Calls to subroutines in other files are resolved when the program runs.
+    /// RS274/NGC: error for too many arguments and for M99 in an `o… sub` (`linuxcnc`),
+    /// warnings otherwise, info for the notes. Calls to subroutines in other files are resolved when the program runs.
     ///
     /// Implements: NGC606, NGC607, NGC608, NGC610, NGC613, NGC614, NGC617, NGC618
     pub static OWORD_CALLS = {
@@ -92,14 +93,12 @@ impl Rule for OwordCalls {
         let mut depth = 0usize;
         let mut open_do: Vec<String> = Vec::new();
         let mut current_sub: Option<String> = None;
-        let mut has_osub = false;
         // Global writes already reported, per subroutine (once each).
         let mut written: Vec<(String, String)> = Vec::new();
         // Per subroutine: the highest local parameter #1–#30 it reads, with its span.
         let mut reads: Vec<(String, u32, Span)> = Vec::new();
         // Per call: (label, number of arguments).
         let mut arg_counts: Vec<(String, usize)> = Vec::new();
-        let mut fanuc_style: Option<Span> = None;
         for b in &p.blocks {
             if b.kind == BlockKind::Normal {
                 let text = p.str_of(b.span);
@@ -147,7 +146,6 @@ impl Rule for OwordCalls {
                         let Some(l) = label(p, o.label) else { continue };
                         match o.keyword {
                             Some(OKeyword::Sub) => {
-                                has_osub = true;
                                 defs.push((l.clone(), item.span.start, item.span));
                                 current_sub = Some(l.clone());
                                 depth = 0;
@@ -158,7 +156,6 @@ impl Rule for OwordCalls {
                                 depth = 0;
                             }
                             Some(OKeyword::Call) => {
-                                has_osub = true;
                                 let n = p.expr_list(o.args).len();
                                 if n > 30 {
                                     out.push(Diagnostic::error(
@@ -197,9 +194,17 @@ impl Rule for OwordCalls {
                         }
                     }
                     ItemKind::Word(w)
-                        if w.letter == b'M' && lit(&w).is_some_and(|v| v == 98.0 || v == 99.0) =>
+                        if w.letter == b'M'
+                            && lit(&w) == Some(99.0)
+                            && current_sub.is_some()
+                            && !is_emc2(cx.settings) =>
                     {
-                        fanuc_style.get_or_insert(item.span);
+                        // An `o… sub` must end with `endsub`; M99 belongs to Fanuc-style `O…` programs.
+                        out.push(Diagnostic::error(
+                            "P008",
+                            item.span,
+                            "M99 inside an `o… sub` subroutine: LinuxCNC does not mix the two subroutine styles in one definition. End it with `o… endsub`, or write it as a Fanuc-style `O…` program ending in M99.",
+                        ));
                     }
                     ItemKind::Assign { target, .. } if current_sub.is_some() => {
                         let global = match p.expr(target).expr {
@@ -247,13 +252,6 @@ impl Rule for OwordCalls {
                     ));
                 }
             }
-        }
-        if let (true, Some(span), false) = (has_osub, fanuc_style, is_emc2(cx.settings)) {
-            out.push(Diagnostic::error(
-                "P008",
-                span,
-                "M98/M99 subprograms and O-word subroutines are mixed in one program; LinuxCNC accepts one style per program. Use `o… call` and `o… sub`.",
-            ));
         }
         for (j, (scope, l, span)) in openers.iter().enumerate() {
             if let Some((_, _, first)) = openers[..j]
