@@ -146,6 +146,23 @@ impl Rule for ConflictingWords {
         if d != Dialect::Servoworks {
             return;
         }
+        if has(cx, 'G', 100) {
+            let l = word_item(cx, b'L').and_then(|(_, w)| super::util::lit(w));
+            let pr_only = l.is_some_and(|l| [10.0, 11.0, 106.0, 107.0].contains(&l));
+            if let (true, false, Some((a, _))) = (
+                pr_only,
+                word_item(cx, b'R').is_some(),
+                [b'X', b'Y', b'Z']
+                    .into_iter()
+                    .find_map(|l| word_item(cx, l)),
+            ) {
+                out.push(Diagnostic::warning(
+                    "W002",
+                    a.span,
+                    "This G10 category is documented only in the `G10 L… P… R…` form; the X/Y/Z form may not be supported. Write it in the P/R form.",
+                ));
+            }
+        }
         if has(cx, 'G', 100) && word_item(cx, b'R').is_some() {
             if let Some((a, _)) = [b'X', b'Y', b'Z']
                 .into_iter()

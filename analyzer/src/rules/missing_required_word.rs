@@ -258,9 +258,14 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             note(cx, c, Severity::Info, format!("{name} without axis words moves nothing."), out)
         }
         (Dialect::Servoworks, 'G', 100) => {
-            let pr = lval.is_some_and(|l| [10.0, 11.0, 20.0, 30.0, 106.0, 107.0, 108.0, 10909.0].contains(&l));
-            if pr && !(has_word(cx, b'P') && has_word(cx, b'R')) {
+            // L106/L107 set one smoothing mode for all axes: `G10 L106 R2` has no P.
+            let pr = lval.is_some_and(|l| [10.0, 11.0, 20.0, 30.0, 108.0, 10909.0].contains(&l));
+            // With axis words this is the X/Y/Z form (W002 checks where that form exists).
+            if pr && !axes && !(has_word(cx, b'P') && has_word(cx, b'R')) {
                 missing(cx, c, "P and R", "this data category is written as `G10 L… P… R…`.", out);
+            }
+            if lval.is_some_and(|l| l == 106.0 || l == 107.0) && !axes && !has_word(cx, b'R') {
+                missing(cx, c, "R", "the smoothing mode to set (`G10 L106 R2`).", out);
             }
             if lval.is_some_and(|l| [106.0, 107.0, 108.0].contains(&l)) && !previous_block_dwells(cx) {
                 note(
@@ -305,12 +310,23 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
     }
 }
 
-/// Whether the code block before this one holds a G04 dwell.
+/// Whether the last motion before this block was followed by a G04 dwell:
+/// walking back, other G10 blocks and blocks without motion are passed over, a
+/// G04 answers yes and a block with axis words answers no. The program start
+/// counts as standing still.
 fn previous_block_dwells(cx: &BlockCx<'_>) -> bool {
     let p = cx.program;
-    p.blocks[..cx.index.min(p.blocks.len())]
-        .iter()
-        .rev()
-        .find(|b| super::util::has_code_items(p, b))
-        .is_some_and(|b| super::util::block_g_codes(p, b).contains(&40))
+    for b in p.blocks[..cx.index.min(p.blocks.len())].iter().rev() {
+        let g = super::util::block_g_codes(p, b);
+        if g.contains(&40) {
+            return true;
+        }
+        if g.contains(&100) {
+            continue;
+        }
+        if super::util::block_has_axis(p, b, cx.settings) {
+            return false;
+        }
+    }
+    true
 }

@@ -100,6 +100,15 @@ impl Rule for ModalGroupConflict {
                         None => d,
                     }
                 }
+                _ if en == ln => Diagnostic::warning(
+                    "G001",
+                    later.span,
+                    format!("{l_name} is written twice in this block; the second one changes nothing. Remove one (if this is a second block, put it on its own line)."),
+                )
+                .with_fix(
+                    format!("Remove the repeated {e_name}"),
+                    vec![TextEdit { span: removal_span(cx.program, earlier.span), new_text: String::new() }],
+                ),
                 _ => Diagnostic::warning(
                     "G001",
                     later.span,
