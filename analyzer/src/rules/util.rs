@@ -250,3 +250,19 @@ pub fn dead_blocks(program: &Program) -> Vec<bool> {
     }
     dead
 }
+
+/// Blocks that hold a syntax error (an error-severity parser diagnostic).
+pub fn unreadable_blocks(program: &Program) -> Vec<bool> {
+    let mut out = vec![false; program.blocks.len()];
+    for d in &program.diagnostics {
+        if d.severity != crate::diagnostic::Severity::Error {
+            continue;
+        }
+        if let Some(i) = program.block_at(d.span.start) {
+            if let Some(flag) = out.get_mut(i) {
+                *flag = true;
+            }
+        }
+    }
+    out
+}
