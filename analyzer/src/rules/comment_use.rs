@@ -129,16 +129,18 @@ impl Rule for CommentUse {
                 let raw = text.strip_prefix('(').unwrap_or("").trim_start();
                 let body = raw.to_ascii_lowercase();
                 let kw = KEYWORDS.iter().find(|k| {
-                    let after = &body[k.len().min(body.len())..];
+                    // The keyword is ASCII, so after a match its length is a char boundary.
+                    let Some(after) = body.strip_prefix(*k) else {
+                        return false;
+                    };
                     let upper = raw
                         .get(..k.len())
                         .is_some_and(|w| w.bytes().all(|b| b.is_ascii_uppercase()));
                     // `(MSG ,x)` (a blank before the comma), or `(MSG text)` in capitals;
                     // prose such as `(abort the run here)` is left alone.
-                    body.starts_with(*k)
-                        && (after.trim_start_matches([' ', '\t']).starts_with(',')
-                            && after.starts_with([' ', '\t'])
-                            || upper && after.starts_with([' ', '\t', ')']))
+                    after.trim_start_matches([' ', '\t']).starts_with(',')
+                        && after.starts_with([' ', '\t'])
+                        || upper && after.starts_with([' ', '\t', ')'])
                 });
                 if let Some(kw) =
                     kw.filter(|k| !matches!(**k, "logclose" | "probeopen" | "probeclose"))

@@ -15,7 +15,8 @@ declare_rule! {
     /// both `P` (milliseconds) and `X` (seconds); LinuxCNC `G4` on a line with `G2`/`G3`
     /// (both read `P`); `F` with `G33`/`G33.1`; `G43.2` with both or neither of `H` and axis
     /// words; words in a ServoWorks `G41.1`/`G42.1` block, which takes none; ServoWorks
-    /// `G10` mixing its P/R and X/Y/Z forms; a LinuxCNC 2.9 `G73`/`G83` with `D`.
+    /// `G10` mixing its P/R and X/Y/Z forms; a LinuxCNC 2.9 `G73`/`G83` with `D`; FANUC
+    /// `G40`/`G41`/`G42` in an arc block.
     ///
     /// ## Why is this bad?
     /// The two forms describe the same thing twice and can disagree. LinuxCNC and
@@ -38,12 +39,12 @@ declare_rule! {
     /// Arcs: error in RS274/NGC and ServoWorks, warning in FANUC. `G51 P`+`I/J/K`: ServoWorks
     /// error. `G04 P`+`X`: ServoWorks warning. `G4` with `G2`/`G3`: `linuxcnc` error.
     ///
-    /// Implements: SW031, SW053, SW067, SW089, SW100, NGC114, NGC204, NGC222, NGC806, NGC823, FAN032
+    /// Implements: SW031, SW053, SW067, SW089, SW100, NGC114, NGC204, NGC222, NGC806, NGC823, FAN032, FAN152
     pub static CONFLICTING_WORDS = {
         code: "W002",
         name: "conflicting-words",
         summary: "Words that exclude each other in one block",
-        implements: &["SW031", "SW053", "SW067", "SW089", "SW100", "NGC114", "NGC204", "NGC222", "NGC806", "NGC823", "FAN032"],
+        implements: &["SW031", "SW053", "SW067", "SW089", "SW100", "NGC114", "NGC204", "NGC222", "NGC806", "NGC823", "FAN032", "FAN152"],
         origin: Static,
         default_enabled: true,
     }
@@ -92,6 +93,19 @@ impl Rule for ConflictingWords {
                 ));
             }
         }
+        if d == Dialect::Fanuc {
+            if let (Some(arc), Some(comp)) = (first_g(cx, &[20, 30]), first_g(cx, &[400, 410, 420]))
+            {
+                out.push(
+                    Diagnostic::error(
+                        "W002",
+                        comp.span,
+                        "Cutter compensation cannot start or end in a G02/G03 block (alarm PS0034). Start and cancel it on a straight G00/G01 move.",
+                    )
+                    .with_related(arc.span, "arc"),
+                );
+            }
+        }
         if d == Dialect::Rs274ngc {
             if let (Some(g33), Some((f, _))) = (first_g(cx, &[330, 331]), word_item(cx, b'F')) {
                 out.push(
@@ -131,6 +145,23 @@ impl Rule for ConflictingWords {
         }
         if d != Dialect::Servoworks {
             return;
+        }
+        if has(cx, 'G', 100) {
+            let l = word_item(cx, b'L').and_then(|(_, w)| super::util::lit(w));
+            let pr_only = l.is_some_and(|l| [10.0, 11.0, 106.0, 107.0].contains(&l));
+            if let (true, false, Some((a, _))) = (
+                pr_only,
+                word_item(cx, b'R').is_some(),
+                [b'X', b'Y', b'Z']
+                    .into_iter()
+                    .find_map(|l| word_item(cx, l)),
+            ) {
+                out.push(Diagnostic::warning(
+                    "W002",
+                    a.span,
+                    "This G10 category is documented only in the `G10 L… P… R…` form; the X/Y/Z form may not be supported. Write it in the P/R form.",
+                ));
+            }
         }
         if has(cx, 'G', 100) && word_item(cx, b'R').is_some() {
             if let Some((a, _)) = [b'X', b'Y', b'Z']

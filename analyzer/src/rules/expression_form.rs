@@ -12,16 +12,16 @@ declare_rule! {
     /// ## What it does
     /// Flags expression forms the selected RS274/NGC profile rejects: in the 2007 `emc2`
     /// profile a sign in front of anything but a number (`-#1`, `-[…]`, `-SIN[…]`); in
-    /// `linuxcnc`, `EXISTS[…]` applied to something other than a named parameter.
+    /// `linuxcnc`, `EXISTS[…]` applied to something other than a parameter.
     ///
     /// ## Why is this bad?
     /// The 2007 interpreter reads a sign only as part of a literal number and reports a
-    /// bad number format; `EXISTS` tests whether a named parameter exists, so any other
-    /// argument is an error in LinuxCNC.
+    /// bad number format; `EXISTS` tests whether a parameter exists, so a number or an
+    /// expression as its argument is an error in LinuxCNC.
     ///
     /// ## Example
     /// ```ngc
-    /// #2 = EXISTS[#1]
+    /// #2 = EXISTS[1]
     /// M2
     /// ```
     ///
@@ -80,11 +80,11 @@ impl Rule for ExpressionForm {
                         while let Expr::Group { inner } = p.expr(a).expr {
                             a = inner;
                         }
-                        if !matches!(p.expr(a).expr, Expr::Named { .. }) {
+                        if !matches!(p.expr(a).expr, Expr::Named { .. } | Expr::Var { .. }) {
                             out.push(Diagnostic::error(
                                 "W017",
                                 node.span,
-                                "EXISTS takes a named parameter, `EXISTS[#<name>]`.",
+                                "EXISTS takes a parameter, `EXISTS[#<name>]` or `EXISTS[#n]`, not a number or an expression.",
                             ));
                         }
                     }

@@ -30,7 +30,9 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// ServoWorks, info, only with the option enabled. Applies to axis words, I/J/K, R and Q; zero is the same in both forms.
+    /// ServoWorks, info, only with the option enabled. Applies to axis words, I/J/K, R and Q
+    /// (zero is the same in both forms), not to `G10` data, `G04 X` seconds, `G51` factors,
+    /// the `G68` angle or `G65` arguments.
     ///
     /// Implements: SW007
     pub static INTEGER_MACHINE_UNIT = {
@@ -54,8 +56,19 @@ impl Rule for IntegerMachineUnit {
         if cx.program.dialect != Dialect::Servoworks || !cx.settings.integer_machine_unit {
             return;
         }
+        // Data words that are never lengths: G10 values (ms, Hz, types), G04 X seconds,
+        // G51 factors, the G68 angle, G65 arguments.
+        if [100, 40, 650].iter().any(|t| cx.has_code('G', *t)) {
+            return;
+        }
+        let scaling = cx.has_code('G', 510);
+        let rotation = cx.has_code('G', 680);
         for (item, w) in cx.words() {
             if !b"XYZABCUVWEIJKRQ".contains(&w.letter) || w.comma {
+                continue;
+            }
+            if (scaling && matches!(w.letter, b'I' | b'J' | b'K')) || (rotation && w.letter == b'R')
+            {
                 continue;
             }
             let Some(n) = w.num() else { continue };

@@ -20,7 +20,9 @@ declare_rule! {
     /// words, `G10 L1`/`L10`/`L11` without a tool, `G5`/`G5.1` spline words, motion without
     /// axis words in `emc2`; ServoWorks `G37` with other than one axis word, `G50.1` without
     /// axes, `G10` P/R forms without P or R, and (info) `G68` without R and reference
-    /// returns without axis words.
+    /// returns without axis words; ServoWorks `G43`/`G44`/`G43.2` without `H`, `M29` without
+    /// `S`, smoothing `G10 L106`–`L108` not right after a `G04`; FANUC involute
+    /// `G02.2`/`G03.2` without end point, base-circle centre or radius.
     ///
     /// ## Why is this bad?
     /// The control cannot execute the code and stops with an error (LinuxCNC `Dwell time
@@ -43,12 +45,12 @@ declare_rule! {
     /// without P or X is a valid exact stop and is not flagged. Errors, except the
     /// ServoWorks exponential-interpolation feeds (warning).
     ///
-    /// Implements: SW020, SW028, SW032, SW046, SW060, SW068, SW075, SW080, SW101, SW105, SW114, NGC109, NGC115, NGC203, NGC218, NGC219, NGC223, NGC225, NGC300, NGC333, NGC409, NGC424, NGC508, NGC800, NGC801, NGC803, NGC804, NGC807, NGC810, NGC811, NGC812, NGC817, NGC818, FAN030, FAN072
+    /// Implements: SW020, SW028, SW032, SW046, SW060, SW066, SW068, SW075, SW080, SW095, SW099, SW101, SW105, SW114, SW129, NGC109, NGC115, NGC203, NGC218, NGC219, NGC223, NGC225, NGC300, NGC333, NGC409, NGC424, NGC508, NGC800, NGC801, NGC803, NGC804, NGC807, NGC810, NGC811, NGC812, NGC817, NGC818, FAN030, FAN040, FAN041, FAN042, FAN072
     pub static MISSING_REQUIRED_WORD = {
         code: "W003",
         name: "missing-required-word",
         summary: "Code without a word it needs",
-        implements: &["SW020", "SW028", "SW032", "SW046", "SW060", "SW068", "SW075", "SW080", "SW101", "SW105", "SW114", "NGC109", "NGC115", "NGC203", "NGC218", "NGC219", "NGC223", "NGC225", "NGC300", "NGC333", "NGC409", "NGC424", "NGC508", "NGC800", "NGC801", "NGC803", "NGC804", "NGC807", "NGC810", "NGC811", "NGC812", "NGC817", "NGC818", "FAN030", "FAN072"],
+        implements: &["SW020", "SW028", "SW032", "SW046", "SW060", "SW066", "SW068", "SW075", "SW080", "SW095", "SW099", "SW101", "SW105", "SW114", "SW129", "NGC109", "NGC115", "NGC203", "NGC218", "NGC219", "NGC223", "NGC225", "NGC300", "NGC333", "NGC409", "NGC424", "NGC508", "NGC800", "NGC801", "NGC803", "NGC804", "NGC807", "NGC810", "NGC811", "NGC812", "NGC817", "NGC818", "FAN030", "FAN040", "FAN041", "FAN042", "FAN072"],
         origin: Static,
         default_enabled: true,
     }
@@ -256,11 +258,75 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             note(cx, c, Severity::Info, format!("{name} without axis words moves nothing."), out)
         }
         (Dialect::Servoworks, 'G', 100) => {
-            let pr = lval.is_some_and(|l| [10.0, 11.0, 20.0, 30.0, 106.0, 107.0, 108.0, 10909.0].contains(&l));
-            if pr && !(has_word(cx, b'P') && has_word(cx, b'R')) {
+            // L106/L107 set one smoothing mode for all axes: `G10 L106 R2` has no P.
+            let pr = lval.is_some_and(|l| [10.0, 11.0, 20.0, 30.0, 108.0, 10909.0].contains(&l));
+            // With axis words this is the X/Y/Z form (W002 checks where that form exists).
+            if pr && !axes && !(has_word(cx, b'P') && has_word(cx, b'R')) {
                 missing(cx, c, "P and R", "this data category is written as `G10 L… P… R…`.", out);
+            }
+            if lval.is_some_and(|l| l == 106.0 || l == 107.0) && !axes && !has_word(cx, b'R') {
+                missing(cx, c, "R", "the smoothing mode to set (`G10 L106 R2`).", out);
+            }
+            if lval.is_some_and(|l| [106.0, 107.0, 108.0].contains(&l)) && !previous_block_dwells(cx) {
+                note(
+                    cx,
+                    c,
+                    Severity::Warning,
+                    "Smoothing changes are ignored while the axes accelerate or decelerate: put a G04 block right before this G10.".into(),
+                    out,
+                );
+            }
+        }
+        (Dialect::Servoworks, 'G', 430 | 440 | 432) if !has_word(cx, b'H') => note(
+            cx,
+            c,
+            Severity::Warning,
+            format!("{name} without H: no tool length offset is selected. Add H with the offset number."),
+            out,
+        ),
+        (Dialect::Servoworks, 'M', 290) if !has_word(cx, b'S') => {
+            note(cx, c, Severity::Warning, "M29 (rigid tapping) without S: give the spindle speed in the same block.".into(), out)
+        }
+        (Dialect::Fanuc, 'G', 22 | 32) => {
+            let (i, j, k) = (word_item(cx, b'I'), word_item(cx, b'J'), word_item(cx, b'K'));
+            let zero = |w: Option<(&crate::syntax::Item, &crate::syntax::Word)>| w.and_then(|(_, w)| lit(w)).is_none_or(|v| v == 0.0);
+            if !axes {
+                missing(cx, c, "an end point", "involute interpolation needs the end point (alarm PS0241).", out);
+            }
+            if i.is_none() && j.is_none() && k.is_none() {
+                missing(cx, c, "I/J/K", "the centre of the base circle (alarm PS0241).", out);
+            } else if zero(i) && zero(j) && zero(k) && [i, j, k].iter().all(|w| w.is_none_or(|(_, w)| lit(w).is_some())) {
+                note(cx, c, Severity::Error, "The base-circle centre I/J/K is zero: the involute is undefined (alarm PS0242).".into(), out);
+            }
+            match word_item(cx, b'R') {
+                None => missing(cx, c, "R", "the base-circle radius (alarm PS0241).", out),
+                Some((_, w)) if lit(w) == Some(0.0) => {
+                    note(cx, c, Severity::Error, "R0: the base-circle radius must not be zero (alarm PS0242).".into(), out)
+                }
+                _ => {}
             }
         }
         _ => {}
     }
+}
+
+/// Whether the last motion before this block was followed by a G04 dwell:
+/// walking back, other G10 blocks and blocks without motion are passed over, a
+/// G04 answers yes and a block with axis words answers no. The program start
+/// counts as standing still.
+fn previous_block_dwells(cx: &BlockCx<'_>) -> bool {
+    let p = cx.program;
+    for b in p.blocks[..cx.index.min(p.blocks.len())].iter().rev() {
+        let g = super::util::block_g_codes(p, b);
+        if g.contains(&40) {
+            return true;
+        }
+        if g.contains(&100) {
+            continue;
+        }
+        if super::util::block_has_axis(p, b, cx.settings) {
+            return false;
+        }
+    }
+    true
 }

@@ -67,6 +67,9 @@ mod word_value_range;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};
 
+// Declared apart from the sorted list above so that branches adding rules merge cleanly.
+mod word_without_user;
+
 use crate::diagnostic::Diagnostic;
 
 /// Where a rule's check runs.
@@ -159,8 +162,11 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     let mut codes = Vec::new();
     // Lines LinuxCNC never reads are only reported as unreachable (P006).
     let dead = util::dead_blocks(cx.program);
+    let unreadable = util::unreadable_blocks(cx.program);
     for (i, block) in cx.program.blocks.iter().enumerate() {
-        if dead.get(i).copied().unwrap_or(false) {
+        // A block the parser could not read is reported by the parser alone: rules
+        // would only describe the debris of the syntax error.
+        if dead.get(i).copied().unwrap_or(false) || unreadable.get(i).copied().unwrap_or(false) {
             continue;
         }
         codes.clear();

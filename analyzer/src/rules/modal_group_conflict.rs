@@ -3,6 +3,8 @@
 use crate::declare_rule;
 use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
+use crate::span::Span;
+use crate::syntax::ItemKind;
 
 use super::util::{code_name, is_drilling_cycle, removal_span};
 use super::{BlockCx, Rule, RuleMeta};
@@ -34,7 +36,8 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: error (warning when one of the codes is `G80`, which is dropped).
+    /// RS274/NGC: error (warning when one of the codes is `G80`, which is dropped); when
+    /// only G codes precede the second code, a quick fix splits the line before it.
     /// ServoWorks and FANUC: warning; a quick fix removes the code that has no effect.
     /// Groups come from each dialect's code table; ServoWorks and FANUC group 00 codes are
     /// one-shot and may share a block.
@@ -86,10 +89,25 @@ impl Rule for ModalGroupConflict {
                         format!("G80 is dropped: {other} on the same line sets the motion mode. Remove the G80, or put it on its own line if the cycle must be cancelled first."),
                     )
                 }
-                Dialect::Rs274ngc => Diagnostic::error(
+                Dialect::Rs274ngc => {
+                    let d = Diagnostic::error(
+                        "G001",
+                        later.span,
+                        format!("Two G codes used from same modal group: {e_name} and {l_name} are both in group {group}, and the interpreter refuses the line. Keep one, or put them on separate lines."),
+                    );
+                    match split_fix(cx, later.item) {
+                        Some(edit) => d.with_fix(format!("Put {l_name} and the rest of the line on a new line"), vec![edit]),
+                        None => d,
+                    }
+                }
+                _ if en == ln => Diagnostic::warning(
                     "G001",
                     later.span,
-                    format!("Two G codes used from same modal group: {e_name} and {l_name} are both in group {group}, and the interpreter refuses the line. Keep one, or put them on separate lines."),
+                    format!("{l_name} is written twice in this block; the second one changes nothing. Remove one (if this is a second block, put it on its own line)."),
+                )
+                .with_fix(
+                    format!("Remove the repeated {e_name}"),
+                    vec![TextEdit { span: removal_span(cx.program, earlier.span), new_text: String::new() }],
                 ),
                 _ => Diagnostic::warning(
                     "G001",
@@ -138,4 +156,29 @@ impl Rule for ModalGroupConflict {
             }
         }
     }
+}
+
+/// Splitting a line before its `item`-th item is certain only when every item
+/// before it is a G word or a comment: then the first line keeps exactly the
+/// codes written before, and the rest of the line runs next, as written.
+fn split_fix(cx: &BlockCx<'_>, item: usize) -> Option<TextEdit> {
+    let items = cx.items();
+    let before = items.get(..item)?;
+    let clean = before.iter().all(|i| match i.kind {
+        ItemKind::Word(w) => w.letter == b'G',
+        ItemKind::Comment(_) => true,
+        _ => false,
+    });
+    if !clean || cx.block.skip.is_some() {
+        return None;
+    }
+    let at = items.get(item)?.span.start;
+    let mut start = at as usize;
+    while start > 0 && matches!(cx.program.text.get(start - 1), Some(b' ') | Some(b'\t')) {
+        start -= 1;
+    }
+    Some(TextEdit {
+        span: Span::new(start as u32, at),
+        new_text: "\n".into(),
+    })
 }

@@ -4,9 +4,9 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::span::Span;
-use crate::syntax::{BlockKind, ItemKind, OKeyword, OLabel, Program};
+use crate::syntax::{BlockKind, Expr, ItemKind, OKeyword, OLabel, Program};
 
-use super::util::{is_emc2, lit};
+use super::util::{block_exprs, expr_nodes, is_emc2, lit};
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -14,18 +14,20 @@ declare_rule! {
     /// Checks RS274/NGC subroutine calls and labels: a call with more than 30 arguments;
     /// a call to a subroutine defined further down the file; a subroutine that calls
     /// itself unconditionally, directly or through others; a label opened by two blocks of
-    /// the same subroutine (or two subroutines); a
-    /// program mixing `M98`/`M99` subprograms with O-word subroutines; and a line that
+    /// the same subroutine (or two subroutines); an `o… sub` ended by `M99` (the two
+    /// subroutine styles mixed in one definition); and a line that
     /// starts with the digit `0` where the letter `O` was meant (`0100 sub`). Only calls
     /// outside any `if` or loop count for recursion; labels repeat freely across
-    /// subroutines.
+    /// subroutines. Info notes: a subroutine that writes a global parameter (#31 and up,
+    /// `#<_name>`), or reads an argument that some call does not pass.
     ///
     /// ## Why is this bad?
     /// Subroutines take at most 30 arguments (#1–#30). The documentation requires a
     /// definition before its call (the interpreter searches forward, slowly). Recursion
     /// exceeds the 10 call levels unless it is bounded. Reused labels make `endwhile`,
-    /// `break` and friends ambiguous. LinuxCNC refuses Fanuc-style `M98` in a file that
-    /// uses O-word subroutines. `0100` is a number, not a label.
+    /// `break` and friends ambiguous. LinuxCNC 2.9 accepts `M98`/`M99` programs next to
+    /// `o… sub` ones, but not a definition that starts as one and ends as the other.
+    /// `0100` is a number, not a label.
     ///
     /// ## Example
     /// ```ngc
@@ -46,15 +48,15 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: error for too many arguments and mixed styles (`linuxcnc`), warnings
-    /// otherwise. Calls to subroutines in other files are resolved when the program runs.
+    /// RS274/NGC: error for too many arguments and for M99 in an `o… sub` (`linuxcnc`),
+    /// warnings otherwise, info for the notes. Calls to subroutines in other files are resolved when the program runs.
     ///
-    /// Implements: NGC606, NGC607, NGC608, NGC610, NGC617, NGC618
+    /// Implements: NGC606, NGC607, NGC608, NGC610, NGC613, NGC614, NGC617, NGC618
     pub static OWORD_CALLS = {
         code: "P008",
         name: "oword-calls",
         summary: "Subroutine calls and O labels",
-        implements: &["NGC606", "NGC607", "NGC608", "NGC610", "NGC617", "NGC618"],
+        implements: &["NGC606", "NGC607", "NGC608", "NGC610", "NGC613", "NGC614", "NGC617", "NGC618"],
         origin: Static,
         default_enabled: true,
     }
@@ -91,8 +93,12 @@ impl Rule for OwordCalls {
         let mut depth = 0usize;
         let mut open_do: Vec<String> = Vec::new();
         let mut current_sub: Option<String> = None;
-        let mut has_osub = false;
-        let mut fanuc_style: Option<Span> = None;
+        // Global writes already reported, per subroutine (once each).
+        let mut written: Vec<(String, String)> = Vec::new();
+        // Per subroutine: the highest local parameter #1–#30 it reads, with its span.
+        let mut reads: Vec<(String, u32, Span)> = Vec::new();
+        // Per call: (label, number of arguments).
+        let mut arg_counts: Vec<(String, usize)> = Vec::new();
         for b in &p.blocks {
             if b.kind == BlockKind::Normal {
                 let text = p.str_of(b.span);
@@ -113,13 +119,33 @@ impl Rule for OwordCalls {
                     }
                 }
             }
+            if let Some(sub) = &current_sub {
+                let items = p.items_of(b);
+                for root in block_exprs(p, items) {
+                    for id in expr_nodes(p, root) {
+                        let Expr::Var { index } = p.expr(id).expr else {
+                            continue;
+                        };
+                        let Expr::Num(n) = p.expr(index).expr else {
+                            continue;
+                        };
+                        if (1.0..=30.0).contains(&n.value) && n.value.fract() == 0.0 {
+                            let v = n.value as u32;
+                            match reads.iter_mut().find(|(s, _, _)| s == sub) {
+                                Some(r) if r.1 >= v => {}
+                                Some(r) => *r = (sub.clone(), v, p.expr(id).span),
+                                None => reads.push((sub.clone(), v, p.expr(id).span)),
+                            }
+                        }
+                    }
+                }
+            }
             for item in p.items_of(b) {
                 match item.kind {
                     ItemKind::OWord(o) => {
                         let Some(l) = label(p, o.label) else { continue };
                         match o.keyword {
                             Some(OKeyword::Sub) => {
-                                has_osub = true;
                                 defs.push((l.clone(), item.span.start, item.span));
                                 current_sub = Some(l.clone());
                                 depth = 0;
@@ -130,7 +156,6 @@ impl Rule for OwordCalls {
                                 depth = 0;
                             }
                             Some(OKeyword::Call) => {
-                                has_osub = true;
                                 let n = p.expr_list(o.args).len();
                                 if n > 30 {
                                     out.push(Diagnostic::error(
@@ -141,6 +166,7 @@ impl Rule for OwordCalls {
                                 }
                                 // A call inside an if or loop may be the bounded case of a recursion.
                                 let caller = current_sub.clone().filter(|_| depth == 0);
+                                arg_counts.push((l.clone(), n));
                                 calls.push((l, item.span.start, item.span, caller));
                             }
                             Some(OKeyword::While) if open_do.last() == Some(&l) => {
@@ -168,20 +194,64 @@ impl Rule for OwordCalls {
                         }
                     }
                     ItemKind::Word(w)
-                        if w.letter == b'M' && lit(&w).is_some_and(|v| v == 98.0 || v == 99.0) =>
+                        if w.letter == b'M'
+                            && lit(&w) == Some(99.0)
+                            && current_sub.is_some()
+                            && !is_emc2(cx.settings) =>
                     {
-                        fanuc_style.get_or_insert(item.span);
+                        // An `o… sub` must end with `endsub`; M99 belongs to Fanuc-style `O…` programs.
+                        out.push(Diagnostic::error(
+                            "P008",
+                            item.span,
+                            "M99 inside an `o… sub` subroutine: LinuxCNC does not mix the two subroutine styles in one definition. End it with `o… endsub`, or write it as a Fanuc-style `O…` program ending in M99.",
+                        ));
+                    }
+                    ItemKind::Assign { target, .. } if current_sub.is_some() => {
+                        let global = match p.expr(target).expr {
+                            Expr::Var { index } => {
+                                matches!(p.expr(index).expr, Expr::Num(n) if n.value >= 31.0)
+                            }
+                            Expr::Named { name } => p.str_of(name).trim_start().starts_with('_'),
+                            _ => false,
+                        };
+                        let key = (
+                            current_sub.clone().unwrap_or_default(),
+                            p.str_of(p.expr(target).span).to_ascii_lowercase(),
+                        );
+                        if global && !written.contains(&key) {
+                            written.push(key);
+                            out.push(Diagnostic::info(
+                                "P008",
+                                p.expr(target).span,
+                                format!(
+                                    "The subroutine writes the global parameter `{}`; the caller sees the change after the call returns.",
+                                    p.str_of(p.expr(target).span)
+                                ),
+                            ));
+                        }
                     }
                     _ => {}
                 }
             }
         }
-        if let (true, Some(span), false) = (has_osub, fanuc_style, is_emc2(cx.settings)) {
-            out.push(Diagnostic::error(
-                "P008",
-                span,
-                "M98/M99 subprograms and O-word subroutines are mixed in one program; LinuxCNC accepts one style per program. Use `o… call` and `o… sub`.",
-            ));
+        for (sub, highest, span) in &reads {
+            let passed: Vec<usize> = arg_counts
+                .iter()
+                .filter(|(l, _)| l == sub)
+                .map(|(_, n)| *n)
+                .collect();
+            if let Some(fewest) = passed.iter().min() {
+                if (*highest as usize) > *fewest {
+                    out.push(Diagnostic::info(
+                        "P008",
+                        *span,
+                        format!(
+                            "o{sub} reads #{highest}, but a call passes only {fewest} argument{}: the parameter keeps whatever value it had.",
+                            if *fewest == 1 { "" } else { "s" }
+                        ),
+                    ));
+                }
+            }
         }
         for (j, (scope, l, span)) in openers.iter().enumerate() {
             if let Some((_, _, first)) = openers[..j]

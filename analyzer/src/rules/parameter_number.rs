@@ -3,7 +3,7 @@
 use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
-use crate::syntax::{Expr, ItemKind};
+use crate::syntax::{Expr, ExprId, Func, ItemKind};
 
 use super::util::{block_exprs, expr_nodes, is_emc2, near_integer};
 use super::{BlockCx, Rule, RuleMeta};
@@ -75,7 +75,29 @@ impl Rule for ParameterNumber {
         }
         let max = if is_emc2(cx.settings) { 5399.0 } else { 5601.0 };
         for root in block_exprs(p, cx.items()) {
-            for id in expr_nodes(p, root) {
+            let nodes = expr_nodes(p, root);
+            // `EXISTS[#n]` asks whether #n exists, so its own number is not range-checked.
+            let exists_args: Vec<ExprId> = nodes
+                .iter()
+                .filter_map(|id| match p.expr(*id).expr {
+                    Expr::Call {
+                        func: Func::Exists,
+                        arg,
+                        ..
+                    } => {
+                        let mut a = arg;
+                        while let Expr::Group { inner } = p.expr(a).expr {
+                            a = inner;
+                        }
+                        Some(a)
+                    }
+                    _ => None,
+                })
+                .collect();
+            for id in nodes {
+                if exists_args.contains(&id) {
+                    continue;
+                }
                 let node = p.expr(id);
                 let Expr::Var { index } = node.expr else {
                     continue;

@@ -14,7 +14,7 @@ declare_rule! {
     /// Checks that a main program ends: with `M2`/`M30` (RS274/NGC, unless the file is
     /// wrapped in `%` lines), with `M02`/`M30` (ServoWorks main programs), or with
     /// `M02`/`M30`/`M99` (FANUC). An RS274/NGC file that opens with `%` needs its closing
-    /// `%`, a ServoWorks file must end with a `%` line or a line break, and a FANUC file
+    /// `%` unless it reaches `M2`/`M30` first, a ServoWorks file must end with a `%` line or a line break, and a FANUC file
     /// starts with `%` and an `O` number.
     ///
     /// ## Why is this bad?
@@ -99,7 +99,8 @@ impl Rule for ProgramEnd {
                         .iter()
                         .filter(|b| b.kind == BlockKind::Percent)
                         .count();
-                    if percents < 2 {
+                    // Reading stops at M2/M30 too, so the closing `%` is not needed after one.
+                    if percents < 2 && !ends(&[2.0, 30.0]) {
                         out.push(Diagnostic::error(
                             "P005",
                             end_span(p),

@@ -53,6 +53,7 @@ use super::unknown_address::{UnknownAddress, UNKNOWN_ADDRESS};
 use super::unknown_code::{UnknownCode, UNKNOWN_CODE};
 use super::unreachable_after_end::{UnreachableAfterEnd, UNREACHABLE_AFTER_END};
 use super::word_value_range::{WordValueRange, WORD_VALUE_RANGE};
+use super::word_without_user::{WordWithoutUser, WORD_WITHOUT_USER};
 
 /// Metadata of every syntax and static rule, in code order.
 pub static RULES: &[&RuleMeta] = &[
@@ -98,6 +99,7 @@ pub static RULES: &[&RuleMeta] = &[
     &EQ_NON_INTEGER,
     &INTEGER_MACHINE_UNIT,
     &CONTROL_NOTES,
+    &WORD_WITHOUT_USER,
     &OWORD_STRUCTURE,
     &MACRO_LOOP_STRUCTURE,
     &GOTO_TARGET,
@@ -150,6 +152,7 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &EqNonInteger,
     &IntegerMachineUnit,
     &ControlNotes,
+    &WordWithoutUser,
     &OwordStructure,
     &MacroLoopStructure,
     &GotoTarget,

@@ -69,6 +69,8 @@ impl Rule for SequenceNumber {
             return;
         }
         let mut seen: Vec<(f64, crate::span::Span)> = Vec::new();
+        // RS274/NGC line numbers with more than five digits: reported once per file.
+        let mut long: Vec<(crate::span::Span, String)> = Vec::new();
         for b in &p.blocks {
             let items = p.items_of(b);
             if items
@@ -108,7 +110,7 @@ impl Rule for SequenceNumber {
                             out.push(Diagnostic::error("P007", item.span, format!("`{text}`: a line number must be the first item of the line (after an optional `/`). Move it to the start or remove it.")));
                         }
                         if n.value > 99_999.0 || int_digits > 5 {
-                            out.push(Diagnostic::warning("P007", item.span, format!("`{text}`: line numbers have at most five digits (0 to 99999) in RS274/NGC; LinuxCNC accepts more, other readers may not.")));
+                            long.push((item.span, text.clone()));
                         }
                         if is_emc2(cx.settings) && n.value.fract() != 0.0 {
                             out.push(Diagnostic::warning(
@@ -141,6 +143,17 @@ impl Rule for SequenceNumber {
                     Dialect::Servoworks => {}
                 }
             }
+        }
+        if let Some((span, text)) = long.first() {
+            let more = match long.len() {
+                1 => String::new(),
+                n => format!(" ({} more lines like it)", n - 1),
+            };
+            out.push(Diagnostic::warning(
+                "P007",
+                *span,
+                format!("`{text}`: line numbers have at most five digits (0 to 99999) in RS274/NGC; LinuxCNC accepts more, other readers may not{more}."),
+            ));
         }
     }
 }

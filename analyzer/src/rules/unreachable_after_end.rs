@@ -68,6 +68,38 @@ impl Rule for UnreachableAfterEnd {
                 }
             }
         }
+        if d == Dialect::Rs274ngc {
+            // LinuxCNC stops reading at an unconditional top-level end; `dead_blocks`
+            // knows which lines that leaves out (the same set the block rules skip).
+            let dead = super::util::dead_blocks(p);
+            let mut run: Option<(crate::span::Span, usize)> = None;
+            let mut end = "M2";
+            for (i, b) in p.blocks.iter().enumerate() {
+                if !dead[i] {
+                    if let Some(e) = p.words(b).find_map(|(_, w)| match lit(w) {
+                        Some(v) if w.letter == b'M' && v == 30.0 => Some("M30"),
+                        Some(v) if w.letter == b'M' && v == 2.0 => Some("M2"),
+                        _ => None,
+                    }) {
+                        end = e;
+                    }
+                    if let Some((span, n)) = run.take() {
+                        out.push(unreachable(span, n, end));
+                    }
+                    continue;
+                }
+                if b.kind == BlockKind::Normal && has_code_items(p, b) {
+                    run = Some(match run {
+                        Some((s, n)) => (s.cover(b.span), n + 1),
+                        None => (b.span, 1),
+                    });
+                }
+            }
+            if let Some((span, n)) = run {
+                out.push(unreachable(span, n, end));
+            }
+            return;
+        }
         let mut ended: Option<&'static str> = None;
         let mut sub_depth = 0i32;
         let mut run: Option<(crate::span::Span, usize)> = None;
@@ -99,11 +131,15 @@ impl Rule for UnreachableAfterEnd {
                 ItemKind::OWord(o) => o.keyword,
                 _ => None,
             });
+            let fanuc_head = items
+                .iter()
+                .any(|i| matches!(i.kind, ItemKind::OWord(o) if o.keyword.is_none()));
             let target = p
                 .words(b)
                 .any(|(_, w)| w.letter == b'N' && lit(w).is_some_and(|v| targets.contains(&v)));
             let starts_scope = match d {
-                Dialect::Rs274ngc => okw == Some(OKeyword::Sub) || sub_depth > 0,
+                // A Fanuc-style `O…` program head (no keyword) starts an M98 subprogram.
+                Dialect::Rs274ngc => okw == Some(OKeyword::Sub) || sub_depth > 0 || fanuc_head,
                 _ => head || target,
             };
             match okw {
@@ -141,4 +177,17 @@ impl Rule for UnreachableAfterEnd {
             flush(&mut run, end, out);
         }
     }
+}
+
+fn unreachable(span: crate::span::Span, n: usize, end: &str) -> Diagnostic {
+    let what = if n == 1 {
+        "This block is never executed: it follows".to_string()
+    } else {
+        format!("These {n} blocks are never executed: they follow")
+    };
+    Diagnostic::warning(
+        "P006",
+        span,
+        format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
+    )
 }

@@ -193,33 +193,54 @@ pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::
     out
 }
 
-/// RS274/NGC blocks the interpreter never reads: top-level lines after the first
-/// top-level `M2`/`M30` (subroutine definitions further down stay reachable,
-/// because a call searches the file for them). Other dialects: none.
+/// RS274/NGC blocks the interpreter never reads: top-level lines after an
+/// `M2`/`M30` that is itself outside every O-word block (an `M30` inside an `if`
+/// may not run). Subroutine definitions further down stay reachable, because a
+/// call searches the file for them, and so do Fanuc-style `O…` programs.
+/// Other dialects: none.
 pub fn dead_blocks(program: &Program) -> Vec<bool> {
     use crate::dialect::Dialect;
-    use crate::syntax::OKeyword;
+    use crate::syntax::OKeyword as K;
     let mut dead = vec![false; program.blocks.len()];
     if program.dialect != Dialect::Rs274ngc {
         return dead;
     }
     let mut ended = false;
-    let mut depth = 0i32;
+    // Open O-word blocks: (is a `do`, label text).
+    let mut open: Vec<(bool, String)> = Vec::new();
     for (i, b) in program.blocks.iter().enumerate() {
-        let kw = program.items_of(b).iter().find_map(|it| match it.kind {
-            ItemKind::OWord(o) => o.keyword,
+        let ow = program.items_of(b).iter().find_map(|it| match it.kind {
+            ItemKind::OWord(o) => Some(o),
             _ => None,
         });
-        if kw == Some(OKeyword::Sub) {
-            depth += 1;
+        let label = ow
+            .map(|o| program.str_of(o.label_span).to_ascii_lowercase())
+            .unwrap_or_default();
+        match ow.map(|o| o.keyword) {
+            Some(None) => ended = false,
+            Some(Some(K::Sub)) => {
+                ended = false;
+                open.push((false, label.clone()));
+            }
+            _ => {}
         }
-        if ended && depth <= 0 {
+        if ended && open.is_empty() {
             dead[i] = true;
+            continue;
         }
-        if kw == Some(OKeyword::Endsub) {
-            depth -= 1;
+        match ow.and_then(|o| o.keyword) {
+            Some(K::Do) => open.push((true, label)),
+            Some(K::If) | Some(K::Repeat) => open.push((false, label)),
+            Some(K::While) if open.last().is_some_and(|(d, l)| *d && *l == label) => {
+                open.pop();
+            }
+            Some(K::While) => open.push((false, label)),
+            Some(K::Endsub) | Some(K::Endif) | Some(K::Endwhile) | Some(K::Endrepeat) => {
+                open.pop();
+            }
+            _ => {}
         }
-        if depth <= 0
+        if open.is_empty()
             && program.words(b).any(|(_, w)| {
                 w.letter == b'M' && matches!(lit(w), Some(v) if v == 2.0 || v == 30.0)
             })
@@ -228,4 +249,20 @@ pub fn dead_blocks(program: &Program) -> Vec<bool> {
         }
     }
     dead
+}
+
+/// Blocks that hold a syntax error (an error-severity parser diagnostic).
+pub fn unreadable_blocks(program: &Program) -> Vec<bool> {
+    let mut out = vec![false; program.blocks.len()];
+    for d in &program.diagnostics {
+        if d.severity != crate::diagnostic::Severity::Error {
+            continue;
+        }
+        if let Some(i) = program.block_at(d.span.start) {
+            if let Some(flag) = out.get_mut(i) {
+                *flag = true;
+            }
+        }
+    }
+    out
 }

@@ -39,12 +39,12 @@ declare_rule! {
     /// All; errors where the control stops, warnings where it changes the value. Values
     /// given by parameters or expressions are checked when the program runs.
     ///
-    /// Implements: SW022, SW030, SW041, SW044, SW054, SW061, SW062, SW063, SW065, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC426, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
+    /// Implements: SW022, SW030, SW040, SW041, SW044, SW045, SW054, SW061, SW062, SW063, SW065, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC426, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
     pub static WORD_VALUE_RANGE = {
         code: "W007",
         name: "word-value-range",
         summary: "Literal word value outside the accepted range",
-        implements: &["SW022", "SW030", "SW041", "SW044", "SW054", "SW061", "SW062", "SW063", "SW065", "SW073", "SW091", "SW102", "SW110", "SW122", "SW123", "SW130", "SW136", "SW137", "SW138", "SW140", "SW141", "SW143", "NGC215", "NGC224", "NGC304", "NGC305", "NGC308", "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC426", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN003", "FAN005", "FAN011", "FAN073", "FAN074", "FAN076"],
+        implements: &["SW022", "SW030", "SW040", "SW041", "SW044", "SW045", "SW054", "SW061", "SW062", "SW063", "SW065", "SW073", "SW091", "SW102", "SW110", "SW122", "SW123", "SW130", "SW136", "SW137", "SW138", "SW140", "SW141", "SW143", "NGC215", "NGC224", "NGC304", "NGC305", "NGC308", "NGC332", "NGC334", "NGC401", "NGC410", "NGC413", "NGC426", "NGC500", "NGC501", "NGC502", "NGC509", "NGC809", "FAN003", "FAN005", "FAN011", "FAN073", "FAN074", "FAN076"],
         origin: Static,
         default_enabled: true,
     }
@@ -242,6 +242,19 @@ impl Rule for WordValueRange {
                 }
                 if has(cx, 'G', 20) || has(cx, 'G', 30) {
                     k.check(b'Q', W, |v| v > 0.0, |t| format!("`{t}`: Q is the allowed contour error of the arc and must be greater than 0."));
+                }
+                if has(cx, 'G', 20) || has(cx, 'G', 30) {
+                    k.check(
+                        b'R',
+                        W,
+                        |v| v != 0.0,
+                        |t| format!("`{t}`: an arc of radius 0 is degenerate."),
+                    );
+                }
+                if has(cx, 'G', 23) || has(cx, 'G', 33) {
+                    for l in [b'I', b'J', b'R'] {
+                        k.check(l, E, |v| v != 0.0, |t| format!("`{t}`: exponential interpolation is undefined when I, J or R is 0."));
+                    }
                 }
                 if has(cx, 'G', 23) || has(cx, 'G', 33) {
                     for l in [b'I', b'J'] {
