@@ -2580,6 +2580,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.exec_arc(w, mode == 20, bspan)?;
                 }
             }
+            760 if self.ngc() => {
+                self.st.modal.motion = 760;
+                self.exec_threading(w, bspan)?;
+            }
             330 => {
                 self.st.modal.motion = 330;
                 let t = self.target(w);
@@ -2626,6 +2630,125 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// LinuxCNC's G76 threading cycle (lathe, XZ): passes at depths
+    /// `I + J·pass^(1/R)` with compound angle Q, spring passes H, tapers E/L.
+    fn exec_threading(&mut self, w: &Words, span: Span) -> Result<(), Diagnostic> {
+        use std::f64::consts::PI;
+        if self.st.modal.comp != 400 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "cannot use G76 threading cycle with cutter radius compensation on",
+            ));
+        }
+        let i = w.get(b'I').map(|v| self.lin(v)).unwrap_or(0.0);
+        let j = w.get(b'J').map(|v| self.lin(v)).unwrap_or(0.0);
+        let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+        if i == 0.0 {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, I must not be 0"));
+        }
+        if j <= 0.0 {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, J must be greater than 0"));
+        }
+        if k <= j {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, K must be greater than J"));
+        }
+        let end = self.target(w);
+        let start = self.st.pos;
+        let boring = i > 0.0;
+        let safe_x = start[0];
+        let full_dia_depth = i.abs();
+        let start_depth = i.abs() + j.abs();
+        let cut_increment = j.abs();
+        let full_threadheight = k.abs();
+        let end_depth = k.abs() + i.abs();
+        let pitch = w.get(b'P').map(|v| self.lin(v)).unwrap_or(0.0);
+        let mut compound = w.get(b'Q').unwrap_or(0.0) * PI / 180.0;
+        if end[2] > start[2] {
+            compound = -compound;
+        }
+        let spring = w.get(b'H').map(|h| h.max(0.0) as u32).unwrap_or(0);
+        let degression = w.get(b'R').filter(|r| *r >= 1.0).unwrap_or(1.0);
+        let mut taper = w.get(b'E').map(|v| self.lin(v)).unwrap_or(0.0).max(0.0);
+        let taper_pitch = if taper > 0.0 {
+            pitch * taper.hypot(full_threadheight) / taper
+        } else {
+            pitch
+        };
+        if end[2] > start[2] {
+            taper = -taper;
+        }
+        let flags = w.get(b'L').map(|l| l.max(0.0) as u32).unwrap_or(0);
+        let (entry, exit) = (flags & 1 != 0, flags & 2 != 0);
+        let target_z = end[2] + k.abs() * compound.tan();
+        let u = self.unit();
+        let x_at = |d: f64| if boring { safe_x + d } else { safe_x - d };
+        let pt = |x: f64, z: f64| {
+            let mut p = start;
+            p[0] = x;
+            p[2] = z;
+            p
+        };
+        let sync = |s: &mut Self, p: f64| s.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", p / u));
+        let mut pass_no = 1.0f64;
+        let mut depth = start_depth;
+        let mut guard = 0;
+        let mut passes: Vec<f64> = Vec::new();
+        while depth < end_depth && guard < 100_000 {
+            guard += 1;
+            passes.push(depth);
+            pass_no += 1.0;
+            depth = full_dia_depth + cut_increment * pass_no.powf(1.0 / degression);
+        }
+        for _ in 0..=spring {
+            passes.push(end_depth);
+        }
+        for depth in passes {
+            let zoff = (depth - full_dia_depth) * compound.tan();
+            self.rapid_to(pt(x_at(depth - end_depth), start[2] - zoff));
+            if taper != 0.0 && entry {
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                sync(self, taper_pitch);
+                self.thread_to(
+                    pt(x_at(depth - full_threadheight), start[2] - zoff),
+                    taper_pitch,
+                );
+                self.thread_to(pt(x_at(depth), start[2] - zoff - taper), taper_pitch);
+                sync(self, pitch);
+            } else {
+                self.rapid_to(pt(x_at(depth), start[2] - zoff));
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                sync(self, pitch);
+            }
+            if taper != 0.0 && exit {
+                self.thread_to(pt(x_at(depth), target_z - zoff + taper), pitch);
+                sync(self, taper_pitch);
+                self.thread_to(
+                    pt(x_at(depth - full_threadheight), target_z - zoff),
+                    taper_pitch,
+                );
+            } else {
+                self.thread_to(pt(x_at(depth), target_z - zoff), pitch);
+            }
+            self.canon("STOP_SPEED_FEED_SYNCH()");
+            self.rapid_to(pt(x_at(depth - end_depth), target_z - zoff));
+            self.canon("ENABLE_FEED_OVERRIDE()");
+        }
+        self.rapid_to(end);
+        Ok(())
+    }
+
+    /// A spindle-synchronised straight move (pitch in mm/rev).
+    fn thread_to(&mut self, t: [f64; 6], pitch: f64) {
+        let s = self.canon_pos(&t);
+        self.canon(format!("STRAIGHT_FEED({s})"));
+        let end = self.to_machine(t);
+        let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, pitch);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
     }
 
     /// A straight move, offset for cutter radius compensation when it is on.
