@@ -69,6 +69,9 @@ struct Words {
     ijk_order: Vec<(u8, f64)>,
     /// The N number as written.
     n_text: Option<String>,
+    /// RS274/NGC polar words `@` (radius) and `^` (angle, degrees).
+    polar_r: Option<f64>,
+    polar_a: Option<f64>,
     /// K as written (a repeat count in FANUC/ServoWorks cycles).
     raw_k: Option<f64>,
 }
@@ -101,6 +104,8 @@ impl Words {
     }
     fn any_axis(&self) -> bool {
         b"XYZABCUVW".iter().any(|c| self.has(*c))
+            || self.polar_r.is_some()
+            || self.polar_a.is_some()
     }
 }
 
@@ -161,7 +166,12 @@ impl VarSource for Vars<'_> {
 /// #4001… modal codes, #5001… end point, #5021… machine, #5041… work
 /// position; LinuxCNC #5420… current position.
 fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
-    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    // RS274/NGC keeps lengths in program units already.
+    let u = if st.modal.inch && d != Dialect::Rs274ngc {
+        25.4
+    } else {
+        1.0
+    };
     let axis = |v: &[f64; 6], i: usize| if i < 3 { v[i] / u } else { v[i] };
     match d {
         Dialect::Rs274ngc => match n {
@@ -199,7 +209,8 @@ fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
 
 /// LinuxCNC read-only named parameters, in program units.
 fn predefined(st: &State, name: &str) -> Option<f64> {
-    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    // Only RS274/NGC has named parameters, and it keeps program units.
+    let u = 1.0;
     let axes = ["x", "y", "z", "a", "b", "c"];
     for (i, a) in axes.iter().enumerate() {
         if name.strip_prefix('_') == Some(a) {
@@ -265,7 +276,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         let dialect = input.settings.dialect;
         let mut cfg = MachineCfg::read(input.machine, dialect);
         if let Some(t) = input.tool_table {
-            parse_tool_table(t, cfg.param_unit, &mut cfg.tools, &mut cfg.tool_order);
+            // Tool-table values stay in machine units; `pfac` converts at use.
+            parse_tool_table(t, 1.0, &mut cfg.tools, &mut cfg.tool_order);
         }
         let mut params = vec![None; NUM_PARAMS];
         if dialect == Dialect::Rs274ngc {
@@ -354,12 +366,77 @@ impl<'a, 'i> Interp<'a, 'i> {
         it
     }
 
+    /// Internal length units per program unit. RS274/NGC keeps lengths in
+    /// program units as LinuxCNC does (so canonical output rounds identically);
+    /// the other dialects keep millimetres.
     fn unit(&self) -> f64 {
-        if self.st.modal.inch {
+        if self.ngc() || !self.st.modal.inch {
+            1.0
+        } else {
+            25.4
+        }
+    }
+
+    /// Millimetres per internal length unit.
+    fn lu(&self) -> f64 {
+        if self.ngc() && self.st.modal.inch {
             25.4
         } else {
             1.0
         }
+    }
+
+    /// Internal units per parameter/tool-table unit.
+    fn pfac(&self) -> f64 {
+        let lu = self.lu();
+        if self.cfg.param_unit == lu {
+            1.0
+        } else if lu == 1.0 {
+            self.cfg.param_unit
+        } else {
+            self.cfg.param_unit / lu
+        }
+    }
+
+    /// Switches RS274/NGC program units, converting the stored lengths as
+    /// LinuxCNC does.
+    fn switch_units(&mut self, inch: bool) {
+        if inch == self.st.modal.inch {
+            return;
+        }
+        let f = if inch { 1.0 / 25.4 } else { 25.4 };
+        if self.ngc() {
+            let st = &mut self.st;
+            for v in [
+                &mut st.pos,
+                &mut st.mpos,
+                &mut st.g92,
+                &mut st.g52,
+                &mut st.tlo,
+                &mut st.comp_tip,
+            ] {
+                for x in v.iter_mut().take(3) {
+                    *x *= f;
+                }
+            }
+            st.comp_radius *= f;
+            st.feed *= f;
+            st.modal.path_tol = st.modal.path_tol.map(|t| t * f);
+            for x in [
+                &mut st.cycle.r,
+                &mut st.cycle.z,
+                &mut st.cycle.q,
+                &mut st.cycle.i,
+                &mut st.cycle.j,
+                &mut st.cycle.k,
+                &mut st.cycle.initial,
+            ] {
+                if let Some(v) = x.as_mut() {
+                    *v *= f;
+                }
+            }
+        }
+        self.st.modal.inch = inch;
     }
 
     fn ngc(&self) -> bool {
@@ -390,11 +467,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let mut o = [0.0; 6];
         for (k, v) in o.iter_mut().enumerate() {
             let raw = self.param(base + k);
-            *v = if k < 3 {
-                raw * self.cfg.param_unit
-            } else {
-                raw
-            };
+            *v = if k < 3 { raw * self.pfac() } else { raw };
         }
         o
     }
@@ -673,8 +746,16 @@ impl<'a, 'i> Interp<'a, 'i> {
     fn snapshot(&self) -> BlockSnapshot {
         BlockSnapshot {
             modal: self.st.modal.codes(self.ngc()),
-            position: self.st.pos,
-            feed: self.st.feed,
+            position: {
+                let lu = self.lu();
+                let p = self.st.pos;
+                [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]]
+            },
+            feed: if self.st.modal.feed_mode == 930 {
+                self.st.feed
+            } else {
+                self.st.feed * self.lu()
+            },
             spindle: self.st.spindle,
             tool: self.st.tool,
         }
@@ -891,6 +972,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                             });
                         }
                         b'O' => {}
+                        b'@' => w.polar_r = Some(val),
+                        b'^' => w.polar_a = Some(val),
                         c @ b'A'..=b'Z' if !word.comma => {
                             let i = (c - b'A') as usize;
                             w.v[i] = Some(val);
@@ -1435,7 +1518,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
-            self.st.modal.inch = w.has_g(200);
+            self.switch_units(w.has_g(200));
         }
         // G96/G97.
         if w.has_g(960) {
@@ -1811,7 +1894,11 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn tool_diameter(&self, d: Option<f64>) -> f64 {
         let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
-        self.cfg.tools.get(&idx).map(|t| t.diameter).unwrap_or(0.0)
+        self.cfg
+            .tools
+            .get(&idx)
+            .map(|t| t.diameter * self.pfac())
+            .unwrap_or(0.0)
     }
 
     fn exec_comp(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -1881,7 +1968,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
                 let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
                 let sign = if code == 440 { -1.0 } else { 1.0 };
-                set(self, sign * t.length, sign * t.x_offset);
+                let f = self.pfac();
+                set(self, sign * t.length * f, sign * t.x_offset * f);
             }
         }
         if w.has_g(432) {
@@ -2217,7 +2305,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     let cur_machine = self.st.mpos;
                     for i in 0..6 {
                         let Some(v) = axis(self, i) else { continue };
-                        let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                        let scale = if i < 3 { self.pfac() } else { 1.0 };
                         let new = if l == 2 {
                             v
                         } else {
@@ -2241,11 +2329,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 1 | 10 | 11 => {
                     let t = p.max(0) as u32;
                     let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
+                    let f = self.pfac();
                     if let Some(z) = axis(self, 2) {
-                        tool.length = z;
+                        tool.length = z / f;
                     }
                     if let Some(r) = w.get(b'R') {
-                        tool.diameter = 2.0 * self.lin(r);
+                        tool.diameter = 2.0 * self.lin(r) / f;
                     }
                     self.cfg.tools.insert(t, tool);
                 }
@@ -2257,7 +2346,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             if w.has_g(code) && self.ngc() {
                 // Store the current absolute position as the G28/G30 home.
                 for i in 0..6 {
-                    let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                    let scale = if i < 3 { self.pfac() } else { 1.0 };
                     self.set_param(base + i, Some(self.st.mpos[i] / scale));
                 }
                 return Ok(true);
@@ -2291,11 +2380,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     } else {
                         0.0
                     };
-                    *h = if i < 3 {
-                        raw * self.cfg.param_unit
-                    } else {
-                        raw
-                    };
+                    *h = if i < 3 { raw * self.pfac() } else { raw };
                 }
             }
             let target = self.to_program(home_m);
@@ -2339,7 +2424,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             for i in 0..6 {
                 self.set_param(
                     5211 + i,
-                    Some(g92[i] / if i < 3 { self.cfg.param_unit } else { 1.0 }),
+                    Some(g92[i] / if i < 3 { self.pfac() } else { 1.0 }),
                 );
             }
             self.set_param(5210, Some(1.0));
@@ -2364,7 +2449,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(923) {
             let mut g92 = [0.0; 6];
             for (i, g) in g92.iter_mut().enumerate() {
-                *g = self.param(5211 + i) * if i < 3 { self.cfg.param_unit } else { 1.0 };
+                *g = self.param(5211 + i) * if i < 3 { self.pfac() } else { 1.0 };
             }
             self.st.g92 = g92;
             self.set_param(5210, Some(1.0));
@@ -2379,6 +2464,33 @@ impl<'a, 'i> Interp<'a, 'i> {
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
         let mut t = self.st.pos;
         let inc = self.st.modal.incremental;
+        if self.ngc() && (w.polar_r.is_some() || w.polar_a.is_some()) {
+            // LinuxCNC polar words: radius/angle about the origin of the plane.
+            let (a, b) = self.plane_axes();
+            let (x, y) = (t[a], t[b]);
+            let (r0, th0) = (x.hypot(y), y.atan2(x));
+            let (r, th) = if inc {
+                (
+                    r0 + w.polar_r.map(|v| self.lin(v)).unwrap_or(0.0),
+                    th0 + w.polar_a.unwrap_or(0.0).to_radians(),
+                )
+            } else {
+                (
+                    w.polar_r.map(|v| self.lin(v)).unwrap_or(r0),
+                    w.polar_a.map(f64::to_radians).unwrap_or(th0),
+                )
+            };
+            t[a] = r * th.cos();
+            t[b] = r * th.sin();
+            let n = self.normal_axis();
+            for i in [n, 3, 4, 5] {
+                if let Some(v) = w.get(letters[i]) {
+                    let v = if i < 3 { self.lin(v) } else { v };
+                    t[i] = if inc { t[i] + v } else { v };
+                }
+            }
+            return t;
+        }
         if self.st.modal.polar && !self.ngc() {
             let (a, b) = self.plane_axes();
             let pl = [b'X', b'Y', b'Z'];
@@ -2416,12 +2528,30 @@ impl<'a, 'i> Interp<'a, 'i> {
         t
     }
 
+    /// A motion from internal-unit geometry; converts lengths to mm.
     fn motion_base(&self, kind: MotionKind, start: [f64; 6], end: [f64; 6], feed: f64) -> Motion {
         let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
+        let lu = self.lu();
+        let mm = |p: [f64; 6]| [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]];
+        let kind = match kind {
+            MotionKind::Arc {
+                center,
+                normal,
+                turns,
+                radius,
+            } => MotionKind::Arc {
+                center: [center[0] * lu, center[1] * lu, center[2] * lu],
+                normal,
+                turns,
+                radius: radius * lu,
+            },
+            k => k,
+        };
+        let feed = feed * lu;
         Motion {
             kind,
-            start,
-            end,
+            start: mm(start),
+            end: mm(end),
             feed,
             inverse_time: if self.st.modal.feed_mode == 930 && !matches!(kind, MotionKind::Rapid) {
                 Some(self.st.feed)
@@ -2430,7 +2560,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             },
             exact_stop: exact,
             blend_tolerance: if self.st.modal.path == 640 {
-                self.st.modal.path_tol
+                self.st.modal.path_tol.map(|t| t * lu)
             } else {
                 None
             },
@@ -3762,7 +3892,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let g73 = mode == 730;
                 // LinuxCNC's peck clearance is 0.01 inch in either unit system.
                 let d = if ngc {
-                    0.254
+                    if self.st.modal.inch {
+                        0.01
+                    } else {
+                        0.254
+                    }
                 } else if g73 {
                     self.cfg.g73_retract
                 } else {

@@ -74,11 +74,12 @@ impl MachineCfg {
                     .and_then(num)
                     .or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r))
                     .unwrap_or(0.0);
+                // Profile tools are in mm; tools are kept in parameter units.
                 tools.insert(
                     n,
                     Tool {
-                        length,
-                        diameter,
+                        length: length / param_unit,
+                        diameter: diameter / param_unit,
                         x_offset: 0.0,
                     },
                 );
