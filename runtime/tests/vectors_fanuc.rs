@@ -259,3 +259,22 @@ fn g09_exact_stop_is_one_shot() {
     let exact: Vec<bool> = out.motions.iter().map(|m| m.exact_stop).collect();
     assert_eq!(exact, vec![false, true, false]);
 }
+
+#[test]
+fn g66_modal_call_after_each_move() {
+    // The macro drills at each position: it feeds Z down by #26 and back.
+    let prog = "G90 G00 Z10.;\nG66 P9000 Z-5.;\nG00 X10.;\nX20.;\nG67;\nX30.;\nM30;\nO9000;\nG91 G01 Z#26 F100.;\nG00 Z-#26;\nG90;\nM99;\n";
+    let out = run_fanuc(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let feeds: Vec<[f64; 3]> = out
+        .motions
+        .iter()
+        .filter(|m| is_feed(m))
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect();
+    assert_eq!(feeds, vec![[10.0, 0.0, 5.0], [20.0, 0.0, 5.0]]);
+    assert_eq!(
+        out.motions.last().map(|m| m.end),
+        Some([30.0, 0.0, 10.0, 0.0, 0.0, 0.0])
+    );
+}

@@ -54,6 +54,8 @@ struct Frame {
     saved: Option<Vec<Option<f64>>>,
     named_locals: HashMap<String, f64>,
     call_span: Span,
+    /// Called by a G66 modal call (no nested modal calls inside it).
+    modal_call: bool,
 }
 
 /// The evaluated words of one block.
@@ -325,6 +327,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             rotation: ([0.0; 2], 0.0),
             ended: false,
             line: 0,
+            g66: None,
         };
         let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
         let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
@@ -1387,6 +1390,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             saved: Some(saved),
             named_locals: HashMap::new(),
             call_span: span,
+            modal_call: false,
         });
         let start = if tb == u32::MAX { 0 } else { tb + 1 };
         Ok(Flow::Goto(tf, start))
@@ -1491,6 +1495,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             saved,
             named_locals: HashMap::new(),
             call_span: span,
+            modal_call: false,
         });
         Ok(Flow::Goto(tf, tb))
     }
@@ -1671,11 +1676,37 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_m(980) || (!ngc && w.has_g(650)) {
             return self.exec_call_words(fi, bi, w);
         }
+        // G66 registers a modal macro call (arguments only in this block); G67 cancels it.
+        if !ngc && w.has_g(670) {
+            self.st.g66 = None;
+        }
+        if !ngc && w.has_g(660) {
+            let Some(p) = w.get(b'P') else {
+                return Err(self.err(
+                    codes::SUB_NOT_FOUND,
+                    w.g_span(660),
+                    "G66 without P (macro number)",
+                ));
+            };
+            self.st.g66 = Some((format!("{}", p.round() as i64), Arc::new(macro_args(w))));
+            return self.exec_stops(w, fi);
+        }
         // One-shot codes that consume axis words.
         let consumed = self.exec_modal0(w)?;
         // Motion.
         if !consumed {
             self.exec_motion(w, bspan)?;
+            // A G66 modal call runs the macro after each block that moves an axis.
+            if let Some((name, args)) = self.st.g66.clone() {
+                if w.any_axis() && !self.frames.iter().any(|f| f.modal_call) {
+                    let span = w.g.first().map(|g| g.1).unwrap_or(bspan);
+                    let flow = self.call_program(fi, bi, &name, 1, Some(args.to_vec()), span)?;
+                    if let Some(f) = self.frames.last_mut() {
+                        f.modal_call = true;
+                    }
+                    return Ok(flow);
+                }
+            }
         }
         if sw_m_after {
             self.exec_m_before(w);
@@ -2183,52 +2214,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)"));
             };
             let l = w.get(b'L').unwrap_or(1.0).max(1.0) as u32;
-            // Argument specification I, with I/J/K sets of specification II.
-            let mut args = vec![None; 34];
-            let map1 = |c: u8| -> Option<usize> {
-                Some(match c {
-                    b'A' => 1,
-                    b'B' => 2,
-                    b'C' => 3,
-                    b'D' => 7,
-                    b'E' => 8,
-                    b'F' => 9,
-                    b'H' => 11,
-                    b'M' => 13,
-                    b'Q' => 17,
-                    b'R' => 18,
-                    b'S' => 19,
-                    b'T' => 20,
-                    b'U' => 21,
-                    b'V' => 22,
-                    b'W' => 23,
-                    b'X' => 24,
-                    b'Y' => 25,
-                    b'Z' => 26,
-                    _ => return None,
-                })
-            };
-            let mut ijk_set = 0usize;
-            let mut last_ijk = 0u8;
-            for (c, v) in &w.ijk_order {
-                if matches!(c, b'I' | b'J' | b'K') {
-                    let ord = match c {
-                        b'I' => 0,
-                        b'J' => 1,
-                        _ => 2,
-                    };
-                    if ijk_set == 0 || ord <= last_ijk {
-                        ijk_set += 1;
-                    }
-                    last_ijk = ord;
-                    let n = 3 * ijk_set + 1 + ord as usize;
-                    if n <= 33 {
-                        args[n] = Some(*v);
-                    }
-                } else if let Some(n) = map1(*c) {
-                    args[n] = Some(*v);
-                }
-            }
+            let args = macro_args(w);
             let name = format!("{}", p.round() as i64);
             return self.call_program(fi, bi, &name, l, Some(args), span);
         }
@@ -4116,4 +4102,54 @@ fn fmt_g4(v: f64) -> String {
     } else {
         s
     }
+}
+
+/// G65/G66 arguments: specification I, with the I/J/K sets of specification II.
+fn macro_args(w: &Words) -> Vec<Option<f64>> {
+    let mut args = vec![None; 34];
+    let map1 = |c: u8| -> Option<usize> {
+        Some(match c {
+            b'A' => 1,
+            b'B' => 2,
+            b'C' => 3,
+            b'D' => 7,
+            b'E' => 8,
+            b'F' => 9,
+            b'H' => 11,
+            b'M' => 13,
+            b'Q' => 17,
+            b'R' => 18,
+            b'S' => 19,
+            b'T' => 20,
+            b'U' => 21,
+            b'V' => 22,
+            b'W' => 23,
+            b'X' => 24,
+            b'Y' => 25,
+            b'Z' => 26,
+            _ => return None,
+        })
+    };
+    let mut ijk_set = 0usize;
+    let mut last_ijk = 0u8;
+    for (c, v) in &w.ijk_order {
+        if matches!(c, b'I' | b'J' | b'K') {
+            let ord = match c {
+                b'I' => 0,
+                b'J' => 1,
+                _ => 2,
+            };
+            if ijk_set == 0 || ord <= last_ijk {
+                ijk_set += 1;
+            }
+            last_ijk = ord;
+            let n = 3 * ijk_set + 1 + ord as usize;
+            if n <= 33 {
+                args[n] = Some(*v);
+            }
+        } else if let Some(n) = map1(*c) {
+            args[n] = Some(*v);
+        }
+    }
+    args
 }
