@@ -2559,8 +2559,10 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn rapid_to(&mut self, t: [f64; 6]) {
-        let s = self.canon_pos(&t);
-        self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+        }
         let end = self.to_machine(t);
         let m = self.motion_base(MotionKind::Rapid, self.st.mpos, end, 0.0);
         self.out.motions.push(m);
@@ -2575,8 +2577,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             let rate = len * self.st.feed / self.unit();
             self.canon(format!("SET_FEED_RATE({})", f4(rate)));
         }
-        let s = self.canon_pos(&t);
-        self.canon(format!("STRAIGHT_FEED({s})"));
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_FEED({s})"));
+        }
         let end = self.to_machine(t);
         let feed = self.effective_feed(dist(&self.st.mpos, &end));
         let m = self.motion_base(MotionKind::Feed, self.st.mpos, end, feed);
@@ -2858,8 +2862,10 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// A spindle-synchronised straight move (pitch in mm/rev).
     fn thread_to(&mut self, t: [f64; 6], pitch: f64) {
-        let s = self.canon_pos(&t);
-        self.canon(format!("STRAIGHT_FEED({s})"));
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_FEED({s})"));
+        }
         let end = self.to_machine(t);
         let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, pitch);
         self.out.motions.push(m);
@@ -3219,18 +3225,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         let rot = if cw { -turns } else { turns };
         let pe = e2;
         let (e2, t, radius) = self.comp_arc(t, e2, sol.center, sol.radius, cw, span)?;
-        self.canon(format!(
-            "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
-            f4(e2[0] / u),
-            f4(e2[1] / u),
-            f4(sol.center[0] / u),
-            f4(sol.center[1] / u),
-            rot,
-            f4(t[n] / u),
-            f4(t[3]),
-            f4(t[4]),
-            f4(t[5])
-        ));
+        if self.canon.is_some() {
+            self.canon(format!(
+                "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
+                f4(e2[0] / u),
+                f4(e2[1] / u),
+                f4(sol.center[0] / u),
+                f4(sol.center[1] / u),
+                rot,
+                f4(t[n] / u),
+                f4(t[3]),
+                f4(t[4]),
+                f4(t[5])
+            ));
+        }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;
         c3[a] = sol.center[0];
@@ -3791,6 +3799,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                 db = Some(t[b]);
             }
         }
+        // Each repetition counts against the step budget, so `L1000000000` stays bounded.
+        let left = self.input.step_budget.saturating_sub(self.steps);
+        let repeats = if repeats as u64 > left {
+            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated"));
+            left as i64
+        } else {
+            repeats
+        };
+        self.steps += repeats.max(0) as u64;
         for k in 0..repeats {
             if inc {
                 pa += da.unwrap_or(0.0);
