@@ -48,12 +48,19 @@ fn hypot(a: [f64; 2], b: [f64; 2]) -> f64 {
 pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
     let abs_r = r.abs();
     let mid = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
-    let half = hypot(mid, e).min(abs_r);
+    // LinuxCNC snaps a chord within 1e-12 of the diameter to a half circle.
+    let mut half = hypot(mid, e);
+    if abs_r > 0.0 && half / abs_r > 1.0 - 1e-12 {
+        half = abs_r;
+    }
     let base = (e[1] - s[1]).atan2(e[0] - s[0]);
+    // LinuxCNC adds the long-double π/2 (`M_PI_2l`); the low part of π/2
+    // reproduces that rounding in double arithmetic.
+    const PI_2_LO: f64 = 6.123_233_995_736_766e-17;
     let theta = if (cw && r > 0.0) || (!cw && r < 0.0) {
-        base - FRAC_PI_2
+        (base - FRAC_PI_2) - PI_2_LO
     } else {
-        base + FRAC_PI_2
+        (base + FRAC_PI_2) + PI_2_LO
     };
     let offset = if abs_r > 0.0 {
         abs_r * (half / abs_r).asin().cos()

@@ -178,6 +178,8 @@ fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
     match d {
         Dialect::Rs274ngc => match n {
             5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
+            5400 => Some(f64::from(st.tool)),
+            5401..=5403 => Some(st.tlo[(n - 5401) as usize]),
             _ => None,
         },
         _ => match n {
@@ -970,6 +972,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                                     .str_of(n.span)
                                     .chars()
                                     .filter(|c| !c.is_whitespace())
+                                    .take_while(|c| *c != '.')
                                     .collect(),
                                 None => format!("{}", val as i64),
                             });
@@ -1197,10 +1200,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     return Ok(Flow::Next);
                 }
-                if let Some(v) = v {
-                    Arc::make_mut(&mut self.st.named).insert("_value".into(), v);
-                    Arc::make_mut(&mut self.st.named).insert("_value_returned".into(), 1.0);
-                }
+                let named = Arc::make_mut(&mut self.st.named);
+                named.insert("_value".into(), v.unwrap_or(0.0));
+                named.insert(
+                    "_value_returned".into(),
+                    if v.is_some() { 1.0 } else { 0.0 },
+                );
                 self.ret_from_sub(None);
                 Ok(Flow::Goto(self.cur.0, self.cur.1))
             }
@@ -1972,20 +1977,21 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn exec_tlo(&mut self, w: &Words) -> Result<(), Diagnostic> {
-        let set = |s: &mut Self, z: f64, x: f64| {
+        let set = |s: &mut Self, z: f64, x: f64, y: f64| {
             // The programmed point stays; the machine position follows at the next move.
-            s.st.tlo = [x, 0.0, z, 0.0, 0.0, 0.0];
+            s.st.tlo = [x, y, z, 0.0, 0.0, 0.0];
             s.st.pos = s.to_program(s.st.mpos);
             let u = s.unit();
             s.canon(format!(
-                "USE_TOOL_LENGTH_OFFSET({} 0.0000 {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
+                "USE_TOOL_LENGTH_OFFSET({} {} {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 f4(x / u),
+                f4(y / u),
                 f4(z / u)
             ));
         };
         if w.has_g(490) {
             self.st.modal.tlo_mode = 490;
-            set(self, 0.0, 0.0);
+            set(self, 0.0, 0.0, 0.0);
         }
         for code in [430u32, 440] {
             if w.has_g(code) {
@@ -2000,7 +2006,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
                 let sign = if code == 440 { -1.0 } else { 1.0 };
                 let f = self.pfac();
-                set(self, sign * t.length * f, sign * t.x_offset * f);
+                set(
+                    self,
+                    sign * t.length * f,
+                    sign * t.x_offset * f,
+                    sign * t.y_offset * f,
+                );
             }
         }
         if w.has_g(432) {
@@ -2011,7 +2022,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.tlo_mode = 431;
             let x = w.get(b'X').map(|v| self.lin(v)).unwrap_or(0.0);
             let z = w.get(b'Z').map(|v| self.lin(v)).unwrap_or(0.0);
-            set(self, z, x);
+            set(self, z, x, 0.0);
         }
         Ok(())
     }
@@ -2316,13 +2327,48 @@ impl<'a, 'i> Interp<'a, 'i> {
                     let t = p.max(0) as u32;
                     let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
                     let f = self.pfac();
+                    // L1 sets the offsets; L10/L11 make the current point read the given value.
+                    let cur = [
+                        self.st.pos[0] + self.st.tlo[0],
+                        self.st.pos[1] + self.st.tlo[1],
+                        self.st.pos[2] + self.st.tlo[2],
+                    ];
+                    let val = |i: usize, v: f64| if l == 1 { v } else { cur[i] - v };
+                    if let Some(x) = axis(self, 0) {
+                        tool.x_offset = val(0, x) / f;
+                    }
+                    if let Some(y) = axis(self, 1) {
+                        tool.y_offset = val(1, y) / f;
+                    }
                     if let Some(z) = axis(self, 2) {
-                        tool.length = z / f;
+                        tool.length = val(2, z) / f;
                     }
                     if let Some(r) = w.get(b'R') {
                         tool.diameter = 2.0 * self.lin(r) / f;
                     }
                     self.cfg.tools.insert(t, tool);
+                    if !self.cfg.tool_order.contains(&t) {
+                        self.cfg.tool_order.push(t);
+                    }
+                    if self.canon.is_some() {
+                        let slot = self
+                            .cfg
+                            .tool_order
+                            .iter()
+                            .position(|x| *x == t)
+                            .map(|i| i + 1)
+                            .unwrap_or(0);
+                        let entry = format!(
+                            "{} {} {} 0.0000 0.0000 0.0000 0.0000 0.0000 0.0000, 0.0000, 0.0000, 0",
+                            f4(tool.x_offset * f),
+                            f4(tool.y_offset * f),
+                            f4(tool.length * f)
+                        );
+                        self.canon(format!("SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})"));
+                        if t == self.st.tool || self.st.tool == 0 {
+                            self.canon(format!("SET_TOOL_TABLE_ENTRY(0, {t}, {entry})"));
+                        }
+                    }
                 }
                 _ => {}
             }
@@ -3587,6 +3633,17 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.canon("PALLET_SHUTTLE()");
             }
             self.canon("PROGRAM_END()");
+            if self.percent_open && self.cur.0 == 0 {
+                let p = self.files[0].prog.clone();
+                let closed = p
+                    .blocks
+                    .iter()
+                    .skip(self.cur.1 as usize + 1)
+                    .any(|b| b.kind == BlockKind::Percent);
+                if !closed {
+                    self.canon_comment("interpreter: percent sign missing from end of file");
+                }
+            }
         }
     }
 

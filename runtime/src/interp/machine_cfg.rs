@@ -10,6 +10,7 @@ pub struct Tool {
     pub length: f64,
     pub diameter: f64,
     pub x_offset: f64,
+    pub y_offset: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -81,6 +82,7 @@ impl MachineCfg {
                         length: length / param_unit,
                         diameter: diameter / param_unit,
                         x_offset: 0.0,
+                        y_offset: 0.0,
                     },
                 );
             }
@@ -189,6 +191,7 @@ pub fn parse_tool_table(
                 'Z' => tool.length = v * unit,
                 'D' => tool.diameter = v * unit,
                 'X' => tool.x_offset = v * unit,
+                'Y' => tool.y_offset = v * unit,
                 _ => {}
             }
         }
