@@ -115,6 +115,8 @@ struct Vars<'s> {
     st: &'s State,
     locals: Option<&'s HashMap<String, f64>>,
     dialect: Dialect,
+    /// Tool-table offsets (X Y Z) of the tool in the spindle, program units.
+    tool: [f64; 3],
 }
 
 impl VarSource for Vars<'_> {
@@ -130,6 +132,9 @@ impl VarSource for Vars<'_> {
                 message: format!("parameter number #{n} out of range"),
                 code,
             });
+        }
+        if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
+            return Ok(Some(self.tool[(n - 5401) as usize]));
         }
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
@@ -179,7 +184,6 @@ fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
         Dialect::Rs274ngc => match n {
             5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
             5400 => Some(f64::from(st.tool)),
-            5401..=5403 => Some(st.tlo[(n - 5401) as usize]),
             _ => None,
         },
         _ => match n {
@@ -788,12 +792,41 @@ impl<'a, 'i> Interp<'a, 'i> {
             .last()
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
+        let f = self.pfac();
+        let t = self
+            .cfg
+            .tools
+            .get(&self.st.tool)
+            .copied()
+            .unwrap_or_default();
         let vars = Vars {
             st: &self.st,
             locals,
             dialect: self.dialect,
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
         };
         expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+    }
+
+    /// A numbered parameter as an expression would read it (system values included).
+    fn read_param(&self, n: i64) -> f64 {
+        let f = self.pfac();
+        let t = self
+            .cfg
+            .tools
+            .get(&self.st.tool)
+            .copied()
+            .unwrap_or_default();
+        let vars = Vars {
+            st: &self.st,
+            locals: None,
+            dialect: self.dialect,
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+        };
+        vars.get_num(n, Span::default())
+            .ok()
+            .flatten()
+            .unwrap_or(0.0)
     }
 
     fn eval_num(&self, p: &Program, id: ExprId) -> Result<f64, Diagnostic> {
@@ -1796,7 +1829,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     if j > i + 1 {
                         let n: usize = text[i + 1..j].parse().unwrap_or(0);
-                        out.push_str(&format!("{:.6}", self.param(n)));
+                        let v = self.read_param(n as i64);
+                        out.push_str(&format!("{v:.6}"));
                         i = j;
                         continue;
                     }
