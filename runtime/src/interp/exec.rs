@@ -1011,6 +1011,19 @@ impl<'a, 'i> Interp<'a, 'i> {
                             });
                         }
                         b'O' => {}
+                        c @ (b'U' | b'V' | b'W')
+                            if self.ngc() && !self.input.settings.axes.contains(&(c as char)) =>
+                        {
+                            return Err(self.err(
+                                codes::INTERP,
+                                it.span,
+                                format!(
+                                    "bad character '{}' used: this machine has no {} axis",
+                                    (c as char).to_ascii_lowercase(),
+                                    c as char
+                                ),
+                            ));
+                        }
                         b'@' => w.polar_r = Some(val),
                         b'^' => w.polar_a = Some(val),
                         c @ b'A'..=b'Z' if !word.comma => {
