@@ -361,3 +361,20 @@ fn tv66_t_word_changes_tool_in_block() {
     let out = run_sw("N00100 T1 G00 X1.0 Y2.0\nM30\n", "");
     assert_eq!(out.motions[0].tool, 1);
 }
+
+#[test]
+fn tv02_tv03_first_duplicate_word_wins() {
+    let out = run_sw("N100 G00 X13.0 Z3.0 X2.0 X9.5\nM30\n", "");
+    assert_eq!(ends(&out), vec![[13.0, 0.0, 3.0]]);
+    let out = run_sw("G01 X10. Y10. F100 G01 X20. Y20.\nM30\n", "");
+    assert_eq!(ends(&out), vec![[10.0, 10.0, 0.0]]);
+}
+
+#[test]
+fn tv32_tool_length_compensation() {
+    let tools = "[tools]\n3 = { length = 10.0 }\n";
+    let plus = run_sw("G43 Z50.5 H3\nM30\n", tools);
+    assert_eq!(ends(&plus), vec![[0.0, 0.0, 60.5]]);
+    let minus = run_sw("G44 Z50.5 H3\nM30\n", tools);
+    assert_eq!(ends(&minus), vec![[0.0, 0.0, 40.5]]);
+}

@@ -1028,6 +1028,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                         b'^' => w.polar_a = Some(val),
                         c @ b'A'..=b'Z' if !word.comma => {
                             let i = (c - b'A') as usize;
+                            // ServoWorks uses the first of duplicated words (§1.4).
+                            if self.dialect == Dialect::Servoworks && w.v[i].is_some() {
+                                continue;
+                            }
                             w.v[i] = Some(val);
                             w.span[i] = it.span;
                             w.point[i] = point;
