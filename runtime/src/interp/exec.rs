@@ -23,6 +23,10 @@ use crate::rules::codes;
 
 const NUM_PARAMS: usize = 20_000;
 
+/// Blocks of the main file that get a [`BlockSnapshot`]; beyond this the
+/// snapshots stay `None` so that multi-million-line programs fit in memory.
+pub const SNAPSHOT_LIMIT: usize = 2_000_000;
+
 /// Runs a program. Never panics; bounded by `step_budget` and the call depth.
 pub fn run(input: &RunInput<'_>) -> RunOutput {
     let mut it = Interp::new(input);
@@ -273,6 +277,7 @@ struct Interp<'a, 'i> {
     limit_reports: u32,
     /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
     block_exact: bool,
+    modal_cache: Option<(Modal, Vec<String>)>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -362,6 +367,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             main_locals: HashMap::new(),
             limit_reports: 0,
             block_exact: false,
+            modal_cache: None,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -678,7 +684,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     break;
                 }
             }
-            if fi == 0 && (bi as usize) < self.nblocks_main {
+            if fi == 0 && (bi as usize) < self.nblocks_main.min(SNAPSHOT_LIMIT) {
                 let snap = self.snapshot();
                 if let Some(s) = self.out.snapshots.get_mut(bi as usize) {
                     *s = Some(snap);
@@ -752,9 +758,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.out
     }
 
-    fn snapshot(&self) -> BlockSnapshot {
+    fn snapshot(&mut self) -> BlockSnapshot {
+        // Modal state rarely changes between blocks: reuse the formatted codes.
+        let modal = match &self.modal_cache {
+            Some((m, codes)) if *m == self.st.modal => codes.clone(),
+            _ => {
+                let codes = self.st.modal.codes(self.ngc());
+                self.modal_cache = Some((self.st.modal.clone(), codes.clone()));
+                codes
+            }
+        };
         BlockSnapshot {
-            modal: self.st.modal.codes(self.ngc()),
+            modal,
             position: {
                 let lu = self.lu();
                 let p = self.st.pos;
