@@ -278,3 +278,23 @@ fn g66_modal_call_after_each_move() {
         Some([30.0, 0.0, 10.0, 0.0, 0.0, 0.0])
     );
 }
+
+#[test]
+fn g10_l10_sets_length_offset() {
+    let out = run_fanuc(
+        "G10 L10 P5 R100.;\nG43 H5 Z0;\nG91 G10 L10 P5 R-2.;\nG90 G43 H5 Z0;\nM30;\n",
+        "",
+    );
+    let z: Vec<f64> = out.motions.iter().map(|m| m.end[2]).collect();
+    assert_eq!(z, vec![100.0, 98.0]);
+}
+
+#[test]
+fn group01_code_cancels_cycle_data() {
+    // After G00 the cycle must be given R and Z again.
+    let out = run_fanuc(
+        "G00 Z10.;\nG81 X1. Z-1. R1. F100.;\nG00 X5.;\nG81 X6.;\nM30;\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"C001"), "{:?}", out.diagnostics);
+}

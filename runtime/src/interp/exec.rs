@@ -2348,6 +2348,24 @@ impl<'a, 'i> Interp<'a, 'i> {
             let l = w.get(b'L').unwrap_or(0.0).round() as i64;
             let p = w.get(b'P').unwrap_or(0.0).round() as i64;
             match l {
+                // FANUC/ServoWorks tool offset memory: L10/L11 length (H), L12/L13
+                // radius (D); R is the value, added under G91.
+                10..=13 if !self.ngc() => {
+                    let t = p.max(0) as u32;
+                    let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
+                    let f = self.pfac();
+                    if let Some(r) = w.get(b'R') {
+                        let r = self.lin(r) / f;
+                        let inc = self.st.modal.incremental;
+                        if l <= 11 {
+                            tool.length = if inc { tool.length + r } else { r };
+                        } else {
+                            let rad = if inc { tool.diameter / 2.0 + r } else { r };
+                            tool.diameter = 2.0 * rad;
+                        }
+                    }
+                    self.cfg.tools.insert(t, tool);
+                }
                 2 | 20 => {
                     let origin = if p == 0 {
                         self.st.modal.origin
@@ -2765,7 +2783,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                 return Ok(());
             }
             if !is_cycle(m) {
-                self.st.cycle.initial = None;
+                // A group-01 code cancels the cycle and its data, as G80 does.
+                self.st.cycle = CycleMem::default();
             }
         }
         let mode = motion.unwrap_or(self.st.modal.motion);
