@@ -298,3 +298,36 @@ fn group01_code_cancels_cycle_data() {
     );
     assert!(codes(&out).contains(&"C001"), "{:?}", out.diagnostics);
 }
+
+#[test]
+fn typical_program_is_clean() {
+    let prog = "%
+O1000 (BRACKET);
+G21 G17 G40 G49 G80 G90;
+T1 M6;
+G54 G00 X0 Y0 S1200 M03;
+G43 H1 Z50. M08;
+G99 G81 X10. Y10. Z-5. R2. F150.;
+X20.;
+G98 Y20.;
+G80;
+G00 Z50.;
+G01 Z-1. F100.;
+G41 D1 G01 X30. Y0;
+G03 X40. Y10. R10.;
+G02 X50. Y20. I10. J0;
+G40 G01 X60. Y20.;
+G91 G28 Z0.;
+G28 X0. Y0.;
+G90;
+M05;
+M09;
+M30;
+%
+";
+    let out = run_fanuc(prog, "[tools]\n1 = { length = 100.0, diameter = 10.0 }\n");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert!(out.motions.len() > 15);
+    // G91 G28 Z0. retracts Z to the machine reference point.
+    assert!(out.motions.iter().any(|m| m.end[2] == 0.0 && m.start[2] != 0.0));
+}

@@ -378,3 +378,11 @@ fn tv32_tool_length_compensation() {
     let minus = run_sw("G44 Z50.5 H3\nM30\n", tools);
     assert_eq!(ends(&minus), vec![[0.0, 0.0, 40.5]]);
 }
+
+#[test]
+fn typical_program_is_clean() {
+    let prog = "%\nOPart1\nG21 G17 G90 G94\nG54\nT1\nS3000 M03\nG00 X0. Y0. Z10.\nG01 Z-1. F300.\nG01 X50. Y0.\nG02 X50. Y50. R25.\nG03 X0. Y50. I-25. J0.\nG01 X0. Y0.\nG04 P500\nG00 Z10.\nG98 G81 X10. Y10. Z-5. R2. F100.\nX20.\nG80\nM05\nM30\n%\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert!(out.motions.len() > 10);
+}
