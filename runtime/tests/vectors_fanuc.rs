@@ -329,5 +329,8 @@ M30;
     assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
     assert!(out.motions.len() > 15);
     // G91 G28 Z0. retracts Z to the machine reference point.
-    assert!(out.motions.iter().any(|m| m.end[2] == 0.0 && m.start[2] != 0.0));
+    assert!(out
+        .motions
+        .iter()
+        .any(|m| m.end[2] == 0.0 && m.start[2] != 0.0));
 }

@@ -386,3 +386,27 @@ fn typical_program_is_clean() {
     assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
     assert!(out.motions.len() > 10);
 }
+
+#[test]
+fn tv27_dlacc_sawtooth() {
+    let prog = "G90G00X0Y0\nG08 P1\nG91G01F20000.0\nX50.0Y100.0\nX50.0Y-100.0\nX50.0Y100.0\nX50.0Y-100.0\nG08 P0\nG04 X1.0\nG90G00X0.0Y0.0\nM02\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+    assert!(close(feed, 447.214, 1e-3), "{:?}", ends(&out));
+    assert_pt(out.motions[4].end, &[200.0, 0.0], 1e-9);
+}
+
+#[test]
+fn tv28_dlacc_forms_and_incompatible_codes() {
+    // Invalid forms are ignored: G41 afterwards is fine.
+    assert!(run_sw("G05 P1\nG08 P10000\nG41 D1\nG40\nM30\n", "")
+        .diagnostics
+        .is_empty());
+    // Valid form, then G41: the program stops there.
+    let out = run_sw("G05 P10000\nG41 D1\nG01 X10. F100\nM30\n", "");
+    assert_eq!(codes(&out), vec!["D001"]);
+    assert!(out.motions.is_empty());
+    let tcp = run_sw("G08 P1\nG43.2 H1\nM30\n", "");
+    assert_eq!(codes(&tcp), vec!["D002"]);
+}

@@ -2149,6 +2149,7 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn exec_fanuc_modes(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        // (ServoWorks look-ahead and FANUC/ServoWorks coordinate transforms.)
         if self.ngc() {
             return Ok(());
         }
@@ -2243,41 +2244,52 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.rotation = ([ca, cb], r);
             self.st.modal.rotation = true;
         }
-        if w.has_g(50) && self.dialect == Dialect::Servoworks {
-            self.st.modal.dlacc = true;
-        }
-        if w.has_g(80) && self.dialect == Dialect::Servoworks {
-            self.st.modal.dlacc = false;
+        if self.dialect == Dialect::Servoworks && (w.has_g(50) || w.has_g(80)) {
+            // Exactly four forms switch 3D-DLACC (§6.3.7); anything else is ignored.
+            let p = w.get(b'P').map(|p| p.round() as i64);
+            let on = match (w.has_g(50), p) {
+                (true, Some(10000)) | (false, Some(1)) => Some(true),
+                (_, Some(0)) => Some(false),
+                _ => None,
+            };
+            if on == Some(true) && self.st.modal.tlo_mode == 432 {
+                let span =
+                    w.g.iter()
+                        .find(|g| g.0 == 50 || g.0 == 80)
+                        .map(|g| g.1)
+                        .unwrap_or_default();
+                return Err(self.err(codes::DLACC_TCP, span, "3D-DLACC cannot be combined with tool centre point control (G43.2): the control stops"));
+            }
+            if let Some(on) = on {
+                self.st.modal.dlacc = on;
+            }
         }
         if self.st.modal.dlacc {
-            self.check_dlacc(w);
+            self.check_dlacc(w)?;
         }
         Ok(())
     }
 
-    fn check_dlacc(&mut self, w: &Words) {
-        // Codes the ServoWorks manual allows while 3D-DLACC is on (§6.3.7).
+    /// While 3D-DLACC is on only the manual's whitelist of G codes may run;
+    /// the control stops at the first other one (SW056).
+    fn check_dlacc(&mut self, w: &Words) -> Result<(), Diagnostic> {
         const ALLOWED: &[u32] = &[
-            0, 10, 20, 30, 40, 50, 80, 90, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490,
-            540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 900, 910, 940, 950,
+            0, 10, 20, 30, 40, 50, 80, 170, 180, 190, 200, 210, 280, 290, 300, 500, 510, 501, 511,
+            520, 530, 540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 650, 900, 910, 920, 3100,
+            3110,
         ];
         for (g, s) in &w.g {
             if !ALLOWED.contains(g) {
                 let name = analyzer::dialect::CodeNum(*g).display();
-                self.diag(codes::DLACC_INCOMPATIBLE, Severity::Error, *s, format!("G{name} cannot be used while 3D dynamic look-ahead (G05) is on: turn it off with G08 first"));
+                let code = if *g == 432 {
+                    codes::DLACC_TCP
+                } else {
+                    codes::DLACC_INCOMPATIBLE
+                };
+                return Err(self.err(code, *s, format!("G{name} cannot be used while 3D dynamic look-ahead is on: turn it off with G08 P0 (or G05 P0) first")));
             }
         }
-        if self.st.modal.tlo_mode == 432 {
-            let s = w.g_span(50);
-            if w.has_g(50) {
-                self.diag(
-                    codes::DLACC_TCP,
-                    Severity::Error,
-                    s,
-                    "3D-DLACC (G05) cannot be combined with tool centre point control (G43.2)",
-                );
-            }
-        }
+        Ok(())
     }
 
     fn exec_call_words(&mut self, fi: usize, bi: u32, w: &Words) -> Result<Flow, Diagnostic> {
@@ -2337,6 +2349,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(true);
         }
         if self.ngc() && w.has_g(431) {
+            return Ok(true);
+        }
+        // FANUC/ServoWorks `G04 X…` gives the dwell time in X, not a move.
+        if !self.ngc() && w.has_g(40) {
             return Ok(true);
         }
         let u = self.unit();
