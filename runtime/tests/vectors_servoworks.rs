@@ -260,8 +260,8 @@ fn tv47_rotation() {
 
 #[test]
 fn tv48_g28_and_g54_during_rotation() {
-    let out = run_sw("G68 X0 Y0 R30\nG28 X0\nG54\nG69\nM30\n", "");
-    assert_eq!(codes(&out), vec!["K001", "K001"]);
+    let out = run_sw("G68 X0 Y0 R30\nG18\nG17\nG28 X0\nG54\nG69\nM30\n", "");
+    assert_eq!(codes(&out), vec!["K001", "K001", "K001", "K001"]);
 }
 
 #[test]

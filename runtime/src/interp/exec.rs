@@ -1666,6 +1666,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(40) {
             self.exec_dwell(w)?;
         }
+        if self.st.modal.rotation && [170u32, 180, 190].iter().any(|g| w.has_g(*g)) {
+            let span =
+                w.g.iter()
+                    .find(|g| matches!(g.0, 170 | 180 | 190))
+                    .map(|g| g.1)
+                    .unwrap_or_default();
+            self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "the plane cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
+        }
         for (code, name, plane) in [
             (170u32, "CANON_PLANE_XY", 170u32),
             (180, "CANON_PLANE_XZ", 180),

@@ -115,7 +115,8 @@ impl MachineCfg {
         let max_default = match dialect {
             Dialect::Servoworks => 8,
             Dialect::Fanuc => 15,
-            Dialect::Rs274ngc => 64,
+            // rs274ngc.md TV-O4: LinuxCNC stops beyond 10 nested calls.
+            Dialect::Rs274ngc => 10,
         };
         let mut limits = [None; 6];
         let mut axis_unit = None;
