@@ -1840,7 +1840,45 @@ impl<'a, 'i> Interp<'a, 'i> {
         let b = text.as_bytes();
         let mut out = String::new();
         let mut i = 0;
+        // LinuxCNC's `%d`, `%f` (4 decimals), `%.Nf` / `%lf` set the format of the
+        // parameters that follow; the default is 6 decimals.
+        let mut decimals = 6usize;
         while i < b.len() {
+            if b[i] == b'%' {
+                let rest = &text[i + 1..];
+                let (spec_len, d) = if rest.starts_with('d') {
+                    (1, Some(0))
+                } else if rest.starts_with("lf") {
+                    (2, Some(4))
+                } else if rest.starts_with('f') {
+                    (1, Some(4))
+                } else if let Some(r) = rest.strip_prefix('.') {
+                    let digits = r.bytes().take_while(u8::is_ascii_digit).count();
+                    let after = &r[digits..];
+                    let tail = if after.starts_with("lf") {
+                        2
+                    } else if after.starts_with('f') {
+                        1
+                    } else {
+                        0
+                    };
+                    if digits > 0 && tail > 0 {
+                        (
+                            1 + digits + tail,
+                            r[..digits].parse::<usize>().ok().map(|n| n.min(20)),
+                        )
+                    } else {
+                        (0, None)
+                    }
+                } else {
+                    (0, None)
+                };
+                if let Some(d) = d {
+                    decimals = d;
+                    i += 1 + spec_len;
+                    continue;
+                }
+            }
             if b[i] == b'#' {
                 if b.get(i + 1) == Some(&b'<') {
                     if let Some(end) = text[i..].find('>') {
@@ -1856,7 +1894,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                             .or_else(|| self.st.named.get(&name).copied())
                             .or_else(|| predefined(&self.st, &name));
                         match v {
-                            Some(v) => out.push_str(&format!("{v:.6}")),
+                            Some(v) => out.push_str(&format!("{v:.decimals$}")),
                             None => out.push_str("######"),
                         }
                         i += end + 1;
@@ -1870,7 +1908,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if j > i + 1 {
                         let n: usize = text[i + 1..j].parse().unwrap_or(0);
                         let v = self.read_param(n as i64);
-                        out.push_str(&format!("{v:.6}"));
+                        out.push_str(&format!("{v:.decimals$}"));
                         i = j;
                         continue;
                     }
@@ -2018,10 +2056,17 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.comp_flush();
             self.canon_comment("interpreter: cutter radius compensation off");
         }
-        for code in [410u32, 420] {
-            if w.has_g(code) {
+        for given in [410u32, 420, 411, 421] {
+            // LinuxCNC G41.1/G42.1: dynamic compensation with the diameter in D.
+            let dynamic = given % 10 == 1;
+            if !w.has_g(given) || (dynamic && !self.ngc()) {
+                continue;
+            }
+            let code = given - given % 10;
+            {
                 self.st.modal.comp = code;
                 let dia = match w.get(b'D') {
+                    Some(d) if dynamic => self.lin(d),
                     Some(d)
                         if self.dialect == Dialect::Servoworks
                             && w.point[(b'D' - b'A') as usize] =>
