@@ -2818,6 +2818,16 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
+    /// Leaving cycle mode: FANUC/ServoWorks forget the drilling data;
+    /// LinuxCNC keeps P/Q/R for the next cycle and only forgets the initial level.
+    fn clear_cycle(&mut self) {
+        if self.ngc() {
+            self.st.cycle.initial = None;
+        } else {
+            self.st.cycle = CycleMem::default();
+        }
+    }
+
     fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
         for (g, _) in &w.g {
@@ -2847,13 +2857,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(m) = motion {
             if m == 800 {
                 self.st.modal.motion = 800;
-                self.st.cycle = CycleMem::default();
+                self.clear_cycle();
                 self.canon_comment("interpreter: motion mode set to none");
                 return Ok(());
             }
             if !is_cycle(m) {
                 // A group-01 code cancels the cycle and its data, as G80 does.
-                self.st.cycle = CycleMem::default();
+                self.clear_cycle();
             }
         }
         let mode = motion.unwrap_or(self.st.modal.motion);
