@@ -531,6 +531,36 @@ impl<'a, 'i> Interp<'a, 'i> {
         for i in 0..6 {
             q[i] -= self.st.g92[i] + self.st.g52[i];
         }
+        self.untransform(q)
+    }
+
+    /// Inverse of [`Self::transform`]: rotation, then scaling, then mirror undone.
+    fn untransform(&self, p: [f64; 6]) -> [f64; 6] {
+        let mut q = p;
+        let m = &self.st.modal;
+        if m.rotation {
+            let (a, b) = self.plane_axes();
+            let (c, ang) = self.st.rotation;
+            let (s, co) = (-ang).to_radians().sin_cos();
+            let (x, y) = (q[a] - c[0], q[b] - c[1]);
+            q[a] = c[0] + x * co - y * s;
+            q[b] = c[1] + x * s + y * co;
+        }
+        if m.scaling {
+            for i in 0..3 {
+                let f = self.st.scale.1[i];
+                if f != 0.0 {
+                    q[i] = self.st.scale.0[i] + (q[i] - self.st.scale.0[i]) / f;
+                }
+            }
+        }
+        if m.mirror {
+            for i in 0..3 {
+                if self.st.mirror.0[i] {
+                    q[i] = 2.0 * self.st.mirror.1[i] - q[i];
+                }
+            }
+        }
         q
     }
 
@@ -2181,7 +2211,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(());
         }
         self.st.modal.origin = o;
-        self.st.pos = self.untransform_prog(self.to_program(self.st.mpos));
+        self.st.pos = self.to_program(self.st.mpos);
         let u = self.unit();
         let g = self.g5x_prog();
         let g92 = self.st.g92;
@@ -2195,10 +2225,6 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.canon(r);
         }
         Ok(())
-    }
-
-    fn untransform_prog(&self, p: [f64; 6]) -> [f64; 6] {
-        p
     }
 
     fn exec_fanuc_modes(&mut self, w: &Words) -> Result<(), Diagnostic> {
