@@ -3425,7 +3425,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             };
             self.diag(
                 code,
-                Severity::Info,
+                Severity::Warning,
                 span,
                 format!(
                     "arc corrected within the circle error allowance (mismatch {:.4} mm): radius {:.4}, centre ({:.4}, {:.4})",
