@@ -337,6 +337,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             mirror: ([false; 3], [0.0; 3]),
             rotation: ([0.0; 2], 0.0),
             ended: false,
+            g28_mid: None,
             line: 0,
             g66: None,
         };
@@ -2581,6 +2582,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
             self.rapid_to(mid);
+            self.st.g28_mid = Some(mid);
             let home_base = if g30 { 5181 } else { 5161 };
             let mut home_m = self.st.mpos;
             let all = !w.any_axis() || self.ngc() && !w.any_axis();
@@ -2595,6 +2597,21 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
             let target = self.to_program(home_m);
+            self.rapid_to(target);
+            return Ok(true);
+        }
+        if w.has_g(290) && !self.ngc() {
+            // G29: back through the G28/G30 intermediate point to the commanded point.
+            let target = self.target(w);
+            if let Some(mid) = self.st.g28_mid {
+                let mut via = self.st.pos;
+                for (i, v) in via.iter_mut().enumerate() {
+                    if w.has(letters[i]) {
+                        *v = mid[i];
+                    }
+                }
+                self.rapid_to(via);
+            }
             self.rapid_to(target);
             return Ok(true);
         }
