@@ -2899,7 +2899,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 730
                     | 740
                     | 810..=890
-            ) || (self.ngc() && matches!(g, 50 | 51 | 52 | 53))
+            ) || (self.ngc() && matches!(g, 50..=53))
             {
                 motion = Some(*g);
             }
