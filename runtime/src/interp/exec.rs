@@ -2999,11 +2999,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let s = self.canon_pos(&t);
                 self.canon(format!("STRAIGHT_PROBE({s})"));
                 self.canon("TURN_PROBE_OFF()");
+                let start = self.st.pos;
                 let end = self.to_machine(t);
                 let m = self.motion_base(MotionKind::Probe, self.st.mpos, end, self.st.feed);
                 self.out.motions.push(m);
-                self.st.mpos = end;
-                self.st.pos = t;
+                // The probe trips at the target (no contact is simulated) and backs
+                // off 0.254 mm / 0.01 in toward the start, as LinuxCNC's rs274 does.
+                let d: f64 = (0..3)
+                    .map(|i| (start[i] - t[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let mut stop = t;
+                if d > 0.0 && self.ngc() {
+                    let back = if self.st.modal.inch { 0.01 } else { 0.254 };
+                    for i in 0..3 {
+                        stop[i] = t[i] + back * (start[i] - t[i]) / d;
+                    }
+                }
+                self.st.mpos = self.to_machine(stop);
+                self.st.pos = stop;
+                // #5061… hold the trip point itself.
+                for (k, v) in t.iter().enumerate() {
+                    self.set_param(5061 + k, Some(*v));
+                }
             }
             23 | 33 | 22 | 32 => {
                 self.st.modal.motion = mode;
