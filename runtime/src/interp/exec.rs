@@ -2781,7 +2781,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             },
             k => k,
         };
-        let feed = feed * lu;
+        // Feed per revolution (G95) becomes mm/min at the programmed spindle speed;
+        // threads keep their pitch (mm/rev).
+        let feed = if self.st.modal.feed_mode == 950
+            && !matches!(kind, MotionKind::Thread | MotionKind::Rapid)
+        {
+            feed * lu * self.st.spindle
+        } else {
+            feed * lu
+        };
         Motion {
             kind,
             start: mm(start),
