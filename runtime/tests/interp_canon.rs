@@ -93,6 +93,11 @@ fn pr_print_msg() {
 }
 
 #[test]
+fn t5_advanced() {
+    check("t5_adv");
+}
+
+#[test]
 fn err_no_ijk() {
     check("err_no_ijk");
 }
@@ -150,4 +155,19 @@ fn local_comp_convex_concave() {
 #[test]
 fn local_comp_arcs() {
     check_local("comp_arcs");
+}
+
+#[test]
+fn local_g76_threading() {
+    check_local("g76");
+}
+
+#[test]
+fn local_taps_polar_rotation_formats() {
+    check_local("taps_polar");
+}
+
+#[test]
+fn local_m98_subs() {
+    check_local("msubs");
 }

@@ -10,6 +10,7 @@ pub struct Tool {
     pub length: f64,
     pub diameter: f64,
     pub x_offset: f64,
+    pub y_offset: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -74,12 +75,14 @@ impl MachineCfg {
                     .and_then(num)
                     .or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r))
                     .unwrap_or(0.0);
+                // Profile tools are in mm; tools are kept in parameter units.
                 tools.insert(
                     n,
                     Tool {
-                        length,
-                        diameter,
+                        length: length / param_unit,
+                        diameter: diameter / param_unit,
                         x_offset: 0.0,
+                        y_offset: 0.0,
                     },
                 );
             }
@@ -112,7 +115,8 @@ impl MachineCfg {
         let max_default = match dialect {
             Dialect::Servoworks => 8,
             Dialect::Fanuc => 15,
-            Dialect::Rs274ngc => 64,
+            // rs274ngc.md TV-O4: LinuxCNC stops beyond 10 nested calls.
+            Dialect::Rs274ngc => 10,
         };
         let mut limits = [None; 6];
         let mut axis_unit = None;
@@ -188,6 +192,7 @@ pub fn parse_tool_table(
                 'Z' => tool.length = v * unit,
                 'D' => tool.diameter = v * unit,
                 'X' => tool.x_offset = v * unit,
+                'Y' => tool.y_offset = v * unit,
                 _ => {}
             }
         }

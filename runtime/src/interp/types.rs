@@ -72,7 +72,8 @@ pub struct Motion {
     pub kind: MotionKind,
     pub start: [f64; 6],
     pub end: [f64; 6],
-    /// mm/min (mm/rev for G95 and threads); 0 for rapids.
+    /// mm/min (G95 feeds converted with the programmed spindle speed; threads:
+    /// the pitch in mm/rev); 0 for rapids.
     pub feed: f64,
     /// G93 inverse-time value (1/min) when in inverse-time mode.
     pub inverse_time: Option<f64>,
@@ -143,7 +144,8 @@ pub struct RunOutput {
     pub files: Vec<String>,
     pub motions: Vec<Motion>,
     pub events: Vec<Event>,
-    /// One entry per block of the main file (None when never executed).
+    /// One entry per block of the main file (None when never executed, and
+    /// for blocks past `SNAPSHOT_LIMIT` (2 000 000) so that huge files fit in memory).
     pub snapshots: Vec<Option<BlockSnapshot>>,
     pub canon: Vec<String>,
 }
