@@ -99,9 +99,21 @@ fn editor_session_over_stdio() {
     );
     assert_eq!(caps["textDocumentSync"]["change"], json!(2));
 
-    // Diagnostics: only the unclosed comment on line 3 (0-based 2).
+    // Diagnostics: the unclosed comment on line 3 (0-based 2), and from the
+    // interpreter, drill.ngc's G81 running before any F word: reported on the
+    // call in this file.
     let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
-    assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F001".to_string(), 1), ("L001".to_string(), 2)]
+    );
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.starts_with("**F001** (error): "), "{md}");
+    assert!(md.contains("(in drill.ngc, line 2)"), "{md}");
 
     // The published diagnostic carries its rule link.
     let r = c.request(
@@ -243,7 +255,7 @@ fn editor_session_over_stdio() {
             "contentChanges": [{"range": {"start": pos(2, 15), "end": pos(2, 15)}, "text": ")"}]
         }),
     );
-    assert_eq!(c.diagnostics(&uri, 2), vec![]);
+    assert_eq!(c.diagnostics(&uri, 2), vec![("F001".to_string(), 1)]);
     c.notify(
         "textDocument/didChange",
         json!({
@@ -255,7 +267,10 @@ fn editor_session_over_stdio() {
         }),
     );
     // `G1 X F100` now on line 5: X has no value.
-    assert_eq!(c.diagnostics(&uri, 3), vec![("L003".to_string(), 4)]);
+    assert_eq!(
+        c.diagnostics(&uri, 3),
+        vec![("F001".to_string(), 2), ("L003".to_string(), 4)]
+    );
 
     // Robustness: malformed JSON, an unknown method, out-of-range positions.
     c.send_raw(b"{this is not json");
@@ -286,14 +301,52 @@ fn editor_session_over_stdio() {
         "{h}"
     );
 
-    // FIXME(runtime): the dry run answers "not available" until the runtime is wired.
-    let r = c.request_full("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
-    assert_eq!(r["error"]["code"], -32001, "{r}");
-    let r = c.request_full(
-        "workspace/executeCommand",
-        json!({"command": "partscope.dryRun", "arguments": [uri]}),
+    // The dry run of a clean program: segments, bounds and path length.
+    let (puri, _) = open(&mut c, &root.join("path.ngc"), "ngc");
+    assert_eq!(c.diagnostics(&puri, 1), vec![]);
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": puri}}));
+    assert_eq!(r["version"], 1);
+    let segs = r["toolpath"]["segments"].as_array().unwrap();
+    let kinds: Vec<(&str, u64)> = segs
+        .iter()
+        .map(|s| (s["kind"].as_str().unwrap(), s["line"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(
+        kinds,
+        vec![("rapid", 1), ("feed", 2), ("arc", 3), ("rapid", 4)]
     );
-    assert_eq!(r["error"]["code"], -32001, "{r}");
+    assert_eq!(segs[0]["points"], json!([[0.0, 0.0, 0.0], [0.0, 0.0, 5.0]]));
+    assert_eq!(segs[1]["feed"], 100.0);
+    // G2 from (0,0) to (10,0) about (5,0): clockwise, so over the top (Y up to 5).
+    let top = segs[2]["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[1].as_f64().unwrap())
+        .fold(f64::MIN, f64::max);
+    assert!((top - 5.0).abs() < 0.01, "{top}");
+    assert_eq!(r["toolpath"]["bounds"]["min"][2], -1.0);
+    assert_eq!(r["toolpath"]["bounds"]["max"][0], 10.0);
+    // 5 down + 6 down + a half circle of radius 5 + 6 up (arcs by their true length).
+    let d = r["distance_mm"].as_f64().unwrap();
+    assert!(
+        (d - (17.0 + 5.0 * std::f64::consts::PI)).abs() < 1e-9,
+        "{d}"
+    );
+    // FIXME(planner): times are null until the velocity planner is wired.
+    assert_eq!(r["cycle_time_s"], Value::Null);
+    let r2 = c.request(
+        "workspace/executeCommand",
+        json!({"command": "partscope.dryRun", "arguments": [puri]}),
+    );
+    assert_eq!(r2, r);
+    // Hover shows the state after the block from the interpreter's run.
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": puri}, "position": pos(2, 4)}),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.contains("Position: `X0.000 Y0.000 Z-1.000"), "{md}");
 
     assert!(c.shutdown().success());
 }
@@ -340,12 +393,15 @@ fn config_file_changes_reanalyse_open_documents() {
     initialize(&mut c, &root, json!({}));
     // The server registers a watcher for partscope.toml.
     let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
-    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    assert_eq!(c.diagnostics(&uri, 1), vec![("F001".to_string(), 1)]);
     std::fs::write(root.join("partscope.toml"), "dialect = \"rs274ngc\"\n").unwrap();
     c.notify(
         "workspace/didChangeWatchedFiles",
         json!({"changes": [{"uri": uri_of(&root.join("partscope.toml")), "type": 2}]}),
     );
-    assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F001".to_string(), 1), ("L001".to_string(), 2)]
+    );
     assert!(c.shutdown().success());
 }

@@ -134,8 +134,7 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     let mut parts = Vec::new();
     let mut span = None;
     for d in snap
-        .analysis
-        .diagnostics
+        .diagnostics()
         .iter()
         .filter(|d| d.file == analyzer::FileId(0))
     {
@@ -144,7 +143,7 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             continue;
         }
         let mut s = format!("**{}** ({}): {}", d.code, d.severity.as_str(), d.message);
-        if let Some(meta) = registry::lookup(d.code) {
+        if let Some(meta) = registry::lookup(d.code).or_else(|| runtime::rules::lookup(d.code)) {
             s.push_str(&format!(
                 "\n\n*{}* — {}\n\n{}",
                 meta.name,
@@ -171,11 +170,41 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             }
         }
     }
+    if let Some(state) = block_state(snap, offset) {
+        parts.push(state);
+    }
     if parts.is_empty() {
         return None;
     }
     Some((
         parts.join("\n\n---\n\n"),
         span.unwrap_or(Span::new(offset, offset)),
+    ))
+}
+
+/// The machine state after the block under the cursor, from the interpreter's
+/// run when the analysis made one.
+fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
+    let report = snap.cached_run()?;
+    let program = snap.program();
+    let bi = program.block_at(offset)?;
+    if program.blocks[bi].items.0 == program.blocks[bi].items.1 {
+        return None;
+    }
+    let s = report.snapshots.get(bi)?.as_ref()?;
+    let axes = ['X', 'Y', 'Z', 'A', 'B', 'C'];
+    let pos: Vec<String> = axes
+        .iter()
+        .zip(s.position.iter())
+        .filter(|(a, _)| snap.doc.settings.axes.contains(a))
+        .map(|(a, v)| format!("{a}{v:.3}"))
+        .collect();
+    Some(format!(
+        "After this block: `{}`  \nPosition: `{}`  \nF{} S{} T{}",
+        s.modal.join(" "),
+        pos.join(" "),
+        s.feed,
+        s.spindle,
+        s.tool
     ))
 }

@@ -12,6 +12,7 @@ mod goto;
 mod hover;
 mod nav;
 mod position;
+mod runtime_runner;
 mod semantic;
 mod server;
 mod signature;

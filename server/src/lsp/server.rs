@@ -26,7 +26,7 @@ use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
 use super::config::ClientOptions;
-use super::dry_run::{self, CancelFlag, DryRunInput, DryRunResult, DryRunner};
+use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
 use super::position::{apply_change, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
@@ -34,6 +34,11 @@ use super::{actions, completion, goto, hover, semantic, signature, symbols, work
 
 /// How long edits must pause before diagnostics are recomputed.
 const DEBOUNCE: Duration = Duration::from_millis(50);
+/// How long diagnostics wait for the interpreter before the static ones are
+/// published on their own.
+const RUN_WAIT: Duration = Duration::from_millis(150);
+/// Files up to this size publish once, after the run.
+const SMALL_FILE: usize = 256 * 1024;
 /// Above this many tokens a full semantic-tokens response is refused (the
 /// client then asks for the visible range).
 const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
@@ -129,10 +134,11 @@ impl Backend {
         o.select.extend(c.select.iter().cloned());
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
+        o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
         o
     }
 
-    fn inputs(state: &State, uri: &Uri) -> Option<Inputs> {
+    fn inputs(&self, state: &State, uri: &Uri) -> Option<Inputs> {
         let doc = state.docs.get(uri)?;
         Some(Inputs {
             uri: uri.clone(),
@@ -141,6 +147,7 @@ impl Backend {
             path: doc.path.clone(),
             roots: state.roots.clone(),
             client: Self::client_options(state),
+            runner: self.runner.clone(),
         })
     }
 
@@ -160,7 +167,7 @@ impl Backend {
             let inputs = {
                 let st = this.lock();
                 match st.docs.get(&uri) {
-                    Some(doc) if doc.generation == generation => Self::inputs(&st, &uri),
+                    Some(doc) if doc.generation == generation => this.inputs(&st, &uri),
                     _ => None,
                 }
             };
@@ -172,8 +179,39 @@ impl Backend {
             if !this.store(&snap) {
                 return;
             }
+            if !snap.run_eligible || !this.is_current(&snap.uri, generation) {
+                this.publish(&snap).await;
+                return;
+            }
+            // The interpreter adds flow-sensitive diagnostics. When it is quick,
+            // publish once with everything; when not, publish the static ones
+            // first so syntax errors show at once, then again when it is done.
+            let s = snap.clone();
+            let mut run = tokio::task::spawn_blocking(move || {
+                s.run_report(&CancelFlag::default());
+            });
+            // Small files always wait, so they get one publish per version.
+            let quick = if snap.rope.len_bytes() <= SMALL_FILE {
+                (&mut run).await.is_ok()
+            } else {
+                tokio::time::timeout(RUN_WAIT, &mut run).await.is_ok()
+            };
+            if !quick {
+                this.publish(&snap).await;
+                if run.await.is_err() || !this.is_current(&snap.uri, generation) {
+                    return;
+                }
+            }
             this.publish(&snap).await;
         });
+    }
+
+    /// Whether no change arrived since the analysis of `generation` was scheduled.
+    fn is_current(&self, uri: &Uri, generation: u64) -> bool {
+        self.lock()
+            .docs
+            .get(uri)
+            .is_some_and(|d| d.generation == generation)
     }
 
     /// Stores a snapshot if it is for the document's current version.
@@ -222,7 +260,7 @@ impl Backend {
             if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
                 return Some(s.clone());
             }
-            Self::inputs(&st, uri)?
+            self.inputs(&st, uri)?
         };
         let snap = Arc::new(blocking(move || snapshot::analyze(inputs)).await.ok()?);
         self.store(&snap);
@@ -287,23 +325,14 @@ impl Backend {
                     "file is above the size limit: syntax-only mode, no dry run",
                 ));
             }
-            let runner = self.runner.clone();
-            let roots = self.roots();
             let cancel = CancelFlag::default();
             let _guard = cancel.guard();
             let result: Option<DryRunResult> = blocking(move || {
-                let input = DryRunInput {
-                    program: snap.program(),
-                    settings: &snap.doc.settings,
-                    machine: &snap.doc.machine,
-                    doc_path: snap.path.clone(),
-                    roots: &roots,
-                    cancel: &cancel,
-                };
-                let report = runner.run(&input)?;
+                let report = snap.run_report(&cancel)?;
                 let diags = report
                     .diagnostics
                     .iter()
+                    .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
                 Some(dry_run::summarize(snap.version, &report, diags))
@@ -313,7 +342,8 @@ impl Backend {
                 Some(r) => serde_json::to_value(r).map_err(|e| internal(e.to_string())),
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
-                    message: "dry run is not available: this build has no runtime".into(),
+                    message: "no dry run for this document (cancelled, or above the size limit)"
+                        .into(),
                     data: None,
                 }),
             }
