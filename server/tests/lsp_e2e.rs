@@ -405,3 +405,49 @@ fn config_file_changes_reanalyse_open_documents() {
     );
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn size_limit_degrades_to_syntax_only() {
+    let root = workspace("limit");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({"maxFileSize": 100}));
+    // main.ngc is above 100 bytes: parsed only, no interpreter (no F001), no dry run.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    let r = c.request_full("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    assert_eq!(r["error"]["code"], -32603, "{r}");
+    // Navigation still works on the syntax.
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(5, 8)}),
+    );
+    assert_eq!(r["range"]["start"], pos(4, 0));
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn workspace_configuration_section_is_read_and_refreshed() {
+    let root = workspace("wsconfig");
+    let mut c = Client::spawn();
+    c.configuration = json!([{"ignore": ["L001"]}]);
+    c.request(
+        "initialize",
+        json!({
+            "processId": null,
+            "capabilities": {"workspace": {"configuration": true}},
+            "workspaceFolders": [{"uri": uri_of(&root), "name": "ws"}],
+        }),
+    );
+    c.notify("initialized", json!({}));
+    // The section arrives asynchronously; the server re-analyses open
+    // documents when it does.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    c.diagnostics_become(&uri, 1, &[("F001", 1)]);
+    // A pushed configuration replaces the pulled one.
+    c.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"partscope": {"ignore": ["F001"]}}}),
+    );
+    c.diagnostics_become(&uri, 1, &[("L001", 2)]);
+    assert!(c.shutdown().success());
+}
