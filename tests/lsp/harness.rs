@@ -2,6 +2,9 @@
 //! speaks JSON-RPC over its stdio with Content-Length framing. Included by
 //! `server/tests/lsp_e2e.rs` and `server/tests/lsp_latency.rs`.
 
+// Each test crate that includes this uses a different subset of it.
+#![allow(dead_code)]
+
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
