@@ -37,8 +37,9 @@ const DEBOUNCE: Duration = Duration::from_millis(50);
 /// How long diagnostics wait for the interpreter before the static ones are
 /// published on their own.
 const RUN_WAIT: Duration = Duration::from_millis(150);
-/// Files up to this size publish once, after the run.
+/// Files up to this size wait [`SMALL_RUN_WAIT`] for the run.
 const SMALL_FILE: usize = 256 * 1024;
+const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
 /// Above this many tokens a full semantic-tokens response is refused (the
 /// client then asks for the visible range).
 const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
@@ -70,6 +71,7 @@ pub struct Backend {
     client: Client,
     state: Arc<Mutex<State>>,
     runner: Arc<dyn DryRunner>,
+    run_gate: Arc<tokio::sync::Semaphore>,
 }
 
 fn internal(msg: impl Into<String>) -> Error {
@@ -115,6 +117,7 @@ impl Backend {
             client,
             state: Arc::new(Mutex::new(State::default())),
             runner: dry_run::default_runner(),
+            run_gate: Arc::new(tokio::sync::Semaphore::new(1)),
         }
     }
 
@@ -186,21 +189,40 @@ impl Backend {
             // The interpreter adds flow-sensitive diagnostics. When it is quick,
             // publish once with everything; when not, publish the static ones
             // first so syntax errors show at once, then again when it is done.
-            let s = snap.clone();
-            let mut run = tokio::task::spawn_blocking(move || {
-                s.run_report(&CancelFlag::default());
-            });
-            // Small files always wait, so they get one publish per version.
-            let quick = if snap.rope.len_bytes() <= SMALL_FILE {
-                (&mut run).await.is_ok()
-            } else {
-                tokio::time::timeout(RUN_WAIT, &mut run).await.is_ok()
-            };
-            if !quick {
-                this.publish(&snap).await;
-                if run.await.is_err() || !this.is_current(&snap.uri, generation) {
-                    return;
+            // One interpreter run at a time (a run cannot be interrupted, so
+            // runs for superseded versions must not pile up on the cores); a
+            // run whose version is stale by the time it gets the gate is skipped.
+            let gate = this.run_gate.clone();
+            let (s, me) = (snap.clone(), this.clone());
+            let mut run = tokio::spawn(async move {
+                let permit = gate.acquire_owned().await.ok()?;
+                if !me.is_current(&s.uri, generation) {
+                    return None;
                 }
+                tokio::task::spawn_blocking(move || {
+                    let _permit = permit;
+                    s.run_report(&CancelFlag::default());
+                })
+                .await
+                .ok()
+            });
+            // Small files wait longer, so they normally get one publish per version.
+            let wait = if snap.rope.len_bytes() <= SMALL_FILE {
+                SMALL_RUN_WAIT
+            } else {
+                RUN_WAIT
+            };
+            let (done, published) = match tokio::time::timeout(wait, &mut run).await {
+                Ok(r) => (r.ok().flatten().is_some(), false),
+                Err(_) => {
+                    this.publish(&snap).await;
+                    (run.await.ok().flatten().is_some(), true)
+                }
+            };
+            let current = this.is_current(&snap.uri, generation);
+            // A failed run still leaves the static diagnostics to publish.
+            if !current || (!done && published) {
+                return;
             }
             this.publish(&snap).await;
         });
