@@ -182,8 +182,11 @@ impl CodeNum {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum CodeKind {
     /// Group-1 style motion (G0, G1, G2, cycles…): consumes axis words.
+    /// The cycle cancel G80 is [`CodeKind::Modal`], because it takes no axis words.
     Motion,
     /// Non-modal code that consumes axis words (G10, G28, G92, G52, G53…).
+    /// RS274/NGC's G53 is [`CodeKind::OneShot`] there: it only modifies the
+    /// G0/G1 on its line, which keeps the axis words.
     AxisConsumer,
     /// Modal setting (plane, units, distance mode, …).
     Modal,
@@ -230,6 +233,23 @@ impl CodeInfo {
         format!("{}{}", self.letter, self.num.display())
     }
 
+    /// The name as the dialect's manual writes it: `G04`, `G02.3`, `M03` for
+    /// ServoWorks and FANUC; `G4`, `M3` for RS274/NGC.
+    pub fn display_name(&self, dialect: Dialect) -> String {
+        match dialect {
+            Dialect::Rs274ngc => self.name(),
+            Dialect::Servoworks | Dialect::Fanuc => {
+                let whole = self.num.0 / 10;
+                let tenth = self.num.0 % 10;
+                if tenth == 0 {
+                    format!("{}{:02}", self.letter, whole)
+                } else {
+                    format!("{}{:02}.{}", self.letter, whole, tenth)
+                }
+            }
+        }
+    }
+
     /// Whether `self` and `other` are in the same modal group (G and M groups
     /// are separate numberings, so the letters must match too).
     pub fn same_group(&self, other: &CodeInfo) -> bool {
@@ -266,6 +286,21 @@ impl Dialect {
             Dialect::Rs274ngc => rs274ngc::ADDRESSES,
             Dialect::Fanuc => fanuc::ADDRESSES,
         }
+    }
+}
+
+/// Looks a code up for one variant/profile: `None` when the dialect lacks the
+/// code or the variant does not have it (e.g. G43.2 on ServoWorks S-120M).
+pub fn lookup_variant(variant: Variant, letter: char, num: CodeNum) -> Option<&'static CodeInfo> {
+    lookup(variant.dialect(), letter, num).filter(|c| c.on_variant(variant))
+}
+
+/// The variants of `dialect`, in [`Variant::bit`] order.
+pub fn variants_of(dialect: Dialect) -> &'static [Variant] {
+    match dialect {
+        Dialect::Servoworks => &[Variant::S100M, Variant::S120M, Variant::S140M],
+        Dialect::Rs274ngc => &[Variant::Linuxcnc, Variant::Emc2],
+        Dialect::Fanuc => &[Variant::Fanuc30i],
     }
 }
 
@@ -497,5 +532,112 @@ impl CodeInfo {
     /// The parameter entry for `letter`, if this code documents one.
     pub fn param(&self, letter: char) -> Option<&'static Param> {
         Param::find(self.params, letter)
+    }
+
+    /// The group as the dialect's manual writes it: `"00"`, `"01"` for
+    /// ServoWorks and FANUC, `"0"`, `"1"` for RS274/NGC (M groups prefixed `M`).
+    pub fn group_label(&self, dialect: Dialect) -> Option<String> {
+        let g = self.group?;
+        let prefix = if self.letter == 'M' { "M" } else { "" };
+        Some(match dialect {
+            Dialect::Rs274ngc => format!("{prefix}{g}"),
+            Dialect::Servoworks | Dialect::Fanuc => format!("{prefix}{g:02}"),
+        })
+    }
+
+    /// Markdown hover text: name, summary, group/default, variants, doc and words.
+    pub fn hover(&self, dialect: Dialect) -> String {
+        let mut out = format!("**{}** — {}\n\n", self.display_name(dialect), self.summary);
+        match (self.group, self.group_label(dialect)) {
+            (Some(0), Some(l)) => out.push_str(&format!("Group {l} (non-modal)")),
+            (Some(_), Some(l)) => out.push_str(&format!("Modal group {l}")),
+            _ => out.push_str("No modal group"),
+        }
+        if self.default {
+            out.push_str(", power-on default");
+        }
+        let all = variants_of(dialect);
+        if all.iter().any(|v| !self.on_variant(*v)) {
+            let on: Vec<&str> = all
+                .iter()
+                .filter(|v| self.on_variant(**v))
+                .map(|v| v.as_str())
+                .collect();
+            out.push_str(&format!(". Only on: {}", on.join(", ")));
+        }
+        out.push_str(".\n\n");
+        out.push_str(self.doc);
+        if !self.params.is_empty() {
+            out.push_str("\n\n");
+            for p in self.params {
+                let req = if p.required { " (required)" } else { "" };
+                out.push_str(&format!("- `{}` {}{}\n", p.letter, p.doc, req));
+            }
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn code_num_from_value_and_display() {
+        assert_eq!(CodeNum::from_value(2.3), Some(CodeNum(23)));
+        assert_eq!(CodeNum::from_value(54.1), Some(CodeNum(541)));
+        assert_eq!(CodeNum::from_value(2.35), None);
+        assert_eq!(CodeNum(3100).display(), "310");
+        assert_eq!(CodeNum(592).display(), "59.2");
+    }
+
+    #[test]
+    fn variant_lookup() {
+        let g432 = CodeNum(432);
+        assert!(lookup_variant(Variant::S140M, 'G', g432).is_some());
+        assert!(lookup_variant(Variant::S120M, 'G', g432).is_none());
+        assert!(lookup_variant(Variant::S100M, 'G', CodeNum(23)).is_none());
+        assert!(lookup_variant(Variant::S120M, 'G', CodeNum(23)).is_some());
+        assert!(lookup_variant(Variant::Emc2, 'G', CodeNum(520)).is_none());
+        assert!(lookup_variant(Variant::Linuxcnc, 'G', CodeNum(520)).is_some());
+        assert!(lookup_variant(Variant::Fanuc30i, 'G', CodeNum(650)).is_some());
+        for d in Dialect::ALL {
+            assert!(variants_of(d).iter().all(|v| v.dialect() == d));
+            assert!(variants_of(d).contains(&d.default_variant()));
+        }
+    }
+
+    #[test]
+    fn address_lookup_is_case_insensitive() {
+        for d in Dialect::ALL {
+            assert!(lookup_address(d, 'x').is_some(), "{}", d.as_str());
+            assert!(lookup_address(d, 'F').is_some(), "{}", d.as_str());
+        }
+    }
+
+    #[test]
+    fn hover_text() {
+        let g04 =
+            lookup(Dialect::Servoworks, 'G', CodeNum(40)).map(|c| c.hover(Dialect::Servoworks));
+        let g04 = g04.unwrap_or_default();
+        assert!(
+            g04.starts_with("**G04** — Dwell\n\nGroup 00 (non-modal)."),
+            "{g04}"
+        );
+        assert!(g04.contains("- `P` dwell in milliseconds, integer\n"));
+        let g432 =
+            lookup(Dialect::Servoworks, 'G', CodeNum(432)).map(|c| c.hover(Dialect::Servoworks));
+        assert!(g432
+            .unwrap_or_default()
+            .contains("Modal group 08. Only on: S-140M."));
+        let m8 = lookup(Dialect::Rs274ngc, 'M', CodeNum(90)).map(|c| c.hover(Dialect::Rs274ngc));
+        assert!(m8
+            .unwrap_or_default()
+            .contains("Modal group M8, power-on default."));
+        let g80 =
+            lookup(Dialect::Fanuc, 'G', CodeNum(800)).and_then(|c| c.group_label(Dialect::Fanuc));
+        assert_eq!(g80.as_deref(), Some("09"));
+        let m30 = lookup(Dialect::Fanuc, 'M', CodeNum(300)).map(|c| c.hover(Dialect::Fanuc));
+        assert!(m30.unwrap_or_default().contains("No modal group."));
     }
 }

@@ -7,7 +7,7 @@
 //! 7 spindle, 8 coolant, 9 overrides, 10 user). Codes the seed lacks carry only
 //! the `LINUXCNC` variant bit.
 
-use super::{AddressInfo, CodeInfo, CodeKind, CodeNum, Param, variants};
+use super::{variants, AddressInfo, CodeInfo, CodeKind, CodeNum, Param};
 
 use CodeKind::{AxisConsumer, Misc, Modal, Motion, OneShot};
 
@@ -1512,8 +1512,8 @@ pub static ADDRESSES: &[AddressInfo] = &[
 #[cfg(test)]
 mod tests {
     use super::super::{
-        Dialect, Variant, assert_all_present, check_table_invariants, codes_in_group,
-        codes_in_letter_group, default_codes, lookup, lookup_address,
+        assert_all_present, check_table_invariants, codes_in_group, codes_in_letter_group,
+        default_codes, lookup, lookup_address, Dialect, Variant,
     };
     use super::*;
 
@@ -1585,9 +1585,7 @@ mod tests {
         assert_eq!(get('M', 1230).group, Some(10));
         assert_eq!(
             names(codes_in_group(D, 0)),
-            [
-                "G5.3", "G4", "G10", "G28", "G28.1", "G30", "G30.1", "G52", "G53", "G92"
-            ]
+            ["G5.3", "G4", "G10", "G28", "G28.1", "G30", "G30.1", "G52", "G53", "G92"]
         );
         assert_eq!(names(codes_in_letter_group(D, 'M', 8)), ["M7", "M8", "M9"]);
         assert_eq!(

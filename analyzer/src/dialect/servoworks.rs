@@ -4,7 +4,7 @@
 //! Group numbers are the manual's (00 = non-modal). Where the manual names no
 //! power-on default the digest's recommendation is used (G49, G80, G54, G69).
 
-use super::{AddressInfo, CodeInfo, CodeKind, CodeNum, Param, variants};
+use super::{variants, AddressInfo, CodeInfo, CodeKind, CodeNum, Param};
 
 use CodeKind::{AxisConsumer, Misc, Modal, Motion, OneShot};
 
@@ -1156,8 +1156,8 @@ pub static ADDRESSES: &[AddressInfo] = &[
 #[cfg(test)]
 mod tests {
     use super::super::{
-        Dialect, Variant, assert_all_present, check_table_invariants, codes_in_group,
-        default_codes, lookup, lookup_address,
+        assert_all_present, check_table_invariants, codes_in_group, default_codes, lookup,
+        lookup_address, Dialect, Variant,
     };
     use super::*;
 
@@ -1242,9 +1242,7 @@ mod tests {
         let g09: Vec<String> = codes_in_group(D, 9).map(|c| c.name()).collect();
         assert_eq!(
             g09,
-            [
-                "G73", "G74", "G76", "G80", "G81", "G82", "G83", "G84", "G85", "G86", "G87", "G89"
-            ]
+            ["G73", "G74", "G76", "G80", "G81", "G82", "G83", "G84", "G85", "G86", "G87", "G89"]
         );
         assert!(get('M', 30).group.is_none());
     }
