@@ -151,3 +151,18 @@ fn local_comp_convex_concave() {
 fn local_comp_arcs() {
     check_local("comp_arcs");
 }
+
+#[test]
+fn local_g76_threading() {
+    check_local("g76");
+}
+
+#[test]
+fn local_taps_polar_rotation_formats() {
+    check_local("taps_polar");
+}
+
+#[test]
+fn local_m98_subs() {
+    check_local("msubs");
+}

@@ -35,6 +35,11 @@ fn setup(code: &str) -> (Dialect, &'static str, Option<&'static str>) {
         "A007" | "C004" | "X004" | "F005" | "F007" => (Dialect::Fanuc, "", None),
         "D001" | "D002" | "K001" => (Dialect::Servoworks, "", None),
         "T001" => (Dialect::Rs274ngc, "", Some("T1 P1 D0.125 Z+0.511\n")),
+        "K002" => (
+            Dialect::Rs274ngc,
+            "[[axes]]\nletter = \"X\"\nmin_travel = -100.0\nmax_travel = 100.0\n",
+            None,
+        ),
         _ => (Dialect::Rs274ngc, "", None),
     }
 }

@@ -252,3 +252,85 @@ fn m99_in_main_stops_the_dry_run() {
     assert_eq!(codes(&out), vec!["X003"]);
     assert_eq!(out.motions.len(), 1);
 }
+
+#[test]
+fn g09_exact_stop_is_one_shot() {
+    let out = run_fanuc("G64 G01 X10. F100;\nG09 X20.;\nX30.;\nM30;\n", "");
+    let exact: Vec<bool> = out.motions.iter().map(|m| m.exact_stop).collect();
+    assert_eq!(exact, vec![false, true, false]);
+}
+
+#[test]
+fn g66_modal_call_after_each_move() {
+    // The macro drills at each position: it feeds Z down by #26 and back.
+    let prog = "G90 G00 Z10.;\nG66 P9000 Z-5.;\nG00 X10.;\nX20.;\nG67;\nX30.;\nM30;\nO9000;\nG91 G01 Z#26 F100.;\nG00 Z-#26;\nG90;\nM99;\n";
+    let out = run_fanuc(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let feeds: Vec<[f64; 3]> = out
+        .motions
+        .iter()
+        .filter(|m| is_feed(m))
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect();
+    assert_eq!(feeds, vec![[10.0, 0.0, 5.0], [20.0, 0.0, 5.0]]);
+    assert_eq!(
+        out.motions.last().map(|m| m.end),
+        Some([30.0, 0.0, 10.0, 0.0, 0.0, 0.0])
+    );
+}
+
+#[test]
+fn g10_l10_sets_length_offset() {
+    let out = run_fanuc(
+        "G10 L10 P5 R100.;\nG43 H5 Z0;\nG91 G10 L10 P5 R-2.;\nG90 G43 H5 Z0;\nM30;\n",
+        "",
+    );
+    let z: Vec<f64> = out.motions.iter().map(|m| m.end[2]).collect();
+    assert_eq!(z, vec![100.0, 98.0]);
+}
+
+#[test]
+fn group01_code_cancels_cycle_data() {
+    // After G00 the cycle must be given R and Z again.
+    let out = run_fanuc(
+        "G00 Z10.;\nG81 X1. Z-1. R1. F100.;\nG00 X5.;\nG81 X6.;\nM30;\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"C001"), "{:?}", out.diagnostics);
+}
+
+#[test]
+fn typical_program_is_clean() {
+    let prog = "%
+O1000 (BRACKET);
+G21 G17 G40 G49 G80 G90;
+T1 M6;
+G54 G00 X0 Y0 S1200 M03;
+G43 H1 Z50. M08;
+G99 G81 X10. Y10. Z-5. R2. F150.;
+X20.;
+G98 Y20.;
+G80;
+G00 Z50.;
+G01 Z-1. F100.;
+G41 D1 G01 X30. Y0;
+G03 X40. Y10. R10.;
+G02 X50. Y20. I10. J0;
+G40 G01 X60. Y20.;
+G91 G28 Z0.;
+G28 X0. Y0.;
+G90;
+M05;
+M09;
+M30;
+%
+";
+    let out = run_fanuc(prog, "[tools]\n1 = { length = 100.0, diameter = 10.0 }\n");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert!(out.motions.len() > 15);
+    // G91 G28 Z0. retracts Z to the machine reference point.
+    assert!(out
+        .motions
+        .iter()
+        .any(|m| m.end[2] == 0.0 && m.start[2] != 0.0));
+}

@@ -490,3 +490,10 @@ fn snapshots_report_modal_state() {
     assert_pt(s.position, &[25.4, 0.0, 0.0], 1e-12);
     assert_eq!(s.feed, 254.0);
 }
+
+#[test]
+fn huge_cycle_repeat_count_is_bounded() {
+    let out = run_ngc("G21 F10\nG0 Z1\nG91 G81 X1 Z-1 R0 L1000000000\nM2\n");
+    assert!(codes(&out).contains(&"F004"));
+    assert!(out.motions.len() < 500_000, "{}", out.motions.len());
+}

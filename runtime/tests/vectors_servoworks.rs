@@ -260,8 +260,8 @@ fn tv47_rotation() {
 
 #[test]
 fn tv48_g28_and_g54_during_rotation() {
-    let out = run_sw("G68 X0 Y0 R30\nG28 X0\nG54\nG69\nM30\n", "");
-    assert_eq!(codes(&out), vec!["K001", "K001"]);
+    let out = run_sw("G68 X0 Y0 R30\nG18\nG17\nG28 X0\nG54\nG69\nM30\n", "");
+    assert_eq!(codes(&out), vec!["K001", "K001", "K001", "K001"]);
 }
 
 #[test]
@@ -360,4 +360,53 @@ fn tv57_g81_holes_and_return_levels() {
 fn tv66_t_word_changes_tool_in_block() {
     let out = run_sw("N00100 T1 G00 X1.0 Y2.0\nM30\n", "");
     assert_eq!(out.motions[0].tool, 1);
+}
+
+#[test]
+fn tv02_tv03_first_duplicate_word_wins() {
+    let out = run_sw("N100 G00 X13.0 Z3.0 X2.0 X9.5\nM30\n", "");
+    assert_eq!(ends(&out), vec![[13.0, 0.0, 3.0]]);
+    let out = run_sw("G01 X10. Y10. F100 G01 X20. Y20.\nM30\n", "");
+    assert_eq!(ends(&out), vec![[10.0, 10.0, 0.0]]);
+}
+
+#[test]
+fn tv32_tool_length_compensation() {
+    let tools = "[tools]\n3 = { length = 10.0 }\n";
+    let plus = run_sw("G43 Z50.5 H3\nM30\n", tools);
+    assert_eq!(ends(&plus), vec![[0.0, 0.0, 60.5]]);
+    let minus = run_sw("G44 Z50.5 H3\nM30\n", tools);
+    assert_eq!(ends(&minus), vec![[0.0, 0.0, 40.5]]);
+}
+
+#[test]
+fn typical_program_is_clean() {
+    let prog = "%\nOPart1\nG21 G17 G90 G94\nG54\nT1\nS3000 M03\nG00 X0. Y0. Z10.\nG01 Z-1. F300.\nG01 X50. Y0.\nG02 X50. Y50. R25.\nG03 X0. Y50. I-25. J0.\nG01 X0. Y0.\nG04 P500\nG00 Z10.\nG98 G81 X10. Y10. Z-5. R2. F100.\nX20.\nG80\nM05\nM30\n%\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert!(out.motions.len() > 10);
+}
+
+#[test]
+fn tv27_dlacc_sawtooth() {
+    let prog = "G90G00X0Y0\nG08 P1\nG91G01F20000.0\nX50.0Y100.0\nX50.0Y-100.0\nX50.0Y100.0\nX50.0Y-100.0\nG08 P0\nG04 X1.0\nG90G00X0.0Y0.0\nM02\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+    assert!(close(feed, 447.214, 1e-3), "{:?}", ends(&out));
+    assert_pt(out.motions[4].end, &[200.0, 0.0], 1e-9);
+}
+
+#[test]
+fn tv28_dlacc_forms_and_incompatible_codes() {
+    // Invalid forms are ignored: G41 afterwards is fine.
+    assert!(run_sw("G05 P1\nG08 P10000\nG41 D1\nG40\nM30\n", "")
+        .diagnostics
+        .is_empty());
+    // Valid form, then G41: the program stops there.
+    let out = run_sw("G05 P10000\nG41 D1\nG01 X10. F100\nM30\n", "");
+    assert_eq!(codes(&out), vec!["D001"]);
+    assert!(out.motions.is_empty());
+    let tcp = run_sw("G08 P1\nG43.2 H1\nM30\n", "");
+    assert_eq!(codes(&tcp), vec!["D002"]);
 }

@@ -48,12 +48,19 @@ fn hypot(a: [f64; 2], b: [f64; 2]) -> f64 {
 pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
     let abs_r = r.abs();
     let mid = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
-    let half = hypot(mid, e).min(abs_r);
+    // LinuxCNC snaps a chord within 1e-12 of the diameter to a half circle.
+    let mut half = hypot(mid, e);
+    if abs_r > 0.0 && half / abs_r > 1.0 - 1e-12 {
+        half = abs_r;
+    }
     let base = (e[1] - s[1]).atan2(e[0] - s[0]);
+    // LinuxCNC adds the long-double π/2 (`M_PI_2l`); the low part of π/2
+    // reproduces that rounding in double arithmetic.
+    const PI_2_LO: f64 = 6.123_233_995_736_766e-17;
     let theta = if (cw && r > 0.0) || (!cw && r < 0.0) {
-        base - FRAC_PI_2
+        (base - FRAC_PI_2) - PI_2_LO
     } else {
-        base + FRAC_PI_2
+        (base + FRAC_PI_2) + PI_2_LO
     };
     let offset = if abs_r > 0.0 {
         abs_r * (half / abs_r).asin().cos()
@@ -64,7 +71,7 @@ pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
 }
 
 /// LinuxCNC 2.9 checks (`profile linuxcnc`) or the 2007 EMC2 checks (`emc2`).
-/// `inch` selects the tolerance set of the program units; values in mm.
+/// Coordinates are in program units (`inch` selects the tolerance set).
 pub fn solve_ngc(
     s: [f64; 2],
     e: [f64; 2],
@@ -73,23 +80,21 @@ pub fn solve_ngc(
     inch: bool,
     emc2: bool,
 ) -> Result<ArcSolution, ArcError> {
-    let unit = if inch { 25.4 } else { 1.0 };
+    // LinuxCNC's constants, per program unit.
+    let radius_tol = if inch { 0.00005 } else { 0.00005 * 25.4 };
+    let emc2_tol = if inch { 0.0002 } else { 0.002 };
+    let spiral_abs = if inch {
+        2.0 * 0.001 * std::f64::consts::SQRT_2
+    } else {
+        2.0 * 0.01 * std::f64::consts::SQRT_2
+    };
     match spec {
         ArcSpec::R(r) => {
             if s == e {
                 return Err(ArcError::SameEndR);
             }
             let half = hypot(s, e) / 2.0;
-            // 0.00005 inch (LinuxCNC) in program units; the 2007 seed used 0.0002 inch / 0.002 mm.
-            let tol = if emc2 {
-                if inch {
-                    0.0002 * 25.4
-                } else {
-                    0.002
-                }
-            } else {
-                0.00005 * 25.4
-            };
+            let tol = if emc2 { emc2_tol } else { radius_tol };
             if half - r.abs() > tol {
                 return Err(ArcError::RadiusTooSmall(half - r.abs()));
             }
@@ -103,24 +108,17 @@ pub fn solve_ngc(
         ArcSpec::Center(c) => {
             let r1 = hypot(s, c);
             let r2 = hypot(e, c);
-            let rtol = 0.00005 * 25.4;
-            if !emc2 && (r1 < rtol || r2 < rtol) {
+            if !emc2 && (r1 < radius_tol || r2 < radius_tol) {
                 return Err(ArcError::ZeroRadius);
             }
             let abs_err = (r1 - r2).abs();
             if emc2 {
-                let tol = if inch { 0.0002 * 25.4 } else { 0.002 };
-                if abs_err > tol {
+                if abs_err > emc2_tol {
                     return Err(ArcError::RadiusMismatch(r1, r2));
                 }
             } else {
-                let spiral = if inch {
-                    2.0 * 0.001 * std::f64::consts::SQRT_2 * unit
-                } else {
-                    2.0 * 0.01 * std::f64::consts::SQRT_2
-                };
                 let rel = abs_err / r1.max(r2);
-                if abs_err > spiral * 100.0 || (rel > 0.001 && abs_err > spiral) {
+                if abs_err > spiral_abs * 100.0 || (rel > 0.001 && abs_err > spiral_abs) {
                     return Err(ArcError::RadiusMismatch(r1, r2));
                 }
             }

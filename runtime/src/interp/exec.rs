@@ -23,6 +23,10 @@ use crate::rules::codes;
 
 const NUM_PARAMS: usize = 20_000;
 
+/// Blocks of the main file that get a [`BlockSnapshot`]; beyond this the
+/// snapshots stay `None` so that multi-million-line programs fit in memory.
+pub const SNAPSHOT_LIMIT: usize = 2_000_000;
+
 /// Runs a program. Never panics; bounded by `step_budget` and the call depth.
 pub fn run(input: &RunInput<'_>) -> RunOutput {
     let mut it = Interp::new(input);
@@ -54,6 +58,8 @@ struct Frame {
     saved: Option<Vec<Option<f64>>>,
     named_locals: HashMap<String, f64>,
     call_span: Span,
+    /// Called by a G66 modal call (no nested modal calls inside it).
+    modal_call: bool,
 }
 
 /// The evaluated words of one block.
@@ -69,6 +75,9 @@ struct Words {
     ijk_order: Vec<(u8, f64)>,
     /// The N number as written.
     n_text: Option<String>,
+    /// RS274/NGC polar words `@` (radius) and `^` (angle, degrees).
+    polar_r: Option<f64>,
+    polar_a: Option<f64>,
     /// K as written (a repeat count in FANUC/ServoWorks cycles).
     raw_k: Option<f64>,
 }
@@ -101,6 +110,8 @@ impl Words {
     }
     fn any_axis(&self) -> bool {
         b"XYZABCUVW".iter().any(|c| self.has(*c))
+            || self.polar_r.is_some()
+            || self.polar_a.is_some()
     }
 }
 
@@ -108,6 +119,8 @@ struct Vars<'s> {
     st: &'s State,
     locals: Option<&'s HashMap<String, f64>>,
     dialect: Dialect,
+    /// Tool-table offsets (X Y Z) of the tool in the spindle, program units.
+    tool: [f64; 3],
 }
 
 impl VarSource for Vars<'_> {
@@ -123,6 +136,9 @@ impl VarSource for Vars<'_> {
                 message: format!("parameter number #{n} out of range"),
                 code,
             });
+        }
+        if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
+            return Ok(Some(self.tool[(n - 5401) as usize]));
         }
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
@@ -161,11 +177,17 @@ impl VarSource for Vars<'_> {
 /// #4001… modal codes, #5001… end point, #5021… machine, #5041… work
 /// position; LinuxCNC #5420… current position.
 fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
-    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    // RS274/NGC keeps lengths in program units already.
+    let u = if st.modal.inch && d != Dialect::Rs274ngc {
+        25.4
+    } else {
+        1.0
+    };
     let axis = |v: &[f64; 6], i: usize| if i < 3 { v[i] / u } else { v[i] };
     match d {
         Dialect::Rs274ngc => match n {
             5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
+            5400 => Some(f64::from(st.tool)),
             _ => None,
         },
         _ => match n {
@@ -199,7 +221,8 @@ fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
 
 /// LinuxCNC read-only named parameters, in program units.
 fn predefined(st: &State, name: &str) -> Option<f64> {
-    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    // Only RS274/NGC has named parameters, and it keeps program units.
+    let u = 1.0;
     let axes = ["x", "y", "z", "a", "b", "c"];
     for (i, a) in axes.iter().enumerate() {
         if name.strip_prefix('_') == Some(a) {
@@ -251,6 +274,10 @@ struct Interp<'a, 'i> {
     after_end_reported: bool,
     /// Locals of the main level (RS274/NGC named parameters without `_`).
     main_locals: HashMap<String, f64>,
+    limit_reports: u32,
+    /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
+    block_exact: bool,
+    modal_cache: Option<(Modal, Vec<String>)>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -262,7 +289,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         let dialect = input.settings.dialect;
         let mut cfg = MachineCfg::read(input.machine, dialect);
         if let Some(t) = input.tool_table {
-            parse_tool_table(t, cfg.param_unit, &mut cfg.tools, &mut cfg.tool_order);
+            // Tool-table values stay in machine units; `pfac` converts at use.
+            parse_tool_table(t, 1.0, &mut cfg.tools, &mut cfg.tool_order);
         }
         let mut params = vec![None; NUM_PARAMS];
         if dialect == Dialect::Rs274ngc {
@@ -310,6 +338,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             rotation: ([0.0; 2], 0.0),
             ended: false,
             line: 0,
+            g66: None,
         };
         let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
         let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
@@ -336,6 +365,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             nblocks_main: input.program.blocks.len(),
             after_end_reported: false,
             main_locals: HashMap::new(),
+            limit_reports: 0,
+            block_exact: false,
+            modal_cache: None,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -349,12 +381,77 @@ impl<'a, 'i> Interp<'a, 'i> {
         it
     }
 
+    /// Internal length units per program unit. RS274/NGC keeps lengths in
+    /// program units as LinuxCNC does (so canonical output rounds identically);
+    /// the other dialects keep millimetres.
     fn unit(&self) -> f64 {
-        if self.st.modal.inch {
+        if self.ngc() || !self.st.modal.inch {
+            1.0
+        } else {
+            25.4
+        }
+    }
+
+    /// Millimetres per internal length unit.
+    fn lu(&self) -> f64 {
+        if self.ngc() && self.st.modal.inch {
             25.4
         } else {
             1.0
         }
+    }
+
+    /// Internal units per parameter/tool-table unit.
+    fn pfac(&self) -> f64 {
+        let lu = self.lu();
+        if self.cfg.param_unit == lu {
+            1.0
+        } else if lu == 1.0 {
+            self.cfg.param_unit
+        } else {
+            self.cfg.param_unit / lu
+        }
+    }
+
+    /// Switches RS274/NGC program units, converting the stored lengths as
+    /// LinuxCNC does.
+    fn switch_units(&mut self, inch: bool) {
+        if inch == self.st.modal.inch {
+            return;
+        }
+        let f = if inch { 1.0 / 25.4 } else { 25.4 };
+        if self.ngc() {
+            let st = &mut self.st;
+            for v in [
+                &mut st.pos,
+                &mut st.mpos,
+                &mut st.g92,
+                &mut st.g52,
+                &mut st.tlo,
+                &mut st.comp_tip,
+            ] {
+                for x in v.iter_mut().take(3) {
+                    *x *= f;
+                }
+            }
+            st.comp_radius *= f;
+            st.feed *= f;
+            st.modal.path_tol = st.modal.path_tol.map(|t| t * f);
+            for x in [
+                &mut st.cycle.r,
+                &mut st.cycle.z,
+                &mut st.cycle.q,
+                &mut st.cycle.i,
+                &mut st.cycle.j,
+                &mut st.cycle.k,
+                &mut st.cycle.initial,
+            ] {
+                if let Some(v) = x.as_mut() {
+                    *v *= f;
+                }
+            }
+        }
+        self.st.modal.inch = inch;
     }
 
     fn ngc(&self) -> bool {
@@ -385,11 +482,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let mut o = [0.0; 6];
         for (k, v) in o.iter_mut().enumerate() {
             let raw = self.param(base + k);
-            *v = if k < 3 {
-                raw * self.cfg.param_unit
-            } else {
-                raw
-            };
+            *v = if k < 3 { raw * self.pfac() } else { raw };
         }
         o
     }
@@ -437,6 +530,36 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         for i in 0..6 {
             q[i] -= self.st.g92[i] + self.st.g52[i];
+        }
+        self.untransform(q)
+    }
+
+    /// Inverse of [`Self::transform`]: rotation, then scaling, then mirror undone.
+    fn untransform(&self, p: [f64; 6]) -> [f64; 6] {
+        let mut q = p;
+        let m = &self.st.modal;
+        if m.rotation {
+            let (a, b) = self.plane_axes();
+            let (c, ang) = self.st.rotation;
+            let (s, co) = (-ang).to_radians().sin_cos();
+            let (x, y) = (q[a] - c[0], q[b] - c[1]);
+            q[a] = c[0] + x * co - y * s;
+            q[b] = c[1] + x * s + y * co;
+        }
+        if m.scaling {
+            for i in 0..3 {
+                let f = self.st.scale.1[i];
+                if f != 0.0 {
+                    q[i] = self.st.scale.0[i] + (q[i] - self.st.scale.0[i]) / f;
+                }
+            }
+        }
+        if m.mirror {
+            for i in 0..3 {
+                if self.st.mirror.0[i] {
+                    q[i] = 2.0 * self.st.mirror.1[i] - q[i];
+                }
+            }
         }
         q
     }
@@ -579,7 +702,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 );
                 break;
             }
-            match self.exec_block(fi, bi) {
+            let first_motion = self.out.motions.len();
+            let result = self.exec_block(fi, bi);
+            self.check_limits(fi, bi, first_motion);
+            match result {
                 Ok(Flow::Next) => self.cur = (self.cur.0, self.cur.1 + 1),
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
@@ -588,7 +714,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     break;
                 }
             }
-            if fi == 0 && (bi as usize) < self.nblocks_main {
+            if fi == 0 && (bi as usize) < self.nblocks_main.min(SNAPSHOT_LIMIT) {
                 let snap = self.snapshot();
                 if let Some(s) = self.out.snapshots.get_mut(bi as usize) {
                     *s = Some(snap);
@@ -599,6 +725,35 @@ impl<'a, 'i> Interp<'a, 'i> {
             c.line_number = None;
             c.call("ON_RESET()");
             c.call("ON_RESET()");
+        }
+    }
+
+    /// Soft limits: end points of the block's motions against the profile's travel.
+    fn check_limits(&mut self, fi: usize, bi: u32, first: usize) {
+        if self.cfg.limits.iter().all(Option::is_none) || self.limit_reports >= 100 {
+            return;
+        }
+        let mut hit = [false; 6];
+        for m in self.out.motions.iter().skip(first) {
+            for (i, lim) in self.cfg.limits.iter().enumerate() {
+                if let Some((lo, hi)) = lim {
+                    if m.end[i] < lo - 1e-9 || m.end[i] > hi + 1e-9 {
+                        hit[i] = true;
+                    }
+                }
+            }
+        }
+        let span = self.block_span(fi, bi);
+        let file = self.files.get(fi).map(|f| f.id).unwrap_or_default();
+        for (i, h) in hit.iter().enumerate() {
+            if !h || self.limit_reports >= 100 {
+                continue;
+            }
+            self.limit_reports += 1;
+            let (lo, hi) = self.cfg.limits[i].unwrap_or((0.0, 0.0));
+            let letter = ['X', 'Y', 'Z', 'A', 'B', 'C'][i];
+            let d = Diagnostic::warning(codes::TRAVEL_LIMIT, span, format!("this block moves {letter} outside its travel ({lo} to {hi} in machine coordinates): the control stops with a soft-limit alarm")).in_file(file);
+            self.out.diagnostics.push(d);
         }
     }
 
@@ -633,11 +788,28 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.out
     }
 
-    fn snapshot(&self) -> BlockSnapshot {
+    fn snapshot(&mut self) -> BlockSnapshot {
+        // Modal state rarely changes between blocks: reuse the formatted codes.
+        let modal = match &self.modal_cache {
+            Some((m, codes)) if *m == self.st.modal => codes.clone(),
+            _ => {
+                let codes = self.st.modal.codes(self.ngc());
+                self.modal_cache = Some((self.st.modal.clone(), codes.clone()));
+                codes
+            }
+        };
         BlockSnapshot {
-            modal: self.st.modal.codes(self.ngc()),
-            position: self.st.pos,
-            feed: self.st.feed,
+            modal,
+            position: {
+                let lu = self.lu();
+                let p = self.st.pos;
+                [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]]
+            },
+            feed: if self.st.modal.feed_mode == 930 {
+                self.st.feed
+            } else {
+                self.st.feed * self.lu()
+            },
             spindle: self.st.spindle,
             tool: self.st.tool,
         }
@@ -665,12 +837,41 @@ impl<'a, 'i> Interp<'a, 'i> {
             .last()
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
+        let f = self.pfac();
+        let t = self
+            .cfg
+            .tools
+            .get(&self.st.tool)
+            .copied()
+            .unwrap_or_default();
         let vars = Vars {
             st: &self.st,
             locals,
             dialect: self.dialect,
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
         };
         expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+    }
+
+    /// A numbered parameter as an expression would read it (system values included).
+    fn read_param(&self, n: i64) -> f64 {
+        let f = self.pfac();
+        let t = self
+            .cfg
+            .tools
+            .get(&self.st.tool)
+            .copied()
+            .unwrap_or_default();
+        let vars = Vars {
+            st: &self.st,
+            locals: None,
+            dialect: self.dialect,
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+        };
+        vars.get_num(n, Span::default())
+            .ok()
+            .flatten()
+            .unwrap_or(0.0)
     }
 
     fn eval_num(&self, p: &Program, id: ExprId) -> Result<f64, Diagnostic> {
@@ -849,13 +1050,33 @@ impl<'a, 'i> Interp<'a, 'i> {
                                     .str_of(n.span)
                                     .chars()
                                     .filter(|c| !c.is_whitespace())
+                                    .take_while(|c| *c != '.')
                                     .collect(),
                                 None => format!("{}", val as i64),
                             });
                         }
                         b'O' => {}
+                        c @ (b'U' | b'V' | b'W')
+                            if self.ngc() && !self.input.settings.axes.contains(&(c as char)) =>
+                        {
+                            return Err(self.err(
+                                codes::INTERP,
+                                it.span,
+                                format!(
+                                    "bad character '{}' used: this machine has no {} axis",
+                                    (c as char).to_ascii_lowercase(),
+                                    c as char
+                                ),
+                            ));
+                        }
+                        b'@' => w.polar_r = Some(val),
+                        b'^' => w.polar_a = Some(val),
                         c @ b'A'..=b'Z' if !word.comma => {
                             let i = (c - b'A') as usize;
+                            // ServoWorks uses the first of duplicated words (§1.4).
+                            if self.dialect == Dialect::Servoworks && w.v[i].is_some() {
+                                continue;
+                            }
                             w.v[i] = Some(val);
                             w.span[i] = it.span;
                             w.point[i] = point;
@@ -1074,10 +1295,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     return Ok(Flow::Next);
                 }
-                if let Some(v) = v {
-                    Arc::make_mut(&mut self.st.named).insert("_value".into(), v);
-                    Arc::make_mut(&mut self.st.named).insert("_value_returned".into(), 1.0);
-                }
+                let named = Arc::make_mut(&mut self.st.named);
+                named.insert("_value".into(), v.unwrap_or(0.0));
+                named.insert(
+                    "_value_returned".into(),
+                    if v.is_some() { 1.0 } else { 0.0 },
+                );
                 self.ret_from_sub(None);
                 Ok(Flow::Goto(self.cur.0, self.cur.1))
             }
@@ -1267,6 +1490,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             saved: Some(saved),
             named_locals: HashMap::new(),
             call_span: span,
+            modal_call: false,
         });
         let start = if tb == u32::MAX { 0 } else { tb + 1 };
         Ok(Flow::Goto(tf, start))
@@ -1371,6 +1595,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             saved,
             named_locals: HashMap::new(),
             call_span: span,
+            modal_call: false,
         });
         Ok(Flow::Goto(tf, tb))
     }
@@ -1391,13 +1616,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         bspan: Span,
     ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
+        self.block_exact = !ngc && w.has_g(90);
         // Comments and messages.
         for (k, s) in comments {
             self.exec_comment(p, *k, *s)?;
         }
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
-            self.st.modal.inch = w.has_g(200);
+            self.switch_units(w.has_g(200));
         }
         // G96/G97.
         if w.has_g(960) {
@@ -1469,6 +1695,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         // Modal G codes.
         if w.has_g(40) {
             self.exec_dwell(w)?;
+        }
+        if self.st.modal.rotation && [170u32, 180, 190].iter().any(|g| w.has_g(*g)) {
+            let span =
+                w.g.iter()
+                    .find(|g| matches!(g.0, 170 | 180 | 190))
+                    .map(|g| g.1)
+                    .unwrap_or_default();
+            self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "the plane cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         for (code, name, plane) in [
             (170u32, "CANON_PLANE_XY", 170u32),
@@ -1550,11 +1784,37 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_m(980) || (!ngc && w.has_g(650)) {
             return self.exec_call_words(fi, bi, w);
         }
+        // G66 registers a modal macro call (arguments only in this block); G67 cancels it.
+        if !ngc && w.has_g(670) {
+            self.st.g66 = None;
+        }
+        if !ngc && w.has_g(660) {
+            let Some(p) = w.get(b'P') else {
+                return Err(self.err(
+                    codes::SUB_NOT_FOUND,
+                    w.g_span(660),
+                    "G66 without P (macro number)",
+                ));
+            };
+            self.st.g66 = Some((format!("{}", p.round() as i64), Arc::new(macro_args(w))));
+            return self.exec_stops(w, fi);
+        }
         // One-shot codes that consume axis words.
         let consumed = self.exec_modal0(w)?;
         // Motion.
         if !consumed {
             self.exec_motion(w, bspan)?;
+            // A G66 modal call runs the macro after each block that moves an axis.
+            if let Some((name, args)) = self.st.g66.clone() {
+                if w.any_axis() && !self.frames.iter().any(|f| f.modal_call) {
+                    let span = w.g.first().map(|g| g.1).unwrap_or(bspan);
+                    let flow = self.call_program(fi, bi, &name, 1, Some(args.to_vec()), span)?;
+                    if let Some(f) = self.frames.last_mut() {
+                        f.modal_call = true;
+                    }
+                    return Ok(flow);
+                }
+            }
         }
         if sw_m_after {
             self.exec_m_before(w);
@@ -1610,7 +1870,45 @@ impl<'a, 'i> Interp<'a, 'i> {
         let b = text.as_bytes();
         let mut out = String::new();
         let mut i = 0;
+        // LinuxCNC's `%d`, `%f` (4 decimals), `%.Nf` / `%lf` set the format of the
+        // parameters that follow; the default is 6 decimals.
+        let mut decimals = 6usize;
         while i < b.len() {
+            if b[i] == b'%' {
+                let rest = &text[i + 1..];
+                let (spec_len, d) = if rest.starts_with('d') {
+                    (1, Some(0))
+                } else if rest.starts_with("lf") {
+                    (2, Some(4))
+                } else if rest.starts_with('f') {
+                    (1, Some(4))
+                } else if let Some(r) = rest.strip_prefix('.') {
+                    let digits = r.bytes().take_while(u8::is_ascii_digit).count();
+                    let after = &r[digits..];
+                    let tail = if after.starts_with("lf") {
+                        2
+                    } else if after.starts_with('f') {
+                        1
+                    } else {
+                        0
+                    };
+                    if digits > 0 && tail > 0 {
+                        (
+                            1 + digits + tail,
+                            r[..digits].parse::<usize>().ok().map(|n| n.min(20)),
+                        )
+                    } else {
+                        (0, None)
+                    }
+                } else {
+                    (0, None)
+                };
+                if let Some(d) = d {
+                    decimals = d;
+                    i += 1 + spec_len;
+                    continue;
+                }
+            }
             if b[i] == b'#' {
                 if b.get(i + 1) == Some(&b'<') {
                     if let Some(end) = text[i..].find('>') {
@@ -1626,7 +1924,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                             .or_else(|| self.st.named.get(&name).copied())
                             .or_else(|| predefined(&self.st, &name));
                         match v {
-                            Some(v) => out.push_str(&format!("{v:.6}")),
+                            Some(v) => out.push_str(&format!("{v:.decimals$}")),
                             None => out.push_str("######"),
                         }
                         i += end + 1;
@@ -1639,7 +1937,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     if j > i + 1 {
                         let n: usize = text[i + 1..j].parse().unwrap_or(0);
-                        out.push_str(&format!("{:.6}", self.param(n)));
+                        let v = self.read_param(n as i64);
+                        out.push_str(&format!("{v:.decimals$}"));
                         i = j;
                         continue;
                     }
@@ -1773,7 +2072,11 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn tool_diameter(&self, d: Option<f64>) -> f64 {
         let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
-        self.cfg.tools.get(&idx).map(|t| t.diameter).unwrap_or(0.0)
+        self.cfg
+            .tools
+            .get(&idx)
+            .map(|t| t.diameter * self.pfac())
+            .unwrap_or(0.0)
     }
 
     fn exec_comp(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -1783,10 +2086,17 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.comp_flush();
             self.canon_comment("interpreter: cutter radius compensation off");
         }
-        for code in [410u32, 420] {
-            if w.has_g(code) {
+        for given in [410u32, 420, 411, 421] {
+            // LinuxCNC G41.1/G42.1: dynamic compensation with the diameter in D.
+            let dynamic = given % 10 == 1;
+            if !w.has_g(given) || (dynamic && !self.ngc()) {
+                continue;
+            }
+            let code = given - given % 10;
+            {
                 self.st.modal.comp = code;
                 let dia = match w.get(b'D') {
+                    Some(d) if dynamic => self.lin(d),
                     Some(d)
                         if self.dialect == Dialect::Servoworks
                             && w.point[(b'D' - b'A') as usize] =>
@@ -1816,20 +2126,21 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn exec_tlo(&mut self, w: &Words) -> Result<(), Diagnostic> {
-        let set = |s: &mut Self, z: f64, x: f64| {
+        let set = |s: &mut Self, z: f64, x: f64, y: f64| {
             // The programmed point stays; the machine position follows at the next move.
-            s.st.tlo = [x, 0.0, z, 0.0, 0.0, 0.0];
+            s.st.tlo = [x, y, z, 0.0, 0.0, 0.0];
             s.st.pos = s.to_program(s.st.mpos);
             let u = s.unit();
             s.canon(format!(
-                "USE_TOOL_LENGTH_OFFSET({} 0.0000 {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
+                "USE_TOOL_LENGTH_OFFSET({} {} {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 f4(x / u),
+                f4(y / u),
                 f4(z / u)
             ));
         };
         if w.has_g(490) {
             self.st.modal.tlo_mode = 490;
-            set(self, 0.0, 0.0);
+            set(self, 0.0, 0.0, 0.0);
         }
         for code in [430u32, 440] {
             if w.has_g(code) {
@@ -1843,7 +2154,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
                 let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
                 let sign = if code == 440 { -1.0 } else { 1.0 };
-                set(self, sign * t.length, sign * t.x_offset);
+                let f = self.pfac();
+                set(
+                    self,
+                    sign * t.length * f,
+                    sign * t.x_offset * f,
+                    sign * t.y_offset * f,
+                );
             }
         }
         if w.has_g(432) {
@@ -1854,7 +2171,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.tlo_mode = 431;
             let x = w.get(b'X').map(|v| self.lin(v)).unwrap_or(0.0);
             let z = w.get(b'Z').map(|v| self.lin(v)).unwrap_or(0.0);
-            set(self, z, x);
+            set(self, z, x, 0.0);
         }
         Ok(())
     }
@@ -1894,7 +2211,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(());
         }
         self.st.modal.origin = o;
-        self.st.pos = self.untransform_prog(self.to_program(self.st.mpos));
+        self.st.pos = self.to_program(self.st.mpos);
         let u = self.unit();
         let g = self.g5x_prog();
         let g92 = self.st.g92;
@@ -1910,11 +2227,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
-    fn untransform_prog(&self, p: [f64; 6]) -> [f64; 6] {
-        p
-    }
-
     fn exec_fanuc_modes(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        // (ServoWorks look-ahead and FANUC/ServoWorks coordinate transforms.)
         if self.ngc() {
             return Ok(());
         }
@@ -2009,41 +2323,52 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.rotation = ([ca, cb], r);
             self.st.modal.rotation = true;
         }
-        if w.has_g(50) && self.dialect == Dialect::Servoworks {
-            self.st.modal.dlacc = true;
-        }
-        if w.has_g(80) && self.dialect == Dialect::Servoworks {
-            self.st.modal.dlacc = false;
+        if self.dialect == Dialect::Servoworks && (w.has_g(50) || w.has_g(80)) {
+            // Exactly four forms switch 3D-DLACC (§6.3.7); anything else is ignored.
+            let p = w.get(b'P').map(|p| p.round() as i64);
+            let on = match (w.has_g(50), p) {
+                (true, Some(10000)) | (false, Some(1)) => Some(true),
+                (_, Some(0)) => Some(false),
+                _ => None,
+            };
+            if on == Some(true) && self.st.modal.tlo_mode == 432 {
+                let span =
+                    w.g.iter()
+                        .find(|g| g.0 == 50 || g.0 == 80)
+                        .map(|g| g.1)
+                        .unwrap_or_default();
+                return Err(self.err(codes::DLACC_TCP, span, "3D-DLACC cannot be combined with tool centre point control (G43.2): the control stops"));
+            }
+            if let Some(on) = on {
+                self.st.modal.dlacc = on;
+            }
         }
         if self.st.modal.dlacc {
-            self.check_dlacc(w);
+            self.check_dlacc(w)?;
         }
         Ok(())
     }
 
-    fn check_dlacc(&mut self, w: &Words) {
-        // Codes the ServoWorks manual allows while 3D-DLACC is on (§6.3.7).
+    /// While 3D-DLACC is on only the manual's whitelist of G codes may run;
+    /// the control stops at the first other one (SW056).
+    fn check_dlacc(&mut self, w: &Words) -> Result<(), Diagnostic> {
         const ALLOWED: &[u32] = &[
-            0, 10, 20, 30, 40, 50, 80, 90, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490,
-            540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 900, 910, 940, 950,
+            0, 10, 20, 30, 40, 50, 80, 170, 180, 190, 200, 210, 280, 290, 300, 500, 510, 501, 511,
+            520, 530, 540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 650, 900, 910, 920, 3100,
+            3110,
         ];
         for (g, s) in &w.g {
             if !ALLOWED.contains(g) {
                 let name = analyzer::dialect::CodeNum(*g).display();
-                self.diag(codes::DLACC_INCOMPATIBLE, Severity::Error, *s, format!("G{name} cannot be used while 3D dynamic look-ahead (G05) is on: turn it off with G08 first"));
+                let code = if *g == 432 {
+                    codes::DLACC_TCP
+                } else {
+                    codes::DLACC_INCOMPATIBLE
+                };
+                return Err(self.err(code, *s, format!("G{name} cannot be used while 3D dynamic look-ahead is on: turn it off with G08 P0 (or G05 P0) first")));
             }
         }
-        if self.st.modal.tlo_mode == 432 {
-            let s = w.g_span(50);
-            if w.has_g(50) {
-                self.diag(
-                    codes::DLACC_TCP,
-                    Severity::Error,
-                    s,
-                    "3D-DLACC (G05) cannot be combined with tool centre point control (G43.2)",
-                );
-            }
-        }
+        Ok(())
     }
 
     fn exec_call_words(&mut self, fi: usize, bi: u32, w: &Words) -> Result<Flow, Diagnostic> {
@@ -2057,52 +2382,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)"));
             };
             let l = w.get(b'L').unwrap_or(1.0).max(1.0) as u32;
-            // Argument specification I, with I/J/K sets of specification II.
-            let mut args = vec![None; 34];
-            let map1 = |c: u8| -> Option<usize> {
-                Some(match c {
-                    b'A' => 1,
-                    b'B' => 2,
-                    b'C' => 3,
-                    b'D' => 7,
-                    b'E' => 8,
-                    b'F' => 9,
-                    b'H' => 11,
-                    b'M' => 13,
-                    b'Q' => 17,
-                    b'R' => 18,
-                    b'S' => 19,
-                    b'T' => 20,
-                    b'U' => 21,
-                    b'V' => 22,
-                    b'W' => 23,
-                    b'X' => 24,
-                    b'Y' => 25,
-                    b'Z' => 26,
-                    _ => return None,
-                })
-            };
-            let mut ijk_set = 0usize;
-            let mut last_ijk = 0u8;
-            for (c, v) in &w.ijk_order {
-                if matches!(c, b'I' | b'J' | b'K') {
-                    let ord = match c {
-                        b'I' => 0,
-                        b'J' => 1,
-                        _ => 2,
-                    };
-                    if ijk_set == 0 || ord <= last_ijk {
-                        ijk_set += 1;
-                    }
-                    last_ijk = ord;
-                    let n = 3 * ijk_set + 1 + ord as usize;
-                    if n <= 33 {
-                        args[n] = Some(*v);
-                    }
-                } else if let Some(n) = map1(*c) {
-                    args[n] = Some(*v);
-                }
-            }
+            let args = macro_args(w);
             let name = format!("{}", p.round() as i64);
             return self.call_program(fi, bi, &name, l, Some(args), span);
         }
@@ -2150,6 +2430,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.ngc() && w.has_g(431) {
             return Ok(true);
         }
+        // FANUC/ServoWorks `G04 X…` gives the dwell time in X, not a move.
+        if !self.ngc() && w.has_g(40) {
+            return Ok(true);
+        }
         let u = self.unit();
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
         let axis = |s: &Self, i: usize| -> Option<f64> {
@@ -2159,6 +2443,24 @@ impl<'a, 'i> Interp<'a, 'i> {
             let l = w.get(b'L').unwrap_or(0.0).round() as i64;
             let p = w.get(b'P').unwrap_or(0.0).round() as i64;
             match l {
+                // FANUC/ServoWorks tool offset memory: L10/L11 length (H), L12/L13
+                // radius (D); R is the value, added under G91.
+                10..=13 if !self.ngc() => {
+                    let t = p.max(0) as u32;
+                    let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
+                    let f = self.pfac();
+                    if let Some(r) = w.get(b'R') {
+                        let r = self.lin(r) / f;
+                        let inc = self.st.modal.incremental;
+                        if l <= 11 {
+                            tool.length = if inc { tool.length + r } else { r };
+                        } else {
+                            let rad = if inc { tool.diameter / 2.0 + r } else { r };
+                            tool.diameter = 2.0 * rad;
+                        }
+                    }
+                    self.cfg.tools.insert(t, tool);
+                }
                 2 | 20 => {
                     let origin = if p == 0 {
                         self.st.modal.origin
@@ -2179,7 +2481,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     let cur_machine = self.st.mpos;
                     for i in 0..6 {
                         let Some(v) = axis(self, i) else { continue };
-                        let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                        let scale = if i < 3 { self.pfac() } else { 1.0 };
                         let new = if l == 2 {
                             v
                         } else {
@@ -2203,13 +2505,49 @@ impl<'a, 'i> Interp<'a, 'i> {
                 1 | 10 | 11 => {
                     let t = p.max(0) as u32;
                     let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
+                    let f = self.pfac();
+                    // L1 sets the offsets; L10/L11 make the current point read the given value.
+                    let cur = [
+                        self.st.pos[0] + self.st.tlo[0],
+                        self.st.pos[1] + self.st.tlo[1],
+                        self.st.pos[2] + self.st.tlo[2],
+                    ];
+                    let val = |i: usize, v: f64| if l == 1 { v } else { cur[i] - v };
+                    if let Some(x) = axis(self, 0) {
+                        tool.x_offset = val(0, x) / f;
+                    }
+                    if let Some(y) = axis(self, 1) {
+                        tool.y_offset = val(1, y) / f;
+                    }
                     if let Some(z) = axis(self, 2) {
-                        tool.length = z;
+                        tool.length = val(2, z) / f;
                     }
                     if let Some(r) = w.get(b'R') {
-                        tool.diameter = 2.0 * self.lin(r);
+                        tool.diameter = 2.0 * self.lin(r) / f;
                     }
                     self.cfg.tools.insert(t, tool);
+                    if !self.cfg.tool_order.contains(&t) {
+                        self.cfg.tool_order.push(t);
+                    }
+                    if self.canon.is_some() {
+                        let slot = self
+                            .cfg
+                            .tool_order
+                            .iter()
+                            .position(|x| *x == t)
+                            .map(|i| i + 1)
+                            .unwrap_or(0);
+                        let entry = format!(
+                            "{} {} {} 0.0000 0.0000 0.0000 0.0000 0.0000 0.0000, 0.0000, 0.0000, 0",
+                            f4(tool.x_offset * f),
+                            f4(tool.y_offset * f),
+                            f4(tool.length * f)
+                        );
+                        self.canon(format!("SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})"));
+                        if t == self.st.tool || self.st.tool == 0 {
+                            self.canon(format!("SET_TOOL_TABLE_ENTRY(0, {t}, {entry})"));
+                        }
+                    }
                 }
                 _ => {}
             }
@@ -2219,7 +2557,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             if w.has_g(code) && self.ngc() {
                 // Store the current absolute position as the G28/G30 home.
                 for i in 0..6 {
-                    let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                    let scale = if i < 3 { self.pfac() } else { 1.0 };
                     self.set_param(base + i, Some(self.st.mpos[i] / scale));
                 }
                 return Ok(true);
@@ -2253,11 +2591,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     } else {
                         0.0
                     };
-                    *h = if i < 3 {
-                        raw * self.cfg.param_unit
-                    } else {
-                        raw
-                    };
+                    *h = if i < 3 { raw * self.pfac() } else { raw };
                 }
             }
             let target = self.to_program(home_m);
@@ -2301,7 +2635,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             for i in 0..6 {
                 self.set_param(
                     5211 + i,
-                    Some(g92[i] / if i < 3 { self.cfg.param_unit } else { 1.0 }),
+                    Some(g92[i] / if i < 3 { self.pfac() } else { 1.0 }),
                 );
             }
             self.set_param(5210, Some(1.0));
@@ -2326,7 +2660,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if w.has_g(923) {
             let mut g92 = [0.0; 6];
             for (i, g) in g92.iter_mut().enumerate() {
-                *g = self.param(5211 + i) * if i < 3 { self.cfg.param_unit } else { 1.0 };
+                *g = self.param(5211 + i) * if i < 3 { self.pfac() } else { 1.0 };
             }
             self.st.g92 = g92;
             self.set_param(5210, Some(1.0));
@@ -2341,6 +2675,33 @@ impl<'a, 'i> Interp<'a, 'i> {
         let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
         let mut t = self.st.pos;
         let inc = self.st.modal.incremental;
+        if self.ngc() && (w.polar_r.is_some() || w.polar_a.is_some()) {
+            // LinuxCNC polar words: radius/angle about the origin of the plane.
+            let (a, b) = self.plane_axes();
+            let (x, y) = (t[a], t[b]);
+            let (r0, th0) = (x.hypot(y), y.atan2(x));
+            let (r, th) = if inc {
+                (
+                    r0 + w.polar_r.map(|v| self.lin(v)).unwrap_or(0.0),
+                    th0 + w.polar_a.unwrap_or(0.0).to_radians(),
+                )
+            } else {
+                (
+                    w.polar_r.map(|v| self.lin(v)).unwrap_or(r0),
+                    w.polar_a.map(f64::to_radians).unwrap_or(th0),
+                )
+            };
+            t[a] = r * th.cos();
+            t[b] = r * th.sin();
+            let n = self.normal_axis();
+            for i in [n, 3, 4, 5] {
+                if let Some(v) = w.get(letters[i]) {
+                    let v = if i < 3 { self.lin(v) } else { v };
+                    t[i] = if inc { t[i] + v } else { v };
+                }
+            }
+            return t;
+        }
         if self.st.modal.polar && !self.ngc() {
             let (a, b) = self.plane_axes();
             let pl = [b'X', b'Y', b'Z'];
@@ -2378,12 +2739,30 @@ impl<'a, 'i> Interp<'a, 'i> {
         t
     }
 
+    /// A motion from internal-unit geometry; converts lengths to mm.
     fn motion_base(&self, kind: MotionKind, start: [f64; 6], end: [f64; 6], feed: f64) -> Motion {
-        let exact = matches!(self.st.modal.path, 610 | 611);
+        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
+        let lu = self.lu();
+        let mm = |p: [f64; 6]| [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]];
+        let kind = match kind {
+            MotionKind::Arc {
+                center,
+                normal,
+                turns,
+                radius,
+            } => MotionKind::Arc {
+                center: [center[0] * lu, center[1] * lu, center[2] * lu],
+                normal,
+                turns,
+                radius: radius * lu,
+            },
+            k => k,
+        };
+        let feed = feed * lu;
         Motion {
             kind,
-            start,
-            end,
+            start: mm(start),
+            end: mm(end),
             feed,
             inverse_time: if self.st.modal.feed_mode == 930 && !matches!(kind, MotionKind::Rapid) {
                 Some(self.st.feed)
@@ -2392,7 +2771,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             },
             exact_stop: exact,
             blend_tolerance: if self.st.modal.path == 640 {
-                self.st.modal.path_tol
+                self.st.modal.path_tol.map(|t| t * lu)
             } else {
                 None
             },
@@ -2405,8 +2784,10 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn rapid_to(&mut self, t: [f64; 6]) {
-        let s = self.canon_pos(&t);
-        self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+        }
         let end = self.to_machine(t);
         let m = self.motion_base(MotionKind::Rapid, self.st.mpos, end, 0.0);
         self.out.motions.push(m);
@@ -2421,8 +2802,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             let rate = len * self.st.feed / self.unit();
             self.canon(format!("SET_FEED_RATE({})", f4(rate)));
         }
-        let s = self.canon_pos(&t);
-        self.canon(format!("STRAIGHT_FEED({s})"));
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_FEED({s})"));
+        }
         let end = self.to_machine(t);
         let feed = self.effective_feed(dist(&self.st.mpos, &end));
         let m = self.motion_base(MotionKind::Feed, self.st.mpos, end, feed);
@@ -2461,6 +2844,16 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
+    /// Leaving cycle mode: FANUC/ServoWorks forget the drilling data;
+    /// LinuxCNC keeps P/Q/R for the next cycle and only forgets the initial level.
+    fn clear_cycle(&mut self) {
+        if self.ngc() {
+            self.st.cycle.initial = None;
+        } else {
+            self.st.cycle = CycleMem::default();
+        }
+    }
+
     fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
         for (g, _) in &w.g {
@@ -2490,12 +2883,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(m) = motion {
             if m == 800 {
                 self.st.modal.motion = 800;
-                self.st.cycle = CycleMem::default();
+                self.clear_cycle();
                 self.canon_comment("interpreter: motion mode set to none");
                 return Ok(());
             }
             if !is_cycle(m) {
-                self.st.cycle.initial = None;
+                // A group-01 code cancels the cycle and its data, as G80 does.
+                self.clear_cycle();
             }
         }
         let mode = motion.unwrap_or(self.st.modal.motion);
@@ -2541,6 +2935,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 if has_axes || w.has(b'I') || w.has(b'J') || w.has(b'K') {
                     self.exec_arc(w, mode == 20, bspan)?;
                 }
+            }
+            760 if self.ngc() => {
+                self.st.modal.motion = 760;
+                self.exec_threading(w, bspan)?;
             }
             330 => {
                 self.st.modal.motion = 330;
@@ -2588,6 +2986,127 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// LinuxCNC's G76 threading cycle (lathe, XZ): passes at depths
+    /// `I + J·pass^(1/R)` with compound angle Q, spring passes H, tapers E/L.
+    fn exec_threading(&mut self, w: &Words, span: Span) -> Result<(), Diagnostic> {
+        use std::f64::consts::PI;
+        if self.st.modal.comp != 400 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "cannot use G76 threading cycle with cutter radius compensation on",
+            ));
+        }
+        let i = w.get(b'I').map(|v| self.lin(v)).unwrap_or(0.0);
+        let j = w.get(b'J').map(|v| self.lin(v)).unwrap_or(0.0);
+        let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+        if i == 0.0 {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, I must not be 0"));
+        }
+        if j <= 0.0 {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, J must be greater than 0"));
+        }
+        if k <= j {
+            return Err(self.err(codes::CYCLE_STATE, span, "in G76, K must be greater than J"));
+        }
+        let end = self.target(w);
+        let start = self.st.pos;
+        let boring = i > 0.0;
+        let safe_x = start[0];
+        let full_dia_depth = i.abs();
+        let start_depth = i.abs() + j.abs();
+        let cut_increment = j.abs();
+        let full_threadheight = k.abs();
+        let end_depth = k.abs() + i.abs();
+        let pitch = w.get(b'P').map(|v| self.lin(v)).unwrap_or(0.0);
+        let mut compound = w.get(b'Q').unwrap_or(0.0) * PI / 180.0;
+        if end[2] > start[2] {
+            compound = -compound;
+        }
+        let spring = w.get(b'H').map(|h| h.max(0.0) as u32).unwrap_or(0);
+        let degression = w.get(b'R').filter(|r| *r >= 1.0).unwrap_or(1.0);
+        let mut taper = w.get(b'E').map(|v| self.lin(v)).unwrap_or(0.0).max(0.0);
+        let taper_pitch = if taper > 0.0 {
+            pitch * taper.hypot(full_threadheight) / taper
+        } else {
+            pitch
+        };
+        if end[2] > start[2] {
+            taper = -taper;
+        }
+        let flags = w.get(b'L').map(|l| l.max(0.0) as u32).unwrap_or(0);
+        let (entry, exit) = (flags & 1 != 0, flags & 2 != 0);
+        let target_z = end[2] + k.abs() * compound.tan();
+        let u = self.unit();
+        let x_at = |d: f64| if boring { safe_x + d } else { safe_x - d };
+        let pt = |x: f64, z: f64| {
+            let mut p = start;
+            p[0] = x;
+            p[2] = z;
+            p
+        };
+        let sync = |s: &mut Self, p: f64| s.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", p / u));
+        let mut pass_no = 1.0f64;
+        let mut depth = start_depth;
+        let mut guard = 0;
+        let mut passes: Vec<f64> = Vec::new();
+        while depth < end_depth && guard < 100_000 {
+            guard += 1;
+            passes.push(depth);
+            pass_no += 1.0;
+            depth = full_dia_depth + cut_increment * pass_no.powf(1.0 / degression);
+        }
+        for _ in 0..=spring {
+            passes.push(end_depth);
+        }
+        for depth in passes {
+            let zoff = (depth - full_dia_depth) * compound.tan();
+            self.rapid_to(pt(x_at(depth - end_depth), start[2] - zoff));
+            if taper != 0.0 && entry {
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                sync(self, taper_pitch);
+                self.thread_to(
+                    pt(x_at(depth - full_threadheight), start[2] - zoff),
+                    taper_pitch,
+                );
+                self.thread_to(pt(x_at(depth), start[2] - zoff - taper), taper_pitch);
+                sync(self, pitch);
+            } else {
+                self.rapid_to(pt(x_at(depth), start[2] - zoff));
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                sync(self, pitch);
+            }
+            if taper != 0.0 && exit {
+                self.thread_to(pt(x_at(depth), target_z - zoff + taper), pitch);
+                sync(self, taper_pitch);
+                self.thread_to(
+                    pt(x_at(depth - full_threadheight), target_z - zoff),
+                    taper_pitch,
+                );
+            } else {
+                self.thread_to(pt(x_at(depth), target_z - zoff), pitch);
+            }
+            self.canon("STOP_SPEED_FEED_SYNCH()");
+            self.rapid_to(pt(x_at(depth - end_depth), target_z - zoff));
+            self.canon("ENABLE_FEED_OVERRIDE()");
+        }
+        self.rapid_to(end);
+        Ok(())
+    }
+
+    /// A spindle-synchronised straight move (pitch in mm/rev).
+    fn thread_to(&mut self, t: [f64; 6], pitch: f64) {
+        if self.canon.is_some() {
+            let s = self.canon_pos(&t);
+            self.canon(format!("STRAIGHT_FEED({s})"));
+        }
+        let end = self.to_machine(t);
+        let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, pitch);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
     }
 
     /// A straight move, offset for cutter radius compensation when it is on.
@@ -2942,18 +3461,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         let rot = if cw { -turns } else { turns };
         let pe = e2;
         let (e2, t, radius) = self.comp_arc(t, e2, sol.center, sol.radius, cw, span)?;
-        self.canon(format!(
-            "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
-            f4(e2[0] / u),
-            f4(e2[1] / u),
-            f4(sol.center[0] / u),
-            f4(sol.center[1] / u),
-            rot,
-            f4(t[n] / u),
-            f4(t[3]),
-            f4(t[4]),
-            f4(t[5])
-        ));
+        if self.canon.is_some() {
+            self.canon(format!(
+                "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
+                f4(e2[0] / u),
+                f4(e2[1] / u),
+                f4(sol.center[0] / u),
+                f4(sol.center[1] / u),
+                rot,
+                f4(t[n] / u),
+                f4(t[3]),
+                f4(t[4]),
+                f4(t[5])
+            ));
+        }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;
         c3[a] = sol.center[0];
@@ -3302,6 +3823,17 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.canon("PALLET_SHUTTLE()");
             }
             self.canon("PROGRAM_END()");
+            if self.percent_open && self.cur.0 == 0 {
+                let p = self.files[0].prog.clone();
+                let closed = p
+                    .blocks
+                    .iter()
+                    .skip(self.cur.1 as usize + 1)
+                    .any(|b| b.kind == BlockKind::Percent);
+                if !closed {
+                    self.canon_comment("interpreter: percent sign missing from end of file");
+                }
+            }
         }
     }
 
@@ -3514,6 +4046,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                 db = Some(t[b]);
             }
         }
+        // Each repetition counts against the step budget, so `L1000000000` stays bounded.
+        let left = self.input.step_budget.saturating_sub(self.steps);
+        let repeats = if repeats as u64 > left {
+            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated"));
+            left as i64
+        } else {
+            repeats
+        };
+        self.steps += repeats.max(0) as u64;
         for k in 0..repeats {
             if inc {
                 pa += da.unwrap_or(0.0);
@@ -3601,7 +4142,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let g73 = mode == 730;
                 // LinuxCNC's peck clearance is 0.01 inch in either unit system.
                 let d = if ngc {
-                    0.254
+                    if self.st.modal.inch {
+                        0.01
+                    } else {
+                        0.254
+                    }
                 } else if g73 {
                     self.cfg.g73_retract
                 } else {
@@ -3821,4 +4366,54 @@ fn fmt_g4(v: f64) -> String {
     } else {
         s
     }
+}
+
+/// G65/G66 arguments: specification I, with the I/J/K sets of specification II.
+fn macro_args(w: &Words) -> Vec<Option<f64>> {
+    let mut args = vec![None; 34];
+    let map1 = |c: u8| -> Option<usize> {
+        Some(match c {
+            b'A' => 1,
+            b'B' => 2,
+            b'C' => 3,
+            b'D' => 7,
+            b'E' => 8,
+            b'F' => 9,
+            b'H' => 11,
+            b'M' => 13,
+            b'Q' => 17,
+            b'R' => 18,
+            b'S' => 19,
+            b'T' => 20,
+            b'U' => 21,
+            b'V' => 22,
+            b'W' => 23,
+            b'X' => 24,
+            b'Y' => 25,
+            b'Z' => 26,
+            _ => return None,
+        })
+    };
+    let mut ijk_set = 0usize;
+    let mut last_ijk = 0u8;
+    for (c, v) in &w.ijk_order {
+        if matches!(c, b'I' | b'J' | b'K') {
+            let ord = match c {
+                b'I' => 0,
+                b'J' => 1,
+                _ => 2,
+            };
+            if ijk_set == 0 || ord <= last_ijk {
+                ijk_set += 1;
+            }
+            last_ijk = ord;
+            let n = 3 * ijk_set + 1 + ord as usize;
+            if n <= 33 {
+                args[n] = Some(*v);
+            }
+        } else if let Some(n) = map1(*c) {
+            args[n] = Some(*v);
+        }
+    }
+    args
 }

@@ -10,6 +10,7 @@ pub struct Tool {
     pub length: f64,
     pub diameter: f64,
     pub x_offset: f64,
+    pub y_offset: f64,
 }
 
 #[derive(Debug, Clone)]
@@ -39,6 +40,8 @@ pub struct MachineCfg {
     pub work_offsets: Vec<(usize, [f64; 6])>,
     /// Maximum subprogram/macro nesting.
     pub max_depth: usize,
+    /// Travel limits per axis index (X Y Z A B C), machine frame.
+    pub limits: [Option<(f64, f64)>; 6],
 }
 
 fn num(v: &toml::Value) -> Option<f64> {
@@ -72,12 +75,14 @@ impl MachineCfg {
                     .and_then(num)
                     .or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r))
                     .unwrap_or(0.0);
+                // Profile tools are in mm; tools are kept in parameter units.
                 tools.insert(
                     n,
                     Tool {
-                        length,
-                        diameter,
+                        length: length / param_unit,
+                        diameter: diameter / param_unit,
                         x_offset: 0.0,
+                        y_offset: 0.0,
                     },
                 );
             }
@@ -110,13 +115,43 @@ impl MachineCfg {
         let max_default = match dialect {
             Dialect::Servoworks => 8,
             Dialect::Fanuc => 15,
-            Dialect::Rs274ngc => 64,
+            // rs274ngc.md TV-O4: LinuxCNC stops beyond 10 nested calls.
+            Dialect::Rs274ngc => 10,
         };
+        let mut limits = [None; 6];
+        let mut axis_unit = None;
+        if let Some(toml::Value::Array(axes)) = t.get("axes") {
+            for a in axes.iter().filter_map(|a| a.as_table()) {
+                let Some(letter) = a
+                    .get("letter")
+                    .and_then(|l| l.as_str())
+                    .and_then(|s| s.chars().next())
+                else {
+                    continue;
+                };
+                let Some(i) = "XYZABC".find(letter.to_ascii_uppercase()) else {
+                    continue;
+                };
+                let lo = a.get("min_travel").and_then(num);
+                let hi = a.get("max_travel").and_then(num);
+                if let (Some(lo), Some(hi)) = (lo, hi) {
+                    limits[i] = Some((lo, hi));
+                }
+                if i == 0 {
+                    axis_unit = a.get("machine_unit").and_then(num);
+                }
+            }
+        }
         MachineCfg {
+            limits,
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),
             integer_machine_unit: b("integer_machine_unit", false),
-            machine_unit: f("machine_unit", 0.001),
+            machine_unit: t
+                .get("machine_unit")
+                .and_then(num)
+                .or(axis_unit)
+                .unwrap_or(0.001),
             block_skip: b("block_skip", false),
             param_unit,
             decimal_point_input: b("decimal_point_input", false),
@@ -157,6 +192,7 @@ pub fn parse_tool_table(
                 'Z' => tool.length = v * unit,
                 'D' => tool.diameter = v * unit,
                 'X' => tool.x_offset = v * unit,
+                'Y' => tool.y_offset = v * unit,
                 _ => {}
             }
         }

@@ -95,6 +95,8 @@ pub struct State {
     pub ended: bool,
     /// 1-based line of the block being executed (`#<_line>`).
     pub line: u32,
+    /// FANUC G66 modal macro call: program and arguments.
+    pub g66: Option<(String, Arc<Vec<Option<f64>>>)>,
 }
 
 impl Modal {

@@ -140,7 +140,8 @@ pub struct RunOutput {
     pub files: Vec<String>,
     pub motions: Vec<Motion>,
     pub events: Vec<Event>,
-    /// One entry per block of the main file (None when never executed).
+    /// One entry per block of the main file (None when never executed, and
+    /// for blocks past `SNAPSHOT_LIMIT` (2 000 000) so that huge files fit in memory).
     pub snapshots: Vec<Option<BlockSnapshot>>,
     pub canon: Vec<String>,
 }

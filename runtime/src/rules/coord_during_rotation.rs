@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags reference returns and coordinate-system changes while coordinate rotation (G68) is active.
+    /// Flags reference returns, coordinate-system changes and plane changes while coordinate rotation (G68) is active.
     ///
     /// ## Why is this bad?
     /// The controls forbid them until G69 cancels the rotation.
@@ -32,7 +32,7 @@ declare_rule! {
     pub static COORD_DURING_ROTATION = {
         code: "K001",
         name: "coordinate-change-during-rotation",
-        summary: "G28/G30/G52–G59 while G68 rotation is on",
+        summary: "G28/G30/G52–G59 or a plane change while G68 rotation is on",
         implements: &["SW090", "FAN060"],
         origin: Runtime,
         default_enabled: true,

@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags G05 while G43.2 (TCP) is on.
+    /// Flags turning 3D-DLACC on while tool centre point control (G43.2) is active, or G43.2 while DLACC is on.
     ///
     /// ## Why is this bad?
     /// The manual forbids the combination.
@@ -12,14 +12,14 @@ declare_rule! {
     /// ## Example
     /// ```gcode
     /// G43.2 H1
-    /// G05
+    /// G05 P10000
     /// M30
     /// ```
     ///
     /// Use instead:
     /// ```gcode
-    /// G05
-    /// G08
+    /// G05 P10000
+    /// G08 P0
     /// G43.2 H1
     /// M30
     /// ```

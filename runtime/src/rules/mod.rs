@@ -26,6 +26,7 @@ mod missing_end;
 mod rigid_tap;
 mod step_budget;
 mod sub_not_found;
+mod travel_limit;
 mod unknown_code;
 mod unknown_tool;
 mod zero_feed;
@@ -54,6 +55,7 @@ pub mod codes {
     pub const DLACC_INCOMPATIBLE: &str = "D001";
     pub const DLACC_TCP: &str = "D002";
     pub const COORD_DURING_ROTATION: &str = "K001";
+    pub const TRAVEL_LIMIT: &str = "K002";
     pub const EXPRESSION: &str = "X001";
     pub const UNKNOWN_CODE: &str = "X002";
     pub const INTERP: &str = "X003";
@@ -84,6 +86,7 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &dlacc_incompatible::DLACC_INCOMPATIBLE,
     &dlacc_tcp::DLACC_TCP,
     &coord_during_rotation::COORD_DURING_ROTATION,
+    &travel_limit::TRAVEL_LIMIT,
     &expression::EXPRESSION,
     &unknown_code::UNKNOWN_CODE,
     &interp::INTERP,
