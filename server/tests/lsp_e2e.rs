@@ -371,6 +371,34 @@ fn fanuc_subfolder_config_and_program_calls() {
         json!({"textDocument": {"uri": uri}, "position": pos(4, 5)}),
     );
     assert_eq!(r["range"], json!({"start": pos(5, 0), "end": pos(5, 3)}));
+    // FANUC writes codes with two digits: completion and hover follow.
+    let (suri, _) = open(&mut c, &root.join("fanuc/O1234.nc"), "gcode");
+    assert_eq!(c.diagnostics(&suri, 1), vec![]);
+    let r = c.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": suri}, "position": pos(2, 1)}),
+    );
+    let labels: Vec<&str> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["label"].as_str().unwrap())
+        .collect();
+    assert!(
+        labels.contains(&"G01") && labels.contains(&"G65"),
+        "{labels:?}"
+    );
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": suri}, "position": pos(2, 1)}),
+    );
+    assert!(
+        h["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .starts_with("**G01** — "),
+        "{h}"
+    );
     // Tool sections nest inside the program symbol.
     let syms = c.request(
         "textDocument/documentSymbol",

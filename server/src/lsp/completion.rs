@@ -116,7 +116,8 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
                 .iter()
                 .filter(|c| c.letter == letter && c.on_variant(settings.variant))
             {
-                let name = info.name();
+                // As the dialect's manual writes it (`G01` in FANUC, `G1` in RS274/NGC).
+                let name = info.display_name(settings.dialect);
                 out.push(CompletionItem {
                     label: name.clone(),
                     kind: Some(if info.kind == CodeKind::Misc {

@@ -31,33 +31,11 @@ pub fn code_of(w: &Word) -> Option<(char, CodeNum)> {
     Some((w.letter as char, CodeNum::from_value(n.value)?)).filter(|_| !(n.signed && n.value < 0.0))
 }
 
-/// Markdown for one code, as hover and completion documentation show it.
+/// Markdown for one code, as hover and completion documentation show it:
+/// the dialect table's own hover text, plus a warning when the file's variant
+/// lacks the code.
 pub fn code_markdown(info: &CodeInfo, variant: Variant) -> String {
-    let mut s = format!("**{}** — {}\n\n{}", info.name(), info.summary, info.doc);
-    match info.group {
-        Some(0) => s.push_str("\n\nNon-modal (group 0)."),
-        Some(g) => s.push_str(&format!(
-            "\n\nModal group {g}{}.",
-            if info.default {
-                ", power-on default"
-            } else {
-                ""
-            }
-        )),
-        None => {}
-    }
-    if !info.params.is_empty() {
-        s.push_str("\n\n| Word | Meaning |\n|---|---|\n");
-        for p in info.params {
-            let req = if p.required { " (required)" } else { "" };
-            s.push_str(&format!(
-                "| `{}` | {}{} |\n",
-                p.letter,
-                p.doc.replace('|', "\\|"),
-                req
-            ));
-        }
-    }
+    let mut s = info.hover(variant.dialect());
     if !info.on_variant(variant) {
         s.push_str(&format!("\n\n⚠ Not available on {}.", variant.as_str()));
     }

@@ -96,19 +96,28 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     }
 }
 
-/// An RS274/NGC file whose first statement is `o<name> sub` is a subroutine
-/// library (LinuxCNC calls it by name); running it as a main program would only
-/// report what its callers provide (parameters, the program end).
+/// A subprogram file, which only its callers can run meaningfully: an
+/// RS274/NGC file whose first statement is `o<name> sub` (LinuxCNC calls it by
+/// name), or a FANUC/ServoWorks file that returns with M99 and never ends with
+/// M2/M30 (run on its own, M99 would restart it forever).
 fn is_subroutine_file(program: &analyzer::syntax::Program) -> bool {
     use analyzer::syntax::{ItemKind, OKeyword};
-    if program.dialect != analyzer::Dialect::Rs274ngc {
-        return false;
+    if program.dialect == analyzer::Dialect::Rs274ngc {
+        return program
+            .items
+            .iter()
+            .find(|it| !matches!(it.kind, ItemKind::Comment(_)))
+            .is_some_and(
+                |it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub)),
+            );
     }
-    program
-        .items
-        .iter()
-        .find(|it| !matches!(it.kind, ItemKind::Comment(_)))
-        .is_some_and(|it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub)))
+    let m = |v: f64| {
+        program.items.iter().any(|it| match &it.kind {
+            ItemKind::Word(w) => w.letter == b'M' && w.num().is_some_and(|n| n.value == v),
+            _ => false,
+        })
+    };
+    m(99.0) && !m(2.0) && !m(30.0)
 }
 
 pub fn rule_href(code: &str) -> Option<Uri> {
@@ -211,5 +220,41 @@ impl Snapshot {
             .filter(|d| d.file == analyzer::FileId(0))
             .map(|d| self.to_lsp(d))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_subroutine_file;
+    use analyzer::syntax::{parse, ParseOptions};
+    use analyzer::Dialect;
+
+    fn sub(dialect: Dialect, text: &str) -> bool {
+        is_subroutine_file(&parse(
+            ParseOptions {
+                dialect,
+                variant: dialect.default_variant(),
+            },
+            text.as_bytes().to_vec(),
+        ))
+    }
+
+    #[test]
+    fn subprogram_files_are_recognised() {
+        assert!(sub(
+            Dialect::Rs274ngc,
+            "(library)\no<drill> sub\nG81 Z-1 R1\no<drill> endsub\n"
+        ));
+        assert!(!sub(
+            Dialect::Rs274ngc,
+            "G0 X1\no<drill> sub\no<drill> endsub\nM2\n"
+        ));
+        assert!(sub(Dialect::Fanuc, "%\nO1234;\nG01 X1. F100.;\nM99;\n%\n"));
+        assert!(!sub(
+            Dialect::Fanuc,
+            "%\nO0001;\nM98 P1234;\nM30;\nO1234;\nM99;\n%\n"
+        ));
+        assert!(sub(Dialect::Servoworks, "G1 X1 F100\nM99\n"));
+        assert!(!sub(Dialect::Servoworks, "G1 X1 F100\nM30\n"));
     }
 }
