@@ -255,6 +255,16 @@ fn editor_session_over_stdio() {
             "contentChanges": [{"range": {"start": pos(2, 15), "end": pos(2, 15)}, "text": ")"}]
         }),
     );
+    // A request right after the change sees the new text (it waits for the
+    // scheduled analysis): the comment is closed, so no L001 under the cursor.
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": uri}, "position": pos(2, 8)}),
+    );
+    assert!(
+        h.is_null() || !h["contents"]["value"].as_str().unwrap().contains("L001"),
+        "{h}"
+    );
     assert_eq!(c.diagnostics(&uri, 2), vec![("F001".to_string(), 1)]);
     c.notify(
         "textDocument/didChange",

@@ -34,6 +34,8 @@ use super::{actions, completion, goto, hover, semantic, signature, symbols, work
 
 /// How long edits must pause before diagnostics are recomputed.
 const DEBOUNCE: Duration = Duration::from_millis(50);
+/// How long a request waits for the scheduled analysis before doing its own.
+const WAIT_FOR_ANALYSIS: Duration = Duration::from_secs(30);
 /// How long diagnostics wait for the interpreter before the static ones are
 /// published on their own.
 const RUN_WAIT: Duration = Duration::from_millis(150);
@@ -72,6 +74,8 @@ pub struct Backend {
     state: Arc<Mutex<State>>,
     runner: Arc<dyn DryRunner>,
     run_gate: Arc<tokio::sync::Semaphore>,
+    /// Signalled whenever a snapshot is stored.
+    stored: Arc<tokio::sync::Notify>,
 }
 
 fn internal(msg: impl Into<String>) -> Error {
@@ -118,6 +122,7 @@ impl Backend {
             state: Arc::new(Mutex::new(State::default())),
             runner: dry_run::default_runner(),
             run_gate: Arc::new(tokio::sync::Semaphore::new(1)),
+            stored: Arc::new(tokio::sync::Notify::new()),
         }
     }
 
@@ -242,6 +247,7 @@ impl Backend {
         match st.docs.get_mut(&snap.uri) {
             Some(doc) if doc.version == snap.version => {
                 doc.snapshot = Some(snap.clone());
+                self.stored.notify_waiters();
                 true
             }
             _ => false,
@@ -276,12 +282,28 @@ impl Backend {
     /// The analysis of the document's current version, computing it if the
     /// stored one is stale.
     async fn snapshot(&self, uri: &Uri) -> Option<Arc<Snapshot>> {
+        // Every change schedules an analysis; a request waits for it rather
+        // than starting its own (editors send several requests per keystroke,
+        // and on a large file each analysis takes a while).
+        let deadline = tokio::time::Instant::now() + WAIT_FOR_ANALYSIS;
+        loop {
+            let notified = self.stored.notified();
+            tokio::pin!(notified);
+            notified.as_mut().enable();
+            {
+                let st = self.lock();
+                let doc = st.docs.get(uri)?;
+                if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
+                    return Some(s.clone());
+                }
+            }
+            if tokio::time::timeout_at(deadline, notified).await.is_err() {
+                break;
+            }
+        }
+        // The scheduled analysis did not come (it failed): analyse here.
         let inputs = {
             let st = self.lock();
-            let doc = st.docs.get(uri)?;
-            if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
-                return Some(s.clone());
-            }
             self.inputs(&st, uri)?
         };
         let snap = Arc::new(blocking(move || snapshot::analyze(inputs)).await.ok()?);
