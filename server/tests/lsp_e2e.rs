@@ -192,6 +192,19 @@ fn editor_session_over_stdio() {
         .collect();
     assert_eq!(labels, vec!["#<depth>"]);
 
+    // Completion after `o<` offers the subroutine files of the folder.
+    let r = c.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 2)}),
+    );
+    let labels: Vec<&str> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(labels, vec!["o<drill>", "o<path>"]);
+
     // Definition across files: `o<drill> call` → drill.ngc's `o<drill> sub`.
     let r = c.request(
         "textDocument/definition",
@@ -215,6 +228,36 @@ fn editor_session_over_stdio() {
         .map(|l| l["range"]["start"]["line"].as_u64().unwrap())
         .collect();
     assert_eq!(lines, vec![4, 5]);
+
+    // References of the subprogram: the call here and the definition in drill.ngc.
+    let r = c.request("textDocument/references", json!({
+        "textDocument": {"uri": uri}, "position": pos(1, 3), "context": {"includeDeclaration": true}
+    }));
+    let locs: Vec<(String, u64)> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            (
+                l["uri"]
+                    .as_str()
+                    .unwrap()
+                    .rsplit('/')
+                    .next()
+                    .unwrap()
+                    .to_string(),
+                l["range"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        locs,
+        vec![
+            ("main.ngc".to_string(), 1),
+            ("drill.ngc".to_string(), 0),
+            ("drill.ngc".to_string(), 3)
+        ]
+    );
 
     // Symbols, folding and semantic tokens answer for the file.
     let (druri, _) = open(&mut c, &root.join("drill.ngc"), "ngc");
@@ -487,5 +530,29 @@ fn workspace_configuration_section_is_read_and_refreshed() {
         json!({"settings": {"partscope": {"ignore": ["F001"]}}}),
     );
     c.diagnostics_become(&uri, 1, &[("L001", 2)]);
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn servoworks_named_subprogram_file() {
+    let root = workspace("sw");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("sw/main.nc"), "gcode");
+    // The interpreter runs OMoveXY.dat through the workspace resolver: no diagnostics.
+    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    // `M98 PMoveXY` → OMoveXY.dat in the same folder.
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 6)}),
+    );
+    assert_eq!(r["uri"], uri_of(&root.join("sw/OMoveXY.dat")));
+    assert_eq!(r["range"]["start"], pos(0, 0));
+    // The dry run includes the subprogram's move.
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    let segs = r["toolpath"]["segments"].as_array().unwrap();
+    assert_eq!(segs.len(), 1, "{r}");
+    assert_eq!(segs[0]["points"][1], json!([10.0, 5.0, 0.0]));
+    assert_eq!(segs[0]["feed"], 500.0);
     assert!(c.shutdown().success());
 }
