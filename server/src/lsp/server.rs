@@ -274,6 +274,15 @@ impl Backend {
                     .await;
             }
         }
+        // Drop the result if the document moved on while it was converted.
+        let current = self
+            .lock()
+            .docs
+            .get(&snap.uri)
+            .is_some_and(|d| d.version == snap.version);
+        if !current {
+            return;
+        }
         self.client
             .publish_diagnostics(snap.uri.clone(), diags, Some(snap.version))
             .await;
