@@ -556,3 +556,36 @@ fn servoworks_named_subprogram_file() {
     assert_eq!(segs[0]["feed"], 500.0);
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn files_outside_the_workspace_are_not_read_until_the_folder_is_added() {
+    let root = workspace("folders");
+    let mut c = Client::spawn();
+    c.request(
+        "initialize",
+        json!({"processId": null, "capabilities": {}, "workspaceFolders": []}),
+    );
+    c.notify("initialized", json!({}));
+    // No workspace folder: drill.ngc is not read, so the call cannot be resolved.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F002".to_string(), 1), ("L001".to_string(), 2)]
+    );
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    assert!(r.is_null(), "{r}");
+    c.notify(
+        "workspace/didChangeWorkspaceFolders",
+        json!({"event": {"added": [{"uri": uri_of(&root), "name": "ws"}], "removed": []}}),
+    );
+    c.diagnostics_become(&uri, 1, &[("F001", 1), ("L001", 2)]);
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    assert_eq!(r["uri"], uri_of(&root.join("drill.ngc")));
+    assert!(c.shutdown().success());
+}

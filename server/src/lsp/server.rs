@@ -450,6 +450,13 @@ fn capabilities() -> ServerCapabilities {
         code_lens_provider: Some(CodeLensOptions {
             resolve_provider: Some(false),
         }),
+        workspace: Some(WorkspaceServerCapabilities {
+            workspace_folders: Some(WorkspaceFoldersServerCapabilities {
+                supported: Some(true),
+                change_notifications: Some(OneOf::Left(true)),
+            }),
+            file_operations: None,
+        }),
         execute_command_provider: Some(ExecuteCommandOptions {
             commands: vec![DRY_RUN_COMMAND.into()],
             work_done_progress_options: Default::default(),
@@ -581,6 +588,30 @@ impl LanguageServer for Backend {
                 self.lock().client_options = ClientOptions::from_json(&params.settings);
             } else {
                 self.fetch_configuration().await;
+            }
+            self.reanalyze_all();
+        })
+        .await
+    }
+
+    async fn did_change_workspace_folders(&self, params: DidChangeWorkspaceFoldersParams) {
+        guarded_notify("didChangeWorkspaceFolders", async {
+            let removed = workspace::canonical_roots(
+                params.event.removed.iter().filter_map(|f| uri_path(&f.uri)),
+            );
+            let added = workspace::canonical_roots(
+                params.event.added.iter().filter_map(|f| uri_path(&f.uri)),
+            );
+            {
+                let mut st = self.lock();
+                let mut roots: Vec<PathBuf> = st
+                    .roots
+                    .iter()
+                    .filter(|r| !removed.contains(r))
+                    .cloned()
+                    .collect();
+                roots.extend(added);
+                st.roots = workspace::canonical_roots(roots);
             }
             self.reanalyze_all();
         })
