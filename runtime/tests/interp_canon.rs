@@ -93,6 +93,11 @@ fn pr_print_msg() {
 }
 
 #[test]
+fn t5_advanced() {
+    check("t5_adv");
+}
+
+#[test]
 fn err_no_ijk() {
     check("err_no_ijk");
 }

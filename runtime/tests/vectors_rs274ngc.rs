@@ -497,3 +497,9 @@ fn huge_cycle_repeat_count_is_bounded() {
     assert!(codes(&out).contains(&"F004"));
     assert!(out.motions.len() < 500_000, "{}", out.motions.len());
 }
+
+#[test]
+fn feed_per_revolution_becomes_mm_per_minute() {
+    let out = run_ngc("G21 G95 S1000 M3\nG1 X10 F0.1\nM2\n");
+    assert!(close(out.motions[0].feed, 100.0, 1e-9));
+}

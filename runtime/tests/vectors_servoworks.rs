@@ -410,3 +410,13 @@ fn tv28_dlacc_forms_and_incompatible_codes() {
     let tcp = run_sw("G08 P1\nG43.2 H1\nM30\n", "");
     assert_eq!(codes(&tcp), vec!["D002"]);
 }
+
+#[test]
+fn tv53_reference_return_and_g29() {
+    let out = run_sw("G00 X3. Z4.\nG28 X0.5 Z7.8\nG29 X7.5 Z2.1\nM30\n", "");
+    let xz: Vec<[f64; 2]> = out.motions.iter().map(|m| [m.end[0], m.end[2]]).collect();
+    assert_eq!(
+        xz,
+        vec![[3.0, 4.0], [0.5, 7.8], [0.0, 0.0], [0.5, 7.8], [7.5, 2.1]]
+    );
+}

@@ -278,6 +278,10 @@ struct Interp<'a, 'i> {
     /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
     block_exact: bool,
     modal_cache: Option<(Modal, Vec<String>)>,
+    /// P/Q of the last G5 (the next G5 without I/J mirrors them).
+    spline_pq: (f64, f64),
+    /// Control points of an open G5.2 NURBS block.
+    nurbs: Vec<([f64; 6], f64)>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -337,6 +341,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             mirror: ([false; 3], [0.0; 3]),
             rotation: ([0.0; 2], 0.0),
             ended: false,
+            g28_mid: None,
             line: 0,
             g66: None,
         };
@@ -368,6 +373,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             limit_reports: 0,
             block_exact: false,
             modal_cache: None,
+            spline_pq: (0.0, 0.0),
+            nurbs: Vec::new(),
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -2581,6 +2588,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
             self.rapid_to(mid);
+            self.st.g28_mid = Some(mid);
             let home_base = if g30 { 5181 } else { 5161 };
             let mut home_m = self.st.mpos;
             let all = !w.any_axis() || self.ngc() && !w.any_axis();
@@ -2595,6 +2603,21 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
             let target = self.to_program(home_m);
+            self.rapid_to(target);
+            return Ok(true);
+        }
+        if w.has_g(290) && !self.ngc() {
+            // G29: back through the G28/G30 intermediate point to the commanded point.
+            let target = self.target(w);
+            if let Some(mid) = self.st.g28_mid {
+                let mut via = self.st.pos;
+                for (i, v) in via.iter_mut().enumerate() {
+                    if w.has(letters[i]) {
+                        *v = mid[i];
+                    }
+                }
+                self.rapid_to(via);
+            }
             self.rapid_to(target);
             return Ok(true);
         }
@@ -2758,7 +2781,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             },
             k => k,
         };
-        let feed = feed * lu;
+        // Feed per revolution (G95) becomes mm/min at the programmed spindle speed;
+        // threads keep their pitch (mm/rev).
+        let feed = if self.st.modal.feed_mode == 950
+            && !matches!(kind, MotionKind::Thread | MotionKind::Rapid)
+        {
+            feed * lu * self.st.spindle
+        } else {
+            feed * lu
+        };
         Motion {
             kind,
             start: mm(start),
@@ -2876,11 +2907,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 730
                     | 740
                     | 810..=890
-            ) {
+            ) || (self.ngc() && matches!(g, 50..=53))
+            {
                 motion = Some(*g);
             }
         }
         if let Some(m) = motion {
+            if m == 53 {
+                // G5.3 closes a NURBS block: one curve through the collected points.
+                return self.finish_nurbs(bspan);
+            }
             if m == 800 {
                 self.st.modal.motion = 800;
                 self.clear_cycle();
@@ -2936,6 +2972,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.exec_arc(w, mode == 20, bspan)?;
                 }
             }
+            50 | 51 if self.ngc() => {
+                self.st.modal.motion = mode;
+                self.exec_spline(w, mode == 51, bspan)?;
+            }
+            52 if self.ngc() => {
+                self.st.modal.motion = 52;
+                let t = self.target(w);
+                let wgt = w.get(b'P').unwrap_or(1.0);
+                self.nurbs.push((t, wgt));
+            }
             760 if self.ngc() => {
                 self.st.modal.motion = 760;
                 self.exec_threading(w, bspan)?;
@@ -2961,11 +3007,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let s = self.canon_pos(&t);
                 self.canon(format!("STRAIGHT_PROBE({s})"));
                 self.canon("TURN_PROBE_OFF()");
+                let start = self.st.pos;
                 let end = self.to_machine(t);
                 let m = self.motion_base(MotionKind::Probe, self.st.mpos, end, self.st.feed);
                 self.out.motions.push(m);
-                self.st.mpos = end;
-                self.st.pos = t;
+                // The probe trips at the target (no contact is simulated) and backs
+                // off 0.254 mm / 0.01 in toward the start, as LinuxCNC's rs274 does.
+                let d: f64 = (0..3)
+                    .map(|i| (start[i] - t[i]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let mut stop = t;
+                if d > 0.0 && self.ngc() {
+                    let back = if self.st.modal.inch { 0.01 } else { 0.254 };
+                    for i in 0..3 {
+                        stop[i] = t[i] + back * (start[i] - t[i]) / d;
+                    }
+                }
+                self.st.mpos = self.to_machine(stop);
+                self.st.pos = stop;
+                // #5061… hold the trip point itself.
+                for (k, v) in t.iter().enumerate() {
+                    self.set_param(5061 + k, Some(*v));
+                }
             }
             23 | 33 | 22 | 32 => {
                 self.st.modal.motion = mode;
@@ -2986,6 +3050,93 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// G5 (cubic) / G5.1 (quadratic) splines in the XY plane. The canonical
+    /// output is LinuxCNC's `NURBS_FEED(n, ...)`; the motion is sampled.
+    fn exec_spline(&mut self, w: &Words, quadratic: bool, span: Span) -> Result<(), Diagnostic> {
+        self.check_feed(span)?;
+        let s0 = self.st.pos;
+        let t = self.target(w);
+        let (i, j) = (
+            w.get(b'I').map(|v| self.lin(v)),
+            w.get(b'J').map(|v| self.lin(v)),
+        );
+        let ctrl: Vec<[f64; 2]> = if quadratic {
+            let c = [s0[0] + i.unwrap_or(0.0), s0[1] + j.unwrap_or(0.0)];
+            vec![[s0[0], s0[1]], c, [t[0], t[1]]]
+        } else {
+            // Without I/J the first control point mirrors the previous spline's second one.
+            let (pi, pj) = match (i, j) {
+                (Some(a), Some(b)) => (a, b),
+                _ => (-self.spline_pq.0, -self.spline_pq.1),
+            };
+            let p = w.get(b'P').map(|v| self.lin(v)).unwrap_or(0.0);
+            let q = w.get(b'Q').map(|v| self.lin(v)).unwrap_or(0.0);
+            self.spline_pq = (p, q);
+            vec![
+                [s0[0], s0[1]],
+                [s0[0] + pi, s0[1] + pj],
+                [t[0] + p, t[1] + q],
+                [t[0], t[1]],
+            ]
+        };
+        self.canon(format!(
+            "NURBS_FEED({}, ...)",
+            if quadratic { 3 } else { 4 }
+        ));
+        self.sampled_curve(&ctrl, t);
+        Ok(())
+    }
+
+    fn finish_nurbs(&mut self, span: Span) -> Result<(), Diagnostic> {
+        let pts = std::mem::take(&mut self.nurbs);
+        self.st.modal.motion = 800;
+        if pts.is_empty() {
+            return Ok(());
+        }
+        self.check_feed(span)?;
+        self.canon(format!("NURBS_FEED({}, ...)", pts.len() + 1));
+        // Follow the control polygon: a close enough length for cycle time.
+        let mut ctrl = vec![[self.st.pos[0], self.st.pos[1]]];
+        ctrl.extend(pts.iter().map(|(p, _)| [p[0], p[1]]));
+        let end = pts.last().map(|p| p.0).unwrap_or(self.st.pos);
+        self.sampled_curve(&ctrl, end);
+        Ok(())
+    }
+
+    /// Feed motions along a Bézier curve with these control points (de Casteljau).
+    fn sampled_curve(&mut self, ctrl: &[[f64; 2]], end: [f64; 6]) {
+        const N: usize = 16;
+        let start = self.st.pos;
+        for k in 1..=N {
+            let u = k as f64 / N as f64;
+            let mut pts = ctrl.to_vec();
+            while pts.len() > 1 {
+                pts = pts
+                    .windows(2)
+                    .map(|w| {
+                        [
+                            w[0][0] + (w[1][0] - w[0][0]) * u,
+                            w[0][1] + (w[1][1] - w[0][1]) * u,
+                        ]
+                    })
+                    .collect();
+            }
+            let mut p = end;
+            p[0] = pts[0][0];
+            p[1] = pts[0][1];
+            for i in 2..6 {
+                p[i] = start[i] + (end[i] - start[i]) * u;
+            }
+            let m_end = self.to_machine(p);
+            let feed = self.effective_feed(0.0);
+            let m = self.motion_base(MotionKind::Feed, self.st.mpos, m_end, feed);
+            self.out.motions.push(m);
+            self.st.mpos = m_end;
+        }
+        self.st.pos = end;
+        self.st.mpos = self.to_machine(end);
     }
 
     /// LinuxCNC's G76 threading cycle (lathe, XZ): passes at depths
@@ -3425,7 +3576,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             };
             self.diag(
                 code,
-                Severity::Info,
+                Severity::Warning,
                 span,
                 format!(
                     "arc corrected within the circle error allowance (mismatch {:.4} mm): radius {:.4}, centre ({:.4}, {:.4})",

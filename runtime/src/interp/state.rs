@@ -93,6 +93,8 @@ pub struct State {
     /// Rotation centre (plane coordinates) and angle (degrees).
     pub rotation: ([f64; 2], f64),
     pub ended: bool,
+    /// Intermediate point of the last G28/G30 (for FANUC/ServoWorks G29).
+    pub g28_mid: Option<[f64; 6]>,
     /// 1-based line of the block being executed (`#<_line>`).
     pub line: u32,
     /// FANUC G66 modal macro call: program and arguments.

@@ -72,7 +72,8 @@ pub struct Motion {
     pub kind: MotionKind,
     pub start: [f64; 6],
     pub end: [f64; 6],
-    /// mm/min (mm/rev for G95 and threads); 0 for rapids.
+    /// mm/min (G95 feeds converted with the programmed spindle speed; threads:
+    /// the pitch in mm/rev); 0 for rapids.
     pub feed: f64,
     /// G93 inverse-time value (1/min) when in inverse-time mode.
     pub inverse_time: Option<f64>,

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// FANUC and ServoWorks (files may hold subprograms after M30, which start with O and are not flagged). Warning.
     ///
-    /// Implements: NGC011
+    /// Implements: NGC026, FAN013
     pub static AFTER_END = {
         code: "F005",
         name: "code-after-program-end",
         summary: "Code after M2/M30 that never runs",
-        implements: &["NGC011"],
+        implements: &["NGC026", "FAN013"],
         origin: Runtime,
         default_enabled: true,
     }

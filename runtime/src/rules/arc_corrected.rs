@@ -24,7 +24,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// ServoWorks. Info. Example: with `circle_error_allowance = 1.5`, `G2 X100 R49` runs with radius 50 about (50, 0).
+    /// ServoWorks. Warning. Example: with `circle_error_allowance = 1.5`, `G2 X100 R49` runs with radius 50 about (50, 0).
     ///
     /// Implements: SW037
     pub static ARC_CORRECTED_R = {
@@ -59,7 +59,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// ServoWorks. Info.
+    /// ServoWorks. Warning.
     ///
     /// Implements: SW039
     pub static ARC_CORRECTED_IJK = {

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW031, NGC059
+    /// Implements: SW031, SW032, NGC203, NGC204
     pub static ARC_NO_CENTER = {
         code: "A005",
         name: "arc-missing-center",
         summary: "Arc without R or centre words, or with both",
-        implements: &["SW031", "NGC059"],
+        implements: &["SW031", "SW032", "NGC203", "NGC204"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -28,12 +28,12 @@ declare_rule! {
     /// ## Dialects
     /// FANUC. Error.
     ///
-    /// Implements: FAN042
+    /// Implements: FAN038
     pub static ARC_POLAR_IJK = {
         code: "A007",
         name: "arc-ijk-in-polar-mode",
         summary: "I/J/K arc while polar coordinates (G16) are on",
-        implements: &["FAN042"],
+        implements: &["FAN038"],
         origin: Runtime,
         default_enabled: true,
     }

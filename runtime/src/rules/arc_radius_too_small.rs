@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW036, NGC061, FAN020
+    /// Implements: SW036, NGC207
     pub static ARC_RADIUS_TOO_SMALL = {
         code: "A002",
         name: "arc-radius-too-small",
         summary: "R-format arc radius shorter than half the chord",
-        implements: &["SW036", "NGC061", "FAN020"],
+        implements: &["SW036", "NGC207"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW035, NGC062
+    /// Implements: SW035, NGC206, FAN033
     pub static ARC_SAME_END_R = {
         code: "A006",
         name: "arc-full-circle-with-r",
         summary: "R-format arc whose end point equals its start point",
-        implements: &["SW035", "NGC062"],
+        implements: &["SW035", "NGC206", "FAN033"],
         origin: Runtime,
         default_enabled: true,
     }

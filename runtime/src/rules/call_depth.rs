@@ -30,12 +30,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW023, FAN077
+    /// Implements: SW023, NGC607, FAN139
     pub static CALL_DEPTH = {
         code: "F003",
         name: "call-depth-exceeded",
         summary: "Subprogram nesting deeper than the control allows",
-        implements: &["SW023", "FAN077"],
+        implements: &["SW023", "NGC607", "FAN139"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -28,12 +28,12 @@ declare_rule! {
     /// ## Dialects
     /// FANUC and ServoWorks. Error.
     ///
-    /// Implements: SW090, FAN060
+    /// Implements: SW070, SW071, SW108, FAN154
     pub static COORD_DURING_ROTATION = {
         code: "K001",
         name: "coordinate-change-during-rotation",
         summary: "G28/G30/G52–G59 or a plane change while G68 rotation is on",
-        implements: &["SW090", "FAN060"],
+        implements: &["SW070", "SW071", "SW108", "FAN154"],
         origin: Runtime,
         default_enabled: true,
     }

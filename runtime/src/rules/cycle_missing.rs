@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: NGC080, NGC081, SW070, FAN050
+    /// Implements: SW126, NGC301, NGC302, NGC306, FAN090
     pub static CYCLE_MISSING = {
         code: "C001",
         name: "cycle-missing-data",
         summary: "Canned cycle without R, Z or dwell P",
-        implements: &["NGC080", "NGC081", "SW070", "FAN050"],
+        implements: &["SW126", "NGC301", "NGC302", "NGC306", "FAN090"],
         origin: Runtime,
         default_enabled: true,
     }

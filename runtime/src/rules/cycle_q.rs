@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All.
     ///
-    /// Implements: NGC083, FAN051
+    /// Implements: SW121, NGC307, NGC308, FAN072
     pub static CYCLE_Q = {
         code: "C002",
         name: "cycle-peck-q",
         summary: "Peck cycle without a positive Q",
-        implements: &["NGC083", "FAN051"],
+        implements: &["SW121", "NGC307", "NGC308", "FAN072"],
         origin: Runtime,
         default_enabled: true,
     }

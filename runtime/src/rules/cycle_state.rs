@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error.
     ///
-    /// Implements: NGC084, NGC085
+    /// Implements: NGC303, NGC304, NGC311, NGC313, FAN024
     pub static CYCLE_STATE = {
         code: "C003",
         name: "cycle-state",
         summary: "Canned cycle in an impossible state",
-        implements: &["NGC084", "NGC085"],
+        implements: &["NGC303", "NGC304", "NGC311", "NGC313", "FAN024"],
         origin: Runtime,
         default_enabled: true,
     }

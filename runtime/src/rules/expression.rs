@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: NGC030, FAN112, FAN115, FAN116, FAN119
+    /// Implements: NGC014, NGC018, NGC019, NGC028, FAN127, FAN128, FAN129
     pub static EXPRESSION = {
         code: "X001",
         name: "expression-error",
         summary: "Expression or parameter error at run time",
-        implements: &["NGC030", "FAN112", "FAN115", "FAN116", "FAN119"],
+        implements: &["NGC014", "NGC018", "NGC019", "NGC028", "FAN127", "FAN128", "FAN129"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: FAN124, FAN126, FAN128, NGC121
+    /// Implements: FAN121, FAN122, FAN124, NGC601, NGC603, NGC605
     pub static FLOW = {
         code: "F007",
         name: "flow-control-error",
         summary: "Broken loop, branch or jump target",
-        implements: &["FAN124", "FAN126", "FAN128", "NGC121"],
+        implements: &["FAN121", "FAN122", "FAN124", "NGC601", "NGC603", "NGC605"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -23,12 +23,12 @@ declare_rule! {
     /// ## Dialects
     /// FANUC, RS274/NGC. Error.
     ///
-    /// Implements: FAN3000
+    /// Implements: — (no catalogue id)
     pub static MACRO_ALARM = {
         code: "X004",
         name: "macro-alarm",
         summary: "Program raises an alarm or aborts",
-        implements: &["FAN3000"],
+        implements: &[],
         origin: Runtime,
         default_enabled: true,
     }

@@ -23,12 +23,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC error, others warning.
     ///
-    /// Implements: NGC010, SW025
+    /// Implements: SW019, NGC024, FAN012
     pub static MISSING_END = {
         code: "F006",
         name: "missing-program-end",
         summary: "Program without M2/M30 (or closing %)",
-        implements: &["NGC010", "SW025"],
+        implements: &["SW019", "NGC024", "FAN012"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// FANUC. Error.
     ///
-    /// Implements: FAN203, FAN204
+    /// Implements: FAN100, FAN101, FAN103
     pub static RIGID_TAP = {
         code: "C004",
         name: "rigid-tap-state",
         summary: "Rigid tapping without spindle speed",
-        implements: &["FAN203", "FAN204"],
+        implements: &["FAN100", "FAN101", "FAN103"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -29,12 +29,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Warning.
     ///
-    /// Implements: —
+    /// Implements: NGC615, FAN145
     pub static STEP_BUDGET = {
         code: "F004",
         name: "step-budget-exceeded",
         summary: "Execution stopped by the step budget",
-        implements: &[],
+        implements: &["NGC615", "FAN145"],
         origin: Runtime,
         default_enabled: true,
     }

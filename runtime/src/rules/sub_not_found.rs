@@ -27,12 +27,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW021, NGC120, FAN076
+    /// Implements: SW021, NGC609, FAN140
     pub static SUB_NOT_FOUND = {
         code: "F002",
         name: "subprogram-not-found",
         summary: "Called subprogram or macro not found",
-        implements: &["SW021", "NGC120", "FAN076"],
+        implements: &["SW021", "NGC609", "FAN140"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -28,12 +28,12 @@ declare_rule! {
     /// All; only axes with both limits in the profile are checked. Warning, at most
     /// one per block and axis, and at most 100 per run.
     ///
-    /// Implements: NGC410, SW150, FAN070
+    /// Implements: — (no catalogue id)
     pub static TRAVEL_LIMIT = {
         code: "K002",
         name: "travel-limit-exceeded",
         summary: "Move beyond an axis's travel limits",
-        implements: &["NGC410", "SW150", "FAN070"],
+        implements: &[],
         origin: Runtime,
         default_enabled: true,
     }

@@ -25,7 +25,7 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: —
+    /// Implements: — (no catalogue id)
     pub static UNKNOWN_CODE = {
         code: "X002",
         name: "invalid-code-value",

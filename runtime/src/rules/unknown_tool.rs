@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All, only when a tool table is given. Warning.
     ///
-    /// Implements: NGC090
+    /// Implements: NGC413, NGC503
     pub static UNKNOWN_TOOL = {
         code: "T001",
         name: "unknown-tool",
         summary: "Tool number not in the tool table",
-        implements: &["NGC090"],
+        implements: &["NGC413", "NGC503"],
         origin: Runtime,
         default_enabled: true,
     }

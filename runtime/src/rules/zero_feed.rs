@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: NGC070, SW045, FAN030
+    /// Implements: SW047, NGC200, FAN039
     pub static ZERO_FEED = {
         code: "F001",
         name: "zero-feed",
         summary: "Feed move with no feed rate",
-        implements: &["NGC070", "SW045", "FAN030"],
+        implements: &["SW047", "NGC200", "FAN039"],
         origin: Runtime,
         default_enabled: true,
     }
