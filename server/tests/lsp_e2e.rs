@@ -99,9 +99,21 @@ fn editor_session_over_stdio() {
     );
     assert_eq!(caps["textDocumentSync"]["change"], json!(2));
 
-    // Diagnostics: only the unclosed comment on line 3 (0-based 2).
+    // Diagnostics: the unclosed comment on line 3 (0-based 2), and from the
+    // interpreter, drill.ngc's G81 running before any F word: reported on the
+    // call in this file.
     let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
-    assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F001".to_string(), 1), ("L001".to_string(), 2)]
+    );
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.starts_with("**F001** (error): "), "{md}");
+    assert!(md.contains("(in drill.ngc, line 2)"), "{md}");
 
     // The published diagnostic carries its rule link.
     let r = c.request(
@@ -180,6 +192,19 @@ fn editor_session_over_stdio() {
         .collect();
     assert_eq!(labels, vec!["#<depth>"]);
 
+    // Completion after `o<` offers the subroutine files of the folder.
+    let r = c.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 2)}),
+    );
+    let labels: Vec<&str> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["label"].as_str().unwrap())
+        .collect();
+    assert_eq!(labels, vec!["o<drill>", "o<path>"]);
+
     // Definition across files: `o<drill> call` → drill.ngc's `o<drill> sub`.
     let r = c.request(
         "textDocument/definition",
@@ -203,6 +228,36 @@ fn editor_session_over_stdio() {
         .map(|l| l["range"]["start"]["line"].as_u64().unwrap())
         .collect();
     assert_eq!(lines, vec![4, 5]);
+
+    // References of the subprogram: the call here and the definition in drill.ngc.
+    let r = c.request("textDocument/references", json!({
+        "textDocument": {"uri": uri}, "position": pos(1, 3), "context": {"includeDeclaration": true}
+    }));
+    let locs: Vec<(String, u64)> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| {
+            (
+                l["uri"]
+                    .as_str()
+                    .unwrap()
+                    .rsplit('/')
+                    .next()
+                    .unwrap()
+                    .to_string(),
+                l["range"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        locs,
+        vec![
+            ("main.ngc".to_string(), 1),
+            ("drill.ngc".to_string(), 0),
+            ("drill.ngc".to_string(), 3)
+        ]
+    );
 
     // Symbols, folding and semantic tokens answer for the file.
     let (druri, _) = open(&mut c, &root.join("drill.ngc"), "ngc");
@@ -243,7 +298,17 @@ fn editor_session_over_stdio() {
             "contentChanges": [{"range": {"start": pos(2, 15), "end": pos(2, 15)}, "text": ")"}]
         }),
     );
-    assert_eq!(c.diagnostics(&uri, 2), vec![]);
+    // A request right after the change sees the new text (it waits for the
+    // scheduled analysis): the comment is closed, so no L001 under the cursor.
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": uri}, "position": pos(2, 8)}),
+    );
+    assert!(
+        h.is_null() || !h["contents"]["value"].as_str().unwrap().contains("L001"),
+        "{h}"
+    );
+    assert_eq!(c.diagnostics(&uri, 2), vec![("F001".to_string(), 1)]);
     c.notify(
         "textDocument/didChange",
         json!({
@@ -255,7 +320,10 @@ fn editor_session_over_stdio() {
         }),
     );
     // `G1 X F100` now on line 5: X has no value.
-    assert_eq!(c.diagnostics(&uri, 3), vec![("L003".to_string(), 4)]);
+    assert_eq!(
+        c.diagnostics(&uri, 3),
+        vec![("F001".to_string(), 2), ("L003".to_string(), 4)]
+    );
 
     // Robustness: malformed JSON, an unknown method, out-of-range positions.
     c.send_raw(b"{this is not json");
@@ -286,14 +354,52 @@ fn editor_session_over_stdio() {
         "{h}"
     );
 
-    // FIXME(runtime): the dry run answers "not available" until the runtime is wired.
-    let r = c.request_full("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
-    assert_eq!(r["error"]["code"], -32001, "{r}");
-    let r = c.request_full(
-        "workspace/executeCommand",
-        json!({"command": "partscope.dryRun", "arguments": [uri]}),
+    // The dry run of a clean program: segments, bounds and path length.
+    let (puri, _) = open(&mut c, &root.join("path.ngc"), "ngc");
+    assert_eq!(c.diagnostics(&puri, 1), vec![]);
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": puri}}));
+    assert_eq!(r["version"], 1);
+    let segs = r["toolpath"]["segments"].as_array().unwrap();
+    let kinds: Vec<(&str, u64)> = segs
+        .iter()
+        .map(|s| (s["kind"].as_str().unwrap(), s["line"].as_u64().unwrap()))
+        .collect();
+    assert_eq!(
+        kinds,
+        vec![("rapid", 1), ("feed", 2), ("arc", 3), ("rapid", 4)]
     );
-    assert_eq!(r["error"]["code"], -32001, "{r}");
+    assert_eq!(segs[0]["points"], json!([[0.0, 0.0, 0.0], [0.0, 0.0, 5.0]]));
+    assert_eq!(segs[1]["feed"], 100.0);
+    // G2 from (0,0) to (10,0) about (5,0): clockwise, so over the top (Y up to 5).
+    let top = segs[2]["points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p[1].as_f64().unwrap())
+        .fold(f64::MIN, f64::max);
+    assert!((top - 5.0).abs() < 0.01, "{top}");
+    assert_eq!(r["toolpath"]["bounds"]["min"][2], -1.0);
+    assert_eq!(r["toolpath"]["bounds"]["max"][0], 10.0);
+    // 5 down + 6 down + a half circle of radius 5 + 6 up (arcs by their true length).
+    let d = r["distance_mm"].as_f64().unwrap();
+    assert!(
+        (d - (17.0 + 5.0 * std::f64::consts::PI)).abs() < 1e-9,
+        "{d}"
+    );
+    // FIXME(planner): times are null until the velocity planner is wired.
+    assert_eq!(r["cycle_time_s"], Value::Null);
+    let r2 = c.request(
+        "workspace/executeCommand",
+        json!({"command": "partscope.dryRun", "arguments": [puri]}),
+    );
+    assert_eq!(r2, r);
+    // Hover shows the state after the block from the interpreter's run.
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": puri}, "position": pos(2, 4)}),
+    );
+    let md = h["contents"]["value"].as_str().unwrap();
+    assert!(md.contains("Position: `X0.000 Y0.000 Z-1.000"), "{md}");
 
     assert!(c.shutdown().success());
 }
@@ -318,6 +424,34 @@ fn fanuc_subfolder_config_and_program_calls() {
         json!({"textDocument": {"uri": uri}, "position": pos(4, 5)}),
     );
     assert_eq!(r["range"], json!({"start": pos(5, 0), "end": pos(5, 3)}));
+    // FANUC writes codes with two digits: completion and hover follow.
+    let (suri, _) = open(&mut c, &root.join("fanuc/O1234.nc"), "gcode");
+    assert_eq!(c.diagnostics(&suri, 1), vec![]);
+    let r = c.request(
+        "textDocument/completion",
+        json!({"textDocument": {"uri": suri}, "position": pos(2, 1)}),
+    );
+    let labels: Vec<&str> = r
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["label"].as_str().unwrap())
+        .collect();
+    assert!(
+        labels.contains(&"G01") && labels.contains(&"G65"),
+        "{labels:?}"
+    );
+    let h = c.request(
+        "textDocument/hover",
+        json!({"textDocument": {"uri": suri}, "position": pos(2, 1)}),
+    );
+    assert!(
+        h["contents"]["value"]
+            .as_str()
+            .unwrap()
+            .starts_with("**G01** — "),
+        "{h}"
+    );
     // Tool sections nest inside the program symbol.
     let syms = c.request(
         "textDocument/documentSymbol",
@@ -340,12 +474,118 @@ fn config_file_changes_reanalyse_open_documents() {
     initialize(&mut c, &root, json!({}));
     // The server registers a watcher for partscope.toml.
     let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
-    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    assert_eq!(c.diagnostics(&uri, 1), vec![("F001".to_string(), 1)]);
     std::fs::write(root.join("partscope.toml"), "dialect = \"rs274ngc\"\n").unwrap();
     c.notify(
         "workspace/didChangeWatchedFiles",
         json!({"changes": [{"uri": uri_of(&root.join("partscope.toml")), "type": 2}]}),
     );
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F001".to_string(), 1), ("L001".to_string(), 2)]
+    );
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn size_limit_degrades_to_syntax_only() {
+    let root = workspace("limit");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({"maxFileSize": 100}));
+    // main.ngc is above 100 bytes: parsed only, no interpreter (no F001), no dry run.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
     assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    let r = c.request_full("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    assert_eq!(r["error"]["code"], -32603, "{r}");
+    // Navigation still works on the syntax.
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(5, 8)}),
+    );
+    assert_eq!(r["range"]["start"], pos(4, 0));
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn workspace_configuration_section_is_read_and_refreshed() {
+    let root = workspace("wsconfig");
+    let mut c = Client::spawn();
+    c.configuration = json!([{"ignore": ["L001"]}]);
+    c.request(
+        "initialize",
+        json!({
+            "processId": null,
+            "capabilities": {"workspace": {"configuration": true}},
+            "workspaceFolders": [{"uri": uri_of(&root), "name": "ws"}],
+        }),
+    );
+    c.notify("initialized", json!({}));
+    // The section arrives asynchronously; the server re-analyses open
+    // documents when it does.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    c.diagnostics_become(&uri, 1, &[("F001", 1)]);
+    // A pushed configuration replaces the pulled one.
+    c.notify(
+        "workspace/didChangeConfiguration",
+        json!({"settings": {"partscope": {"ignore": ["F001"]}}}),
+    );
+    c.diagnostics_become(&uri, 1, &[("L001", 2)]);
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn servoworks_named_subprogram_file() {
+    let root = workspace("sw");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("sw/main.nc"), "gcode");
+    // The interpreter runs OMoveXY.dat through the workspace resolver: no diagnostics.
+    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    // `M98 PMoveXY` → OMoveXY.dat in the same folder.
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 6)}),
+    );
+    assert_eq!(r["uri"], uri_of(&root.join("sw/OMoveXY.dat")));
+    assert_eq!(r["range"]["start"], pos(0, 0));
+    // The dry run includes the subprogram's move.
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    let segs = r["toolpath"]["segments"].as_array().unwrap();
+    assert_eq!(segs.len(), 1, "{r}");
+    assert_eq!(segs[0]["points"][1], json!([10.0, 5.0, 0.0]));
+    assert_eq!(segs[0]["feed"], 500.0);
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn files_outside_the_workspace_are_not_read_until_the_folder_is_added() {
+    let root = workspace("folders");
+    let mut c = Client::spawn();
+    c.request(
+        "initialize",
+        json!({"processId": null, "capabilities": {}, "workspaceFolders": []}),
+    );
+    c.notify("initialized", json!({}));
+    // No workspace folder: drill.ngc is not read, so the call cannot be resolved.
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F002".to_string(), 1), ("L001".to_string(), 2)]
+    );
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    assert!(r.is_null(), "{r}");
+    c.notify(
+        "workspace/didChangeWorkspaceFolders",
+        json!({"event": {"added": [{"uri": uri_of(&root), "name": "ws"}], "removed": []}}),
+    );
+    c.diagnostics_become(&uri, 1, &[("F001", 1), ("L001", 2)]);
+    let r = c.request(
+        "textDocument/definition",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
+    );
+    assert_eq!(r["uri"], uri_of(&root.join("drill.ngc")));
     assert!(c.shutdown().success());
 }

@@ -2,8 +2,10 @@
 //! program. Prints the numbers; asserts only that each edit's diagnostics are
 //! the right ones (timings depend on the machine).
 //!
-//! Default: 100 000 lines. For the 1M-line figure:
+//! Default: 20 000 lines (debug builds are slow). For the 100k and 1M figures:
 //! `LSP_LATENCY_LINES=1000000 cargo test --release -p partscope --test lsp_latency -- --nocapture`
+//! (1M generated lines are 33 MB: above the default 20 MB limit, so that run
+//! measures the syntax-only mode).
 
 #[path = "../../tests/lsp/harness.rs"]
 mod harness;
@@ -33,7 +35,7 @@ fn edit_latency_on_a_large_program() {
     let lines: usize = std::env::var("LSP_LATENCY_LINES")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(100_000);
+        .unwrap_or(20_000);
     let text = generate(lines);
     let uri = "file:///latency/big.ngc";
     let mut c = Client::spawn();
@@ -47,7 +49,7 @@ fn edit_latency_on_a_large_program() {
         "textDocument/didOpen",
         json!({"textDocument": {"uri": uri, "languageId": "ngc", "version": 1, "text": text}}),
     );
-    assert_eq!(c.diagnostics(uri, 1), vec![]);
+    assert!(c.diagnostics(uri, 1).iter().all(|d| d.0 != "L003"));
     let open_ms = t.elapsed().as_secs_f64() * 1e3;
 
     // Each edit inserts an `A` without a value somewhere in the file (L003),
@@ -72,7 +74,11 @@ fn edit_latency_on_a_large_program() {
             "textDocument/didChange",
             json!({"textDocument": {"uri": uri, "version": version}, "contentChanges": [change]}),
         );
-        assert_eq!(c.diagnostics(uri, version), expected);
+        // The first publish for the version: the static diagnostics (the
+        // interpreter's may follow in a second one).
+        let got = c.diagnostics(uri, version);
+        let l003: Vec<(String, u64)> = got.into_iter().filter(|d| d.0 == "L003").collect();
+        assert_eq!(l003, expected);
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }
     times.sort_by(f64::total_cmp);

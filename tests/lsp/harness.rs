@@ -2,6 +2,9 @@
 //! speaks JSON-RPC over its stdio with Content-Length framing. Included by
 //! `server/tests/lsp_e2e.rs` and `server/tests/lsp_latency.rs`.
 
+// Each test crate that includes this uses a different subset of it.
+#![allow(dead_code)]
+
 use std::io::{BufRead, BufReader, Write};
 use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
@@ -19,6 +22,8 @@ pub struct Client {
     next_id: i64,
     /// Notifications received while waiting for something else.
     pending: Vec<Value>,
+    /// The answer to `workspace/configuration` (one value per item).
+    pub configuration: Value,
 }
 
 fn read_message(r: &mut impl BufRead) -> Option<Value> {
@@ -67,6 +72,7 @@ impl Client {
             rx,
             next_id: 1,
             pending: Vec::new(),
+            configuration: json!([null]),
         }
     }
 
@@ -97,7 +103,7 @@ impl Client {
             if msg.get("method").is_some() && msg.get("id").is_some() {
                 // A server→client request (registerCapability, configuration…).
                 let result = match msg["method"].as_str() {
-                    Some("workspace/configuration") => json!([null]),
+                    Some("workspace/configuration") => self.configuration.clone(),
                     _ => Value::Null,
                 };
                 self.send(&json!({"jsonrpc": "2.0", "id": msg["id"], "result": result}));
@@ -167,6 +173,24 @@ impl Client {
                 )
             })
             .collect()
+    }
+
+    /// Waits until a publish for `uri` at `version` has exactly `expected`
+    /// (for settings that reach the server asynchronously); panics with the
+    /// last publish when none does in time.
+    pub fn diagnostics_become(&mut self, uri: &str, version: i64, expected: &[(&str, u64)]) {
+        let want: Vec<(String, u64)> = expected.iter().map(|(c, l)| (c.to_string(), *l)).collect();
+        let deadline = Instant::now() + Duration::from_secs(20);
+        loop {
+            let got = self.diagnostics(uri, version);
+            if got == want {
+                return;
+            }
+            assert!(
+                Instant::now() < deadline,
+                "diagnostics stayed {got:?}, expected {want:?}"
+            );
+        }
     }
 
     pub fn shutdown(mut self) -> std::process::ExitStatus {

@@ -14,8 +14,7 @@ pub fn code_actions(snap: &Snapshot, range: Range) -> Vec<CodeActionOrCommand> {
     let (a, b) = (a as u32, b as u32);
     let mut out = Vec::new();
     for d in snap
-        .analysis
-        .diagnostics
+        .diagnostics()
         .iter()
         .filter(|d| d.file == analyzer::FileId(0))
     {

@@ -84,6 +84,20 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
                 });
             }
         }
+        // Subroutine files next to the document (`drill.ngc` → `o<drill>`).
+        for name in ngc_files_beside(snap) {
+            let text = format!("o<{name}>");
+            if out.iter().any(|i| i.label == text) {
+                continue;
+            }
+            out.push(CompletionItem {
+                label: text.clone(),
+                kind: Some(CompletionItemKind::FILE),
+                detail: Some(format!("subprogram file {name}.ngc")),
+                text_edit: edit(text),
+                ..Default::default()
+            });
+        }
         return out;
     }
     // Program names after `M98 P` / `G65 P`.
@@ -116,7 +130,8 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
                 .iter()
                 .filter(|c| c.letter == letter && c.on_variant(settings.variant))
             {
-                let name = info.name();
+                // As the dialect's manual writes it (`G01` in FANUC, `G1` in RS274/NGC).
+                let name = info.display_name(settings.dialect);
                 out.push(CompletionItem {
                     label: name.clone(),
                     kind: Some(if info.kind == CodeKind::Misc {
@@ -193,6 +208,30 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
         }
     }
     out
+}
+
+/// Stems of the `.ngc` files in the document's folder (inside the workspace).
+fn ngc_files_beside(snap: &Snapshot) -> Vec<String> {
+    let Some(dir) = snap.path.as_deref().and_then(|p| p.parent()) else {
+        return Vec::new();
+    };
+    if super::workspace::confine(dir, &snap.roots).is_none() {
+        return Vec::new();
+    }
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut names: Vec<String> = entries
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| {
+            p.extension().is_some_and(|e| e.eq_ignore_ascii_case("ngc"))
+                && p != snap.path.as_deref().unwrap_or(p)
+        })
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(str::to_string))
+        .collect();
+    names.sort();
+    names
 }
 
 #[cfg(test)]

@@ -21,6 +21,9 @@ use serde_json::Value;
 
 /// Default size above which a document is only parsed (no rules, no dry run).
 pub const DEFAULT_MAX_FILE_SIZE: usize = 20 * 1024 * 1024;
+/// Default size up to which the interpreter runs with every analysis (its
+/// diagnostics are published); larger files run only on request.
+pub const DEFAULT_MAX_RUN_FILE_SIZE: usize = 4 * 1024 * 1024;
 
 /// Options the client sends (initializationOptions or workspace/configuration).
 #[derive(Debug, Clone, Default)]
@@ -32,6 +35,7 @@ pub struct ClientOptions {
     pub select: Vec<String>,
     pub ignore: Vec<String>,
     pub max_file_size: Option<usize>,
+    pub max_run_file_size: Option<usize>,
 }
 
 #[derive(Debug, Clone)]
@@ -82,6 +86,10 @@ impl ClientOptions {
                 .or_else(|| v.get("max_file_size"))
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
+            max_run_file_size: v
+                .get("maxRunFileSize")
+                .and_then(Value::as_u64)
+                .map(|n| n as usize),
         }
     }
 }
@@ -97,6 +105,7 @@ pub struct DocSettings {
     /// A problem reading the configuration, reported to the user.
     pub config_error: Option<String>,
     pub max_file_size: usize,
+    pub max_run_file_size: usize,
 }
 
 /// Finds the nearest `partscope.toml` for `doc`, never looking above `root`
@@ -198,6 +207,9 @@ pub fn resolve(
         config_path,
         config_error,
         max_file_size: client.max_file_size.unwrap_or(DEFAULT_MAX_FILE_SIZE),
+        max_run_file_size: client
+            .max_run_file_size
+            .unwrap_or(DEFAULT_MAX_RUN_FILE_SIZE),
     }
 }
 

@@ -13,21 +13,20 @@ use std::sync::Arc;
 use analyzer::{Diagnostic, Settings};
 use serde::Serialize;
 
-/// What one dry run needs. The fields are read by the runtime-backed runner;
-/// until that lands only [`Unavailable`] exists, which reads none.
-#[allow(dead_code)]
+/// What one dry run needs.
 pub struct DryRunInput<'a> {
     pub program: &'a analyzer::syntax::Program,
     pub settings: &'a Settings,
     pub machine: &'a toml::Table,
     pub doc_path: Option<PathBuf>,
+    /// The `partscope.toml` in force (relative paths in it start at its folder).
+    pub config_path: Option<PathBuf>,
     pub roots: &'a [PathBuf],
     /// Set when the client cancelled the request; a runner checks it between steps.
     pub cancel: &'a CancelFlag,
 }
 
-/// The kind of a toolpath segment (built by the runtime-backed runner).
-#[allow(dead_code)]
+/// The kind of a toolpath segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SegmentKind {
@@ -45,6 +44,9 @@ pub struct Segment {
     pub feed: f64,
     pub tool: u32,
     pub points: Vec<[f64; 3]>,
+    /// Exact path length in XYZ (arcs are longer than their sampled polyline).
+    #[serde(skip)]
+    pub length: f64,
 }
 
 /// Times from the planner, in seconds.
@@ -58,16 +60,29 @@ pub struct Timing {
     pub other_s: f64,
 }
 
-/// What a runner returns: segments, timing, and the time at which each tool
-/// change happens (for inlay hints).
+/// The machine state after one block of the document.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockState {
+    /// Modal codes in force (`G1`, `G17`, `G90`, …).
+    pub modal: Vec<String>,
+    /// Program coordinates X Y Z A B C (mm, degrees).
+    pub position: [f64; 6],
+    pub feed: f64,
+    pub spindle: f64,
+    pub tool: u32,
+}
+
+/// What a runner returns: segments, timing (when a planner is available),
+/// tool changes, per-block state and flow-sensitive diagnostics.
 #[derive(Debug, Clone, Default)]
 pub struct RunReport {
     pub segments: Vec<Segment>,
-    pub timing: Timing,
-    /// (0-based line, seconds since start) of each tool change, for inlay
-    /// hints once the runtime is wired.
-    #[allow(dead_code)]
-    pub tool_changes: Vec<(u32, f64)>,
+    pub timing: Option<Timing>,
+    /// 0-based lines of the document's tool changes.
+    #[allow(dead_code)] // For time-at-tool-change inlay hints once the planner is wired.
+    pub tool_changes: Vec<u32>,
+    /// One entry per block of the document (`None`: never executed).
+    pub snapshots: Vec<Option<BlockState>>,
     /// Runtime diagnostics in the document (FileId 0).
     pub diagnostics: Vec<Diagnostic>,
 }
@@ -87,13 +102,14 @@ pub struct Toolpath {
 /// The result of `partscope/dryRun` and of the `partscope.dryRun` command.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DryRunResult {
+    // Times are `null` when no planner ran (the preview shows "–").
     pub version: i32,
-    pub cycle_time_s: f64,
-    pub motion_s: f64,
-    pub rapid_s: f64,
-    pub cutting_s: f64,
-    pub dwell_s: f64,
-    pub tool_change_s: f64,
+    pub cycle_time_s: Option<f64>,
+    pub motion_s: Option<f64>,
+    pub rapid_s: Option<f64>,
+    pub cutting_s: Option<f64>,
+    pub dwell_s: Option<f64>,
+    pub tool_change_s: Option<f64>,
     pub distance_mm: f64,
     pub toolpath: Toolpath,
     /// LSP diagnostics (converted by the caller).
@@ -116,25 +132,22 @@ pub fn summarize(
                 max[k] = max[k].max(p[k]);
             }
         }
-        for w in seg.points.windows(2) {
-            let d: f64 = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum();
-            distance += d.sqrt();
-        }
+        distance += seg.length;
     }
     if !min[0].is_finite() {
         min = [0.0; 3];
         max = [0.0; 3];
     }
     let t = report.timing;
-    let motion = t.rapid_s + t.cutting_s;
+    let motion = t.map(|t| t.rapid_s + t.cutting_s);
     DryRunResult {
         version,
-        cycle_time_s: motion + t.dwell_s + t.tool_change_s + t.other_s,
+        cycle_time_s: t.map(|t| t.rapid_s + t.cutting_s + t.dwell_s + t.tool_change_s + t.other_s),
         motion_s: motion,
-        rapid_s: t.rapid_s,
-        cutting_s: t.cutting_s,
-        dwell_s: t.dwell_s,
-        tool_change_s: t.tool_change_s,
+        rapid_s: t.map(|t| t.rapid_s),
+        cutting_s: t.map(|t| t.cutting_s),
+        dwell_s: t.map(|t| t.dwell_s),
+        tool_change_s: t.map(|t| t.tool_change_s),
         distance_mm: distance,
         toolpath: Toolpath {
             segments: report.segments.clone(),
@@ -149,18 +162,9 @@ pub trait DryRunner: Send + Sync {
     fn run(&self, input: &DryRunInput<'_>) -> Option<RunReport>;
 }
 
-/// Used until the runtime lands: there is nothing to run.
-pub struct Unavailable;
-
-impl DryRunner for Unavailable {
-    fn run(&self, _input: &DryRunInput<'_>) -> Option<RunReport> {
-        None
-    }
-}
-
 /// The runner the server uses.
 pub fn default_runner() -> Arc<dyn DryRunner> {
-    Arc::new(Unavailable)
+    Arc::new(super::runtime_runner::RuntimeRunner)
 }
 
 /// A flag set when a request is cancelled (its future dropped).
@@ -201,6 +205,7 @@ mod tests {
                     feed: 0.0,
                     tool: 1,
                     points: vec![[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
+                    length: 5.0,
                 },
                 Segment {
                     kind: SegmentKind::Feed,
@@ -208,17 +213,19 @@ mod tests {
                     feed: 600.0,
                     tool: 1,
                     points: vec![[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
+                    length: 6.0,
                 },
             ],
-            timing: Timing {
+            timing: Some(Timing {
                 rapid_s: 0.5,
                 cutting_s: 0.6,
                 dwell_s: 2.0,
                 tool_change_s: 4.0,
                 other_s: 0.25,
-            },
+            }),
             tool_changes: vec![],
             diagnostics: vec![],
+            snapshots: vec![],
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);
@@ -230,8 +237,8 @@ mod tests {
                 max: [3.0, 4.0, 5.0]
             }
         );
-        assert_eq!(r.motion_s, 1.1);
-        assert_eq!(r.cycle_time_s, 1.1 + 2.0 + 4.0 + 0.25);
+        assert_eq!(r.motion_s, Some(1.1));
+        assert_eq!(r.cycle_time_s, Some(0.5 + 0.6 + 2.0 + 4.0 + 0.25));
         let json = serde_json::to_value(&r).unwrap();
         assert_eq!(json["toolpath"]["segments"][0]["kind"], "rapid");
         assert_eq!(
@@ -250,7 +257,11 @@ mod tests {
                 max: [0.0; 3]
             }
         );
-        assert_eq!(r.cycle_time_s, 0.0);
+        assert_eq!(r.cycle_time_s, None);
+        assert_eq!(
+            serde_json::to_value(&r).unwrap()["cutting_s"],
+            serde_json::Value::Null
+        );
     }
 
     #[test]

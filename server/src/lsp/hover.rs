@@ -31,33 +31,11 @@ pub fn code_of(w: &Word) -> Option<(char, CodeNum)> {
     Some((w.letter as char, CodeNum::from_value(n.value)?)).filter(|_| !(n.signed && n.value < 0.0))
 }
 
-/// Markdown for one code, as hover and completion documentation show it.
+/// Markdown for one code, as hover and completion documentation show it:
+/// the dialect table's own hover text, plus a warning when the file's variant
+/// lacks the code.
 pub fn code_markdown(info: &CodeInfo, variant: Variant) -> String {
-    let mut s = format!("**{}** — {}\n\n{}", info.name(), info.summary, info.doc);
-    match info.group {
-        Some(0) => s.push_str("\n\nNon-modal (group 0)."),
-        Some(g) => s.push_str(&format!(
-            "\n\nModal group {g}{}.",
-            if info.default {
-                ", power-on default"
-            } else {
-                ""
-            }
-        )),
-        None => {}
-    }
-    if !info.params.is_empty() {
-        s.push_str("\n\n| Word | Meaning |\n|---|---|\n");
-        for p in info.params {
-            let req = if p.required { " (required)" } else { "" };
-            s.push_str(&format!(
-                "| `{}` | {}{} |\n",
-                p.letter,
-                p.doc.replace('|', "\\|"),
-                req
-            ));
-        }
-    }
+    let mut s = info.hover(variant.dialect());
     if !info.on_variant(variant) {
         s.push_str(&format!("\n\n⚠ Not available on {}.", variant.as_str()));
     }
@@ -134,8 +112,7 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     let mut parts = Vec::new();
     let mut span = None;
     for d in snap
-        .analysis
-        .diagnostics
+        .diagnostics()
         .iter()
         .filter(|d| d.file == analyzer::FileId(0))
     {
@@ -144,7 +121,7 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             continue;
         }
         let mut s = format!("**{}** ({}): {}", d.code, d.severity.as_str(), d.message);
-        if let Some(meta) = registry::lookup(d.code) {
+        if let Some(meta) = registry::lookup(d.code).or_else(|| runtime::rules::lookup(d.code)) {
             s.push_str(&format!(
                 "\n\n*{}* — {}\n\n{}",
                 meta.name,
@@ -171,11 +148,41 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             }
         }
     }
+    if let Some(state) = block_state(snap, offset) {
+        parts.push(state);
+    }
     if parts.is_empty() {
         return None;
     }
     Some((
         parts.join("\n\n---\n\n"),
         span.unwrap_or(Span::new(offset, offset)),
+    ))
+}
+
+/// The machine state after the block under the cursor, from the interpreter's
+/// run when the analysis made one.
+fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
+    let report = snap.cached_run()?;
+    let program = snap.program();
+    let bi = program.block_at(offset)?;
+    if program.blocks[bi].items.0 == program.blocks[bi].items.1 {
+        return None;
+    }
+    let s = report.snapshots.get(bi)?.as_ref()?;
+    let axes = ['X', 'Y', 'Z', 'A', 'B', 'C'];
+    let pos: Vec<String> = axes
+        .iter()
+        .zip(s.position.iter())
+        .filter(|(a, _)| snap.doc.settings.axes.contains(a))
+        .map(|(a, v)| format!("{a}{v:.3}"))
+        .collect();
+    Some(format!(
+        "After this block: `{}`  \nPosition: `{}`  \nF{} S{} T{}",
+        s.modal.join(" "),
+        pos.join(" "),
+        s.feed,
+        s.spindle,
+        s.tool
     ))
 }

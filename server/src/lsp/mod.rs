@@ -3,6 +3,46 @@
 //! A thin protocol layer ([`server`]) over pure analysis: each request is
 //! converted (UTF-16 positions ↔ byte offsets in [`position`] only), answered
 //! by a small module working on an analysed [`snapshot`], and converted back.
+//!
+//! Shape:
+//! - Documents are ropes. `didChange` edits are applied before the handler's
+//!   first `.await`; each change schedules a debounced (50 ms) analysis on a
+//!   blocking thread, tagged with the document version; a result for an older
+//!   version is dropped. Requests wait for that analysis instead of starting
+//!   their own.
+//! - The interpreter ([`runtime_runner`], behind the [`dry_run::DryRunner`]
+//!   trait) runs with the analysis for files up to `maxRunFileSize` (4 MB):
+//!   its diagnostics join the static ones (a diagnostic inside a subprogram
+//!   file is shown on the document's call of that file), its per-block state
+//!   shows on hover, and `partscope/dryRun` returns its toolpath. One run at a
+//!   time; a run for a superseded version is skipped. Large files publish the
+//!   static diagnostics first and the full set when the run ends. Subprogram
+//!   files (NGC `o<name> sub` libraries, FANUC/ServoWorks files ending in M99)
+//!   are not run on their own.
+//! - Above `maxFileSize` (20 MB) a document is only parsed: syntax
+//!   diagnostics, navigation, symbols and tokens, no rules and no run.
+//! - Every handler runs under `catch_unwind` and its work in `spawn_blocking`;
+//!   stdin goes through [`stdio`], which turns a malformed message into a
+//!   no-op instead of letting the protocol library end the session.
+//! - Other files are read only inside the workspace folders (canonicalized,
+//!   so symlinks cannot escape): [`workspace`].
+//!
+//! Settings ([`config`]): the nearest `partscope.toml` (up to the workspace
+//! folder), then a first-line `(partscope: dialect=…)` comment, then the
+//! client's options (`initializationOptions` or the `partscope` section of
+//! `workspace/configuration`: `dialect`, `machine` (table or path), `select`,
+//! `ignore`, `maxFileSize`, `maxRunFileSize`), then sniffing. Changes of
+//! `partscope.toml` (watched through `didChangeWatchedFiles`) and of the
+//! client configuration re-analyse the open documents.
+//!
+//! Custom request `partscope/dryRun` (and command `partscope.dryRun`, whose
+//! argument is the URI or `{uri}`): params `{textDocument: {uri}}`, result
+//! [`dry_run::DryRunResult`]: `{version, cycle_time_s, motion_s, rapid_s,
+//! cutting_s, dwell_s, tool_change_s, distance_mm, toolpath: {segments:
+//! [{kind: "rapid"|"feed"|"arc", line, feed, tool, points: [[x,y,z]…]}],
+//! bounds: {min, max}}, diagnostics}`. Times are `null` until the velocity
+//! planner is wired; error -32001 when no run is possible (cancelled), -32603
+//! in syntax-only mode.
 
 mod actions;
 mod completion;
@@ -12,6 +52,7 @@ mod goto;
 mod hover;
 mod nav;
 mod position;
+mod runtime_runner;
 mod semantic;
 mod server;
 mod signature;

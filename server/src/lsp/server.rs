@@ -26,7 +26,7 @@ use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
 use super::config::ClientOptions;
-use super::dry_run::{self, CancelFlag, DryRunInput, DryRunResult, DryRunner};
+use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
 use super::position::{apply_change, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
@@ -34,6 +34,14 @@ use super::{actions, completion, goto, hover, semantic, signature, symbols, work
 
 /// How long edits must pause before diagnostics are recomputed.
 const DEBOUNCE: Duration = Duration::from_millis(50);
+/// How long a request waits for the scheduled analysis before doing its own.
+const WAIT_FOR_ANALYSIS: Duration = Duration::from_secs(30);
+/// How long diagnostics wait for the interpreter before the static ones are
+/// published on their own.
+const RUN_WAIT: Duration = Duration::from_millis(150);
+/// Files up to this size wait [`SMALL_RUN_WAIT`] for the run.
+const SMALL_FILE: usize = 256 * 1024;
+const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
 /// Above this many tokens a full semantic-tokens response is refused (the
 /// client then asks for the visible range).
 const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
@@ -65,6 +73,9 @@ pub struct Backend {
     client: Client,
     state: Arc<Mutex<State>>,
     runner: Arc<dyn DryRunner>,
+    run_gate: Arc<tokio::sync::Semaphore>,
+    /// Signalled whenever a snapshot is stored.
+    stored: Arc<tokio::sync::Notify>,
 }
 
 fn internal(msg: impl Into<String>) -> Error {
@@ -110,6 +121,8 @@ impl Backend {
             client,
             state: Arc::new(Mutex::new(State::default())),
             runner: dry_run::default_runner(),
+            run_gate: Arc::new(tokio::sync::Semaphore::new(1)),
+            stored: Arc::new(tokio::sync::Notify::new()),
         }
     }
 
@@ -129,10 +142,11 @@ impl Backend {
         o.select.extend(c.select.iter().cloned());
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
+        o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
         o
     }
 
-    fn inputs(state: &State, uri: &Uri) -> Option<Inputs> {
+    fn inputs(&self, state: &State, uri: &Uri) -> Option<Inputs> {
         let doc = state.docs.get(uri)?;
         Some(Inputs {
             uri: uri.clone(),
@@ -141,6 +155,7 @@ impl Backend {
             path: doc.path.clone(),
             roots: state.roots.clone(),
             client: Self::client_options(state),
+            runner: self.runner.clone(),
         })
     }
 
@@ -160,7 +175,7 @@ impl Backend {
             let inputs = {
                 let st = this.lock();
                 match st.docs.get(&uri) {
-                    Some(doc) if doc.generation == generation => Self::inputs(&st, &uri),
+                    Some(doc) if doc.generation == generation => this.inputs(&st, &uri),
                     _ => None,
                 }
             };
@@ -172,8 +187,58 @@ impl Backend {
             if !this.store(&snap) {
                 return;
             }
+            if !snap.run_eligible || !this.is_current(&snap.uri, generation) {
+                this.publish(&snap).await;
+                return;
+            }
+            // The interpreter adds flow-sensitive diagnostics. When it is quick,
+            // publish once with everything; when not, publish the static ones
+            // first so syntax errors show at once, then again when it is done.
+            // One interpreter run at a time (a run cannot be interrupted, so
+            // runs for superseded versions must not pile up on the cores); a
+            // run whose version is stale by the time it gets the gate is skipped.
+            let gate = this.run_gate.clone();
+            let (s, me) = (snap.clone(), this.clone());
+            let mut run = tokio::spawn(async move {
+                let permit = gate.acquire_owned().await.ok()?;
+                if !me.is_current(&s.uri, generation) {
+                    return None;
+                }
+                tokio::task::spawn_blocking(move || {
+                    let _permit = permit;
+                    s.run_report(&CancelFlag::default());
+                })
+                .await
+                .ok()
+            });
+            // Small files wait longer, so they normally get one publish per version.
+            let wait = if snap.rope.len_bytes() <= SMALL_FILE {
+                SMALL_RUN_WAIT
+            } else {
+                RUN_WAIT
+            };
+            let (done, published) = match tokio::time::timeout(wait, &mut run).await {
+                Ok(r) => (r.ok().flatten().is_some(), false),
+                Err(_) => {
+                    this.publish(&snap).await;
+                    (run.await.ok().flatten().is_some(), true)
+                }
+            };
+            let current = this.is_current(&snap.uri, generation);
+            // A failed run still leaves the static diagnostics to publish.
+            if !current || (!done && published) {
+                return;
+            }
             this.publish(&snap).await;
         });
+    }
+
+    /// Whether no change arrived since the analysis of `generation` was scheduled.
+    fn is_current(&self, uri: &Uri, generation: u64) -> bool {
+        self.lock()
+            .docs
+            .get(uri)
+            .is_some_and(|d| d.generation == generation)
     }
 
     /// Stores a snapshot if it is for the document's current version.
@@ -182,6 +247,7 @@ impl Backend {
         match st.docs.get_mut(&snap.uri) {
             Some(doc) if doc.version == snap.version => {
                 doc.snapshot = Some(snap.clone());
+                self.stored.notify_waiters();
                 true
             }
             _ => false,
@@ -208,6 +274,15 @@ impl Backend {
                     .await;
             }
         }
+        // Drop the result if the document moved on while it was converted.
+        let current = self
+            .lock()
+            .docs
+            .get(&snap.uri)
+            .is_some_and(|d| d.version == snap.version);
+        if !current {
+            return;
+        }
         self.client
             .publish_diagnostics(snap.uri.clone(), diags, Some(snap.version))
             .await;
@@ -216,13 +291,29 @@ impl Backend {
     /// The analysis of the document's current version, computing it if the
     /// stored one is stale.
     async fn snapshot(&self, uri: &Uri) -> Option<Arc<Snapshot>> {
+        // Every change schedules an analysis; a request waits for it rather
+        // than starting its own (editors send several requests per keystroke,
+        // and on a large file each analysis takes a while).
+        let deadline = tokio::time::Instant::now() + WAIT_FOR_ANALYSIS;
+        loop {
+            let notified = self.stored.notified();
+            tokio::pin!(notified);
+            notified.as_mut().enable();
+            {
+                let st = self.lock();
+                let doc = st.docs.get(uri)?;
+                if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
+                    return Some(s.clone());
+                }
+            }
+            if tokio::time::timeout_at(deadline, notified).await.is_err() {
+                break;
+            }
+        }
+        // The scheduled analysis did not come (it failed): analyse here.
         let inputs = {
             let st = self.lock();
-            let doc = st.docs.get(uri)?;
-            if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
-                return Some(s.clone());
-            }
-            Self::inputs(&st, uri)?
+            self.inputs(&st, uri)?
         };
         let snap = Arc::new(blocking(move || snapshot::analyze(inputs)).await.ok()?);
         self.store(&snap);
@@ -287,23 +378,14 @@ impl Backend {
                     "file is above the size limit: syntax-only mode, no dry run",
                 ));
             }
-            let runner = self.runner.clone();
-            let roots = self.roots();
             let cancel = CancelFlag::default();
             let _guard = cancel.guard();
             let result: Option<DryRunResult> = blocking(move || {
-                let input = DryRunInput {
-                    program: snap.program(),
-                    settings: &snap.doc.settings,
-                    machine: &snap.doc.machine,
-                    doc_path: snap.path.clone(),
-                    roots: &roots,
-                    cancel: &cancel,
-                };
-                let report = runner.run(&input)?;
+                let report = snap.run_report(&cancel)?;
                 let diags = report
                     .diagnostics
                     .iter()
+                    .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
                 Some(dry_run::summarize(snap.version, &report, diags))
@@ -313,7 +395,8 @@ impl Backend {
                 Some(r) => serde_json::to_value(r).map_err(|e| internal(e.to_string())),
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
-                    message: "dry run is not available: this build has no runtime".into(),
+                    message: "no dry run for this document (cancelled, or above the size limit)"
+                        .into(),
                     data: None,
                 }),
             }
@@ -366,6 +449,13 @@ fn capabilities() -> ServerCapabilities {
         inlay_hint_provider: Some(OneOf::Left(true)),
         code_lens_provider: Some(CodeLensOptions {
             resolve_provider: Some(false),
+        }),
+        workspace: Some(WorkspaceServerCapabilities {
+            workspace_folders: Some(WorkspaceFoldersServerCapabilities {
+                supported: Some(true),
+                change_notifications: Some(OneOf::Left(true)),
+            }),
+            file_operations: None,
         }),
         execute_command_provider: Some(ExecuteCommandOptions {
             commands: vec![DRY_RUN_COMMAND.into()],
@@ -498,6 +588,30 @@ impl LanguageServer for Backend {
                 self.lock().client_options = ClientOptions::from_json(&params.settings);
             } else {
                 self.fetch_configuration().await;
+            }
+            self.reanalyze_all();
+        })
+        .await
+    }
+
+    async fn did_change_workspace_folders(&self, params: DidChangeWorkspaceFoldersParams) {
+        guarded_notify("didChangeWorkspaceFolders", async {
+            let removed = workspace::canonical_roots(
+                params.event.removed.iter().filter_map(|f| uri_path(&f.uri)),
+            );
+            let added = workspace::canonical_roots(
+                params.event.added.iter().filter_map(|f| uri_path(&f.uri)),
+            );
+            {
+                let mut st = self.lock();
+                let mut roots: Vec<PathBuf> = st
+                    .roots
+                    .iter()
+                    .filter(|r| !removed.contains(r))
+                    .cloned()
+                    .collect();
+                roots.extend(added);
+                st.roots = workspace::canonical_roots(roots);
             }
             self.reanalyze_all();
         })

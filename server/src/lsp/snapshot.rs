@@ -5,12 +5,14 @@ use analyzer::syntax::{parse, ParseOptions};
 use analyzer::{Analysis, Severity};
 use ropey::Rope;
 use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
 use tower_lsp_server::ls_types::{
     CodeDescription, Diagnostic as LspDiagnostic, DiagnosticRelatedInformation, DiagnosticSeverity,
     Location, NumberOrString, Uri,
 };
 
 use super::config::{self, ClientOptions, DocSettings};
+use super::dry_run::{CancelFlag, DryRunInput, DryRunner, RunReport};
 use super::position::{rope_bytes, span_to_range};
 
 pub struct Snapshot {
@@ -22,6 +24,14 @@ pub struct Snapshot {
     pub analysis: Analysis,
     /// The file is above the size limit: parsed, but no rules ran.
     pub syntax_only: bool,
+    pub roots: Vec<PathBuf>,
+    runner: Arc<dyn DryRunner>,
+    /// Small enough for the interpreter to run with every analysis.
+    pub run_eligible: bool,
+    /// The interpreter's run of this version, once computed.
+    run: OnceLock<Option<Arc<RunReport>>>,
+    /// Static and runtime diagnostics together, once the run is done.
+    merged: OnceLock<Vec<analyzer::Diagnostic>>,
 }
 
 /// Everything needed to analyse a document, cloned out of the server state.
@@ -32,28 +42,44 @@ pub struct Inputs {
     pub path: Option<PathBuf>,
     pub roots: Vec<PathBuf>,
     pub client: ClientOptions,
+    pub runner: Arc<dyn DryRunner>,
 }
 
 /// Resolves settings and analyses one document version. Blocking: call it on
 /// a blocking thread.
 pub fn analyze(inputs: Inputs) -> Snapshot {
+    let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
+    let t0 = std::time::Instant::now();
     let text = rope_bytes(&inputs.rope);
     let doc = config::resolve(inputs.path.as_deref(), &text, &inputs.roots, &inputs.client);
+    let t1 = std::time::Instant::now();
     let syntax_only = text.len() > doc.max_file_size;
     let analysis = if syntax_only {
         let opts = ParseOptions {
             dialect: doc.settings.dialect,
             variant: doc.settings.variant,
         };
-        let program = parse(opts, text);
+        let program = parse(opts, text.clone());
         let diagnostics = analyzer::finish(&program, &doc.settings, program.diagnostics.clone());
         Analysis {
             program,
             diagnostics,
         }
     } else {
-        analyzer::analyze(text, &doc.settings)
+        analyzer::analyze(text.clone(), &doc.settings)
     };
+    if timing {
+        eprintln!(
+            "partscope lsp: v{} {} bytes: copy+config {:?}, analyze {:?}",
+            inputs.version,
+            text.len(),
+            t1 - t0,
+            t1.elapsed()
+        );
+    }
+    let run_eligible = !syntax_only
+        && text.len() <= doc.max_run_file_size
+        && !is_subroutine_file(&analysis.program);
     Snapshot {
         uri: inputs.uri,
         version: inputs.version,
@@ -62,7 +88,36 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         doc,
         analysis,
         syntax_only,
+        run_eligible,
+        roots: inputs.roots,
+        runner: inputs.runner,
+        run: OnceLock::new(),
+        merged: OnceLock::new(),
     }
+}
+
+/// A subprogram file, which only its callers can run meaningfully: an
+/// RS274/NGC file whose first statement is `o<name> sub` (LinuxCNC calls it by
+/// name), or a FANUC/ServoWorks file that returns with M99 and never ends with
+/// M2/M30 (run on its own, M99 would restart it forever).
+fn is_subroutine_file(program: &analyzer::syntax::Program) -> bool {
+    use analyzer::syntax::{ItemKind, OKeyword};
+    if program.dialect == analyzer::Dialect::Rs274ngc {
+        return program
+            .items
+            .iter()
+            .find(|it| !matches!(it.kind, ItemKind::Comment(_)))
+            .is_some_and(
+                |it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub)),
+            );
+    }
+    let m = |v: f64| {
+        program.items.iter().any(|it| match &it.kind {
+            ItemKind::Word(w) => w.letter == b'M' && w.num().is_some_and(|n| n.value == v),
+            _ => false,
+        })
+    };
+    m(99.0) && !m(2.0) && !m(30.0)
 }
 
 pub fn rule_href(code: &str) -> Option<Uri> {
@@ -81,6 +136,53 @@ fn severity(s: Severity) -> DiagnosticSeverity {
 impl Snapshot {
     pub fn program(&self) -> &analyzer::syntax::Program {
         &self.analysis.program
+    }
+
+    /// The interpreter's run of this version (computed on first use; `None`
+    /// above the size limit, when cancelled, or without a runtime).
+    pub fn run_report(&self, cancel: &CancelFlag) -> Option<Arc<RunReport>> {
+        if let Some(r) = self.run.get() {
+            return r.clone();
+        }
+        if self.syntax_only {
+            return None;
+        }
+        let input = DryRunInput {
+            program: self.program(),
+            settings: &self.doc.settings,
+            machine: &self.doc.machine,
+            doc_path: self.path.clone(),
+            config_path: self.doc.config_path.clone(),
+            roots: &self.roots,
+            cancel,
+        };
+        let report = self.runner.run(&input).map(Arc::new);
+        if cancel.is_cancelled() {
+            // A cancelled run is not an answer for this version: do not keep it.
+            return None;
+        }
+        self.run.get_or_init(|| report).clone()
+    }
+
+    /// The diagnostics of this version: static ones, joined by the
+    /// interpreter's once its run is done (same selection and suppressions).
+    pub fn diagnostics(&self) -> &[analyzer::Diagnostic] {
+        if let Some(m) = self.merged.get() {
+            return m;
+        }
+        let Some(report) = self.cached_run() else {
+            return &self.analysis.diagnostics;
+        };
+        self.merged.get_or_init(|| {
+            let mut all = self.analysis.diagnostics.clone();
+            all.extend(report.diagnostics.iter().cloned());
+            analyzer::finish(&self.analysis.program, &self.doc.settings, all)
+        })
+    }
+
+    /// The run only if it was already computed.
+    pub fn cached_run(&self) -> Option<Arc<RunReport>> {
+        self.run.get().cloned().flatten()
     }
 
     /// Converts one analyzer diagnostic of this document.
@@ -113,11 +215,46 @@ impl Snapshot {
     /// The diagnostics of this document (those located in other files are left
     /// to those files).
     pub fn lsp_diagnostics(&self) -> Vec<LspDiagnostic> {
-        self.analysis
-            .diagnostics
+        self.diagnostics()
             .iter()
             .filter(|d| d.file == analyzer::FileId(0))
             .map(|d| self.to_lsp(d))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::is_subroutine_file;
+    use analyzer::syntax::{parse, ParseOptions};
+    use analyzer::Dialect;
+
+    fn sub(dialect: Dialect, text: &str) -> bool {
+        is_subroutine_file(&parse(
+            ParseOptions {
+                dialect,
+                variant: dialect.default_variant(),
+            },
+            text.as_bytes().to_vec(),
+        ))
+    }
+
+    #[test]
+    fn subprogram_files_are_recognised() {
+        assert!(sub(
+            Dialect::Rs274ngc,
+            "(library)\no<drill> sub\nG81 Z-1 R1\no<drill> endsub\n"
+        ));
+        assert!(!sub(
+            Dialect::Rs274ngc,
+            "G0 X1\no<drill> sub\no<drill> endsub\nM2\n"
+        ));
+        assert!(sub(Dialect::Fanuc, "%\nO1234;\nG01 X1. F100.;\nM99;\n%\n"));
+        assert!(!sub(
+            Dialect::Fanuc,
+            "%\nO0001;\nM98 P1234;\nM30;\nO1234;\nM99;\n%\n"
+        ));
+        assert!(sub(Dialect::Servoworks, "G1 X1 F100\nM99\n"));
+        assert!(!sub(Dialect::Servoworks, "G1 X1 F100\nM30\n"));
     }
 }

@@ -1,0 +1,3 @@
+G90 G21
+M98 PMoveXY
+M30
