@@ -41,7 +41,9 @@ fn surfacing(dialect: Dialect, lines: usize) -> Vec<u8> {
     match dialect {
         Dialect::Servoworks => s.push_str("%\nG90 G17 G21 G40 G49 G80\nT03 M6\nG43 H3 Z50.\n"),
         Dialect::Rs274ngc => s.push_str("G21 G17 G90 G94 G40 G49 G80 G64 P0.01\nT3 M6\nG43 H3\n"),
-        Dialect::Fanuc => s.push_str("%\nO1000 (SURFACING)\nG21 G17 G90 G94 G40 G49 G80\nT3 M6\nG43 H3 Z50.\n"),
+        Dialect::Fanuc => {
+            s.push_str("%\nO1000 (SURFACING)\nG21 G17 G90 G94 G40 G49 G80\nT3 M6\nG43 H3 Z50.\n")
+        }
     }
     s.push_str("S12000 M3\nG0 X0. Y0. Z5.\nG1 Z-2. F800.\n");
     let (mut x, mut y, mut dir) = (0.0f64, 0.0f64, 1.0f64);

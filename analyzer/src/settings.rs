@@ -264,10 +264,11 @@ pub fn parse_directives(comment: &str) -> Vec<Directive> {
 /// The dialect a file names in a `(partscope: dialect=…)` comment on its first
 /// non-blank line.
 pub fn dialect_directive(text: &[u8]) -> Option<Dialect> {
+    // The first line that is neither blank nor a `%` tape mark.
     let line = text
         .split(|b| *b == b'\n')
         .map(|l| l.trim_ascii())
-        .find(|l| !l.is_empty())?;
+        .find(|l| !l.is_empty() && *l != b"%")?;
     let line = String::from_utf8_lossy(line);
     let start = line.find(['(', ';'])?;
     parse_directives(&line[start..])
@@ -345,6 +346,10 @@ mod tests {
         assert_eq!(
             dialect_directive(b"G0 X1\n(partscope: dialect=fanuc)\n"),
             None
+        );
+        assert_eq!(
+            dialect_directive(b"%\n(partscope: dialect=fanuc)\nO1\n"),
+            Some(Dialect::Fanuc)
         );
     }
 

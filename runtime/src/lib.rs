@@ -1,1 +1,13 @@
 //! Partscope runtime: interpreter, interpolator and motion planner. Pure: no IO.
+
+pub mod canon;
+pub mod dryrun;
+pub mod interp;
+pub mod machine;
+pub mod plan;
+pub mod rules;
+
+pub use interp::{
+    run, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver,
+    RunInput, RunOutput,
+};

@@ -56,7 +56,7 @@ pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
         dialect: opts.dialect,
         text: text.clone(),
         tokens: Vec::with_capacity(text.len() / 3 + 1),
-        blocks: Vec::with_capacity(text.len() / 24 + 1),
+        blocks: Vec::with_capacity(text.len() / 16 + 1),
         items: Vec::with_capacity(text.len() / 5 + 1),
         exprs: Vec::new(),
         expr_lists: Vec::new(),
@@ -182,10 +182,10 @@ impl Parser {
         let content = &text[start..content_end];
         // First and last non-blank bytes decide the line's kind without allocating.
         let first_nb = content.iter().position(|b| !is_ws(*b));
-        let last_nb = content.iter().rposition(|b| !is_ws(*b));
         let blank = first_nb.is_none();
         let first_byte = first_nb.map(|i| content[i]);
-        let only_percent = first_byte == Some(b'%') && first_nb == last_nb;
+        let only_percent = first_byte == Some(b'%')
+            && first_nb.is_some_and(|i| content[i + 1..].iter().all(|b| is_ws(*b)));
 
         let mut kind = BlockKind::Normal;
         let mut skip = None;
@@ -691,47 +691,54 @@ impl<'p> Cx<'p> {
     fn number(&mut self, allow_sign: bool) -> Num {
         let start = self.pos;
         let inner_ws = self.dialect != Dialect::Servoworks;
-        let mut s = String::new();
+        let text = self.text.clone();
+        let t = &text[..self.limit.min(text.len())];
+        let mut i = self.pos;
+        let mut signed = false;
+        let mut negative = false;
+        if allow_sign && i < t.len() && (t[i] == b'+' || t[i] == b'-') {
+            signed = true;
+            negative = t[i] == b'-';
+            i += 1;
+        }
+        // The value is accumulated while scanning: up to 15 significant digits fit a
+        // u64 exactly, and one division by an exact power of ten then rounds correctly.
+        let mut mant: u64 = 0;
+        let mut frac_digits: u32 = 0;
         let mut digits = 0u16;
         let mut has_point = false;
-        let mut signed = false;
         let mut bad = false;
-        let mut end = self.pos;
-        if allow_sign {
-            if let Some(c @ (b'+' | b'-')) = self.peek() {
-                s.push(c as char);
-                signed = true;
-                self.pos += 1;
-                end = self.pos;
-            }
-        }
+        let mut had_ws = false;
         loop {
-            let mut j = self.pos;
-            if inner_ws {
-                while self.at(j).is_some_and(is_ws) {
+            while i < t.len() && t[i].is_ascii_digit() {
+                mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
+                digits = digits.saturating_add(1);
+                if has_point {
+                    frac_digits += 1;
+                }
+                i += 1;
+            }
+            if i < t.len() && t[i] == b'.' {
+                // A second decimal point makes the literal malformed; keep consuming it.
+                bad |= has_point;
+                has_point = true;
+                i += 1;
+                continue;
+            }
+            if inner_ws && i < t.len() && is_ws(t[i]) {
+                let mut j = i;
+                while j < t.len() && is_ws(t[j]) {
                     j += 1;
                 }
-            }
-            match self.at(j) {
-                Some(c) if is_digit(c) => {
-                    s.push(c as char);
-                    digits = digits.saturating_add(1);
-                    self.pos = j + 1;
-                    end = self.pos;
+                if j < t.len() && (t[j].is_ascii_digit() || t[j] == b'.') {
+                    had_ws = true;
+                    i = j;
+                    continue;
                 }
-                Some(b'.') => {
-                    if has_point {
-                        // A second decimal point: consume the rest of the malformed literal.
-                        bad = true;
-                    }
-                    has_point = true;
-                    s.push('.');
-                    self.pos = j + 1;
-                    end = self.pos;
-                }
-                _ => break,
             }
+            break;
         }
+        let end = i;
         self.pos = end;
         let span = Span::new(start as u32, end as u32);
         if end > start {
@@ -739,8 +746,21 @@ impl<'p> Cx<'p> {
         }
         let value = if digits == 0 || bad {
             None
+        } else if digits <= 15 {
+            const POW10: [f64; 16] = [
+                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
+                1e15,
+            ];
+            let v = mant as f64 / POW10[frac_digits as usize];
+            Some(if negative { -v } else { v })
         } else {
-            s.parse::<f64>().ok()
+            let raw = span.slice(t);
+            if had_ws {
+                let compact: Vec<u8> = raw.iter().copied().filter(|b| !is_ws(*b)).collect();
+                parse_f64(&compact)
+            } else {
+                parse_f64(raw)
+            }
         };
         let value = match value {
             Some(v) if v.is_finite() => v,
@@ -1066,14 +1086,12 @@ impl<'p> Cx<'p> {
         while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
             j += 1;
         }
-        let run = Span::new(start as u32, j as u32)
-            .slice(&self.text)
-            .to_ascii_uppercase();
-        let c = run[0];
+        let run = Span::new(start as u32, j as u32).slice(&self.text);
+        let c = run.first().map(|c| c.to_ascii_uppercase()).unwrap_or(b'?');
         match self.dialect {
             Dialect::Rs274ngc if c == b'O' => return self.oword(),
             Dialect::Fanuc | Dialect::Servoworks => {
-                if let Some(kw) = macro_keyword(&run) {
+                if let Some(kw) = (run.len() >= 2).then(|| macro_keyword(run)).flatten() {
                     return self.macro_stmt(kw);
                 }
                 if c == b'O' && self.text[start] == b'O' {
@@ -1618,6 +1636,42 @@ fn comment_kind(text: &[u8]) -> CommentKind {
     }
 }
 
+/// Reads a literal made of an optional sign, digits and at most one point.
+fn parse_f64(raw: &[u8]) -> Option<f64> {
+    // Fast path: up to 15 significant digits fit a u64 exactly, and dividing by an
+    // exact power of ten gives the correctly rounded result.
+    let (neg, body) = match raw.first() {
+        Some(b'-') => (true, &raw[1..]),
+        Some(b'+') => (false, &raw[1..]),
+        _ => (false, raw),
+    };
+    if body.len() <= 16 {
+        let mut mant: u64 = 0;
+        let mut frac_digits: i32 = -1;
+        let mut n = 0;
+        for &b in body {
+            if b == b'.' {
+                frac_digits = 0;
+                continue;
+            }
+            mant = mant * 10 + (b - b'0') as u64;
+            n += 1;
+            if frac_digits >= 0 {
+                frac_digits += 1;
+            }
+        }
+        if n <= 15 {
+            const POW10: [f64; 16] = [
+                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
+                1e15,
+            ];
+            let v = mant as f64 / POW10[frac_digits.max(0) as usize];
+            return Some(if neg { -v } else { v });
+        }
+    }
+    std::str::from_utf8(raw).ok()?.parse::<f64>().ok()
+}
+
 fn printable(s: &str) -> String {
     let mut out: String = s
         .chars()
@@ -1628,4 +1682,55 @@ fn printable(s: &str) -> String {
         out.push('…');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_f64;
+
+    #[test]
+    fn fast_number_path_agrees_with_std() {
+        let samples = [
+            "0",
+            "-0",
+            "1",
+            "+1",
+            ".5",
+            "5.",
+            "-.5",
+            "0.1",
+            "0.3",
+            "123.456",
+            "-99999.999",
+            "0.0001",
+            "1234567890.12345",
+            "123456789012345",
+            "1234567890123456",
+            "12345678901234567890",
+            "0.000000000000001",
+            "3.14159265358979",
+        ];
+        for s in samples {
+            assert_eq!(
+                parse_f64(s.as_bytes()).map(f64::to_bits),
+                s.parse::<f64>().ok().map(f64::to_bits),
+                "{s}"
+            );
+        }
+        // A deterministic sweep of short decimals.
+        let mut x: u64 = 12345;
+        for _ in 0..20000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let int = (x >> 40) % 100000;
+            let frac = (x >> 10) % 10000;
+            let s = format!("{int}.{frac:04}");
+            assert_eq!(
+                parse_f64(s.as_bytes()).map(f64::to_bits),
+                s.parse::<f64>().ok().map(f64::to_bits),
+                "{s}"
+            );
+        }
+    }
 }

@@ -11,6 +11,9 @@ use super::output::{self, FileReport};
 use super::workspace::{self, ConfigCache, LoadedConfig};
 use super::CheckArgs;
 
+/// Blocks the interpreter may execute per checked file before it reports a runaway program.
+const CHECK_STEP_BUDGET: u64 = 20_000_000;
+
 pub fn run(args: CheckArgs) -> ExitCode {
     let explicit = match &args.config {
         Some(p) => match workspace::load_config(p) {
@@ -100,13 +103,60 @@ fn check_file(
         };
     let text: Arc<[u8]> = bytes.into();
     let analysis = analyzer::analyze(text.clone(), &settings);
-    let diagnostics = analysis.diagnostics;
+    let mut diagnostics = analysis.diagnostics;
+    let mut extra_files = Vec::new();
+    // Subprogram files are analysed when they are called, from the caller's point of view.
+    let is_subprogram = dialect == analyzer::Dialect::Servoworks
+        && path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
+        && path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .is_some_and(|n| n.starts_with('O'));
+    if !args.no_run && !is_subprogram && !diagnostics.iter().any(|d| d.code == "L009") {
+        let config_dir = loaded
+            .path
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf));
+        let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
+        let input = runtime::RunInput {
+            program: &analysis.program,
+            settings: &settings,
+            machine: &loaded.config.machine,
+            resolver: &resolver,
+            step_budget: CHECK_STEP_BUDGET,
+            emit_canon: false,
+            tool_table: None,
+            var_file: None,
+        };
+        let out = runtime::run(&input);
+        diagnostics.extend(analyzer::finish(
+            &analysis.program,
+            &settings,
+            out.diagnostics,
+        ));
+        diagnostics.sort_by_key(|d| (d.file, d.span.start));
+        extra_files = out
+            .files
+            .iter()
+            .map(|p| {
+                (
+                    PathBuf::from(p),
+                    std::fs::read(p)
+                        .map(Arc::from)
+                        .unwrap_or_else(|_| Arc::from(&b""[..])),
+                )
+            })
+            .collect();
+    }
     FileReport {
         path: path.to_path_buf(),
         text,
         diagnostics,
         io_error: false,
-        extra_files: Vec::new(),
+        extra_files,
     }
 }
 

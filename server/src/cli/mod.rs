@@ -2,6 +2,7 @@
 
 mod check;
 mod output;
+mod run;
 pub mod workspace;
 
 use std::path::PathBuf;
@@ -76,6 +77,8 @@ pub struct CheckArgs {
 enum Command {
     /// Lint part programs.
     Check(CheckArgs),
+    /// Dry-run a program: cycle time, breakdown, toolpath.
+    Run(run::RunArgs),
     /// Explain a rule (`partscope rule G001`), or list all rules (`--all`).
     Rule {
         code: Option<String>,
@@ -100,6 +103,7 @@ pub fn main() -> ExitCode {
     };
     match cli.command {
         Command::Check(args) => check::run(args),
+        Command::Run(args) => run::run(args),
         Command::Rule { code, all } => rule(code, all),
         Command::Lsp => crate::lsp::run(),
     }

@@ -1,0 +1,3865 @@
+//! Block execution.
+
+// Axis arrays are indexed in parallel (program, machine, offsets), which reads
+// more clearly with indices than with zipped iterators.
+#![allow(clippy::needless_range_loop)]
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use analyzer::syntax::{
+    BlockKind, CommentKind, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, Program, WordValue,
+};
+use analyzer::{Diagnostic, Dialect, FileId, Severity, Span, Variant};
+
+use super::arc::{self, ArcError, ArcSpec};
+use super::expr::{self, EvalError, Val, VarSource};
+use super::files::{label_key, FileEntry, ProgRef};
+use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
+use super::state::{is_cycle, CycleMem, Modal, State};
+use super::types::*;
+use crate::canon::{f4, Canon};
+use crate::rules::codes;
+
+const NUM_PARAMS: usize = 20_000;
+
+/// Runs a program. Never panics; bounded by `step_budget` and the call depth.
+pub fn run(input: &RunInput<'_>) -> RunOutput {
+    let mut it = Interp::new(input);
+    it.run_main();
+    it.finish()
+}
+
+/// Where control goes after a block.
+enum Flow {
+    Next,
+    Goto(usize, u32),
+    Stop,
+}
+
+#[derive(Debug, Clone)]
+enum FrameKind {
+    /// RS274/NGC `o… call`.
+    NgcSub,
+    /// FANUC/ServoWorks M98 (shares locals) or G65 (new locals); `repeat` left.
+    Sub { start: u32, repeat: u32 },
+}
+
+#[derive(Debug, Clone)]
+struct Frame {
+    kind: FrameKind,
+    ret_file: usize,
+    ret_block: u32,
+    /// Caller's local parameters, restored on return.
+    saved: Option<Vec<Option<f64>>>,
+    named_locals: HashMap<String, f64>,
+    call_span: Span,
+}
+
+/// The evaluated words of one block.
+#[derive(Default)]
+struct Words {
+    v: [Option<f64>; 26],
+    span: [Span; 26],
+    point: [bool; 26],
+    g: Vec<(u32, Span)>,
+    m: Vec<(u32, Span)>,
+    pname: Option<String>,
+    n: Option<i64>,
+    ijk_order: Vec<(u8, f64)>,
+    /// The N number as written.
+    n_text: Option<String>,
+    /// K as written (a repeat count in FANUC/ServoWorks cycles).
+    raw_k: Option<f64>,
+}
+
+impl Words {
+    fn get(&self, c: u8) -> Option<f64> {
+        self.v.get((c - b'A') as usize).copied().flatten()
+    }
+    fn has(&self, c: u8) -> bool {
+        self.get(c).is_some()
+    }
+    fn sp(&self, c: u8) -> Span {
+        self.span
+            .get((c - b'A') as usize)
+            .copied()
+            .unwrap_or_default()
+    }
+    fn has_g(&self, t: u32) -> bool {
+        self.g.iter().any(|(g, _)| *g == t)
+    }
+    fn g_span(&self, t: u32) -> Span {
+        self.g
+            .iter()
+            .find(|(g, _)| *g == t)
+            .map(|(_, s)| *s)
+            .unwrap_or_default()
+    }
+    fn has_m(&self, t: u32) -> bool {
+        self.m.iter().any(|(m, _)| *m == t)
+    }
+    fn any_axis(&self) -> bool {
+        b"XYZABCUVW".iter().any(|c| self.has(*c))
+    }
+}
+
+struct Vars<'s> {
+    st: &'s State,
+    locals: Option<&'s HashMap<String, f64>>,
+    dialect: Dialect,
+}
+
+impl VarSource for Vars<'_> {
+    fn get_num(&self, n: i64, span: Span) -> Result<Val, EvalError> {
+        if n < 0 || n as usize >= NUM_PARAMS {
+            let code = if self.dialect == Dialect::Rs274ngc {
+                "X006"
+            } else {
+                "X007"
+            };
+            return Err(EvalError {
+                span,
+                message: format!("parameter number #{n} out of range"),
+                code,
+            });
+        }
+        if let Some(v) = system_var(self.st, self.dialect, n) {
+            return Ok(Some(v));
+        }
+        let v = self.st.params.get(n as usize).copied().flatten();
+        Ok(if self.dialect == Dialect::Rs274ngc {
+            Some(v.unwrap_or(0.0))
+        } else {
+            v
+        })
+    }
+    fn get_named(&self, name: &str, span: Span) -> Result<Val, EvalError> {
+        if let Some(v) = self.locals.and_then(|l| l.get(name)) {
+            return Ok(Some(*v));
+        }
+        if let Some(v) = self.st.named.get(name) {
+            return Ok(Some(*v));
+        }
+        if let Some(v) = predefined(self.st, name) {
+            return Ok(Some(v));
+        }
+        Err(EvalError {
+            span,
+            message: format!("named parameter #<{name}> not defined"),
+            code: "X006",
+        })
+    }
+    fn named_exists(&self, name: &str) -> bool {
+        self.locals.is_some_and(|l| l.contains_key(name))
+            || self.st.named.contains_key(name)
+            || predefined(self.st, name).is_some()
+    }
+}
+
+/// Read-only system variables computed from the state: FANUC/ServoWorks
+/// #4001… modal codes, #5001… end point, #5021… machine, #5041… work
+/// position; LinuxCNC #5420… current position.
+fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
+    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    let axis = |v: &[f64; 6], i: usize| if i < 3 { v[i] / u } else { v[i] };
+    match d {
+        Dialect::Rs274ngc => match n {
+            5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
+            _ => None,
+        },
+        _ => match n {
+            4001 => Some(f64::from(st.modal.motion) / 10.0),
+            4002 => Some(f64::from(st.modal.plane) / 10.0),
+            4003 => Some(if st.modal.incremental { 91.0 } else { 90.0 }),
+            4005 => Some(f64::from(st.modal.feed_mode) / 10.0),
+            4006 => Some(if st.modal.inch { 20.0 } else { 21.0 }),
+            4007 => Some(f64::from(st.modal.comp) / 10.0),
+            4008 => Some(f64::from(st.modal.tlo_mode) / 10.0),
+            4009 => Some(if st.modal.modal_cycle() {
+                f64::from(st.modal.motion) / 10.0
+            } else {
+                80.0
+            }),
+            4010 => Some(if st.modal.retract_old_z { 98.0 } else { 99.0 }),
+            4014 => Some(match st.modal.origin {
+                o @ 1..=6 => 53.0 + o as f64,
+                _ => 54.1,
+            }),
+            4109 => Some(st.feed / u),
+            4119 => Some(st.spindle),
+            4120 => Some(f64::from(st.tool)),
+            5001..=5006 | 5041..=5046 => Some(axis(&st.pos, ((n - 1) % 20) as usize)),
+            5021..=5026 => Some(axis(&st.mpos, (n - 5021) as usize)),
+            5081..=5086 => Some(axis(&st.tlo, (n - 5081) as usize)),
+            _ => None,
+        },
+    }
+}
+
+/// LinuxCNC read-only named parameters, in program units.
+fn predefined(st: &State, name: &str) -> Option<f64> {
+    let u = if st.modal.inch { 25.4 } else { 1.0 };
+    let axes = ["x", "y", "z", "a", "b", "c"];
+    for (i, a) in axes.iter().enumerate() {
+        if name.strip_prefix('_') == Some(a) {
+            return Some(if i < 3 { st.pos[i] / u } else { st.pos[i] });
+        }
+        if name == format!("_abs_{a}") {
+            return Some(if i < 3 { st.mpos[i] / u } else { st.mpos[i] });
+        }
+    }
+    Some(match name {
+        "_metric" => f64::from(u8::from(!st.modal.inch)),
+        "_imperial" => f64::from(u8::from(st.modal.inch)),
+        "_absolute" => f64::from(u8::from(!st.modal.incremental)),
+        "_incremental" => f64::from(u8::from(st.modal.incremental)),
+        "_feed" => st.feed / u,
+        "_rpm" => st.spindle,
+        "_current_tool" => f64::from(st.tool),
+        "_selected_tool" => f64::from(st.next_tool),
+        "_coord_system" => 530.0 + 10.0 * st.modal.origin as f64,
+        "_motion_mode" => f64::from(st.modal.motion),
+        "_plane" => f64::from(st.modal.plane),
+        "_value" | "_value_returned" => 0.0,
+        "_line" => f64::from(st.line),
+        _ => return None,
+    })
+}
+
+struct Interp<'a, 'i> {
+    input: &'i RunInput<'a>,
+    dialect: Dialect,
+    variant: Variant,
+    cfg: MachineCfg,
+    files: Vec<FileEntry<'a>>,
+    file_names: HashMap<String, usize>,
+    st: State,
+    frames: Vec<Frame>,
+    repeats: Vec<(usize, u32, i64)>,
+    out: RunOutput,
+    canon: Option<Canon>,
+    steps: u64,
+    /// Where the interpreter is: file index and block.
+    cur: (usize, u32),
+    cur_line: u32,
+    /// RS274/NGC: the file opened with `%`.
+    percent_open: bool,
+    saw_end: bool,
+    /// Last arc for snapshots / rules.
+    nblocks_main: usize,
+    after_end_reported: bool,
+    /// Locals of the main level (RS274/NGC named parameters without `_`).
+    main_locals: HashMap<String, f64>,
+    limit_reports: u32,
+    /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
+    block_exact: bool,
+}
+
+fn v6(v: [f64; 6]) -> [f64; 6] {
+    v
+}
+
+impl<'a, 'i> Interp<'a, 'i> {
+    fn new(input: &'i RunInput<'a>) -> Interp<'a, 'i> {
+        let dialect = input.settings.dialect;
+        let mut cfg = MachineCfg::read(input.machine, dialect);
+        if let Some(t) = input.tool_table {
+            parse_tool_table(t, cfg.param_unit, &mut cfg.tools, &mut cfg.tool_order);
+        }
+        let mut params = vec![None; NUM_PARAMS];
+        if dialect == Dialect::Rs274ngc {
+            for p in params.iter_mut().take(5602) {
+                *p = Some(0.0);
+            }
+            params[5220] = Some(1.0);
+        }
+        if let Some(v) = input.var_file {
+            for (n, val) in parse_var_file(v) {
+                if n < NUM_PARAMS {
+                    params[n] = Some(val);
+                }
+            }
+        }
+        for (idx, vals) in &cfg.work_offsets {
+            for (k, v) in vals.iter().enumerate() {
+                params[5201 + 20 * idx + k] = Some(*v / cfg.param_unit);
+            }
+        }
+        let sw = dialect == Dialect::Servoworks;
+        let st = State {
+            modal: Modal::power_on(sw, dialect == Dialect::Fanuc),
+            pos: [0.0; 6],
+            mpos: [0.0; 6],
+            g92: [0.0; 6],
+            g52: [0.0; 6],
+            tlo: [0.0; 6],
+            comp_radius: 0.0,
+            comp_first: true,
+            comp_tip: [0.0; 6],
+            comp_pending: None,
+            feed: 0.0,
+            spindle: 0.0,
+            spindle_dir: 0,
+            tool: 0,
+            next_tool: 0,
+            mist: false,
+            flood: false,
+            params: Arc::new(params),
+            named: Arc::new(HashMap::new()),
+            cycle: CycleMem::default(),
+            scale: ([0.0; 3], [1.0; 3]),
+            mirror: ([false; 3], [0.0; 3]),
+            rotation: ([0.0; 2], 0.0),
+            ended: false,
+            line: 0,
+        };
+        let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
+        let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
+        let mut it = Interp {
+            input,
+            dialect,
+            variant: input.settings.variant,
+            cfg,
+            files: vec![main],
+            file_names: HashMap::new(),
+            st,
+            frames: Vec::new(),
+            repeats: Vec::new(),
+            out: RunOutput {
+                snapshots: vec![None; input.program.blocks.len()],
+                ..RunOutput::default()
+            },
+            canon: if emit { Some(Canon::default()) } else { None },
+            steps: 0,
+            cur: (0, 0),
+            cur_line: 0,
+            percent_open: false,
+            saw_end: false,
+            nblocks_main: input.program.blocks.len(),
+            after_end_reported: false,
+            main_locals: HashMap::new(),
+            limit_reports: 0,
+            block_exact: false,
+        };
+        // The current position starts at the machine origin.
+        it.st.pos = it.to_program(it.st.mpos);
+        let (g5x, g92) = (it.g5x_prog(), it.st.g92);
+        let u = it.unit();
+        let rot = it.rotation_of(1);
+        if let Some(c) = it.canon.as_mut() {
+            let g = g5x.map(|v| v);
+            c.preamble(1, &scale6(g, u), &scale6(g92, u), rot);
+        }
+        it
+    }
+
+    fn unit(&self) -> f64 {
+        if self.st.modal.inch {
+            25.4
+        } else {
+            1.0
+        }
+    }
+
+    fn ngc(&self) -> bool {
+        self.dialect == Dialect::Rs274ngc
+    }
+
+    fn param(&self, n: usize) -> f64 {
+        self.st.params.get(n).copied().flatten().unwrap_or(0.0)
+    }
+
+    fn set_param(&mut self, n: usize, v: Option<f64>) {
+        if n < NUM_PARAMS {
+            Arc::make_mut(&mut self.st.params)[n] = v;
+        }
+    }
+
+    /// Work offset of the active origin, mm.
+    fn g5x_prog(&self) -> [f64; 6] {
+        self.g5x_of(self.st.modal.origin)
+    }
+
+    fn g5x_of(&self, origin: usize) -> [f64; 6] {
+        let base = if origin >= 100 {
+            7001 + 20 * (origin - 101)
+        } else {
+            5201 + 20 * origin
+        };
+        let mut o = [0.0; 6];
+        for (k, v) in o.iter_mut().enumerate() {
+            let raw = self.param(base + k);
+            *v = if k < 3 {
+                raw * self.cfg.param_unit
+            } else {
+                raw
+            };
+        }
+        o
+    }
+
+    /// Program-frame commanded point → machine.
+    fn to_machine(&self, p: [f64; 6]) -> [f64; 6] {
+        let mut q = self.transform(p);
+        for i in 0..6 {
+            q[i] += self.st.g92[i] + self.st.g52[i];
+        }
+        let rot = self.xy_rotation();
+        if rot != 0.0 {
+            // LinuxCNC rotates the offset point about the work origin (G10 L2 R).
+            let (s, c) = rot.to_radians().sin_cos();
+            let (x, y) = (q[0], q[1]);
+            q[0] = x * c - y * s;
+            q[1] = x * s + y * c;
+        }
+        let o = self.g5x_prog();
+        let mut m = [0.0; 6];
+        for i in 0..6 {
+            m[i] = q[i] + o[i] + self.st.tlo[i];
+            if rot != 0.0 && m[i].abs() < 1e-12 {
+                // Round-off from the rotation would print as -0.000000.
+                m[i] = 0.0;
+            }
+        }
+        m
+    }
+
+    fn to_program(&self, m: [f64; 6]) -> [f64; 6] {
+        let o = self.g5x_prog();
+        let mut q = [0.0; 6];
+        for i in 0..6 {
+            q[i] = m[i] - o[i] - self.st.tlo[i];
+        }
+        let rot = self.xy_rotation();
+        if rot != 0.0 {
+            let (s, c) = (-rot).to_radians().sin_cos();
+            let (x, y) = (q[0], q[1]);
+            // Round-off from the rotation would print as -0.000000.
+            let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
+            q[0] = snap(x * c - y * s);
+            q[1] = snap(x * s + y * c);
+        }
+        for i in 0..6 {
+            q[i] -= self.st.g92[i] + self.st.g52[i];
+        }
+        q
+    }
+
+    /// XY rotation (degrees) of the active RS274/NGC coordinate system.
+    fn xy_rotation(&self) -> f64 {
+        self.rotation_of(self.st.modal.origin)
+    }
+
+    fn rotation_of(&self, origin: usize) -> f64 {
+        if self.ngc() && (1..=9).contains(&origin) {
+            self.param(5210 + 20 * origin)
+        } else {
+            0.0
+        }
+    }
+
+    fn rotation_canon(&self, origin: usize) -> String {
+        format!("SET_XY_ROTATION({})", f4(self.rotation_of(origin)))
+    }
+
+    /// Mirror, scaling and rotation (FANUC/ServoWorks).
+    fn transform(&self, p: [f64; 6]) -> [f64; 6] {
+        let mut q = p;
+        let m = &self.st.modal;
+        if m.mirror {
+            for i in 0..3 {
+                if self.st.mirror.0[i] {
+                    q[i] = 2.0 * self.st.mirror.1[i] - q[i];
+                }
+            }
+        }
+        if m.scaling {
+            for i in 0..3 {
+                q[i] = self.st.scale.0[i] + (q[i] - self.st.scale.0[i]) * self.st.scale.1[i];
+            }
+        }
+        if m.rotation {
+            let (a, b) = self.plane_axes();
+            let (c, ang) = self.st.rotation;
+            let (s, co) = ang.to_radians().sin_cos();
+            let (x, y) = (q[a] - c[0], q[b] - c[1]);
+            q[a] = c[0] + x * co - y * s;
+            q[b] = c[1] + x * s + y * co;
+        }
+        q
+    }
+
+    fn plane_axes(&self) -> (usize, usize) {
+        match self.st.modal.plane {
+            180 => (2, 0),
+            190 => (1, 2),
+            _ => (0, 1),
+        }
+    }
+
+    fn normal_axis(&self) -> usize {
+        match self.st.modal.plane {
+            180 => 1,
+            190 => 0,
+            _ => 2,
+        }
+    }
+
+    fn file_id(&self) -> FileId {
+        self.files.get(self.cur.0).map(|f| f.id).unwrap_or_default()
+    }
+
+    fn diag(&mut self, code: &'static str, sev: Severity, span: Span, msg: impl Into<String>) {
+        let d = Diagnostic::new(code, sev, span, msg).in_file(self.file_id());
+        self.out.diagnostics.push(d);
+    }
+
+    fn event(&mut self, kind: EventKind) {
+        let e = Event {
+            kind,
+            motion_index: self.out.motions.len(),
+            file: self.file_id(),
+            block: self.cur.1,
+            line: self.cur_line,
+        };
+        self.out.events.push(e);
+    }
+
+    fn canon(&mut self, s: impl AsRef<str>) {
+        if let Some(c) = self.canon.as_mut() {
+            c.call(s);
+        }
+    }
+
+    fn canon_comment(&mut self, s: &str) {
+        if let Some(c) = self.canon.as_mut() {
+            c.comment(s);
+        }
+    }
+
+    /// Program-frame coordinates in program units, for canon lines.
+    fn canon_pos(&self, p: &[f64; 6]) -> String {
+        let u = self.unit();
+        let v = [p[0] / u, p[1] / u, p[2] / u, p[3], p[4], p[5]];
+        Canon::six(&v)
+    }
+
+    // ----------------------------------------------------------------- main loop
+
+    fn run_main(&mut self) {
+        let p = self.files[0].prog.clone();
+        if self.ngc() {
+            if let Some(b) = p
+                .blocks
+                .iter()
+                .find(|b| !p.items_of(b).is_empty() || b.kind == BlockKind::Percent)
+            {
+                self.percent_open = b.kind == BlockKind::Percent;
+            }
+        }
+        let budget = self.input.step_budget.max(1);
+        loop {
+            let (fi, bi) = self.cur;
+            let nblocks = self.files.get(fi).map(|f| f.prog.blocks.len()).unwrap_or(0);
+            if bi as usize >= nblocks {
+                if self.frames.is_empty() || fi == 0 {
+                    self.end_of_file();
+                    break;
+                }
+                // A subprogram file ran out without M99: return to the caller.
+                if !self.ret_from_sub(None) {
+                    break;
+                }
+                continue;
+            }
+            self.steps += 1;
+            if self.steps > budget {
+                let span = self.block_span(fi, bi);
+                self.diag(
+                    codes::STEP_BUDGET,
+                    Severity::Warning,
+                    span,
+                    format!("execution stopped after {budget} blocks (step budget): a loop may never end; raise the budget if the program is meant to run this long"),
+                );
+                break;
+            }
+            let first_motion = self.out.motions.len();
+            let result = self.exec_block(fi, bi);
+            self.check_limits(fi, bi, first_motion);
+            match result {
+                Ok(Flow::Next) => self.cur = (self.cur.0, self.cur.1 + 1),
+                Ok(Flow::Goto(f, b)) => self.cur = (f, b),
+                Ok(Flow::Stop) => break,
+                Err(d) => {
+                    self.out.diagnostics.push(d);
+                    break;
+                }
+            }
+            if fi == 0 && (bi as usize) < self.nblocks_main {
+                let snap = self.snapshot();
+                if let Some(s) = self.out.snapshots.get_mut(bi as usize) {
+                    *s = Some(snap);
+                }
+            }
+        }
+        if let Some(c) = self.canon.as_mut() {
+            c.line_number = None;
+            c.call("ON_RESET()");
+            c.call("ON_RESET()");
+        }
+    }
+
+    /// Soft limits: end points of the block's motions against the profile's travel.
+    fn check_limits(&mut self, fi: usize, bi: u32, first: usize) {
+        if self.cfg.limits.iter().all(Option::is_none) || self.limit_reports >= 100 {
+            return;
+        }
+        let mut hit = [false; 6];
+        for m in self.out.motions.iter().skip(first) {
+            for (i, lim) in self.cfg.limits.iter().enumerate() {
+                if let Some((lo, hi)) = lim {
+                    if m.end[i] < lo - 1e-9 || m.end[i] > hi + 1e-9 {
+                        hit[i] = true;
+                    }
+                }
+            }
+        }
+        let span = self.block_span(fi, bi);
+        let file = self.files.get(fi).map(|f| f.id).unwrap_or_default();
+        for (i, h) in hit.iter().enumerate() {
+            if !h || self.limit_reports >= 100 {
+                continue;
+            }
+            self.limit_reports += 1;
+            let (lo, hi) = self.cfg.limits[i].unwrap_or((0.0, 0.0));
+            let letter = ['X', 'Y', 'Z', 'A', 'B', 'C'][i];
+            let d = Diagnostic::warning(codes::TRAVEL_LIMIT, span, format!("this block moves {letter} outside its travel ({lo} to {hi} in machine coordinates): the control stops with a soft-limit alarm")).in_file(file);
+            self.out.diagnostics.push(d);
+        }
+    }
+
+    fn end_of_file(&mut self) {
+        if self.saw_end {
+            return;
+        }
+        let p = self.files[0].prog.clone();
+        let end = p.text.len() as u32;
+        let span = Span::new(end, end);
+        match self.dialect {
+            Dialect::Rs274ngc => {
+                let msg = if self.percent_open {
+                    "file ended with no percent sign"
+                } else {
+                    "file ended with no percent sign or program end (M2/M30)"
+                };
+                self.out
+                    .diagnostics
+                    .push(Diagnostic::error(codes::MISSING_END, span, msg));
+            }
+            _ => {
+                self.out.diagnostics.push(Diagnostic::warning(codes::MISSING_END, span, "program has no end code (M02/M30): the control stops at the end of the file without the end-of-program resets"));
+            }
+        }
+    }
+
+    fn finish(mut self) -> RunOutput {
+        if let Some(c) = self.canon.take() {
+            self.out.canon = c.lines;
+        }
+        self.out
+    }
+
+    fn snapshot(&self) -> BlockSnapshot {
+        BlockSnapshot {
+            modal: self.st.modal.codes(self.ngc()),
+            position: self.st.pos,
+            feed: self.st.feed,
+            spindle: self.st.spindle,
+            tool: self.st.tool,
+        }
+    }
+
+    fn block_span(&self, fi: usize, bi: u32) -> Span {
+        self.files
+            .get(fi)
+            .and_then(|f| f.prog.blocks.get(bi as usize))
+            .map(|b| b.span)
+            .unwrap_or_default()
+    }
+
+    fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(code, span, msg).in_file(self.file_id())
+    }
+
+    fn eval_err(&self, e: EvalError) -> Diagnostic {
+        self.err(codes::EXPRESSION, e.span, e.message)
+    }
+
+    fn eval(&self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
+        let locals = self
+            .frames
+            .last()
+            .map(|f| &f.named_locals)
+            .or(Some(&self.main_locals));
+        let vars = Vars {
+            st: &self.st,
+            locals,
+            dialect: self.dialect,
+        };
+        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+    }
+
+    fn eval_num(&self, p: &Program, id: ExprId) -> Result<f64, Diagnostic> {
+        Ok(self.eval(p, id)?.unwrap_or(0.0))
+    }
+
+    // ----------------------------------------------------------------- blocks
+
+    fn exec_block(&mut self, fi: usize, bi: u32) -> Result<Flow, Diagnostic> {
+        let prog = self.files[fi].prog.clone();
+        let Some(block) = prog.blocks.get(bi as usize).copied() else {
+            return Ok(Flow::Next);
+        };
+        self.cur_line = block.line;
+        self.st.line = block.line + 1;
+        if let Some(c) = self.canon.as_mut() {
+            c.line_number = None;
+        }
+        match block.kind {
+            BlockKind::Normal => {}
+            BlockKind::Percent => {
+                if self.ngc() && fi == 0 && self.percent_open && self.seen_content_before(&prog, bi)
+                {
+                    self.saw_end = true;
+                    self.canon("FINISH()");
+                    return Ok(Flow::Stop);
+                }
+                if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
+                {
+                    self.saw_end = true;
+                    return Ok(Flow::Stop);
+                }
+                return Ok(Flow::Next);
+            }
+            BlockKind::Deleted | BlockKind::Ignored => return Ok(Flow::Next),
+        }
+        if block.skip.is_some() && self.cfg.block_skip {
+            return Ok(Flow::Next);
+        }
+        // RS274/NGC and FANUC stop at a block they cannot read; the parser
+        // already reported why (ServoWorks skips unknown data).
+        if self.dialect != Dialect::Servoworks && self.files[fi].error_blocks.contains(&bi) {
+            return Ok(Flow::Stop);
+        }
+        let items = prog.items_of(&block);
+        if items.is_empty() {
+            return Ok(Flow::Next);
+        }
+        // A bare O-word line (program title, M98 target) does nothing, not even its comments.
+        if self.ngc()
+            && items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::OWord(ow) if ow.keyword.is_none()))
+        {
+            return Ok(Flow::Next);
+        }
+        // O-word statements (RS274/NGC) own their block.
+        if let Some((ow, span)) = items.iter().find_map(|it| match &it.kind {
+            ItemKind::OWord(ow) if ow.keyword.is_some() => Some((*ow, it.span)),
+            _ => None,
+        }) {
+            return self.exec_oword(fi, bi, &prog, ow, span);
+        }
+        // Macro statements and assignments in FANUC/ServoWorks run in order.
+        if !self.ngc() {
+            let mut skip_next = false;
+            let mut has_words = false;
+            for (k, it) in items.iter().enumerate() {
+                if skip_next {
+                    skip_next = false;
+                    continue;
+                }
+                match &it.kind {
+                    ItemKind::Assign { target, value } => {
+                        let v = self.eval(&prog, *value)?;
+                        self.assign(&prog, *target, v, it.span)?;
+                    }
+                    ItemKind::Macro(m) => match *m {
+                        MacroStmt::IfThen { cond } => {
+                            let c = self.eval(&prog, cond)?;
+                            if c.unwrap_or(0.0) == 0.0 {
+                                skip_next = true;
+                            }
+                            let _ = k;
+                        }
+                        MacroStmt::Goto { target } => {
+                            let n = self.eval_num(&prog, target)?;
+                            return self.goto_seq(fi, bi, n, it.span);
+                        }
+                        MacroStmt::IfGoto { cond, target } => {
+                            if self.eval(&prog, cond)?.unwrap_or(0.0) != 0.0 {
+                                let n = self.eval_num(&prog, target)?;
+                                return self.goto_seq(fi, bi, n, it.span);
+                            }
+                        }
+                        MacroStmt::While { cond, .. } => {
+                            if self.eval(&prog, cond)?.unwrap_or(0.0) == 0.0 {
+                                let Some(end) = self.files[fi].loops.get(&bi).copied() else {
+                                    return Err(self.err(
+                                        codes::FLOW,
+                                        it.span,
+                                        "WHILE … DO has no matching END (PS0124)",
+                                    ));
+                                };
+                                return Ok(Flow::Goto(fi, end + 1));
+                            }
+                        }
+                        MacroStmt::Do { .. } => {}
+                        MacroStmt::End { .. } => {
+                            let Some(head) = self.files[fi].loops.get(&bi).copied() else {
+                                return Err(self.err(
+                                    codes::FLOW,
+                                    it.span,
+                                    "END has no matching DO (PS0126)",
+                                ));
+                            };
+                            return Ok(Flow::Goto(fi, head));
+                        }
+                        MacroStmt::Output => {}
+                    },
+                    ItemKind::Word(_) => has_words = true,
+                    _ => {}
+                }
+            }
+            if !has_words {
+                return Ok(Flow::Next);
+            }
+        }
+        let mut w = Words::default();
+        let mut comments: Vec<(CommentKind, Span)> = Vec::new();
+        let mut assigns: Vec<(ExprId, Val, Span)> = Vec::new();
+        for it in items {
+            match &it.kind {
+                ItemKind::Word(word) => {
+                    let val = match word.value {
+                        WordValue::Num(n) | WordValue::Indexed(_, n) => Some(n.value),
+                        WordValue::Expr(e) => self.eval(&prog, e)?,
+                        WordValue::Name(s) => {
+                            w.pname = Some(prog.str_of(s).into_owned());
+                            None
+                        }
+                        WordValue::Missing => None,
+                    };
+                    let point = word.num().is_none_or(|n| n.has_point);
+                    let Some(val) = val else {
+                        if self.ngc() && matches!(word.value, WordValue::Expr(_)) {
+                            continue;
+                        }
+                        continue;
+                    };
+                    match word.letter {
+                        b'G' => match analyzer::dialect::CodeNum::from_value(val) {
+                            Some(c) => w.g.push((c.0, it.span)),
+                            None => {
+                                return Err(self.err(
+                                    codes::UNKNOWN_CODE,
+                                    it.span,
+                                    format!("G{val} is not a G code"),
+                                ))
+                            }
+                        },
+                        b'M' => {
+                            if val < 0.0 || val.fract().abs() > 1e-6 {
+                                return Err(self.err(
+                                    codes::UNKNOWN_CODE,
+                                    it.span,
+                                    format!("M{val} is not an M code"),
+                                ));
+                            }
+                            w.m.push(((val * 10.0).round() as u32, it.span));
+                        }
+                        b'N' => {
+                            w.n = Some(val as i64);
+                            w.n_text = Some(match word.num() {
+                                Some(n) => prog
+                                    .str_of(n.span)
+                                    .chars()
+                                    .filter(|c| !c.is_whitespace())
+                                    .collect(),
+                                None => format!("{}", val as i64),
+                            });
+                        }
+                        b'O' => {}
+                        c @ b'A'..=b'Z' if !word.comma => {
+                            let i = (c - b'A') as usize;
+                            w.v[i] = Some(val);
+                            w.span[i] = it.span;
+                            w.point[i] = point;
+                            if matches!(
+                                c,
+                                b'I' | b'J'
+                                    | b'K'
+                                    | b'A'
+                                    | b'B'
+                                    | b'C'
+                                    | b'D'
+                                    | b'E'
+                                    | b'F'
+                                    | b'H'
+                                    | b'M'
+                                    | b'Q'
+                                    | b'R'
+                                    | b'S'
+                                    | b'T'
+                                    | b'U'
+                                    | b'V'
+                                    | b'W'
+                                    | b'X'
+                                    | b'Y'
+                                    | b'Z'
+                            ) {
+                                w.ijk_order.push((c, val));
+                            }
+                        }
+                        _ => {}
+                    }
+                }
+                ItemKind::Comment(k) => comments.push((*k, it.span)),
+                ItemKind::Assign { target, value } if self.ngc() => {
+                    let v = self.eval(&prog, *value)?;
+                    assigns.push((*target, v, it.span));
+                }
+                _ => {}
+            }
+        }
+        // RS274/NGC: parameters are set after the whole line was read.
+        for (t, v, s) in assigns {
+            self.assign(&prog, t, v, s)?;
+        }
+        if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
+            c.line_number = Some(n);
+        }
+        if self.st.ended {
+            if !self.after_end_reported {
+                self.after_end_reported = true;
+                self.diag(
+                    codes::AFTER_END,
+                    Severity::Warning,
+                    block.span,
+                    "code after the program end is never executed",
+                );
+            }
+            return Ok(Flow::Stop);
+        }
+        w.raw_k = w.get(b'K');
+        self.scale_words(&mut w);
+        self.exec_words(fi, bi, &prog, &w, &comments, block.span)
+    }
+
+    fn seen_content_before(&self, p: &Program, bi: u32) -> bool {
+        p.blocks
+            .iter()
+            .take(bi as usize)
+            .any(|b| b.kind == BlockKind::Normal && !p.items_of(b).is_empty())
+    }
+
+    /// FANUC decimal-point rules and ServoWorks integer machine units.
+    fn scale_words(&self, w: &mut Words) {
+        let dist = b"XYZABCUVWIJKRQ";
+        match self.dialect {
+            Dialect::Fanuc if !self.cfg.decimal_point_input => {
+                let inc = if self.st.modal.inch { 0.0001 } else { 0.001 };
+                for c in dist {
+                    let i = (c - b'A') as usize;
+                    if w.v[i].is_some() && !w.point[i] {
+                        if *c == b'Q' && w.has_g(760) {
+                            continue;
+                        }
+                        w.v[i] = w.v[i].map(|v| v * inc);
+                    }
+                }
+            }
+            Dialect::Servoworks if self.cfg.integer_machine_unit => {
+                let mu = self.cfg.machine_unit / if self.st.modal.inch { 25.4 } else { 1.0 };
+                for c in dist {
+                    let i = (c - b'A') as usize;
+                    if w.v[i].is_some() && !w.point[i] {
+                        w.v[i] = w.v[i].map(|v| v * mu);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn assign(
+        &mut self,
+        p: &Program,
+        target: ExprId,
+        v: Val,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        match p.expr(target).expr {
+            Expr::Var { index } => {
+                let n = self.eval_num(p, index)?.round();
+                if n < 0.0 || n as usize >= NUM_PARAMS {
+                    return Err(self.err(
+                        codes::EXPRESSION,
+                        span,
+                        format!("parameter number #{n} out of range"),
+                    ));
+                }
+                if n == 0.0 && !self.ngc() {
+                    return Err(self.err(codes::EXPRESSION, span, "#0 is read-only (PS0116)"));
+                }
+                let v = if self.ngc() {
+                    Some(v.unwrap_or(0.0))
+                } else {
+                    v
+                };
+                if self.dialect == Dialect::Fanuc && (n as usize == 3000 || n as usize == 3006) {
+                    let stop = n as usize == 3000;
+                    self.event(EventKind::Message(format!("#{} = {}", n, v.unwrap_or(0.0))));
+                    if stop {
+                        return Err(self.err(
+                            codes::MACRO_ALARM,
+                            span,
+                            format!("macro alarm #3000 = {}", v.unwrap_or(0.0)),
+                        ));
+                    }
+                }
+                self.set_param(n as usize, v);
+                Ok(())
+            }
+            Expr::Named { name } => {
+                let key = expr::named_key(&p.str_of(name));
+                let v = v.unwrap_or(0.0);
+                if key.starts_with('_') {
+                    Arc::make_mut(&mut self.st.named).insert(key, v);
+                } else if let Some(f) = self.frames.last_mut() {
+                    f.named_locals.insert(key, v);
+                } else {
+                    self.main_locals.insert(key, v);
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    fn goto_seq(&mut self, fi: usize, bi: u32, n: f64, span: Span) -> Result<Flow, Diagnostic> {
+        let blocks = self.files[fi]
+            .seq
+            .get(&(n.max(0.0) as u64))
+            .cloned()
+            .unwrap_or_default();
+        // Search forward first, then from the top of the program.
+        if let Some(b) = blocks.iter().find(|b| **b > bi).or(blocks.first()) {
+            return Ok(Flow::Goto(fi, *b));
+        }
+        Err(self.err(
+            codes::FLOW,
+            span,
+            format!("sequence number N{n} not found (PS0128)"),
+        ))
+    }
+
+    // ----------------------------------------------------------------- O-words
+
+    fn exec_oword(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        p: &Program,
+        ow: analyzer::syntax::OWord,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
+        let Some(kw) = ow.keyword else {
+            return Ok(Flow::Next);
+        };
+        let ctrl = self.files[fi].ctrl.get(&bi).cloned().unwrap_or_default();
+        let args: Vec<ExprId> = p.expr_list(ow.args).to_vec();
+        let cond = |s: &Self| -> Result<bool, Diagnostic> {
+            match args.first() {
+                Some(e) => Ok(s.eval_num(p, *e)? != 0.0),
+                None => Ok(false),
+            }
+        };
+        let after = |b: Option<u32>| -> Result<u32, Diagnostic> {
+            b.map(|b| b + 1).ok_or_else(|| {
+                self.err(
+                    codes::FLOW,
+                    span,
+                    format!("O-word `{}` has no matching end", kw.as_str()),
+                )
+            })
+        };
+        match kw {
+            OKeyword::Sub => {
+                // A definition met in flow is skipped.
+                Ok(Flow::Goto(fi, after(ctrl.partner)?))
+            }
+            OKeyword::Endsub | OKeyword::Return => {
+                let v = match args.first() {
+                    Some(e) => Some(self.eval_num(p, *e)?),
+                    None => None,
+                };
+                if self.frames.is_empty() {
+                    if kw == OKeyword::Return {
+                        return Err(self.err(codes::FLOW, span, "`return` outside a subroutine"));
+                    }
+                    return Ok(Flow::Next);
+                }
+                if let Some(v) = v {
+                    Arc::make_mut(&mut self.st.named).insert("_value".into(), v);
+                    Arc::make_mut(&mut self.st.named).insert("_value_returned".into(), 1.0);
+                }
+                self.ret_from_sub(None);
+                Ok(Flow::Goto(self.cur.0, self.cur.1))
+            }
+            OKeyword::Call => {
+                let mut vals = Vec::new();
+                for a in &args {
+                    vals.push(self.eval_num(p, *a)?);
+                }
+                let key = match ow.label {
+                    OLabel::Expr(e) => Some(format!("{}", self.eval_num(p, e)?.round() as i64)),
+                    ref l => label_key(p, l),
+                };
+                let Some(key) = key else {
+                    return Err(self.err(codes::FLOW, span, "call without a subroutine name"));
+                };
+                self.call_ngc(fi, bi, &key, vals, span)
+            }
+            OKeyword::While => {
+                if ctrl.closes_do {
+                    let head = ctrl.partner.unwrap_or(bi);
+                    return Ok(if cond(self)? {
+                        Flow::Goto(fi, head + 1)
+                    } else {
+                        Flow::Next
+                    });
+                }
+                if cond(self)? {
+                    Ok(Flow::Next)
+                } else {
+                    Ok(Flow::Goto(fi, after(ctrl.partner)?))
+                }
+            }
+            OKeyword::Endwhile => Ok(Flow::Goto(fi, ctrl.partner.unwrap_or(bi + 1))),
+            OKeyword::Do => Ok(Flow::Next),
+            OKeyword::Repeat => {
+                let n = match args.first() {
+                    Some(e) => self.eval_num(p, *e)?.round() as i64,
+                    None => 0,
+                };
+                if n <= 0 {
+                    return Ok(Flow::Goto(fi, after(ctrl.partner)?));
+                }
+                self.repeats.push((fi, bi, n));
+                Ok(Flow::Next)
+            }
+            OKeyword::Endrepeat => {
+                let head = ctrl.partner.unwrap_or(bi);
+                if let Some(top) = self
+                    .repeats
+                    .iter_mut()
+                    .rev()
+                    .find(|r| r.0 == fi && r.1 == head)
+                {
+                    top.2 -= 1;
+                    if top.2 > 0 {
+                        return Ok(Flow::Goto(fi, head + 1));
+                    }
+                }
+                self.repeats.retain(|r| !(r.0 == fi && r.1 == head));
+                Ok(Flow::Next)
+            }
+            OKeyword::If => {
+                if cond(self)? {
+                    return Ok(Flow::Next);
+                }
+                for b in &ctrl.branches {
+                    let blk = p.blocks.get(*b as usize).copied();
+                    let Some(blk) = blk else { continue };
+                    let item = p.items_of(&blk).iter().find_map(|it| match it.kind {
+                        ItemKind::OWord(o) => Some(o),
+                        _ => None,
+                    });
+                    let Some(o) = item else { continue };
+                    if o.keyword == Some(OKeyword::Else) {
+                        return Ok(Flow::Goto(fi, b + 1));
+                    }
+                    let a = p.expr_list(o.args).first().copied();
+                    if let Some(a) = a {
+                        if self.eval_num(p, a)? != 0.0 {
+                            return Ok(Flow::Goto(fi, b + 1));
+                        }
+                    }
+                }
+                Ok(Flow::Goto(fi, after(ctrl.partner)?))
+            }
+            OKeyword::Elseif | OKeyword::Else => Ok(Flow::Goto(fi, after(ctrl.partner)?)),
+            OKeyword::Endif => Ok(Flow::Next),
+            OKeyword::Break | OKeyword::Continue => {
+                let Some(head) = ctrl.partner else {
+                    return Err(self.err(
+                        codes::FLOW,
+                        span,
+                        format!("`{}` outside a loop", kw.as_str()),
+                    ));
+                };
+                let hc = self.files[fi].ctrl.get(&head).cloned().unwrap_or_default();
+                let end = hc.partner.unwrap_or(head);
+                if kw == OKeyword::Break {
+                    self.repeats.retain(|r| !(r.0 == fi && r.1 == head));
+                    Ok(Flow::Goto(fi, end + 1))
+                } else {
+                    let hb = p.blocks.get(head as usize).copied();
+                    let is_repeat_or_do = hb.is_some_and(|b| {
+                        p.items_of(&b).iter().any(|it| matches!(it.kind, ItemKind::OWord(o) if matches!(o.keyword, Some(OKeyword::Repeat) | Some(OKeyword::Do))))
+                    });
+                    Ok(Flow::Goto(fi, if is_repeat_or_do { end } else { head }))
+                }
+            }
+        }
+    }
+
+    fn load_file(&mut self, name: &str, span: Span) -> Option<usize> {
+        let key = name.to_ascii_lowercase();
+        if let Some(i) = self.file_names.get(&key) {
+            return Some(*i);
+        }
+        let from = self.file_id();
+        let rf = self.input.resolver.resolve(name, from)?;
+        let _ = span;
+        let opts = analyzer::syntax::ParseOptions {
+            dialect: self.dialect,
+            variant: self.variant,
+        };
+        let prog = analyzer::syntax::parse(opts, rf.text.clone());
+        let idx = self.files.len();
+        for d in &prog.diagnostics {
+            self.out
+                .diagnostics
+                .push(d.clone().in_file(FileId(idx as u32)));
+        }
+        self.files.push(FileEntry::new(
+            ProgRef::Shared(Arc::new(prog)),
+            FileId(idx as u32),
+        ));
+        self.file_names.insert(key, idx);
+        // Keep the resolved path for the output list.
+        self.file_names.insert(rf.path.clone(), idx);
+        self.file_names.remove(&rf.path);
+        self.out.files.push(rf.path);
+        Some(idx)
+    }
+
+    fn depth_check(&self, span: Span) -> Result<(), Diagnostic> {
+        if self.frames.len() >= self.cfg.max_depth {
+            return Err(self.err(
+                codes::CALL_DEPTH,
+                span,
+                format!("subprogram nesting deeper than {} levels (recursion?): the control alarms here", self.cfg.max_depth),
+            ));
+        }
+        Ok(())
+    }
+
+    fn call_ngc(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        key: &str,
+        vals: Vec<f64>,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
+        self.depth_check(span)?;
+        let (tf, tb) = if let Some(b) = self.files[fi].subs.get(key).copied() {
+            (fi, b)
+        } else if let Some(b) = self.files[0].subs.get(key).copied() {
+            (0, b)
+        } else if let Some(f) = self.load_file(key, span) {
+            match self.files[f].subs.get(key).copied() {
+                Some(b) => (f, b),
+                None => (f, u32::MAX),
+            }
+        } else {
+            return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
+        };
+        // Save the caller's #1-#30 and pass the arguments.
+        let saved: Vec<Option<f64>> = (1..=30)
+            .map(|n| self.st.params.get(n).copied().flatten())
+            .collect();
+        for n in 1..=30usize {
+            self.set_param(n, Some(vals.get(n - 1).copied().unwrap_or(0.0)));
+        }
+        Arc::make_mut(&mut self.st.named).remove("_value_returned");
+        self.frames.push(Frame {
+            kind: FrameKind::NgcSub,
+            ret_file: fi,
+            ret_block: bi + 1,
+            saved: Some(saved),
+            named_locals: HashMap::new(),
+            call_span: span,
+        });
+        let start = if tb == u32::MAX { 0 } else { tb + 1 };
+        Ok(Flow::Goto(tf, start))
+    }
+
+    /// Returns from the innermost frame; sets `self.cur`. `seq` is M99 P.
+    fn ret_from_sub(&mut self, seq: Option<f64>) -> bool {
+        let Some(mut f) = self.frames.pop() else {
+            return false;
+        };
+        if let FrameKind::Sub { start, repeat } = f.kind {
+            if repeat > 1 {
+                f.kind = FrameKind::Sub {
+                    start,
+                    repeat: repeat - 1,
+                };
+                let file = self.cur.0;
+                self.frames.push(f);
+                self.cur = (file, start);
+                return true;
+            }
+        }
+        if let Some(saved) = f.saved {
+            let n0 = 1;
+            for (k, v) in saved.into_iter().enumerate() {
+                self.set_param(n0 + k, v);
+            }
+        }
+        self.cur = (f.ret_file, f.ret_block);
+        if let Some(n) = seq {
+            if let Some(b) = self.files[f.ret_file]
+                .seq
+                .get(&(n as u64))
+                .and_then(|v| v.first())
+            {
+                self.cur = (f.ret_file, *b);
+            }
+        }
+        let _ = f.call_span;
+        true
+    }
+
+    /// M98 / G65: `name` is the program name or number as written.
+    fn call_program(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        name: &str,
+        repeat: u32,
+        args: Option<Vec<Option<f64>>>,
+        span: Span,
+    ) -> Result<Flow, Diagnostic> {
+        self.depth_check(span)?;
+        let number = name.parse::<u32>().ok();
+        let (tf, tb) = if let Some(b) = number.and_then(|n| self.files[fi].heads.get(&n).copied()) {
+            (fi, b + 1)
+        } else if let Some(b) = number.and_then(|n| self.files[0].heads.get(&n).copied()) {
+            (0, b + 1)
+        } else {
+            let f = self
+                .load_file(name, span)
+                .or_else(|| number.and_then(|n| self.load_file(&format!("{n:04}"), span)));
+            match f {
+                Some(f) => {
+                    let p = self.files[f].prog.clone();
+                    // Start after the program head, if the file has one.
+                    let head = p.blocks.iter().position(|b| {
+                        p.items_of(b)
+                            .iter()
+                            .any(|it| matches!(it.kind, ItemKind::ProgramHead { .. }))
+                    });
+                    (f, head.map(|h| h as u32 + 1).unwrap_or(0))
+                }
+                None => {
+                    let what = if self.dialect == Dialect::Servoworks {
+                        format!("subprogram O{name} (file O{name}.dat) not found")
+                    } else {
+                        format!("program O{name} not found (PS0076)")
+                    };
+                    return Err(self.err(codes::SUB_NOT_FOUND, span, what));
+                }
+            }
+        };
+        let saved = if let Some(a) = &args {
+            let saved: Vec<Option<f64>> = (1..=33)
+                .map(|n| self.st.params.get(n).copied().flatten())
+                .collect();
+            for n in 1..=33usize {
+                self.set_param(n, a.get(n).copied().flatten());
+            }
+            Some(saved)
+        } else {
+            None
+        };
+        self.frames.push(Frame {
+            kind: FrameKind::Sub {
+                start: tb,
+                repeat: repeat.max(1),
+            },
+            ret_file: fi,
+            ret_block: bi + 1,
+            saved,
+            named_locals: HashMap::new(),
+            call_span: span,
+        });
+        Ok(Flow::Goto(tf, tb))
+    }
+
+    // ----------------------------------------------------------------- words
+
+    fn lin(&self, v: f64) -> f64 {
+        v * self.unit()
+    }
+
+    fn exec_words(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        p: &Program,
+        w: &Words,
+        comments: &[(CommentKind, Span)],
+        bspan: Span,
+    ) -> Result<Flow, Diagnostic> {
+        let ngc = self.ngc();
+        self.block_exact = !ngc && w.has_g(90);
+        // Comments and messages.
+        for (k, s) in comments {
+            self.exec_comment(p, *k, *s)?;
+        }
+        // Units first so that every word of the block is read in them.
+        if w.has_g(200) || w.has_g(210) {
+            self.st.modal.inch = w.has_g(200);
+        }
+        // G96/G97.
+        if w.has_g(960) {
+            self.st.modal.css = true;
+            let d = w.get(b'D').map(|v| self.lin(v)).unwrap_or(0.0);
+            self.canon(format!("SET_SPINDLE_MODE(0 {})", f4(d / self.unit())));
+        }
+        if w.has_g(970) {
+            self.st.modal.css = false;
+            self.canon("SET_SPINDLE_MODE(0 0.0000)");
+        }
+        // Feed mode.
+        for (code, text, mode) in [
+            (930u32, "inverse time", 0),
+            (940, "units per minute", 0),
+            (950, "units per revolution", 1),
+        ] {
+            if w.has_g(code) {
+                self.canon_comment(&format!("interpreter: feed mode set to {text}"));
+                self.canon(format!("SET_FEED_MODE(0, {mode})"));
+                self.st.modal.feed_mode = code;
+                if code != 930 {
+                    self.st.feed = 0.0;
+                    self.canon("SET_FEED_RATE(0.0000)");
+                }
+            }
+        }
+        if let Some(f) = w.get(b'F') {
+            let u = if ngc {
+                self.unit()
+            } else if self.st.modal.inch {
+                25.4
+            } else {
+                1.0
+            };
+            self.st.feed = if self.st.modal.feed_mode == 930 {
+                f
+            } else {
+                f * u
+            };
+            if self.st.modal.feed_mode != 930 {
+                self.canon(format!("SET_FEED_RATE({})", f4(f)));
+            }
+        }
+        if let Some(s) = w.get(b'S') {
+            self.st.spindle = s;
+            self.canon(format!("SET_SPINDLE_SPEED(0, {})", f4(s)));
+            if self.st.spindle_dir != 0 {
+                let (rpm, dir) = (s, self.st.spindle_dir);
+                self.event(EventKind::Spindle { rpm, dir });
+            }
+        }
+        if let Some(t) = w.get(b'T') {
+            let t = t.round().max(0.0) as u32;
+            self.st.next_tool = t;
+            self.check_tool(t, w.sp(b'T'));
+            self.canon(format!("SELECT_TOOL({t})"));
+            if self.dialect == Dialect::Servoworks {
+                // ServoWorks changes the tool with the T word itself.
+                self.st.tool = t;
+                self.event(EventKind::ToolChange { tool: t });
+            }
+        }
+        // Subprogram calls (FANUC/ServoWorks) are handled at the end of the block.
+        let sw_m_after = self.dialect == Dialect::Servoworks;
+        if !sw_m_after {
+            self.exec_m_before(w);
+        }
+        // Modal G codes.
+        if w.has_g(40) {
+            self.exec_dwell(w)?;
+        }
+        for (code, name, plane) in [
+            (170u32, "CANON_PLANE_XY", 170u32),
+            (180, "CANON_PLANE_XZ", 180),
+            (190, "CANON_PLANE_YZ", 190),
+        ] {
+            if w.has_g(code) {
+                self.st.modal.plane = plane;
+                self.canon(format!("SELECT_PLANE({name})"));
+            }
+        }
+        if w.has_g(200) || w.has_g(210) {
+            let inch = w.has_g(200);
+            self.st.modal.inch = inch;
+            self.canon(if inch {
+                "USE_LENGTH_UNITS(CANON_UNITS_INCHES)"
+            } else {
+                "USE_LENGTH_UNITS(CANON_UNITS_MM)"
+            });
+        }
+        self.exec_comp(w)?;
+        self.exec_tlo(w)?;
+        self.exec_coord_select(w)?;
+        for (code, mode) in [(610u32, "CANON_EXACT_PATH"), (611, "CANON_EXACT_STOP")] {
+            if w.has_g(code) {
+                self.st.modal.path = code;
+                self.canon(format!("SET_MOTION_CONTROL_MODE({mode})"));
+            }
+        }
+        if w.has_g(640) {
+            self.st.modal.path = 640;
+            let pt = if ngc {
+                w.get(b'P').map(|v| self.lin(v))
+            } else {
+                None
+            };
+            self.st.modal.path_tol = pt;
+            let tol = pt.unwrap_or(0.0) / self.unit();
+            let q = w.get(b'Q').unwrap_or(tol);
+            self.canon(format!(
+                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
+            ));
+            self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(q)));
+        }
+        for (code, abs) in [(901u32, true), (911, false)] {
+            if w.has_g(code) {
+                if self.st.modal.ijk_abs != abs {
+                    self.canon_comment(if abs {
+                        "interpreter: IJK distance mode changed to absolute"
+                    } else {
+                        "interpreter: IJK distance mode changed to incremental"
+                    });
+                }
+                self.st.modal.ijk_abs = abs;
+            }
+        }
+        if w.has_g(900) {
+            if self.st.modal.incremental {
+                self.canon_comment("interpreter: distance mode changed to absolute");
+            }
+            self.st.modal.incremental = false;
+        }
+        if w.has_g(910) {
+            if !self.st.modal.incremental {
+                self.canon_comment("interpreter: distance mode changed to incremental");
+            }
+            self.st.modal.incremental = true;
+        }
+        if w.has_g(980) {
+            self.st.modal.retract_old_z = true;
+            self.canon_comment("interpreter: retract mode set to old_z");
+        }
+        if w.has_g(990) {
+            self.st.modal.retract_old_z = false;
+            self.canon_comment("interpreter: retract mode set to r_plane");
+        }
+        self.exec_fanuc_modes(w)?;
+        // Subprogram call blocks (FANUC / ServoWorks): the motion in the block is ignored.
+        if w.has_m(980) || (!ngc && w.has_g(650)) {
+            return self.exec_call_words(fi, bi, w);
+        }
+        // One-shot codes that consume axis words.
+        let consumed = self.exec_modal0(w)?;
+        // Motion.
+        if !consumed {
+            self.exec_motion(w, bspan)?;
+        }
+        if sw_m_after {
+            self.exec_m_before(w);
+        }
+        // Stops and ends.
+        self.exec_stops(w, fi)
+    }
+
+    fn exec_comment(&mut self, p: &Program, k: CommentKind, s: Span) -> Result<(), Diagnostic> {
+        let text = p.str_of(s).into_owned();
+        if text.starts_with(';') {
+            return Ok(());
+        }
+        let inner = text
+            .trim_start_matches('(')
+            .trim_end_matches(')')
+            .to_string();
+        let after_comma = |t: &str| {
+            t.split_once(',')
+                .map(|(_, r)| r.to_string())
+                .unwrap_or_default()
+        };
+        match k {
+            CommentKind::Plain | CommentKind::Partscope if self.ngc() => {
+                self.canon_comment(inner.trim_start())
+            }
+            CommentKind::Msg => {
+                let m = after_comma(&inner);
+                self.canon(format!("MESSAGE(\"{m}\")"));
+                self.event(EventKind::Message(m));
+            }
+            CommentKind::Debug | CommentKind::Print => {
+                let m = self.substitute(&after_comma(&inner));
+                if k == CommentKind::Print {
+                    if let Some(c) = self.canon.as_mut() {
+                        c.raw(m);
+                    }
+                } else {
+                    self.canon(format!("MESSAGE(\"{m}\")"));
+                }
+            }
+            CommentKind::Abort => {
+                let m = self.substitute(&after_comma(&inner));
+                return Err(self.err(codes::MACRO_ALARM, s, format!("abort: {m}")));
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Replaces `#n` and `#<name>` in a message with `%f`-formatted values.
+    fn substitute(&self, text: &str) -> String {
+        let b = text.as_bytes();
+        let mut out = String::new();
+        let mut i = 0;
+        while i < b.len() {
+            if b[i] == b'#' {
+                if b.get(i + 1) == Some(&b'<') {
+                    if let Some(end) = text[i..].find('>') {
+                        let name = expr::named_key(&text[i + 2..i + end]);
+                        let locals = self
+                            .frames
+                            .last()
+                            .map(|f| &f.named_locals)
+                            .unwrap_or(&self.main_locals);
+                        let v = locals
+                            .get(&name)
+                            .copied()
+                            .or_else(|| self.st.named.get(&name).copied())
+                            .or_else(|| predefined(&self.st, &name));
+                        match v {
+                            Some(v) => out.push_str(&format!("{v:.6}")),
+                            None => out.push_str("######"),
+                        }
+                        i += end + 1;
+                        continue;
+                    }
+                } else {
+                    let mut j = i + 1;
+                    while j < b.len() && b[j].is_ascii_digit() {
+                        j += 1;
+                    }
+                    if j > i + 1 {
+                        let n: usize = text[i + 1..j].parse().unwrap_or(0);
+                        out.push_str(&format!("{:.6}", self.param(n)));
+                        i = j;
+                        continue;
+                    }
+                }
+            }
+            let ch = text[i..].chars().next().unwrap_or(' ');
+            out.push(ch);
+            i += ch.len_utf8();
+        }
+        out
+    }
+
+    fn check_tool(&mut self, t: u32, span: Span) {
+        let have_table = self.input.tool_table.is_some() || !self.cfg.tools.is_empty();
+        if have_table && t != 0 && !self.cfg.tools.contains_key(&t) {
+            self.diag(
+                codes::UNKNOWN_TOOL,
+                Severity::Warning,
+                span,
+                format!("tool T{t} is not in the tool table"),
+            );
+        }
+    }
+
+    fn exec_m_before(&mut self, w: &Words) {
+        let ngc = self.ngc();
+        if w.has_m(60) && !(self.dialect == Dialect::Servoworks) {
+            let t = self.st.next_tool;
+            self.canon("START_CHANGE()");
+            self.canon("STOP_SPINDLE_TURNING(0)");
+            // rs274 prints the tool's slot in the tool table, not its number.
+            let slot = if self.cfg.tool_order.is_empty() {
+                t as usize
+            } else {
+                self.cfg
+                    .tool_order
+                    .iter()
+                    .position(|x| *x == t)
+                    .map(|i| i + 1)
+                    .unwrap_or(0)
+            };
+            self.canon(format!("CHANGE_TOOL({slot})"));
+            self.st.tool = t;
+            self.event(EventKind::ToolChange { tool: t });
+        }
+        if w.has_m(610) {
+            let t = w.get(b'Q').unwrap_or(0.0) as u32;
+            self.st.tool = t;
+            self.canon(format!("CHANGE_TOOL_NUMBER({t})"));
+        }
+        for (m, dir) in [(30u32, 1i8), (40, -1), (50, 0)] {
+            if w.has_m(m) {
+                self.st.spindle_dir = dir;
+                self.canon(match dir {
+                    1 => "START_SPINDLE_CLOCKWISE(0)",
+                    -1 => "START_SPINDLE_COUNTERCLOCKWISE(0)",
+                    _ => "STOP_SPINDLE_TURNING(0)",
+                });
+                let rpm = if dir == 0 { 0.0 } else { self.st.spindle };
+                self.event(EventKind::Spindle { rpm, dir });
+            }
+        }
+        if w.has_m(190) && ngc {
+            let r = w.get(b'R').unwrap_or(0.0);
+            let q = w.get(b'P').unwrap_or(0.0) as i32;
+            self.canon(format!("ORIENT_SPINDLE(0, {}, {q})", f4(r)));
+        }
+        let mut coolant = false;
+        if w.has_m(70) {
+            self.st.mist = true;
+            self.canon("MIST_ON()");
+            coolant = true;
+        }
+        if w.has_m(80) {
+            self.st.flood = true;
+            self.canon("FLOOD_ON()");
+            coolant = true;
+        }
+        if w.has_m(90) {
+            self.st.mist = false;
+            self.st.flood = false;
+            self.canon("MIST_OFF()");
+            self.canon("FLOOD_OFF()");
+            coolant = true;
+        }
+        if coolant {
+            let (mist, flood) = (self.st.mist, self.st.flood);
+            self.event(EventKind::Coolant { mist, flood });
+        }
+        if ngc {
+            for (m, text) in [
+                (620u32, "SET_MOTION_OUTPUT_BIT"),
+                (630, "CLEAR_MOTION_OUTPUT_BIT"),
+                (640, "SET_AUX_OUTPUT_BIT"),
+                (650, "CLEAR_AUX_OUTPUT_BIT"),
+            ] {
+                if w.has_m(m) {
+                    let p = w.get(b'P').unwrap_or(0.0) as i32;
+                    self.canon(format!("{text}({p})"));
+                }
+            }
+        }
+    }
+
+    fn exec_dwell(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let secs = match self.dialect {
+            Dialect::Rs274ngc => match w.get(b'P') {
+                Some(p) => p,
+                None => {
+                    return Err(self.err(
+                        codes::INTERP,
+                        w.g_span(40),
+                        "dwell time P word missing with G4",
+                    ))
+                }
+            },
+            _ => {
+                if let Some(x) = w.get(b'X') {
+                    x
+                } else if let Some(p) = w.get(b'P') {
+                    p / 1000.0
+                } else {
+                    w.get(b'U').unwrap_or(0.0)
+                }
+            }
+        };
+        self.canon(format!("DWELL({})", f4(secs)));
+        self.event(EventKind::Dwell(secs.max(0.0)));
+        Ok(())
+    }
+
+    fn tool_diameter(&self, d: Option<f64>) -> f64 {
+        let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
+        self.cfg.tools.get(&idx).map(|t| t.diameter).unwrap_or(0.0)
+    }
+
+    fn exec_comp(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        if w.has_g(400) {
+            self.st.modal.comp = 400;
+            self.st.comp_radius = 0.0;
+            self.comp_flush();
+            self.canon_comment("interpreter: cutter radius compensation off");
+        }
+        for code in [410u32, 420] {
+            if w.has_g(code) {
+                self.st.modal.comp = code;
+                let dia = match w.get(b'D') {
+                    Some(d)
+                        if self.dialect == Dialect::Servoworks
+                            && w.point[(b'D' - b'A') as usize] =>
+                    {
+                        self.lin(d)
+                    }
+                    d => self.tool_diameter(d),
+                };
+                // A negative diameter puts the tool on the other side.
+                if dia < 0.0 {
+                    self.st.modal.comp = if code == 410 { 420 } else { 410 };
+                }
+                self.st.comp_radius = dia.abs() / 2.0;
+                let side = if self.st.modal.comp == 410 {
+                    "left"
+                } else {
+                    "right"
+                };
+                self.st.comp_first = true;
+                self.comp_flush();
+                self.canon_comment(&format!(
+                    "interpreter: cutter radius compensation on {side}"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn exec_tlo(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let set = |s: &mut Self, z: f64, x: f64| {
+            // The programmed point stays; the machine position follows at the next move.
+            s.st.tlo = [x, 0.0, z, 0.0, 0.0, 0.0];
+            s.st.pos = s.to_program(s.st.mpos);
+            let u = s.unit();
+            s.canon(format!(
+                "USE_TOOL_LENGTH_OFFSET({} 0.0000 {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
+                f4(x / u),
+                f4(z / u)
+            ));
+        };
+        if w.has_g(490) {
+            self.st.modal.tlo_mode = 490;
+            set(self, 0.0, 0.0);
+        }
+        for code in [430u32, 440] {
+            if w.has_g(code) {
+                self.st.modal.tlo_mode = code;
+                let h = w
+                    .get(b'H')
+                    .map(|v| v.round() as u32)
+                    .unwrap_or(self.st.tool);
+                if w.has(b'H') {
+                    self.check_tool(h, w.sp(b'H'));
+                }
+                let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
+                let sign = if code == 440 { -1.0 } else { 1.0 };
+                set(self, sign * t.length, sign * t.x_offset);
+            }
+        }
+        if w.has_g(432) {
+            self.st.modal.tlo_mode = 432;
+        }
+        if w.has_g(431) && self.ngc() {
+            // Dynamic tool length offset from the block's axis words.
+            self.st.modal.tlo_mode = 431;
+            let x = w.get(b'X').map(|v| self.lin(v)).unwrap_or(0.0);
+            let z = w.get(b'Z').map(|v| self.lin(v)).unwrap_or(0.0);
+            set(self, z, x);
+        }
+        Ok(())
+    }
+
+    fn exec_coord_select(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let mut origin = None;
+        for (code, o) in [
+            (540u32, 1usize),
+            (550, 2),
+            (560, 3),
+            (570, 4),
+            (580, 5),
+            (590, 6),
+            (591, 7),
+            (592, 8),
+            (593, 9),
+        ] {
+            if w.has_g(code) {
+                origin = Some(o);
+            }
+        }
+        if w.has_g(541) {
+            let p = w.get(b'P').unwrap_or(1.0).round().max(1.0) as usize;
+            origin = Some(100 + p);
+        }
+        let Some(o) = origin else { return Ok(()) };
+        if self.st.modal.rotation {
+            let span =
+                w.g.iter()
+                    .find(|(g, _)| (540..=593).contains(g))
+                    .map(|x| x.1)
+                    .unwrap_or_default();
+            self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "work coordinate systems cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
+        }
+        if o == self.st.modal.origin {
+            self.canon_comment("interpreter: continuing to use same coordinate system");
+            return Ok(());
+        }
+        self.st.modal.origin = o;
+        self.st.pos = self.untransform_prog(self.to_program(self.st.mpos));
+        let u = self.unit();
+        let g = self.g5x_prog();
+        let g92 = self.st.g92;
+        if o < 100 {
+            self.canon(format!(
+                "SET_G5X_OFFSET({o}, {})",
+                Canon::six(&scale6(g, u))
+            ));
+            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+            let r = self.rotation_canon(o);
+            self.canon(r);
+        }
+        Ok(())
+    }
+
+    fn untransform_prog(&self, p: [f64; 6]) -> [f64; 6] {
+        p
+    }
+
+    fn exec_fanuc_modes(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        if self.ngc() {
+            return Ok(());
+        }
+        if w.has_m(290) {
+            let span =
+                w.m.iter()
+                    .find(|m| m.0 == 290)
+                    .map(|m| m.1)
+                    .unwrap_or_default();
+            if matches!(self.st.modal.motion, 740 | 840) {
+                self.diag(codes::RIGID_TAP, Severity::Error, span, "M29 given while a tapping cycle is already modal: give M29 before G84/G74 (PS0204)");
+            }
+            self.st.modal.rigid_tap = true;
+        }
+        if w.has_g(800) || w.g.iter().any(|(g, _)| matches!(g, 0 | 10 | 20 | 30)) {
+            self.st.modal.rigid_tap = false;
+        }
+        if w.has_g(150) {
+            self.st.modal.polar = false;
+        }
+        if w.has_g(160) {
+            self.st.modal.polar = true;
+        }
+        if w.has_g(500) {
+            self.st.modal.scaling = false;
+        }
+        if w.has_g(510) {
+            let c = [
+                w.get(b'X').map(|v| self.lin(v)).unwrap_or(self.st.pos[0]),
+                w.get(b'Y').map(|v| self.lin(v)).unwrap_or(self.st.pos[1]),
+                w.get(b'Z').map(|v| self.lin(v)).unwrap_or(self.st.pos[2]),
+            ];
+            let p = w.get(b'P');
+            let f = match p {
+                Some(p) => {
+                    let p = if w.point[(b'P' - b'A') as usize] {
+                        p
+                    } else {
+                        p * 0.001
+                    };
+                    [p; 3]
+                }
+                None => [
+                    w.get(b'I').unwrap_or(1.0),
+                    w.get(b'J').unwrap_or(1.0),
+                    w.get(b'K').unwrap_or(1.0),
+                ],
+            };
+            self.st.scale = (c, f);
+            self.st.modal.scaling = true;
+        }
+        if w.has_g(501) {
+            // G50.1 cancels the mirror of the axes it names (all when it names none).
+            let named: Vec<usize> = [b'X', b'Y', b'Z']
+                .iter()
+                .enumerate()
+                .filter(|(_, c)| w.has(**c))
+                .map(|(i, _)| i)
+                .collect();
+            if named.is_empty() {
+                self.st.mirror = ([false; 3], [0.0; 3]);
+            }
+            for i in named {
+                self.st.mirror.0[i] = false;
+            }
+            self.st.modal.mirror = self.st.mirror.0.iter().any(|b| *b);
+        }
+        if w.has_g(511) {
+            for (i, c) in [b'X', b'Y', b'Z'].iter().enumerate() {
+                if let Some(v) = w.get(*c) {
+                    self.st.mirror.0[i] = true;
+                    self.st.mirror.1[i] = self.lin(v);
+                }
+            }
+            self.st.modal.mirror = self.st.mirror.0.iter().any(|b| *b);
+        }
+        if w.has_g(690) {
+            self.st.modal.rotation = false;
+        }
+        if w.has_g(680) {
+            let (a, b) = self.plane_axes();
+            let letters = [b'X', b'Y', b'Z'];
+            let ca = w
+                .get(letters[a])
+                .map(|v| self.lin(v))
+                .unwrap_or(self.st.pos[a]);
+            let cb = w
+                .get(letters[b])
+                .map(|v| self.lin(v))
+                .unwrap_or(self.st.pos[b]);
+            let r = w.get(b'R').unwrap_or(0.0);
+            self.st.rotation = ([ca, cb], r);
+            self.st.modal.rotation = true;
+        }
+        if w.has_g(50) && self.dialect == Dialect::Servoworks {
+            self.st.modal.dlacc = true;
+        }
+        if w.has_g(80) && self.dialect == Dialect::Servoworks {
+            self.st.modal.dlacc = false;
+        }
+        if self.st.modal.dlacc {
+            self.check_dlacc(w);
+        }
+        Ok(())
+    }
+
+    fn check_dlacc(&mut self, w: &Words) {
+        // Codes the ServoWorks manual allows while 3D-DLACC is on (§6.3.7).
+        const ALLOWED: &[u32] = &[
+            0, 10, 20, 30, 40, 50, 80, 90, 170, 180, 190, 200, 210, 400, 410, 420, 430, 440, 490,
+            540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 900, 910, 940, 950,
+        ];
+        for (g, s) in &w.g {
+            if !ALLOWED.contains(g) {
+                let name = analyzer::dialect::CodeNum(*g).display();
+                self.diag(codes::DLACC_INCOMPATIBLE, Severity::Error, *s, format!("G{name} cannot be used while 3D dynamic look-ahead (G05) is on: turn it off with G08 first"));
+            }
+        }
+        if self.st.modal.tlo_mode == 432 {
+            let s = w.g_span(50);
+            if w.has_g(50) {
+                self.diag(
+                    codes::DLACC_TCP,
+                    Severity::Error,
+                    s,
+                    "3D-DLACC (G05) cannot be combined with tool centre point control (G43.2)",
+                );
+            }
+        }
+    }
+
+    fn exec_call_words(&mut self, fi: usize, bi: u32, w: &Words) -> Result<Flow, Diagnostic> {
+        let span =
+            w.m.iter()
+                .find(|(m, _)| *m == 980)
+                .map(|x| x.1)
+                .unwrap_or(w.g_span(650));
+        if w.has_g(650) {
+            let Some(p) = w.get(b'P') else {
+                return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)"));
+            };
+            let l = w.get(b'L').unwrap_or(1.0).max(1.0) as u32;
+            // Argument specification I, with I/J/K sets of specification II.
+            let mut args = vec![None; 34];
+            let map1 = |c: u8| -> Option<usize> {
+                Some(match c {
+                    b'A' => 1,
+                    b'B' => 2,
+                    b'C' => 3,
+                    b'D' => 7,
+                    b'E' => 8,
+                    b'F' => 9,
+                    b'H' => 11,
+                    b'M' => 13,
+                    b'Q' => 17,
+                    b'R' => 18,
+                    b'S' => 19,
+                    b'T' => 20,
+                    b'U' => 21,
+                    b'V' => 22,
+                    b'W' => 23,
+                    b'X' => 24,
+                    b'Y' => 25,
+                    b'Z' => 26,
+                    _ => return None,
+                })
+            };
+            let mut ijk_set = 0usize;
+            let mut last_ijk = 0u8;
+            for (c, v) in &w.ijk_order {
+                if matches!(c, b'I' | b'J' | b'K') {
+                    let ord = match c {
+                        b'I' => 0,
+                        b'J' => 1,
+                        _ => 2,
+                    };
+                    if ijk_set == 0 || ord <= last_ijk {
+                        ijk_set += 1;
+                    }
+                    last_ijk = ord;
+                    let n = 3 * ijk_set + 1 + ord as usize;
+                    if n <= 33 {
+                        args[n] = Some(*v);
+                    }
+                } else if let Some(n) = map1(*c) {
+                    args[n] = Some(*v);
+                }
+            }
+            let name = format!("{}", p.round() as i64);
+            return self.call_program(fi, bi, &name, l, Some(args), span);
+        }
+        // M98.
+        let (name, repeat) = match (&w.pname, w.get(b'P')) {
+            (Some(n), _) => (n.clone(), w.get(b'R').or(w.get(b'L')).unwrap_or(1.0)),
+            (None, Some(p)) => {
+                let p = p.round() as i64;
+                if self.dialect == Dialect::Fanuc && !w.has(b'L') && p > 9999 {
+                    (format!("{}", p % 10000), (p / 10000) as f64)
+                } else {
+                    let r = if self.dialect == Dialect::Servoworks {
+                        w.get(b'R')
+                    } else {
+                        w.get(b'L')
+                    };
+                    (format!("{p}"), r.unwrap_or(1.0))
+                }
+            }
+            (None, None) => {
+                return Err(self.err(
+                    codes::SUB_NOT_FOUND,
+                    span,
+                    "M98 without P (subprogram name)",
+                ))
+            }
+        };
+        if w.any_axis() {
+            self.diag(
+                codes::INTERP,
+                Severity::Warning,
+                span,
+                "M98 shares its block with axis words: the motion in this block is ignored",
+            );
+        }
+        self.call_program(fi, bi, &name, repeat.max(1.0) as u32, None, span)
+    }
+
+    /// Non-modal codes that consume axis words. Returns whether they did.
+    fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
+        // Scaling, mirror and rotation codes take their centre from the axis words.
+        if !self.ngc() && [510u32, 511, 501, 680].iter().any(|g| w.has_g(*g)) {
+            return Ok(true);
+        }
+        if self.ngc() && w.has_g(431) {
+            return Ok(true);
+        }
+        let u = self.unit();
+        let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
+        let axis = |s: &Self, i: usize| -> Option<f64> {
+            w.get(letters[i]).map(|v| if i < 3 { s.lin(v) } else { v })
+        };
+        if w.has_g(100) {
+            let l = w.get(b'L').unwrap_or(0.0).round() as i64;
+            let p = w.get(b'P').unwrap_or(0.0).round() as i64;
+            match l {
+                2 | 20 => {
+                    let origin = if p == 0 {
+                        self.st.modal.origin
+                    } else {
+                        p.clamp(1, 9) as usize
+                    };
+                    let base = 5201 + 20 * origin;
+                    if let Some(r) = w.get(b'R').filter(|_| self.ngc()) {
+                        if l == 20 {
+                            return Err(self.err(
+                                codes::INTERP,
+                                w.sp(b'R'),
+                                "R not allowed in G10 L20",
+                            ));
+                        }
+                        self.set_param(5210 + 20 * origin, Some(r));
+                    }
+                    let cur_machine = self.st.mpos;
+                    for i in 0..6 {
+                        let Some(v) = axis(self, i) else { continue };
+                        let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                        let new = if l == 2 {
+                            v
+                        } else {
+                            cur_machine[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i] - v
+                        };
+                        self.set_param(base + i, Some(new / scale));
+                    }
+                    if origin == self.st.modal.origin {
+                        self.st.pos = self.to_program(self.st.mpos);
+                        let g = self.g5x_of(origin);
+                        self.canon(format!(
+                            "SET_G5X_OFFSET({origin}, {})",
+                            Canon::six(&scale6(g, u))
+                        ));
+                        let r = self.rotation_canon(origin);
+                        self.canon(r);
+                    } else {
+                        self.canon_comment("interpreter: setting coordinate system origin");
+                    }
+                }
+                1 | 10 | 11 => {
+                    let t = p.max(0) as u32;
+                    let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
+                    if let Some(z) = axis(self, 2) {
+                        tool.length = z;
+                    }
+                    if let Some(r) = w.get(b'R') {
+                        tool.diameter = 2.0 * self.lin(r);
+                    }
+                    self.cfg.tools.insert(t, tool);
+                }
+                _ => {}
+            }
+            return Ok(true);
+        }
+        for (code, base) in [(281u32, 5161usize), (301, 5181)] {
+            if w.has_g(code) && self.ngc() {
+                // Store the current absolute position as the G28/G30 home.
+                for i in 0..6 {
+                    let scale = if i < 3 { self.cfg.param_unit } else { 1.0 };
+                    self.set_param(base + i, Some(self.st.mpos[i] / scale));
+                }
+                return Ok(true);
+            }
+        }
+        if w.has_g(280) || w.has_g(300) {
+            let g30 = w.has_g(300);
+            let span = w.g_span(if g30 { 300 } else { 280 });
+            if self.st.modal.rotation {
+                self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "reference-position return (G28/G30) is not allowed while coordinate rotation (G68) is on");
+            }
+            if !self.ngc() && self.st.modal.modal_cycle() {
+                self.diag(codes::CYCLE_STATE, Severity::Error, span, "reference-position return while a canned cycle is modal: cancel it with G80 first (PS0044)");
+                self.st.modal.motion = 800;
+                self.st.cycle = CycleMem::default();
+            }
+            let mut mid = self.st.pos;
+            for (i, m) in mid.iter_mut().enumerate() {
+                if let Some(v) = axis(self, i) {
+                    *m = if self.st.modal.incremental { *m + v } else { v };
+                }
+            }
+            self.rapid_to(mid);
+            let home_base = if g30 { 5181 } else { 5161 };
+            let mut home_m = self.st.mpos;
+            let all = !w.any_axis() || self.ngc() && !w.any_axis();
+            for (i, h) in home_m.iter_mut().enumerate() {
+                if all || w.has(letters[i]) {
+                    let raw = if self.ngc() {
+                        self.param(home_base + i)
+                    } else {
+                        0.0
+                    };
+                    *h = if i < 3 {
+                        raw * self.cfg.param_unit
+                    } else {
+                        raw
+                    };
+                }
+            }
+            let target = self.to_program(home_m);
+            self.rapid_to(target);
+            return Ok(true);
+        }
+        if w.has_g(520) && !self.ngc() {
+            if self.st.modal.rotation {
+                self.diag(
+                    codes::COORD_DURING_ROTATION,
+                    Severity::Error,
+                    w.g_span(520),
+                    "G52 is not allowed while coordinate rotation (G68) is on",
+                );
+            }
+            let mut g52 = self.st.g52;
+            for (i, g) in g52.iter_mut().enumerate() {
+                if let Some(v) = axis(self, i) {
+                    *g = v;
+                }
+            }
+            self.st.g52 = g52;
+            self.st.pos = self.to_program(self.st.mpos);
+            return Ok(true);
+        }
+        if w.has_g(920) || (w.has_g(520) && self.ngc()) {
+            if self.dialect != Dialect::Rs274ngc && !w.any_axis() {
+                return Ok(true);
+            }
+            // Make the current point read as the given values.
+            let cur = self.st.pos;
+            let mut g92 = self.st.g92;
+            let g52_ngc = w.has_g(520);
+            for (i, g) in g92.iter_mut().enumerate() {
+                if let Some(v) = axis(self, i) {
+                    // LinuxCNC's G52 sets the offset itself; G92 makes the current point read `v`.
+                    *g = if g52_ngc { v } else { cur[i] + *g - v };
+                }
+            }
+            self.st.g92 = g92;
+            for i in 0..6 {
+                self.set_param(
+                    5211 + i,
+                    Some(g92[i] / if i < 3 { self.cfg.param_unit } else { 1.0 }),
+                );
+            }
+            self.set_param(5210, Some(1.0));
+            self.st.pos = self.to_program(self.st.mpos);
+            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+            return Ok(true);
+        }
+        for code in [921u32, 922] {
+            if w.has_g(code) {
+                self.st.g92 = [0.0; 6];
+                if code == 921 {
+                    for i in 0..7 {
+                        self.set_param(5210 + i, Some(0.0));
+                    }
+                } else {
+                    self.set_param(5210, Some(0.0));
+                }
+                self.st.pos = self.to_program(self.st.mpos);
+                self.canon(format!("SET_G92_OFFSET({})", Canon::six(&[0.0; 6])));
+            }
+        }
+        if w.has_g(923) {
+            let mut g92 = [0.0; 6];
+            for (i, g) in g92.iter_mut().enumerate() {
+                *g = self.param(5211 + i) * if i < 3 { self.cfg.param_unit } else { 1.0 };
+            }
+            self.st.g92 = g92;
+            self.set_param(5210, Some(1.0));
+            self.st.pos = self.to_program(self.st.mpos);
+            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+        }
+        Ok(false)
+    }
+
+    /// The end point of a straight move from the block's axis words.
+    fn target(&self, w: &Words) -> [f64; 6] {
+        let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
+        let mut t = self.st.pos;
+        let inc = self.st.modal.incremental;
+        if self.st.modal.polar && !self.ngc() {
+            let (a, b) = self.plane_axes();
+            let pl = [b'X', b'Y', b'Z'];
+            if w.has(pl[a]) || w.has(pl[b]) {
+                let (r0, t0) = (
+                    self.st.pos[a].hypot(self.st.pos[b]),
+                    self.st.pos[b].atan2(self.st.pos[a]).to_degrees(),
+                );
+                let r = w
+                    .get(pl[a])
+                    .map(|v| self.lin(v))
+                    .map(|v| if inc { r0 + v } else { v })
+                    .unwrap_or(r0);
+                let th = w
+                    .get(pl[b])
+                    .map(|v| if inc { t0 + v } else { v })
+                    .unwrap_or(t0);
+                t[a] = r * th.to_radians().cos();
+                t[b] = r * th.to_radians().sin();
+            }
+            let n = self.normal_axis();
+            if let Some(v) = w.get(pl[n]) {
+                let v = self.lin(v);
+                t[n] = if inc { t[n] + v } else { v };
+            }
+            return t;
+        }
+        for i in 0..6 {
+            if let Some(v) = w.get(letters[i]) {
+                let v = if i < 3 { self.lin(v) } else { v };
+                t[i] = if inc { t[i] + v } else { v };
+            }
+        }
+        // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
+        t
+    }
+
+    fn motion_base(&self, kind: MotionKind, start: [f64; 6], end: [f64; 6], feed: f64) -> Motion {
+        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
+        Motion {
+            kind,
+            start,
+            end,
+            feed,
+            inverse_time: if self.st.modal.feed_mode == 930 && !matches!(kind, MotionKind::Rapid) {
+                Some(self.st.feed)
+            } else {
+                None
+            },
+            exact_stop: exact,
+            exact_path: self.st.modal.path == 610
+                && !self.block_exact
+                && self.input.program.dialect == analyzer::Dialect::Rs274ngc,
+            blend_tolerance: if self.st.modal.path == 640 {
+                self.st.modal.path_tol
+            } else {
+                None
+            },
+            file: self.file_id(),
+            block: self.cur.1,
+            line: self.cur_line,
+            tool: self.st.tool,
+            spindle_rpm: self.st.spindle,
+        }
+    }
+
+    fn rapid_to(&mut self, t: [f64; 6]) {
+        let s = self.canon_pos(&t);
+        self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+        let end = self.to_machine(t);
+        let m = self.motion_base(MotionKind::Rapid, self.st.mpos, end, 0.0);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
+    }
+
+    fn feed_to(&mut self, t: [f64; 6], span: Span) -> Result<(), Diagnostic> {
+        self.check_feed(span)?;
+        if self.st.modal.feed_mode == 930 {
+            let len = dist(&self.st.pos, &t);
+            let rate = len * self.st.feed / self.unit();
+            self.canon(format!("SET_FEED_RATE({})", f4(rate)));
+        }
+        let s = self.canon_pos(&t);
+        self.canon(format!("STRAIGHT_FEED({s})"));
+        let end = self.to_machine(t);
+        let feed = self.effective_feed(dist(&self.st.mpos, &end));
+        let m = self.motion_base(MotionKind::Feed, self.st.mpos, end, feed);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
+        Ok(())
+    }
+
+    fn effective_feed(&self, len: f64) -> f64 {
+        match self.st.modal.feed_mode {
+            930 => len * self.st.feed,
+            _ => self.st.feed,
+        }
+    }
+
+    fn check_feed(&mut self, span: Span) -> Result<(), Diagnostic> {
+        if self.st.feed <= 0.0 {
+            let msg = match self.dialect {
+                Dialect::Rs274ngc => {
+                    "cannot feed with zero feed rate: program F before the first feed move"
+                }
+                Dialect::Fanuc => {
+                    "feed rate is zero (F0) on a cutting move: the control alarms (PS0011)"
+                }
+                Dialect::Servoworks => {
+                    "feed rate is zero on a cutting move: program F before the first G01/G02/G03"
+                }
+            };
+            let e = self.err(codes::ZERO_FEED, span, msg);
+            if self.ngc() {
+                return Err(e);
+            }
+            self.out.diagnostics.push(e);
+        }
+        Ok(())
+    }
+
+    fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
+        let mut motion = None;
+        for (g, _) in &w.g {
+            if matches!(
+                g,
+                0 | 10
+                    | 20
+                    | 30
+                    | 23
+                    | 33
+                    | 22
+                    | 32
+                    | 330
+                    | 382
+                    | 383
+                    | 384
+                    | 385
+                    | 800
+                    | 760
+                    | 730
+                    | 740
+                    | 810..=890
+            ) {
+                motion = Some(*g);
+            }
+        }
+        if let Some(m) = motion {
+            if m == 800 {
+                self.st.modal.motion = 800;
+                self.st.cycle = CycleMem::default();
+                self.canon_comment("interpreter: motion mode set to none");
+                return Ok(());
+            }
+            if !is_cycle(m) {
+                self.st.cycle.initial = None;
+            }
+        }
+        let mode = motion.unwrap_or(self.st.modal.motion);
+        let has_axes = w.any_axis() || (is_cycle(mode) && w.has(b'R'));
+        if motion.is_none() && !has_axes {
+            return Ok(());
+        }
+        if w.has_g(530) {
+            // Machine coordinates for this block only.
+            let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
+            let mut m = self.st.mpos;
+            for (i, v) in m.iter_mut().enumerate() {
+                if let Some(x) = w.get(letters[i]) {
+                    *v = if i < 3 { self.lin(x) } else { x };
+                }
+            }
+            let t = self.to_program(m);
+            if mode == 10 {
+                self.feed_to(t, bspan)?;
+            } else {
+                self.rapid_to(t);
+            }
+            return Ok(());
+        }
+        match mode {
+            0 => {
+                self.st.modal.motion = 0;
+                // LinuxCNC commands a zero-length move for a bare G0/G1.
+                if has_axes || (self.ngc() && motion.is_some()) {
+                    let t = self.target(w);
+                    self.comp_move(t, true, bspan)?;
+                }
+            }
+            10 => {
+                self.st.modal.motion = 10;
+                if has_axes || (self.ngc() && motion.is_some()) {
+                    let t = self.target(w);
+                    self.comp_move(t, false, bspan)?;
+                }
+            }
+            20 | 30 => {
+                self.st.modal.motion = mode;
+                if has_axes || w.has(b'I') || w.has(b'J') || w.has(b'K') {
+                    self.exec_arc(w, mode == 20, bspan)?;
+                }
+            }
+            330 => {
+                self.st.modal.motion = 330;
+                let t = self.target(w);
+                let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+                self.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", k / self.unit()));
+                let s = self.canon_pos(&t);
+                self.canon(format!("STRAIGHT_FEED({s})"));
+                self.canon("STOP_SPEED_FEED_SYNCH()");
+                let end = self.to_machine(t);
+                let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, k);
+                self.out.motions.push(m);
+                self.st.mpos = end;
+                self.st.pos = t;
+            }
+            382..=385 => {
+                let t = self.target(w);
+                self.check_feed(bspan)?;
+                self.canon("TURN_PROBE_ON()");
+                let s = self.canon_pos(&t);
+                self.canon(format!("STRAIGHT_PROBE({s})"));
+                self.canon("TURN_PROBE_OFF()");
+                let end = self.to_machine(t);
+                let m = self.motion_base(MotionKind::Probe, self.st.mpos, end, self.st.feed);
+                self.out.motions.push(m);
+                self.st.mpos = end;
+                self.st.pos = t;
+            }
+            23 | 33 | 22 | 32 => {
+                self.st.modal.motion = mode;
+                let t = self.target(w);
+                self.check_feed(bspan)?;
+                let end = self.to_machine(t);
+                let kind = if mode == 23 || mode == 33 {
+                    MotionKind::Exponential
+                } else {
+                    MotionKind::Involute
+                };
+                let m = self.motion_base(kind, self.st.mpos, end, self.st.feed);
+                self.out.motions.push(m);
+                self.st.mpos = end;
+                self.st.pos = t;
+            }
+            m if is_cycle(m) && (motion.is_some() || has_axes) => self.exec_cycle(m, w, bspan)?,
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// A straight move, offset for cutter radius compensation when it is on.
+    /// A straight move, offset for cutter radius compensation when it is on
+    /// (LinuxCNC's algorithm: entry move perpendicular to the path, arcs around
+    /// convex corners, pulled-back end points at concave ones).
+    fn comp_move(&mut self, t: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
+        if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
+            if rapid {
+                self.rapid_to(t);
+            } else {
+                self.feed_to(t, span)?;
+            }
+            return Ok(());
+        }
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (a, b) = self.plane_axes();
+        let r = self.st.comp_radius;
+        let left = self.st.modal.comp == 410;
+        let op = self.st.pos;
+        // Directions along the axes come out exact, as the reference output shows.
+        let snap = |v: f64| if v.abs() < 1e-15 { 0.0 } else { v };
+        let dir = |ang: f64| (snap(ang.cos()), snap(ang.sin()));
+        if self.st.comp_first {
+            let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
+            if dist <= r && self.ngc() {
+                return Err(self.err(
+                    codes::INTERP,
+                    span,
+                    "length of cutter compensation entry move is not greater than the tool radius",
+                ));
+            }
+            let alpha =
+                (t[b] - op[b]).atan2(t[a] - op[a]) + if left { FRAC_PI_2 } else { -FRAC_PI_2 };
+            let mut end = t;
+            end[a] += r * alpha.cos();
+            end[b] += r * alpha.sin();
+            self.comp_emit(end, rapid, span)?;
+            self.st.comp_first = false;
+            self.st.pos = t;
+            self.st.comp_tip = end;
+            return Ok(());
+        }
+        let c = self.st.comp_tip;
+        if t[a] == op[a] && t[b] == op[b] {
+            let mut end = t;
+            end[a] = c[a];
+            end[b] = c[b];
+            self.comp_emit(end, rapid, span)?;
+            self.st.pos = t;
+            self.st.comp_tip = end;
+            return Ok(());
+        }
+        let mut theta = (c[b] - op[b]).atan2(c[a] - op[a]);
+        let mut alpha = (t[b] - op[b]).atan2(t[a] - op[a]);
+        let (beta, gamma) = if left {
+            if theta < alpha {
+                theta += 2.0 * PI;
+            }
+            (theta - alpha - FRAC_PI_2, FRAC_PI_2)
+        } else {
+            if alpha < theta {
+                alpha += 2.0 * PI;
+            }
+            (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
+        };
+        let (ex, ey) = dir(alpha + gamma);
+        let mut end = t;
+        end[a] += r * ex;
+        end[b] += r * ey;
+        let mut mid = c;
+        mid[a] = op[a] + r * ex;
+        mid[b] = op[b] + r * ey;
+        let small = 0.05;
+        let concave = beta < -small || beta > PI + small;
+        if !concave && beta > small {
+            self.comp_flush();
+            if rapid {
+                self.rapid_to(mid);
+            } else {
+                self.comp_corner_arc(c, mid, op, left, span)?;
+            }
+        } else if concave {
+            let half = (beta + PI) / 2.0;
+            if half.abs() < 1e-12 {
+                return Err(self.err(
+                    codes::INTERP,
+                    span,
+                    "zero degree inside corner is invalid for cutter compensation",
+                ));
+            }
+            let retreat = r / half.tan();
+            let (rx, ry) = dir(theta + gamma);
+            let mut back = c;
+            back[a] = c[a] + retreat * rx;
+            back[b] = c[b] + retreat * ry;
+            self.comp_move_pending(back);
+        }
+        self.comp_flush();
+        self.comp_emit(end, rapid, span)?;
+        self.st.pos = t;
+        self.st.comp_tip = end;
+        Ok(())
+    }
+
+    /// Emits a compensated straight move and remembers it as pending.
+    fn comp_emit(&mut self, end: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
+        if rapid {
+            self.rapid_to(end);
+        } else {
+            self.feed_to(end, span)?;
+        }
+        let ci = self
+            .canon
+            .as_ref()
+            .map(|c| c.lines.len().saturating_sub(1))
+            .unwrap_or(0);
+        self.st.comp_pending = Some((
+            ci,
+            self.out.motions.len().saturating_sub(1),
+            u8::from(rapid),
+        ));
+        Ok(())
+    }
+
+    /// Releases the pending compensated move. LinuxCNC queues it (and every
+    /// canonical call after it) until now, so they carry this block's N number.
+    fn comp_flush(&mut self) {
+        let Some((ci, _, _)) = self.st.comp_pending.take() else {
+            return;
+        };
+        if let Some(c) = self.canon.as_mut() {
+            let prefix = c.current_prefix();
+            for line in c.lines.iter_mut().skip(ci) {
+                if line.starts_with(" N") && line.len() >= 8 && line.is_char_boundary(8) {
+                    line.replace_range(..8, &prefix);
+                }
+            }
+        }
+    }
+
+    /// Moves the end point of the pending compensated move.
+    fn comp_move_pending(&mut self, end: [f64; 6]) {
+        let Some((ci, mi, kind)) = self.st.comp_pending else {
+            return;
+        };
+        self.comp_flush();
+        let (a, b) = self.plane_axes();
+        let u = self.unit();
+        if let Some(line) = self.canon.as_mut().and_then(|c| c.lines.get_mut(ci)) {
+            if kind == 2 {
+                // ARC_FEED(first_end, second_end, …): only the end point moves.
+                if let Some(p) = line.find("ARC_FEED(") {
+                    let head = line[..p + 9].to_string();
+                    let args: Vec<String> = line[p + 9..].split(", ").map(str::to_string).collect();
+                    if args.len() > 2 {
+                        let rest = args[2..].join(", ");
+                        *line = format!("{head}{}, {}, {rest}", f4(end[a] / u), f4(end[b] / u));
+                    }
+                }
+            } else {
+                let name = if kind == 1 {
+                    "STRAIGHT_TRAVERSE("
+                } else {
+                    "STRAIGHT_FEED("
+                };
+                if let Some(p) = line.find(name) {
+                    let v = [end[0] / u, end[1] / u, end[2] / u, end[3], end[4], end[5]];
+                    line.truncate(p);
+                    line.push_str(&format!("{name}{})", Canon::six(&v)));
+                }
+            }
+        }
+        let m_end = self.to_machine(end);
+        if let Some(m) = self.out.motions.get_mut(mi) {
+            m.end[a] = m_end[a];
+            m.end[b] = m_end[b];
+        }
+        self.st.mpos[a] = m_end[a];
+        self.st.mpos[b] = m_end[b];
+        self.st.comp_tip[a] = end[a];
+        self.st.comp_tip[b] = end[b];
+    }
+
+    /// The arc LinuxCNC inserts around a convex corner (radius = tool radius).
+    fn comp_corner_arc(
+        &mut self,
+        from: [f64; 6],
+        to: [f64; 6],
+        center: [f64; 6],
+        left: bool,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        self.check_feed(span)?;
+        let (a, b) = self.plane_axes();
+        let n = self.normal_axis();
+        let u = self.unit();
+        let rot = if left { -1 } else { 1 };
+        self.canon(format!(
+            "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
+            f4(to[a] / u),
+            f4(to[b] / u),
+            f4(center[a] / u),
+            f4(center[b] / u),
+            rot,
+            f4(from[n] / u),
+            f4(to[3]),
+            f4(to[4]),
+            f4(to[5])
+        ));
+        let mut c3 = from;
+        c3[a] = center[a];
+        c3[b] = center[b];
+        let cm = self.to_machine(c3);
+        let mut normal = [0.0; 3];
+        normal[n] = if left { -1.0 } else { 1.0 };
+        let mut end_p = to;
+        end_p[n] = from[n];
+        let end = self.to_machine(end_p);
+        let radius = (from[a] - center[a]).hypot(from[b] - center[b]);
+        let m = self.motion_base(
+            MotionKind::Arc {
+                center: [cm[0], cm[1], cm[2]],
+                normal,
+                turns: 0,
+                radius,
+            },
+            self.st.mpos,
+            end,
+            self.st.feed,
+        );
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        Ok(())
+    }
+
+    fn exec_arc(&mut self, w: &Words, cw: bool, bspan: Span) -> Result<(), Diagnostic> {
+        let (a, b) = self.plane_axes();
+        let n = self.normal_axis();
+        let t = self.target(w);
+        let ijk = [b'I', b'J', b'K'];
+        let (ca, cb) = (ijk[a], ijk[b]);
+        let s2 = [self.st.pos[a], self.st.pos[b]];
+        let e2 = [t[a], t[b]];
+        let has_r = w.has(b'R');
+        let has_c = w.has(ca) || w.has(cb);
+        let span =
+            w.g.iter()
+                .find(|(g, _)| *g == 20 || *g == 30)
+                .map(|x| x.1)
+                .unwrap_or(bspan);
+        if self.st.modal.polar && !self.ngc() && has_c {
+            self.diag(
+                codes::ARC_POLAR_IJK,
+                Severity::Error,
+                span,
+                "I/J/K centre words cannot be used in polar coordinate mode (G16): use R",
+            );
+        }
+        if !has_r && !has_c {
+            if self.ngc() {
+                return Err(self.err(
+                    codes::ARC_NO_CENTER,
+                    span,
+                    "R, I, J and K words all missing for arc",
+                ));
+            }
+            self.diag(
+                codes::ARC_NO_CENTER,
+                Severity::Error,
+                span,
+                "arc without R or centre words (I/J/K)",
+            );
+            self.feed_to(t, bspan)?;
+            return Ok(());
+        }
+        if has_r && has_c && self.dialect == Dialect::Servoworks {
+            return Err(self.err(
+                codes::ARC_NO_CENTER,
+                w.sp(b'R'),
+                "R and I/J/K in one arc block: the control reports an error",
+            ));
+        }
+        let spec = if has_r {
+            ArcSpec::R(self.lin(w.get(b'R').unwrap_or(0.0)))
+        } else {
+            let oa = w.get(ca).map(|v| self.lin(v)).unwrap_or(0.0);
+            let ob = w.get(cb).map(|v| self.lin(v)).unwrap_or(0.0);
+            if self.st.modal.ijk_abs {
+                ArcSpec::Center([oa, ob])
+            } else {
+                ArcSpec::Center([s2[0] + oa, s2[1] + ob])
+            }
+        };
+        let inch = self.st.modal.inch;
+        let result = match self.dialect {
+            Dialect::Rs274ngc => {
+                arc::solve_ngc(s2, e2, spec, cw, inch, self.variant == Variant::Emc2)
+            }
+            Dialect::Fanuc => arc::solve_fanuc(s2, e2, spec, cw, self.cfg.arc_radius_tolerance),
+            Dialect::Servoworks => {
+                let mu = self.cfg.machine_unit;
+                let tol = self.cfg.circle_error_allowance.max((2.0 * mu * mu).sqrt());
+                arc::solve_servoworks(s2, e2, spec, cw, tol)
+            }
+        };
+        let sol = match result {
+            Ok(s) => s,
+            Err(e) => return Err(self.arc_error(e, s2, e2, spec, span)),
+        };
+        if sol.corrected && self.dialect == Dialect::Servoworks {
+            let code = if has_r {
+                codes::ARC_CORRECTED_R
+            } else {
+                codes::ARC_CORRECTED_IJK
+            };
+            self.diag(
+                code,
+                Severity::Info,
+                span,
+                format!(
+                    "arc corrected within the circle error allowance (mismatch {:.4} mm): radius {:.4}, centre ({:.4}, {:.4})",
+                    sol.mismatch, sol.radius, sol.center[0], sol.center[1]
+                ),
+            );
+        }
+        self.check_feed(bspan)?;
+        let turns = match w.get(b'P') {
+            Some(p) if self.ngc() || self.dialect == Dialect::Fanuc && w.has(b'L') => {
+                (p.round() as i32).max(1)
+            }
+            _ => w
+                .get(b'L')
+                .filter(|_| self.dialect == Dialect::Fanuc)
+                .map(|l| (l.round() as i32).max(1))
+                .unwrap_or(1),
+        };
+        // Canon: ARC_FEED(first_end, second_end, first_centre, second_centre, rotation, normal_end, a, b, c).
+        let u = self.unit();
+        if self.st.modal.feed_mode == 930 {
+            let len = arc_len(
+                s2,
+                e2,
+                sol.center,
+                sol.radius,
+                cw,
+                turns - 1,
+                t[n] - self.st.pos[n],
+            );
+            self.canon(format!("SET_FEED_RATE({})", f4(len * self.st.feed / u)));
+        }
+        let rot = if cw { -turns } else { turns };
+        let pe = e2;
+        let (e2, t, radius) = self.comp_arc(t, e2, sol.center, sol.radius, cw, span)?;
+        self.canon(format!(
+            "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
+            f4(e2[0] / u),
+            f4(e2[1] / u),
+            f4(sol.center[0] / u),
+            f4(sol.center[1] / u),
+            rot,
+            f4(t[n] / u),
+            f4(t[3]),
+            f4(t[4]),
+            f4(t[5])
+        ));
+        // Machine-frame geometry.
+        let mut c3 = self.st.pos;
+        c3[a] = sol.center[0];
+        c3[b] = sol.center[1];
+        let cm = self.to_machine(c3);
+        // Counter-clockwise in each plane's (first, second) axes turns about the
+        // positive normal axis, including G18's (Z, X).
+        let mut normal = [0.0; 3];
+        normal[n] = 1.0;
+        let mirrored = self.st.modal.mirror && {
+            let m = self.st.mirror.0;
+            (m[a] as u8 + m[b] as u8) % 2 == 1
+        };
+        if cw != mirrored {
+            for x in normal.iter_mut() {
+                *x = -*x;
+            }
+        }
+        let scale = if self.st.modal.scaling {
+            self.st.scale.1[a]
+        } else {
+            1.0
+        };
+        let end = self.to_machine(t);
+        let feed = self.effective_feed(0.0);
+        let m = self.motion_base(
+            MotionKind::Arc {
+                center: [cm[0], cm[1], cm[2]],
+                normal,
+                turns: turns - 1,
+                radius: radius * scale,
+            },
+            self.st.mpos,
+            end,
+            feed,
+        );
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        if self.st.modal.comp != 400 && self.st.comp_radius > 0.0 {
+            // The programmed point stays on the contour; the tool tip is offset.
+            let ci = self
+                .canon
+                .as_ref()
+                .map(|c| c.lines.len().saturating_sub(1))
+                .unwrap_or(0);
+            self.st.comp_pending = Some((ci, self.out.motions.len().saturating_sub(1), 2));
+            self.st.comp_tip = t;
+            self.st.pos[a] = pe[0];
+            self.st.pos[b] = pe[1];
+            for i in 0..6 {
+                if i != a && i != b {
+                    self.st.pos[i] = t[i];
+                }
+            }
+        } else {
+            self.st.pos = t;
+        }
+        Ok(())
+    }
+
+    /// Cutter compensation of an arc: the offset end point (plane), the offset
+    /// target, the offset radius. Handles the corner at the arc's start.
+    fn comp_arc(
+        &mut self,
+        t: [f64; 6],
+        e2: [f64; 2],
+        c: [f64; 2],
+        r: f64,
+        cw: bool,
+        span: Span,
+    ) -> Result<([f64; 2], [f64; 6], f64), Diagnostic> {
+        if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
+            return Ok((e2, t, r));
+        }
+        use std::f64::consts::{FRAC_PI_2, PI};
+        let (a, b) = self.plane_axes();
+        let rt = self.st.comp_radius;
+        let left = self.st.modal.comp == 410;
+        let inside = left != cw;
+        let new_r = if inside { r - rt } else { r + rt };
+        if new_r <= 0.0 {
+            return Err(self.err(
+                codes::INTERP,
+                span,
+                "tool radius not less than arc radius with cutter compensation",
+            ));
+        }
+        let unit = |p: [f64; 2]| {
+            let l = (p[0] - c[0]).hypot(p[1] - c[1]);
+            if l > 0.0 {
+                [(p[0] - c[0]) / l, (p[1] - c[1]) / l]
+            } else {
+                [1.0, 0.0]
+            }
+        };
+        let ue = unit(e2);
+        let e_out = [c[0] + ue[0] * new_r, c[1] + ue[1] * new_r];
+        let op = self.st.pos;
+        if self.st.comp_first {
+            self.st.comp_first = false;
+        } else {
+            let tip = self.st.comp_tip;
+            let us = unit([op[a], op[b]]);
+            let mid2 = [c[0] + us[0] * new_r, c[1] + us[1] * new_r];
+            let mut theta = (tip[b] - op[b]).atan2(tip[a] - op[a]);
+            let mut alpha = us[1].atan2(us[0]) + if cw { -FRAC_PI_2 } else { FRAC_PI_2 };
+            let (beta, gamma) = if left {
+                while theta < alpha {
+                    theta += 2.0 * PI;
+                }
+                (theta - alpha - FRAC_PI_2, FRAC_PI_2)
+            } else {
+                while alpha < theta {
+                    alpha += 2.0 * PI;
+                }
+                (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
+            };
+            let small = 0.05;
+            let concave = beta < -small || beta > PI + small;
+            let mut mid = tip;
+            mid[a] = mid2[0];
+            mid[b] = mid2[1];
+            if !concave && beta > small {
+                self.comp_flush();
+                self.comp_corner_arc(tip, mid, op, left, span)?;
+            } else if concave {
+                // Pull the previous line back to where it meets the offset circle.
+                let d = [(theta - gamma).cos(), (theta - gamma).sin()];
+                let w0 = [tip[a] - c[0], tip[b] - c[1]];
+                let bq = d[0] * w0[0] + d[1] * w0[1];
+                let cq = w0[0] * w0[0] + w0[1] * w0[1] - new_r * new_r;
+                let disc = bq * bq - cq;
+                if disc >= 0.0 {
+                    let s1 = -bq - disc.sqrt();
+                    let s2 = -bq + disc.sqrt();
+                    let sl = if s1.abs() < s2.abs() { s1 } else { s2 };
+                    let mut back = tip;
+                    back[a] = tip[a] + sl * d[0];
+                    back[b] = tip[b] + sl * d[1];
+                    self.comp_move_pending(back);
+                }
+            }
+        }
+        self.comp_flush();
+        let mut t_out = t;
+        t_out[a] = e_out[0];
+        t_out[b] = e_out[1];
+        Ok((e_out, t_out, new_r))
+    }
+
+    fn arc_error(
+        &self,
+        e: ArcError,
+        s: [f64; 2],
+        en: [f64; 2],
+        spec: ArcSpec,
+        span: Span,
+    ) -> Diagnostic {
+        let d = self.dialect;
+        match e {
+            ArcError::SameEndR => {
+                let msg = match d {
+                    Dialect::Rs274ngc => "current point same as end point of arc: an R-format arc cannot be a full circle; use I/J/K".to_string(),
+                    _ => "R-format arc with the end point equal to the start point: use I/J/K for a full circle".to_string(),
+                };
+                self.err(codes::ARC_SAME_END_R, span, msg)
+            }
+            ArcError::RadiusTooSmall(gap) => {
+                let msg = match d {
+                    Dialect::Rs274ngc => "arc radius too small to reach end point".to_string(),
+                    Dialect::Fanuc => format!("arc radius too small to reach the end point by {gap:.4} mm (PS0020)"),
+                    Dialect::Servoworks => format!(
+                        "Invalid center point for circular interpolation: |R| is {gap:.4} mm shorter than half the chord, more than the circle error allowance ({:.4} mm)",
+                        self.cfg.circle_error_allowance
+                    ),
+                };
+                self.err(codes::ARC_RADIUS_TOO_SMALL, span, msg)
+            }
+            ArcError::RadiusMismatch(r1, r2) => {
+                let c = match spec {
+                    ArcSpec::Center(c) => c,
+                    ArcSpec::R(_) => [0.0, 0.0],
+                };
+                let u = self.unit();
+                let msg = match d {
+                    Dialect::Rs274ngc => {
+                        let (a, b) = match self.st.modal.plane {
+                            180 => ('Z', 'X'),
+                            190 => ('Y', 'Z'),
+                            _ => ('X', 'Y'),
+                        };
+                        let abs_err = (r1 - r2).abs() / u;
+                        format!(
+                            "Radius to end of arc differs from radius to start: start=({a}{:.4},{b}{:.4}) center=({a}{:.4},{b}{:.4}) end=({a}{:.4},{b}{:.4}) r1={:.4} r2={:.4} abs_err={} rel_err={:.4}%",
+                            s[0] / u,
+                            s[1] / u,
+                            c[0] / u,
+                            c[1] / u,
+                            en[0] / u,
+                            en[1] / u,
+                            r1 / u,
+                            r2 / u,
+                            fmt_g4(abs_err),
+                            abs_err / (r1.max(r2) / u) * 100.0
+                        )
+                    }
+                    Dialect::Fanuc => format!(
+                        "end-point radius differs from start radius by {:.4} mm, more than parameter 3410 ({:.4} mm) (PS0020)",
+                        (r1 - r2).abs(),
+                        self.cfg.arc_radius_tolerance
+                    ),
+                    Dialect::Servoworks => format!(
+                        "Invalid center point for circular interpolation: r1 = {r1:.4}, r2 = {r2:.4}, |r1 - r2| = {:.4} mm exceeds the circle error allowance ({:.4} mm)",
+                        (r1 - r2).abs(),
+                        self.cfg.circle_error_allowance
+                    ),
+                };
+                self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
+            }
+            ArcError::ZeroRadius => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+        }
+    }
+
+    fn exec_stops(&mut self, w: &Words, fi: usize) -> Result<Flow, Diagnostic> {
+        if w.has_m(0) || w.has_m(600) {
+            self.canon("PROGRAM_STOP()");
+            self.event(EventKind::Stop { optional: false });
+        }
+        if w.has_m(10) {
+            self.canon("OPTIONAL_PROGRAM_STOP()");
+            self.event(EventKind::Stop { optional: true });
+        }
+        if w.has_m(990) && (!self.ngc() || !self.frames.is_empty()) {
+            if self.frames.is_empty() {
+                // M99 in a main program: the control loops back to the start.
+                self.diag(
+                    codes::INTERP,
+                    Severity::Warning,
+                    w.m.iter()
+                        .find(|m| m.0 == 990)
+                        .map(|m| m.1)
+                        .unwrap_or_default(),
+                    "M99 in the main program restarts it from the top: an endless loop (the dry run stops here)",
+                );
+                self.saw_end = true;
+                self.st.ended = true;
+                self.event(EventKind::ProgramEnd);
+                let _ = fi;
+                return Ok(Flow::Stop);
+            }
+            let seq = w.get(b'P');
+            self.ret_from_sub(seq);
+            return Ok(Flow::Goto(self.cur.0, self.cur.1));
+        }
+        if self.ngc() && w.has_m(990) && self.frames.is_empty() {
+            // LinuxCNC ends the program at M99 in the main file, like M2.
+            self.program_end(false);
+            self.saw_end = true;
+            self.st.ended = true;
+            self.event(EventKind::ProgramEnd);
+            return Ok(Flow::Stop);
+        }
+        if w.has_m(20) || w.has_m(300) {
+            self.program_end(w.has_m(300));
+            self.saw_end = true;
+            self.st.ended = true;
+            self.event(EventKind::ProgramEnd);
+            // Later blocks are never run; flag the first one that has content.
+            self.flag_after_end(fi);
+            return Ok(Flow::Stop);
+        }
+        Ok(Flow::Next)
+    }
+
+    fn flag_after_end(&mut self, fi: usize) {
+        if fi != 0 || !self.frames.is_empty() {
+            return;
+        }
+        let p = self.files[0].prog.clone();
+        let start = self.cur.1 as usize + 1;
+        for b in p.blocks.iter().skip(start) {
+            if b.kind != BlockKind::Normal {
+                continue;
+            }
+            let items = p.items_of(b);
+            let only_heads = items
+                .iter()
+                .all(|it| matches!(it.kind, ItemKind::Comment(_)));
+            if items.is_empty() || only_heads {
+                continue;
+            }
+            // FANUC/ServoWorks files may hold subprograms after M30; they start with O.
+            if self.dialect != Dialect::Rs274ngc
+                && items
+                    .iter()
+                    .any(|it| matches!(it.kind, ItemKind::ProgramHead { .. }))
+            {
+                return;
+            }
+            if self.dialect == Dialect::Rs274ngc {
+                return;
+            }
+            self.diag(
+                codes::AFTER_END,
+                Severity::Warning,
+                b.span,
+                "code after the program end (M02/M30) is never executed",
+            );
+            return;
+        }
+    }
+
+    fn program_end(&mut self, m30: bool) {
+        self.comp_flush();
+        if self.ngc() {
+            // LinuxCNC resets: origin G54, plane XY, absolute, feed mode, spindle, coolant.
+            self.st.modal.origin = 1;
+            self.st.pos = self.to_program(self.st.mpos);
+            let u = self.unit();
+            let g = self.g5x_prog();
+            self.canon(format!("SET_G5X_OFFSET(1, {})", Canon::six(&scale6(g, u))));
+            let r = self.rotation_canon(1);
+            self.canon(r);
+            if self.st.modal.plane != 170 {
+                self.canon("SELECT_PLANE(CANON_PLANE_XY)");
+            }
+            self.st.modal.plane = 170;
+            self.st.modal.incremental = false;
+            self.st.modal.feed_mode = 940;
+            self.canon("SET_FEED_MODE(0, 0)");
+            self.canon("SET_FEED_RATE(0.0000)");
+            self.st.modal.comp = 400;
+            self.canon("STOP_SPINDLE_TURNING(0)");
+            self.canon("SET_SPINDLE_MODE(0 0.0000)");
+            self.st.spindle_dir = 0;
+            self.st.modal.motion = 10;
+            if self.st.mist {
+                self.canon("MIST_OFF()");
+            }
+            if self.st.flood {
+                self.canon("FLOOD_OFF()");
+            }
+            self.st.mist = false;
+            self.st.flood = false;
+            if m30 {
+                self.canon("PALLET_SHUTTLE()");
+            }
+            self.canon("PROGRAM_END()");
+        }
+    }
+
+    // ----------------------------------------------------------------- canned cycles
+
+    fn exec_cycle(&mut self, mode: u32, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
+        let ngc = self.ngc();
+        let span =
+            w.g.iter()
+                .find(|(g, _)| is_cycle(*g))
+                .map(|x| x.1)
+                .unwrap_or(bspan);
+        let same = self.st.modal.motion == mode;
+        let (a, b) = self.plane_axes();
+        let n = self.normal_axis();
+        let letters = [b'X', b'Y', b'Z'];
+        let zl = letters[n];
+        if self.st.feed <= 0.0 && mode != 800 {
+            self.check_feed(span)?;
+        }
+        if self.st.modal.comp != 400 && ngc {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "cannot use canned cycles with cutter compensation on",
+            ));
+        }
+        let mut cyc = self.st.cycle.clone();
+        if let Some(r) = w.get(b'R') {
+            cyc.r = Some(self.lin(r));
+        }
+        if let Some(z) = w.get(zl) {
+            cyc.z = Some(self.lin(z));
+        }
+        if cyc.r.is_none() || (ngc && !same && !w.has(b'R')) {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                if ngc {
+                    "R clearance plane unspecified in canned cycle"
+                } else {
+                    "canned cycle without R (point R level)"
+                },
+            ));
+        }
+        if cyc.z.is_none() || (ngc && !same && !w.has(zl)) {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("{} value unspecified in canned cycle", zl as char),
+            ));
+        }
+        if let Some(p) = w.get(b'P') {
+            cyc.p = Some(if ngc { p } else { p / 1000.0 });
+        }
+        if let Some(q) = w.get(b'Q') {
+            let q = self.lin(q);
+            if matches!(mode, 730 | 830) && q <= 0.0 {
+                let msg = if ngc {
+                    "negative or zero Q value used in G73/G83 peck cycle"
+                } else {
+                    "peck depth Q must be positive"
+                };
+                if ngc {
+                    return Err(self.err(codes::CYCLE_Q, w.sp(b'Q'), msg));
+                }
+                self.diag(codes::CYCLE_Q, Severity::Warning, w.sp(b'Q'), msg);
+            }
+            cyc.q = Some(q.abs());
+        }
+        for (c, slot) in [(b'I', 0), (b'J', 1), (b'K', 2)] {
+            if let Some(v) = w.get(c) {
+                let v = self.lin(v);
+                match slot {
+                    0 => cyc.i = Some(v),
+                    1 => cyc.j = Some(v),
+                    _ => cyc.k = Some(v),
+                }
+            }
+        }
+        if matches!(mode, 730 | 830) && cyc.q.is_none() {
+            return Err(self.err(codes::CYCLE_Q, span, "Q word missing with G73/G83"));
+        }
+        if matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none() {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("dwell time P word missing with G{}", mode / 10),
+            ));
+        }
+        // Rigid tapping (FANUC M29) checks.
+        if self.dialect == Dialect::Fanuc
+            && matches!(mode, 740 | 840)
+            && self.st.modal.rigid_tap
+            && self.st.spindle <= 0.0
+        {
+            self.diag(
+                codes::RIGID_TAP,
+                Severity::Error,
+                span,
+                "rigid tapping (M29) needs a spindle speed S (PS0203)",
+            );
+        }
+        if ngc && mode == 840 && self.st.spindle_dir != 1 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "spindle not turning clockwise in G84",
+            ));
+        }
+        if ngc && mode == 740 && self.st.spindle_dir != -1 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "spindle not turning counterclockwise in G74",
+            ));
+        }
+        if ngc && matches!(mode, 860 | 870 | 880) && self.st.spindle_dir == 0 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                format!("spindle not turning in G{}", mode / 10),
+            ));
+        }
+        let repeats = if ngc {
+            let l = w.get(b'L').unwrap_or(1.0).round() as i64;
+            if l == 0 {
+                return Err(self.err(codes::CYCLE_STATE, span, "cannot do zero repeats of cycle"));
+            }
+            l.max(1)
+        } else {
+            w.raw_k.map(|k| k.round() as i64).unwrap_or(1).max(0)
+        };
+        self.st.modal.motion = mode;
+        let old_z = if ngc {
+            match self.st.cycle.initial {
+                Some(z) => z,
+                None => self.st.pos[n],
+            }
+        } else {
+            self.st.cycle.initial.unwrap_or(self.st.pos[n])
+        };
+        cyc.initial = Some(old_z);
+        let inc = self.st.modal.incremental;
+        let (r, bottom) = if ngc {
+            if inc {
+                let r = old_z + cyc.r.unwrap_or(0.0);
+                (r, r + cyc.z.unwrap_or(0.0))
+            } else {
+                (cyc.r.unwrap_or(0.0), cyc.z.unwrap_or(0.0))
+            }
+        } else {
+            // FANUC/ServoWorks keep the levels absolute once resolved; only words of this
+            // block are read incrementally (R from the initial level, Z from R).
+            let r = match w.get(b'R') {
+                Some(v) if inc => old_z + self.lin(v),
+                Some(v) => self.lin(v),
+                None => cyc.r_abs.unwrap_or(cyc.r.unwrap_or(0.0)),
+            };
+            let z = match w.get(zl) {
+                Some(v) if inc => r + self.lin(v),
+                Some(v) => self.lin(v),
+                None => cyc.z_abs.unwrap_or(cyc.z.unwrap_or(0.0)),
+            };
+            (r, z)
+        };
+        cyc.r_abs = Some(r);
+        cyc.z_abs = Some(bottom);
+        self.st.cycle = cyc.clone();
+        if r < bottom && ngc {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "R value less than Z value in canned cycle",
+            ));
+        }
+        if repeats == 0 {
+            return Ok(());
+        }
+        let save_path = self.st.modal.path;
+        let mut cur_z = self.st.pos[n];
+        let clear = if self.st.modal.retract_old_z {
+            old_z.max(r)
+        } else {
+            r
+        };
+        // NGC: climb to R first when below it.
+        let start_z = cur_z;
+        if ngc && old_z < r {
+            let mut p = self.st.pos;
+            p[n] = r;
+            self.rapid_to(p);
+            cur_z = r;
+        }
+        if ngc && save_path != 610 {
+            self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+        }
+        let mut pa = self.st.pos[a];
+        let mut pb = self.st.pos[b];
+        let mut da = w.get(letters[a]).map(|v| self.lin(v));
+        let mut db = w.get(letters[b]).map(|v| self.lin(v));
+        if !ngc && self.st.modal.polar {
+            // Polar hole positions: resolve radius/angle once, then step by the difference.
+            let t = self.target(w);
+            if inc {
+                da = Some(t[a] - pa);
+                db = Some(t[b] - pb);
+            } else {
+                da = Some(t[a]);
+                db = Some(t[b]);
+            }
+        }
+        for k in 0..repeats {
+            if inc {
+                pa += da.unwrap_or(0.0);
+                pb += db.unwrap_or(0.0);
+            } else {
+                pa = da.unwrap_or(pa);
+                pb = db.unwrap_or(pb);
+            }
+            let at = |s: &Self, z: f64| {
+                let mut p = s.st.pos;
+                p[a] = pa;
+                p[b] = pb;
+                p[n] = z;
+                p
+            };
+            if ngc {
+                if k == 0 && cur_z > r {
+                    self.rapid_to(at(self, cur_z));
+                    self.rapid_to(at(self, r));
+                } else {
+                    self.rapid_to(at(self, clear));
+                    if clear > r {
+                        self.rapid_to(at(self, r));
+                    }
+                }
+            } else {
+                let z0 = if k == 0 { start_z } else { self.st.pos[n] };
+                self.rapid_to(at(self, z0));
+                if (self.st.pos[n] - r).abs() > 1e-12 {
+                    self.rapid_to(at(self, r));
+                }
+            }
+            self.cycle_body(mode, &cyc, r, bottom, clear, &at, bspan)?;
+            cur_z = self.st.pos[n];
+        }
+        let _ = cur_z;
+        if ngc && save_path != 610 {
+            let tol = self.st.modal.path_tol.unwrap_or(0.0) / self.unit();
+            match save_path {
+                611 => self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)"),
+                _ => {
+                    self.canon(format!(
+                        "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
+                    ));
+                    self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(tol)));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn cycle_body(
+        &mut self,
+        mode: u32,
+        cyc: &CycleMem,
+        r: f64,
+        bottom: f64,
+        clear: f64,
+        at: &dyn Fn(&Self, f64) -> [f64; 6],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        let ngc = self.ngc();
+        let dwell = cyc.p.unwrap_or(0.0);
+        let fanuc_ret = |s: &Self| if s.st.modal.retract_old_z { clear } else { r };
+        let ret = if ngc { clear } else { fanuc_ret(self) };
+        let dwell_ev = |s: &mut Self| {
+            if dwell > 0.0 || ngc {
+                s.canon(format!("DWELL({})", f4(dwell)));
+                s.event(EventKind::Dwell(dwell));
+            }
+        };
+        match mode {
+            810 => {
+                self.feed_to(at(self, bottom), span)?;
+                self.rapid_to(at(self, ret));
+            }
+            820 => {
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                self.rapid_to(at(self, ret));
+            }
+            730 | 830 => {
+                let q = cyc.q.unwrap_or(1.0).max(1e-6);
+                let g73 = mode == 730;
+                // LinuxCNC's peck clearance is 0.01 inch in either unit system.
+                let d = if ngc {
+                    0.254
+                } else if g73 {
+                    self.cfg.g73_retract
+                } else {
+                    self.cfg.g83_clearance
+                };
+                let mut depth = r - q;
+                let mut guard = 0;
+                while depth > bottom && guard < 100_000 {
+                    guard += 1;
+                    self.feed_to(at(self, depth), span)?;
+                    if g73 {
+                        self.rapid_to(at(self, depth + d));
+                    } else {
+                        self.rapid_to(at(self, r));
+                        self.rapid_to(at(self, depth + d));
+                    }
+                    depth -= q;
+                }
+                self.feed_to(at(self, bottom), span)?;
+                self.rapid_to(at(self, ret));
+            }
+            740 | 840 if ngc => {
+                // LinuxCNC: overrides off, reverse the spindle at the bottom, feed out to the clear level.
+                let (rev, fwd) = if mode == 840 {
+                    (
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)",
+                        "START_SPINDLE_CLOCKWISE(0)",
+                    )
+                } else {
+                    (
+                        "START_SPINDLE_CLOCKWISE(0)",
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)",
+                    )
+                };
+                // LinuxCNC 2.9 passes the coordinates to its feed helper in a rotated
+                // order in the XZ and YZ planes; reproduce the points it really commands.
+                let (a, b) = self.plane_axes();
+                let tap = |s: &Self, level: f64| {
+                    let base = at(s, level);
+                    let (pa, pb) = (base[a], base[b]);
+                    let mut p = base;
+                    match s.st.modal.plane {
+                        180 => {
+                            p[0] = level;
+                            p[1] = pa;
+                            p[2] = pb;
+                        }
+                        190 => {
+                            p[0] = pb;
+                            p[1] = level;
+                            p[2] = pa;
+                        }
+                        _ => {}
+                    }
+                    p
+                };
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                self.canon("DISABLE_SPEED_OVERRIDE(0)");
+                self.feed_to(tap(self, bottom), span)?;
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.canon(rev);
+                dwell_ev(self);
+                self.feed_to(tap(self, clear), span)?;
+                // The interpreter records the hole position at the clear level.
+                self.st.pos = at(self, clear);
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.canon(fwd);
+                self.canon("ENABLE_FEED_OVERRIDE()");
+                self.canon("ENABLE_SPEED_OVERRIDE(0)");
+            }
+            740 | 840 => {
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                self.feed_to(at(self, r), span)?;
+                if ret > r {
+                    self.rapid_to(at(self, ret));
+                }
+            }
+            850 => {
+                self.feed_to(at(self, bottom), span)?;
+                self.feed_to(at(self, r), span)?;
+                if ret > r || ngc {
+                    self.rapid_to(at(self, ret));
+                }
+            }
+            860 => {
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.rapid_to(at(self, ret));
+                self.canon(if self.st.spindle_dir < 0 {
+                    "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                } else {
+                    "START_SPINDLE_CLOCKWISE(0)"
+                });
+            }
+            880 => {
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                self.canon("STOP_SPINDLE_TURNING(0)");
+                self.canon("PROGRAM_STOP()");
+                self.event(EventKind::Stop { optional: false });
+                self.canon("START_SPINDLE_CLOCKWISE(0)");
+                if !ngc {
+                    self.rapid_to(at(self, ret));
+                }
+            }
+            890 => {
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                if ngc {
+                    self.feed_to(at(self, clear), span)?;
+                } else {
+                    self.feed_to(at(self, r), span)?;
+                    if ret > r {
+                        self.rapid_to(at(self, ret));
+                    }
+                }
+            }
+            760 => {
+                // FANUC fine boring: shift away by Q at the bottom, rapid out, shift back.
+                self.feed_to(at(self, bottom), span)?;
+                dwell_ev(self);
+                let q = cyc.q.unwrap_or(0.0);
+                let mut p = at(self, bottom);
+                let (a, _) = self.plane_axes();
+                p[a] -= q;
+                self.rapid_to(p);
+                p[self.normal_axis()] = ret;
+                self.rapid_to(p);
+                self.rapid_to(at(self, ret));
+            }
+            870 => {
+                if ngc {
+                    let (i, j, k) = (
+                        cyc.i.unwrap_or(0.0),
+                        cyc.j.unwrap_or(0.0),
+                        cyc.k.unwrap_or(0.0),
+                    );
+                    let mut off = at(self, r);
+                    let (a, b) = self.plane_axes();
+                    off[a] += i;
+                    off[b] += j;
+                    let middle = if self.st.modal.incremental {
+                        bottom + k
+                    } else {
+                        k
+                    };
+                    self.rapid_to(off);
+                    let mut o2 = off;
+                    o2[self.normal_axis()] = bottom;
+                    self.rapid_to(o2);
+                    self.rapid_to(at(self, bottom));
+                    self.feed_to(at(self, middle), span)?;
+                    self.feed_to(at(self, bottom), span)?;
+                    self.rapid_to(o2);
+                    let mut o3 = o2;
+                    o3[self.normal_axis()] = clear;
+                    self.rapid_to(o3);
+                    self.rapid_to(at(self, clear));
+                } else {
+                    // Back boring: the R point is the hole bottom.
+                    self.rapid_to(at(self, r));
+                    self.feed_to(at(self, bottom), span)?;
+                    dwell_ev(self);
+                    self.rapid_to(at(self, r));
+                    let init = self.st.cycle.initial.unwrap_or(clear);
+                    self.rapid_to(at(self, init));
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+fn scale6(v: [f64; 6], u: f64) -> [f64; 6] {
+    v6([v[0] / u, v[1] / u, v[2] / u, v[3], v[4], v[5]])
+}
+
+fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    let l = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
+    if l > 0.0 {
+        l
+    } else {
+        ((a[3] - b[3]).powi(2) + (a[4] - b[4]).powi(2) + (a[5] - b[5]).powi(2)).sqrt()
+    }
+}
+
+fn arc_len(s: [f64; 2], e: [f64; 2], c: [f64; 2], r: f64, cw: bool, turns: i32, dz: f64) -> f64 {
+    let sw = arc::sweep(s, e, c, cw, turns);
+    (sw * r).hypot(dz)
+}
+
+/// C's `%.4g`.
+fn fmt_g4(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let exp = v.abs().log10().floor() as i32;
+    if !(-4..4).contains(&exp) {
+        let s = format!("{v:.3e}");
+        // Rust prints `1.235e-5`; C prints `1.235e-05` and drops trailing zeros.
+        let (m, e) = s.split_once('e').unwrap_or((&s, "0"));
+        let m = if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.')
+        } else {
+            m
+        };
+        let e: i32 = e.parse().unwrap_or(0);
+        return format!("{m}e{}{:02}", if e < 0 { '-' } else { '+' }, e.abs());
+    }
+    let decimals = (3 - exp).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}

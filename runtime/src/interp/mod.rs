@@ -1,0 +1,19 @@
+//! The interpreter: executes blocks of one dialect, tracking modal state,
+//! coordinates, offsets, parameters, subprograms and canned cycles, and emits
+//! motions, events, per-block snapshots, flow-sensitive diagnostics and (for
+//! RS274/NGC) LinuxCNC canonical lines.
+//!
+//! Pure and bounded: files come through [`Resolver`], a step budget stops
+//! runaway loops and a depth limit stops runaway recursion.
+
+pub mod arc;
+mod exec;
+pub mod expr;
+pub mod files;
+mod machine_cfg;
+mod state;
+mod types;
+
+pub use exec::run;
+pub use state::{Modal, State};
+pub use types::*;

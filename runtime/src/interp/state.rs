@@ -1,0 +1,190 @@
+//! Interpreter state at a block boundary. Cloning is cheap: the parameter
+//! tables are `Arc`-shared and copied only on write.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// Modal codes, as G numbers in tenths (`G1` = 10, `G61.1` = 611).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Modal {
+    pub motion: u32,
+    pub plane: u32,
+    pub inch: bool,
+    pub incremental: bool,
+    /// 930, 940 or 950.
+    pub feed_mode: u32,
+    /// 1..=9 for G54..G59.3; 100 + n for G54.1 Pn.
+    pub origin: usize,
+    /// 400, 410, 420.
+    pub comp: u32,
+    /// 490, 430, 440, 432 (TCP).
+    pub tlo_mode: u32,
+    /// 610, 611, 640, 641.
+    pub path: u32,
+    pub path_tol: Option<f64>,
+    /// G98 (true) or G99.
+    pub retract_old_z: bool,
+    pub polar: bool,
+    pub scaling: bool,
+    pub rotation: bool,
+    pub mirror: bool,
+    pub dlacc: bool,
+    /// G96 constant surface speed.
+    pub css: bool,
+    /// FANUC rigid tapping requested with M29.
+    pub rigid_tap: bool,
+    /// G90.1: arc centres are absolute.
+    pub ijk_abs: bool,
+}
+
+/// Memory of a canned cycle's modal data (program frame, mm).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct CycleMem {
+    pub r: Option<f64>,
+    pub z: Option<f64>,
+    pub p: Option<f64>,
+    pub q: Option<f64>,
+    pub i: Option<f64>,
+    pub j: Option<f64>,
+    pub k: Option<f64>,
+    /// Initial level captured when the cycle mode began.
+    pub initial: Option<f64>,
+    /// FANUC/ServoWorks: R and Z levels resolved to absolute values.
+    pub r_abs: Option<f64>,
+    pub z_abs: Option<f64>,
+}
+
+#[derive(Debug, Clone)]
+pub struct State {
+    pub modal: Modal,
+    /// Programmed point (program frame, before scaling/mirror/rotation), mm/deg.
+    pub pos: [f64; 6],
+    /// Machine position, mm/deg.
+    pub mpos: [f64; 6],
+    pub g92: [f64; 6],
+    pub g52: [f64; 6],
+    /// Tool length offset (Z) and X offset, mm.
+    pub tlo: [f64; 6],
+    pub comp_radius: f64,
+    /// Cutter compensation: the next move is the entry move.
+    pub comp_first: bool,
+    /// Cutter compensation: the tool tip (program frame), when it differs from `pos`.
+    pub comp_tip: [f64; 6],
+    /// Cutter compensation: the last move, whose end point a concave corner may
+    /// still pull back: (canon line index, motion index, kind: 0 feed, 1 rapid, 2 arc).
+    pub comp_pending: Option<(usize, usize, u8)>,
+    /// Programmed feed (mm/min, or mm/rev under G95; inverse-time value under G93).
+    pub feed: f64,
+    pub spindle: f64,
+    pub spindle_dir: i8,
+    pub tool: u32,
+    pub next_tool: u32,
+    pub mist: bool,
+    pub flood: bool,
+    /// Numbered parameters (None = vacant).
+    pub params: Arc<Vec<Option<f64>>>,
+    /// Global named parameters (RS274/NGC).
+    pub named: Arc<HashMap<String, f64>>,
+    pub cycle: CycleMem,
+    /// Scaling centre and factors.
+    pub scale: ([f64; 3], [f64; 3]),
+    /// Mirror axes and centre.
+    pub mirror: ([bool; 3], [f64; 3]),
+    /// Rotation centre (plane coordinates) and angle (degrees).
+    pub rotation: ([f64; 2], f64),
+    pub ended: bool,
+    /// 1-based line of the block being executed (`#<_line>`).
+    pub line: u32,
+}
+
+impl Modal {
+    pub fn power_on(servoworks: bool, fanuc: bool) -> Modal {
+        Modal {
+            motion: 0,
+            plane: 170,
+            inch: false,
+            incremental: false,
+            feed_mode: 940,
+            origin: 1,
+            comp: 400,
+            tlo_mode: 490,
+            path: 640,
+            path_tol: None,
+            retract_old_z: servoworks || fanuc,
+            polar: false,
+            scaling: false,
+            rotation: false,
+            mirror: false,
+            dlacc: false,
+            css: false,
+            rigid_tap: false,
+            ijk_abs: false,
+        }
+    }
+
+    /// The codes in force, as strings.
+    pub fn codes(&self, ngc: bool) -> Vec<String> {
+        let g = |t: u32| {
+            if t.is_multiple_of(10) {
+                format!("G{}", t / 10)
+            } else {
+                format!("G{}.{}", t / 10, t % 10)
+            }
+        };
+        let mut v = vec![
+            g(self.motion),
+            g(self.plane),
+            if self.inch {
+                "G20".into()
+            } else {
+                "G21".into()
+            },
+        ];
+        v.push(if self.incremental {
+            "G91".into()
+        } else {
+            "G90".into()
+        });
+        v.push(g(self.feed_mode));
+        v.push(match self.origin {
+            1..=6 => format!("G5{}", 3 + self.origin),
+            7..=9 => format!("G59.{}", self.origin - 6),
+            n => format!("G54.1 P{}", n.saturating_sub(100)),
+        });
+        v.push(g(self.comp));
+        v.push(g(self.tlo_mode));
+        v.push(g(self.path));
+        if ngc || self.modal_cycle() {
+            v.push(if self.retract_old_z {
+                "G98".into()
+            } else {
+                "G99".into()
+            });
+        }
+        if self.polar {
+            v.push("G16".into());
+        }
+        if self.scaling {
+            v.push("G51".into());
+        }
+        if self.mirror {
+            v.push("G51.1".into());
+        }
+        if self.rotation {
+            v.push("G68".into());
+        }
+        if self.dlacc {
+            v.push("G05".into());
+        }
+        v
+    }
+
+    pub fn modal_cycle(&self) -> bool {
+        is_cycle(self.motion)
+    }
+}
+
+/// Whether a motion code (tenths) is a canned cycle.
+pub fn is_cycle(m: u32) -> bool {
+    matches!(m, 730 | 740 | 760 | 810..=890)
+}

@@ -1,0 +1,149 @@
+//! Public input and output types of the interpreter.
+
+use std::sync::Arc;
+
+use analyzer::syntax::Program;
+use analyzer::{Diagnostic, FileId, Settings};
+
+/// A file the host found for a subprogram name.
+#[derive(Debug, Clone)]
+pub struct ResolvedFile {
+    pub path: String,
+    pub text: Arc<[u8]>,
+}
+
+/// Finds subprogram files. `name` is as written: `"MoveXY"` (ServoWorks
+/// `M98 PMoveXY` → `OMoveXY.dat`), `"1234"` (FANUC `O1234`), `"drill"`
+/// (RS274/NGC `o<drill> call` → `drill.ngc`).
+pub trait Resolver {
+    fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile>;
+}
+
+/// A resolver that never finds anything.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoResolver;
+
+impl Resolver for NoResolver {
+    fn resolve(&self, _name: &str, _from: FileId) -> Option<ResolvedFile> {
+        None
+    }
+}
+
+/// Everything one run needs.
+pub struct RunInput<'a> {
+    pub program: &'a Program,
+    pub settings: &'a Settings,
+    /// The `[machine]` table of the configuration.
+    pub machine: &'a toml::Table,
+    pub resolver: &'a dyn Resolver,
+    /// Upper bound on executed blocks (loops and calls included).
+    pub step_budget: u64,
+    /// Produce LinuxCNC canonical lines (rs274ngc only).
+    pub emit_canon: bool,
+    /// LinuxCNC `.tbl` text.
+    pub tool_table: Option<&'a str>,
+    /// LinuxCNC `.var` text.
+    pub var_file: Option<&'a str>,
+}
+
+/// Kind of a motion segment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MotionKind {
+    Rapid,
+    Feed,
+    /// Circular or helical arc. `normal` is a unit vector; the arc turns
+    /// counter-clockwise about it. `turns` counts the extra full turns.
+    Arc {
+        center: [f64; 3],
+        normal: [f64; 3],
+        turns: i32,
+        radius: f64,
+    },
+    Exponential,
+    Involute,
+    /// Spindle-synchronised move (G33, G76 passes); `feed` is the pitch in mm/rev.
+    Thread,
+    Probe,
+}
+
+/// One motion segment in the machine frame (mm and degrees).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Motion {
+    pub kind: MotionKind,
+    pub start: [f64; 6],
+    pub end: [f64; 6],
+    /// mm/min (mm/rev for G95 and threads); 0 for rapids.
+    pub feed: f64,
+    /// G93 inverse-time value (1/min) when in inverse-time mode.
+    pub inverse_time: Option<f64>,
+    pub exact_stop: bool,
+    /// LinuxCNC G61 "exact path": the planner stops only at corners, not at tangent
+    /// joints (G61.1 and G09 are true exact stops).
+    pub exact_path: bool,
+    pub blend_tolerance: Option<f64>,
+    pub file: FileId,
+    pub block: u32,
+    pub line: u32,
+    pub tool: u32,
+    pub spindle_rpm: f64,
+}
+
+/// A non-motion happening that takes time or changes the machine.
+#[derive(Debug, Clone, PartialEq)]
+pub enum EventKind {
+    /// Dwell in seconds.
+    Dwell(f64),
+    ToolChange {
+        tool: u32,
+    },
+    /// Spindle speed (rpm) and direction: 1 CW, -1 CCW, 0 stopped.
+    Spindle {
+        rpm: f64,
+        dir: i8,
+    },
+    Coolant {
+        mist: bool,
+        flood: bool,
+    },
+    /// Program stop (M0) or optional stop (M1).
+    Stop {
+        optional: bool,
+    },
+    ProgramEnd,
+    Message(String),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Event {
+    pub kind: EventKind,
+    /// Index of the next motion in [`RunOutput::motions`]: the event happens before it.
+    pub motion_index: usize,
+    pub file: FileId,
+    pub block: u32,
+    pub line: u32,
+}
+
+/// The state after a block of the main file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BlockSnapshot {
+    /// Modal codes in force, e.g. `["G1","G17","G21","G90","G94","G54","G40","G49","G64"]`.
+    pub modal: Vec<String>,
+    /// Position after the block in program coordinates (mm/deg): X Y Z A B C.
+    pub position: [f64; 6],
+    /// Programmed feed in mm/min (or mm/rev under G95).
+    pub feed: f64,
+    pub spindle: f64,
+    pub tool: u32,
+}
+
+#[derive(Debug, Clone, Default)]
+pub struct RunOutput {
+    pub diagnostics: Vec<Diagnostic>,
+    /// Paths of resolved files: `FileId(i)` is `files[i - 1]`.
+    pub files: Vec<String>,
+    pub motions: Vec<Motion>,
+    pub events: Vec<Event>,
+    /// One entry per block of the main file (None when never executed).
+    pub snapshots: Vec<Option<BlockSnapshot>>,
+    pub canon: Vec<String>,
+}

@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags blocks after the program end that are never executed.
+    ///
+    /// ## Why is this bad?
+    /// They look like part of the program but the control never reads them.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 X1
+    /// M30
+    /// G0 X2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 X1
+    /// G0 X2
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// FANUC and ServoWorks (files may hold subprograms after M30, which start with O and are not flagged). Warning.
+    ///
+    /// Implements: NGC011
+    pub static AFTER_END = {
+        code: "F005",
+        name: "code-after-program-end",
+        summary: "Code after M2/M30 that never runs",
+        implements: &["NGC011"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

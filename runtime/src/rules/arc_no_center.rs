@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a G2/G3 block with neither R nor I/J/K (or, in ServoWorks, with both).
+    ///
+    /// ## Why is this bad?
+    /// The control cannot locate the centre and stops (`R, I, J and K words all missing for arc`).
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 X1
+    /// G2 X10 Y0 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 X1
+    /// G2 X10 Y0 R10 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: SW031, NGC059
+    pub static ARC_NO_CENTER = {
+        code: "A005",
+        name: "arc-missing-center",
+        summary: "Arc without R or centre words, or with both",
+        implements: &["SW031", "NGC059"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

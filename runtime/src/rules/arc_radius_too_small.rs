@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags an R-format arc whose |R| is smaller than half the distance from the start to the end point.
+    ///
+    /// ## Why is this bad?
+    /// No circle of that radius passes through both points. LinuxCNC stops (`Arc radius too small to reach end point`, tolerance 0.00005 in); FANUC alarms PS0020 beyond parameter 3410; ServoWorks reports "Invalid center point" when half chord − |R| exceeds the circle error allowance.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G90 G0 X0 Y0
+    /// G2 X100 Y0 R40 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G90 G0 X0 Y0
+    /// G2 X100 Y0 R50 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: SW036, NGC061, FAN020
+    pub static ARC_RADIUS_TOO_SMALL = {
+        code: "A002",
+        name: "arc-radius-too-small",
+        summary: "R-format arc radius shorter than half the chord",
+        implements: &["SW036", "NGC061", "FAN020"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

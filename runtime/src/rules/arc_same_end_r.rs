@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags an R-format arc with the end point equal to the start point.
+    ///
+    /// ## Why is this bad?
+    /// A full circle cannot be given with R: infinitely many circles pass through one point. The control alarms.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 X0 Y0
+    /// G2 X0 Y0 R10 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 X0 Y0
+    /// G2 X0 Y0 I10 J0 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: SW035, NGC062
+    pub static ARC_SAME_END_R = {
+        code: "A006",
+        name: "arc-full-circle-with-r",
+        summary: "R-format arc whose end point equals its start point",
+        implements: &["SW035", "NGC062"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

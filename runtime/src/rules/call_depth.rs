@@ -1,0 +1,42 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a call that nests deeper than the control's limit (ServoWorks 8, FANUC `max_call_depth` default 15) — usually unbounded recursion.
+    ///
+    /// ## Why is this bad?
+    /// The control alarms (FANUC PS0077).
+    ///
+    /// ## Example
+    /// ```gcode
+    /// o<r> sub
+    /// o<r> call
+    /// o<r> endsub
+    /// o<r> call
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// o<r> sub
+    /// G0 X1
+    /// o<r> endsub
+    /// o<r> call
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: SW023, FAN077
+    pub static CALL_DEPTH = {
+        code: "F003",
+        name: "call-depth-exceeded",
+        summary: "Subprogram nesting deeper than the control allows",
+        implements: &["SW023", "FAN077"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

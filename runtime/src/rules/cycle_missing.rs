@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a canned cycle started without its R plane, its depth Z, or (G82/G86/G88/G89 in RS274/NGC) its dwell P.
+    ///
+    /// ## Why is this bad?
+    /// The control alarms (`R clearance plane unspecified in canned cycle`).
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 Z5
+    /// G81 X1 Y1 Z-2 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 Z5
+    /// G81 X1 Y1 Z-2 R1 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: NGC080, NGC081, SW070, FAN050
+    pub static CYCLE_MISSING = {
+        code: "C001",
+        name: "cycle-missing-data",
+        summary: "Canned cycle without R, Z or dwell P",
+        implements: &["NGC080", "NGC081", "SW070", "FAN050"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

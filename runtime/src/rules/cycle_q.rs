@@ -1,0 +1,38 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags G73/G83 without Q or with Q ≤ 0.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops (`Negative or zero Q value used`); FANUC ignores a negative sign.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 Z5
+    /// G83 X1 Z-5 R1 Q0 F100
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 Z5
+    /// G83 X1 Z-5 R1 Q1 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All.
+    ///
+    /// Implements: NGC083, FAN051
+    pub static CYCLE_Q = {
+        code: "C002",
+        name: "cycle-peck-q",
+        summary: "Peck cycle without a positive Q",
+        implements: &["NGC083", "FAN051"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

@@ -1,0 +1,36 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags run-time conditions not covered by a more specific rule: dwell without time, M98 with motion in the block, M99 in a main program.
+    ///
+    /// ## Why is this bad?
+    /// The control alarms or does something the programmer did not intend.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G4
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G4 P1
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All.
+    ///
+    /// Implements: SW024, SW026
+    pub static INTERP = {
+        code: "X003",
+        name: "interpreter-error",
+        summary: "Other run-time condition the control rejects or handles surprisingly",
+        implements: &["SW024", "SW026"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

@@ -1,0 +1,35 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a main program that reaches the end of the file without M2/M30.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops with `File ended with no percent sign or program end`; the other controls skip the end-of-program resets.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 X1
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G0 X1
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC error, others warning.
+    ///
+    /// Implements: NGC010, SW025
+    pub static MISSING_END = {
+        code: "F006",
+        name: "missing-program-end",
+        summary: "Program without M2/M30 (or closing %)",
+        implements: &["NGC010", "SW025"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

@@ -1,0 +1,102 @@
+//! Flow-sensitive rules: their metadata (one file per rule, same doc format
+//! as the analyzer's static rules) and the codes the interpreter emits. The
+//! checks live in the interpreter, next to the state they need.
+
+use analyzer::rules::RuleMeta;
+
+mod after_end;
+mod arc_corrected;
+mod arc_no_center;
+mod arc_polar_ijk;
+mod arc_radius_mismatch;
+mod arc_radius_too_small;
+mod arc_same_end_r;
+mod call_depth;
+mod coord_during_rotation;
+mod cycle_missing;
+mod cycle_q;
+mod cycle_state;
+mod dlacc_incompatible;
+mod dlacc_tcp;
+mod expression;
+mod flow;
+mod interp;
+mod macro_alarm;
+mod missing_end;
+mod rigid_tap;
+mod step_budget;
+mod sub_not_found;
+mod travel_limit;
+mod unknown_code;
+mod unknown_tool;
+mod zero_feed;
+
+/// Diagnostic codes emitted by the interpreter.
+pub mod codes {
+    pub const ARC_RADIUS_MISMATCH: &str = "A001";
+    pub const ARC_RADIUS_TOO_SMALL: &str = "A002";
+    pub const ARC_CORRECTED_R: &str = "A003";
+    pub const ARC_CORRECTED_IJK: &str = "A004";
+    pub const ARC_NO_CENTER: &str = "A005";
+    pub const ARC_SAME_END_R: &str = "A006";
+    pub const ARC_POLAR_IJK: &str = "A007";
+    pub const ZERO_FEED: &str = "F001";
+    pub const SUB_NOT_FOUND: &str = "F002";
+    pub const CALL_DEPTH: &str = "F003";
+    pub const STEP_BUDGET: &str = "F004";
+    pub const AFTER_END: &str = "F005";
+    pub const MISSING_END: &str = "F006";
+    pub const FLOW: &str = "F007";
+    pub const UNKNOWN_TOOL: &str = "T001";
+    pub const CYCLE_MISSING: &str = "C001";
+    pub const CYCLE_Q: &str = "C002";
+    pub const CYCLE_STATE: &str = "C003";
+    pub const RIGID_TAP: &str = "C004";
+    pub const DLACC_INCOMPATIBLE: &str = "D001";
+    pub const DLACC_TCP: &str = "D002";
+    pub const COORD_DURING_ROTATION: &str = "K001";
+    pub const TRAVEL_LIMIT: &str = "K002";
+    pub const EXPRESSION: &str = "X001";
+    pub const UNKNOWN_CODE: &str = "X002";
+    pub const INTERP: &str = "X003";
+    pub const MACRO_ALARM: &str = "X004";
+}
+
+/// Metadata of every runtime rule, in code order.
+pub static REGISTRY: &[&RuleMeta] = &[
+    &arc_radius_mismatch::ARC_RADIUS_MISMATCH,
+    &arc_radius_too_small::ARC_RADIUS_TOO_SMALL,
+    &arc_corrected::ARC_CORRECTED_R,
+    &arc_corrected::ARC_CORRECTED_IJK,
+    &arc_no_center::ARC_NO_CENTER,
+    &arc_same_end_r::ARC_SAME_END_R,
+    &arc_polar_ijk::ARC_POLAR_IJK,
+    &zero_feed::ZERO_FEED,
+    &sub_not_found::SUB_NOT_FOUND,
+    &call_depth::CALL_DEPTH,
+    &step_budget::STEP_BUDGET,
+    &after_end::AFTER_END,
+    &missing_end::MISSING_END,
+    &flow::FLOW,
+    &unknown_tool::UNKNOWN_TOOL,
+    &cycle_missing::CYCLE_MISSING,
+    &cycle_q::CYCLE_Q,
+    &cycle_state::CYCLE_STATE,
+    &rigid_tap::RIGID_TAP,
+    &dlacc_incompatible::DLACC_INCOMPATIBLE,
+    &dlacc_tcp::DLACC_TCP,
+    &coord_during_rotation::COORD_DURING_ROTATION,
+    &travel_limit::TRAVEL_LIMIT,
+    &expression::EXPRESSION,
+    &unknown_code::UNKNOWN_CODE,
+    &interp::INTERP,
+    &macro_alarm::MACRO_ALARM,
+];
+
+/// Looks a runtime rule up by code or name.
+pub fn lookup(code: &str) -> Option<&'static RuleMeta> {
+    REGISTRY
+        .iter()
+        .copied()
+        .find(|r| r.code.eq_ignore_ascii_case(code) || r.name.eq_ignore_ascii_case(code))
+}

@@ -1,0 +1,39 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags an `M98 P…`, `G65 P…` or `o<name> call` whose target is neither in the file nor found by the host (`O<name>.dat`, `O1234`, `<name>.ngc`).
+    ///
+    /// ## Why is this bad?
+    /// The control alarms at the call (FANUC PS0076).
+    ///
+    /// ## Example
+    /// ```gcode
+    /// o<missing> call
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// o<here> sub
+    /// G0 X1
+    /// o<here> endsub
+    /// o<here> call
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: SW021, NGC120, FAN076
+    pub static SUB_NOT_FOUND = {
+        code: "F002",
+        name: "subprogram-not-found",
+        summary: "Called subprogram or macro not found",
+        implements: &["SW021", "NGC120", "FAN076"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

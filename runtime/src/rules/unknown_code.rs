@@ -1,0 +1,37 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags G/M words with a computed value that is not a valid code number.
+    ///
+    /// ## Why is this bad?
+    /// The control stops.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// #1=1.55
+    /// G#1
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G1 X1 F10
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: —
+    pub static UNKNOWN_CODE = {
+        code: "X002",
+        name: "invalid-code-value",
+        summary: "G or M word whose value is not a code",
+        implements: &[],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

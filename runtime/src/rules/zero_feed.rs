@@ -1,0 +1,36 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a G1/G2/G3 (or canned-cycle) move while the feed rate is zero.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops (`Cannot do g1 with zero feed rate`); FANUC and ServoWorks alarm or do not move.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G1 X10
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G1 X10 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All. Error.
+    ///
+    /// Implements: NGC070, SW045, FAN030
+    pub static ZERO_FEED = {
+        code: "F001",
+        name: "zero-feed",
+        summary: "Feed move with no feed rate",
+        implements: &["NGC070", "SW045", "FAN030"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

@@ -1,0 +1,261 @@
+//! FANUC test vectors (fanuc.md §8 and Macro B rules) with their exact numbers.
+
+mod common;
+
+use common::*;
+use runtime::EventKind;
+
+const OFFSETS: &str =
+    "[tools]\n11 = { length = 200.0 }\n15 = { length = 190.0 }\n31 = { length = 150.0 }\n";
+
+const EXAMPLE_8_1: &str = "%
+N001 G92 X0 Y0 Z0;
+N002 G90 G00 Z250.0 T11 M6;
+N003 G43 Z0 H11;
+N004 S30 M3;
+N005 G99 G81 X400.0 Y-350.0 Z-153.0 R-97.0 F120;
+N006 Y-550.0;
+N007 G98 Y-750.0;
+N008 G99 X1200.0;
+N009 Y-550.0;
+N010 G98 Y-350.0;
+N011 G00 X0 Y0 M5;
+N012 G49 Z250.0 T15 M6;
+N013 G43 Z0 H15;
+N014 S20 M3;
+N015 G99 G82 X550.0 Y-450.0 Z-130.0 R-97.0 P300 F70;
+N016 G98 Y-650.0;
+N017 G99 X1050.0;
+N018 G98 Y-450.0;
+N019 G00 X0 Y0 M5;
+N020 G49 Z250.0 T31 M6;
+N021 G43 Z0 H31;
+N022 S10 M3;
+N023 G85 G99 X800.0 Y-350.0 Z-153.0 R47.0 F50;
+N024 G91 Y-200.0 K2;
+N025 G28 X0 Y0 M5;
+N026 G49 Z0;
+N027 M0;
+M30;
+%
+";
+
+#[test]
+fn example_8_1_canned_cycles() {
+    let out = run_fanuc(EXAMPLE_8_1, OFFSETS);
+    // N025 G28 while G85 is modal (no G80 in the example): PS0044, the cycle is cancelled.
+    assert_eq!(codes(&out), vec!["C003"], "{:?}", out.diagnostics);
+    let by_tool = |t: u32| {
+        out.motions
+            .iter()
+            .filter(move |m| m.tool == t && is_feed(m))
+    };
+    // T11: 6 holes of 56 mm at F120.
+    let t11: Vec<_> = by_tool(11).collect();
+    assert_eq!(t11.len(), 6);
+    let holes: Vec<[f64; 2]> = t11.iter().map(|m| [m.end[0], m.end[1]]).collect();
+    assert_eq!(
+        holes,
+        vec![
+            [400.0, -350.0],
+            [400.0, -550.0],
+            [400.0, -750.0],
+            [1200.0, -750.0],
+            [1200.0, -550.0],
+            [1200.0, -350.0]
+        ]
+    );
+    let feed11: f64 = t11.iter().map(|m| length(m)).sum();
+    assert!(close(feed11, 336.0, 1e-9));
+    assert!(t11.iter().all(|m| m.feed == 120.0));
+    // Machine Z at the bottom: program −153 + H11 200.
+    assert!(close(t11[0].end[2], 47.0, 1e-9));
+    // G98 after hole 3 returns to the initial level (program 0 = machine 200).
+    let after3 = out
+        .motions
+        .iter()
+        .position(|m| m.tool == 11 && m.end[1] == -750.0 && is_feed(m))
+        .unwrap_or(0)
+        + 1;
+    assert!(close(out.motions[after3].end[2], 200.0, 1e-9));
+    // T15: 4 holes of 33 mm at F70, 0.3 s dwell each.
+    let t15: Vec<_> = by_tool(15).collect();
+    assert_eq!(t15.len(), 4);
+    let feed15: f64 = t15.iter().map(|m| length(m)).sum();
+    assert!(close(feed15, 132.0, 1e-9));
+    let dwell: f64 = out
+        .events
+        .iter()
+        .filter_map(|e| {
+            if let EventKind::Dwell(s) = e.kind {
+                Some(s)
+            } else {
+                None
+            }
+        })
+        .sum();
+    assert!(close(dwell, 1.2, 1e-12));
+    // T31 G85: R47 above the initial level; holes at Y −350, −550, −750 (K2 in G91), 200 mm in and out.
+    let t31: Vec<_> = by_tool(31).collect();
+    assert_eq!(
+        t31.len(),
+        6,
+        "{:?}",
+        t31.iter().map(|m| (m.start, m.end)).collect::<Vec<_>>()
+    );
+    assert!(t31.iter().all(|m| close(length(m), 200.0, 1e-9)));
+    let ys: Vec<f64> = t31.iter().step_by(2).map(|m| m.end[1]).collect();
+    assert_eq!(ys, vec![-350.0, -550.0, -750.0]);
+    let stops = out
+        .events
+        .iter()
+        .filter(|e| matches!(e.kind, EventKind::Stop { optional: false }))
+        .count();
+    assert_eq!(stops, 1);
+}
+
+#[test]
+fn polar_bolt_hole_circle_absolute_and_incremental() {
+    let abs = "G00 Z10.;\nN1 G17 G90 G16;\nN2 G81 X100.0 Y30.0 Z-20.0 R-5.0 F200.0;\nN3 Y150.0;\nN4 Y270.0;\nN5 G15 G80;\nM30;\n";
+    let inc = "G00 Z10.;\nN1 G17 G90 G16;\nN2 G81 X100.0 Y30.0 Z-20.0 R-5.0 F200.0;\nN3 G91 Y120.0;\nN4 Y120.0;\nN5 G15 G80;\nM30;\n";
+    for prog in [abs, inc] {
+        let out = run_fanuc(prog, "");
+        let holes: Vec<[f64; 3]> = out
+            .motions
+            .iter()
+            .filter(|m| is_feed(m))
+            .map(|m| [m.end[0], m.end[1], m.end[2]])
+            .collect();
+        let want = [
+            [86.6025, 50.0, -20.0],
+            [-86.6025, 50.0, -20.0],
+            [0.0, -100.0, -20.0],
+        ];
+        assert_eq!(holes.len(), 3, "{prog}");
+        for (h, w) in holes.iter().zip(want.iter()) {
+            assert!((0..3).all(|i| close(h[i], w[i], 1e-4)), "{prog}: {holes:?}");
+        }
+        // G98 is the FANUC default: each hole returns to the initial level Z10.
+        let last = out.motions.last().map(|m| m.end[2]).unwrap_or_default();
+        assert_eq!(last, 10.0);
+    }
+}
+
+#[test]
+fn g65_argument_specification_mixing() {
+    // #1=1, #2=2, #3 vacant, #4=-3, #5 and #6 vacant, #7=5 (I4.0 set #7, then D5.0 overwrote it).
+    let prog = "G65 A1.0 B2.0 I-3.0 I4.0 D5.0 P1000;\nM30;\nO1000;\n#110 = 0;\nIF [#3 EQ #0] THEN #110 = 1;\nIF [#5 EQ #0] THEN #111 = 1;\nG00 X#1 Y#2 Z#4;\nG00 X#7 Y#110 Z#111;\nM99;\n";
+    let out = run_fanuc(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(ends(&out), vec![[1.0, 2.0, -3.0], [5.0, 1.0, 1.0]]);
+}
+
+#[test]
+fn vacant_semantics() {
+    // #1 vacant: Y#1 is omitted; #1 + 1 = 1; #1 EQ 0 is false; #1 GE 0 compares as 0.
+    let prog = "G90 G00 X100. Y5.;\nG00 X100. Y#1;\n#2 = #1 + 1;\nIF [#1 EQ 0] GOTO 10;\n#3 = 7;\nN10 IF [#1 GE #0] THEN #4 = 9;\nG00 X#2 Y#3 Z#4;\nM30;\n";
+    let out = run_fanuc(prog, "");
+    assert_eq!(
+        ends(&out),
+        vec![[100.0, 5.0, 0.0], [100.0, 5.0, 0.0], [1.0, 7.0, 9.0]]
+    );
+}
+
+#[test]
+fn while_loop_and_goto() {
+    let prog = "#1 = 0;\nWHILE [#1 LT 3] DO 1;\n#1 = #1 + 1;\nG91 G00 X1.;\nEND 1;\nGOTO 20;\nG00 X100.;\nN20 G90 G00 Y#1;\nM30;\n";
+    let out = run_fanuc(prog, "");
+    assert_eq!(
+        ends(&out),
+        vec![
+            [1.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [3.0, 0.0, 0.0],
+            [3.0, 3.0, 0.0]
+        ]
+    );
+}
+
+#[test]
+fn m98_repeat_count_in_p() {
+    // P50010: O0010 five times; M98 shares the caller's locals.
+    let prog = "#1 = 0;\nM98 P50010;\nG90 G00 X#1;\nM30;\nO0010;\n#1 = #1 + 1;\nM99;\n";
+    let out = run_fanuc(prog, "");
+    assert_eq!(ends(&out), vec![[5.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn decimal_point_rules() {
+    let out = run_fanuc("G90 G00 X1 Y1.;\nM30;\n", "");
+    assert_eq!(ends(&out), vec![[0.001, 1.0, 0.0]]);
+    let calc = run_fanuc("G90 G00 X1 Y1.;\nM30;\n", "decimal_point_input = true");
+    assert_eq!(ends(&calc), vec![[1.0, 1.0, 0.0]]);
+}
+
+#[test]
+fn arc_tolerance_parameter_3410() {
+    let prog = "G90 G00 X0 Y0;\nG02 X100. Y0 I49.99 J0 F100;\nM30;\n";
+    assert!(codes(&run_fanuc(prog, "arc_radius_tolerance = 0.05")).is_empty());
+    assert_eq!(
+        codes(&run_fanuc(prog, "arc_radius_tolerance = 0.01")),
+        vec!["A001"]
+    );
+}
+
+#[test]
+fn modal_rule_last_group01_wins_and_ijk_in_polar() {
+    let out = run_fanuc("G00 G01 X10. F100;\nM30;\n", "");
+    assert!(is_feed(&out.motions[0]));
+    let polar = run_fanuc("G17 G16;\nG02 X50. Y90. I10. J0 F100;\nG15;\nM30;\n", "");
+    assert!(codes(&polar).contains(&"A007"));
+}
+
+#[test]
+fn division_by_zero_stops() {
+    let out = run_fanuc("#1 = 0;\n#2 = 1 / #1;\nG00 X1.;\nM30;\n", "");
+    assert_eq!(codes(&out), vec!["X001"]);
+    assert!(out.motions.is_empty());
+}
+
+#[test]
+fn macro_alarm_3000() {
+    let out = run_fanuc("#3000 = 12 (TOOL BROKEN);\nG00 X1.;\nM30;\n", "");
+    assert_eq!(codes(&out), vec!["X004"]);
+}
+
+#[test]
+fn runaway_loop_hits_step_budget() {
+    let out = run_fanuc("N1 GOTO 1;\nM30;\n", "");
+    assert_eq!(codes(&out), vec!["F004"]);
+}
+
+#[test]
+fn recursion_hits_depth_limit() {
+    let out = run_fanuc("M98 P1;\nM30;\nO0001;\nM98 P1;\nM99;\n", "");
+    assert_eq!(codes(&out), vec!["F003"]);
+}
+
+#[test]
+fn system_variables_read_the_state() {
+    // #5001 end point, #4003 distance mode, #4001 motion group, #5021 machine position.
+    let prog = "G90 G54 G01 X12. Y3. F100;\n#1 = #5001;\n#2 = #4003;\n#3 = #4001;\nG92 X0 Y0;\nG00 X#1 Y#2 Z#3;\n#4 = #5021;\nG00 X#4;\nM30;\n";
+    let out = run_fanuc(prog, "");
+    assert_eq!(
+        ends(&out),
+        vec![[12.0, 3.0, 0.0], [24.0, 93.0, 1.0], [36.0, 93.0, 1.0]]
+    );
+}
+
+#[test]
+fn m99_in_main_stops_the_dry_run() {
+    let out = run_fanuc("G00 X1.;\nM99;\n", "");
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(out.motions.len(), 1);
+}
+
+#[test]
+fn g09_exact_stop_is_one_shot() {
+    let out = run_fanuc("G64 G01 X10. F100;\nG09 X20.;\nX30.;\nM30;\n", "");
+    let exact: Vec<bool> = out.motions.iter().map(|m| m.exact_stop).collect();
+    assert_eq!(exact, vec![false, true, false]);
+}

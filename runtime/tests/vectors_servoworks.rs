@@ -1,0 +1,363 @@
+//! ServoWorks test vectors (servoworks.md §11) with their exact numbers.
+
+mod common;
+
+use analyzer::Dialect;
+use common::*;
+use runtime::{EventKind, MotionKind};
+
+#[test]
+fn tv01_integer_machine_unit() {
+    let off = run_sw("G00 X14 Y14.5\nM30\n", "");
+    assert_pt(off.motions[0].end, &[14.0, 14.5], 1e-12);
+    let on = run_sw(
+        "G00 X14 Y14.5\nM30\n",
+        "integer_machine_unit = true\nmachine_unit = 0.001",
+    );
+    assert_pt(on.motions[0].end, &[0.014, 14.5], 1e-12);
+}
+
+#[test]
+fn tv04_last_group01_code_wins() {
+    let out = run_sw("G01 X10.0 G00 Y20.0\nM30\n", "");
+    assert_eq!(out.motions.len(), 1);
+    assert!(is_rapid(&out.motions[0]));
+    assert_pt(out.motions[0].end, &[10.0, 20.0], 1e-12);
+}
+
+#[test]
+fn tv05_power_on_g00_and_modal_feed() {
+    let out = run_sw("X200. Z150. F200\nG01 X5.0 Z157\nM30\n", "");
+    assert!(is_rapid(&out.motions[0]));
+    assert!(is_feed(&out.motions[1]));
+    assert_eq!(out.motions[1].feed, 200.0);
+    assert_pt(out.motions[1].end, &[5.0, 0.0, 157.0], 1e-12);
+}
+
+#[test]
+fn tv11_dwell_units() {
+    let out = run_sw("G04 P5000\nG04 X3.0\nG04\nM30\n", "");
+    let dwells: Vec<f64> = out
+        .events
+        .iter()
+        .filter_map(|e| {
+            if let EventKind::Dwell(s) = e.kind {
+                Some(s)
+            } else {
+                None
+            }
+        })
+        .collect();
+    assert_eq!(dwells, vec![5.0, 3.0, 0.0]);
+}
+
+#[test]
+fn tv13_m98_with_repeats_and_global_variables() {
+    let main = "G20\nG53 X0 Y0\nG92 X0 Y0\n#101 = 1.0\n#102 = 2.0\nM98 PMoveXY R5\nM02\n";
+    let sub = "%\nOMoveXY\nG04\nG10 L108 X50 Y50\nG90\nG01 X#101Y#102 F50.0\nG04\nG10 L108 X1000 Y1000\nG00 X0Y0\n#101 = #101 + 1.0\n#102 = #102 + 2.0\nM99\n%\n";
+    let out = run_with(Dialect::Servoworks, main, "", &[("MoveXY", sub)], None);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let feeds: Vec<_> = out.motions.iter().filter(|m| is_feed(m)).collect();
+    assert_eq!(feeds.len(), 5);
+    for (k, m) in feeds.iter().enumerate() {
+        let k = (k + 1) as f64;
+        assert_pt(m.end, &[k * 25.4, 2.0 * k * 25.4], 1e-9);
+        assert!(close(m.feed, 50.0 * 25.4, 1e-9));
+    }
+    let total: f64 = feeds.iter().map(|m| length(m)).sum();
+    assert!(close(total / 25.4, 15.0 * 5f64.sqrt(), 1e-9), "{total}");
+    assert_eq!(out.files, vec!["MoveXY.dat".to_string()]);
+}
+
+#[test]
+fn tv16_arc_centre_format() {
+    let out = run_sw("X10 Y10\nG17 G3 Y30 I5 J10 F100\n%\n", "");
+    let MotionKind::Arc { center, radius, .. } = out.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert_pt(
+        [center[0], center[1], 0.0, 0.0, 0.0, 0.0],
+        &[15.0, 20.0],
+        1e-12,
+    );
+    assert!(close(radius, 125f64.sqrt(), 1e-9));
+    assert!(close(length(&out.motions[1]), 45.4915, 1e-4));
+    assert!(!codes(&out).iter().any(|c| c.starts_with('A')));
+}
+
+#[test]
+fn tv17_r_format_within_allowance() {
+    let prog = "G91 G00 X0. Y0.\nG02 X100. R49. F100\nM30\n";
+    let ok = run_sw(prog, "circle_error_allowance = 1.5");
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert_eq!([center[0], center[1]], [50.0, 0.0]);
+    assert_eq!(radius, 50.0);
+    assert!(close(length(&ok.motions[1]), 157.0796, 1e-4));
+    assert_eq!(codes(&ok), vec!["A003"]);
+    let bad = run_sw(prog, "circle_error_allowance = 0.5");
+    assert_eq!(codes(&bad), vec!["A002"]);
+    assert_eq!(bad.motions.len(), 1, "the program stops at the arc");
+}
+
+#[test]
+fn tv18_ijk_within_allowance() {
+    let prog = "G91 G00 X0. Y0.\nG02 X100. I49. F100\nM30\n";
+    let ok = run_sw(prog, "circle_error_allowance = 2.5");
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert!(close(center[0], 50.0, 1e-9) && close(center[1], 0.0, 1e-9));
+    assert!(close(radius, 50.0, 1e-12));
+    assert_eq!(codes(&ok), vec!["A004"]);
+    let bad = run_sw(prog, "circle_error_allowance = 1.5");
+    assert_eq!(codes(&bad), vec!["A001"]);
+}
+
+#[test]
+fn tv19_ijk_average_radius() {
+    let prog = "G91 G00 X0. Y0.\nG02 X100. Y0. J-100. F100\nM30\n";
+    let ok = run_sw(prog, "circle_error_allowance = 41.5");
+    let MotionKind::Arc { center, radius, .. } = ok.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert!(close(radius, 120.7107, 1e-4));
+    assert!(close(center[0], 50.0, 1e-9) && close(center[1], -109.8684, 1e-4));
+    assert!(close(length(&ok.motions[1]), 103.1059, 1e-4));
+    let bad = run_sw(prog, "circle_error_allowance = 41.0");
+    assert_eq!(codes(&bad), vec!["A001"]);
+}
+
+#[test]
+fn tv20_full_circle_and_r_same_point() {
+    let full = run_sw("G02 I10. F100\nM30\n", "");
+    let MotionKind::Arc { center, .. } = full.motions[0].kind else {
+        panic!("not an arc")
+    };
+    assert_eq!([center[0], center[1]], [10.0, 0.0]);
+    assert!(close(length(&full.motions[0]), 62.8319, 1e-4));
+    let bad = run_sw("G02 X0 Y0 R10. F100\nM30\n", "");
+    assert_eq!(codes(&bad), vec!["A006"]);
+}
+
+#[test]
+fn tv22_r_sign() {
+    let cases = [
+        ("G02 X10. Y10. R10. F100", [10.0, 0.0], 15.7080),
+        ("G02 X10. Y10. R-10. F100", [0.0, 10.0], 47.1239),
+        ("G03 X10. Y10. R10. F100", [0.0, 10.0], 15.7080),
+    ];
+    for (block, c, len) in cases {
+        let out = run_sw(&format!("{block}\nM30\n"), "");
+        let MotionKind::Arc { center, .. } = out.motions[0].kind else {
+            panic!("not an arc")
+        };
+        assert!(
+            close(center[0], c[0], 1e-9) && close(center[1], c[1], 1e-9),
+            "{block}: {center:?}"
+        );
+        assert!(close(length(&out.motions[0]), len, 1e-4), "{block}");
+    }
+}
+
+#[test]
+fn tv23_helix() {
+    let out = run_sw("G91 G17 G02 X20. Y0 R10. Z5. F100\nM30\n", "");
+    let m = &out.motions[0];
+    let MotionKind::Arc { center, radius, .. } = m.kind else {
+        panic!("not an arc")
+    };
+    assert!(close(center[0], 10.0, 1e-12) && close(center[1], 0.0, 1e-12) && radius == 10.0);
+    assert_pt(m.end, &[20.0, 0.0, 5.0], 1e-12);
+    assert!(close(length(m), 31.8113, 1e-4));
+}
+
+#[test]
+fn tv24_mirror_turns_g02_into_g03() {
+    let out = run_sw("G51.1 X0\nG02 X10. Y10. R10. F100\nM30\n", "");
+    let m = &out.motions[0];
+    assert_pt(m.end, &[-10.0, 10.0], 1e-12);
+    let MotionKind::Arc { normal, .. } = m.kind else {
+        panic!("not an arc")
+    };
+    assert_eq!(normal[2], 1.0, "counter-clockwise after the mirror");
+}
+
+#[test]
+fn tv44_absolute_and_incremental_agree() {
+    let a = run_sw("G00 X3 Z8\nG90 G01 X14.0 Z23.0 F100\nM30\n", "");
+    let b = run_sw("G00 X3 Z8\nG91 G01 X11.0 Z15.0 F100\nM30\n", "");
+    assert_pt(a.motions[1].end, &[14.0, 0.0, 23.0], 1e-12);
+    assert_pt(b.motions[1].end, &[14.0, 0.0, 23.0], 1e-12);
+}
+
+#[test]
+fn tv46_mirror_program() {
+    let main = "N0010 G00 G90;\nN0020 M98 P100;\nN0030 G51.1 X40.0;\nN0040 M98 P100;\nN0050 G51.1 Z40.0;\nN0060 M98 P100;\nN0070 G50.1 X0;\nN0080 M98 P100;\nN0090 G50.1 Z0;\n";
+    let sub = "G00 G90 X50.0 Z30.0;\nG01 X70.0 F100;\nG01 Z20.0;\nG01 X60.0;\nG01 Z10.0;\nG01 X50.0;\nG01 Z30.0;\nM99;\n";
+    let out = run_with(Dialect::Servoworks, main, "", &[("100", sub)], None);
+    let xz: Vec<[f64; 2]> = out.motions.iter().map(|m| [m.end[0], m.end[2]]).collect();
+    let want: [[f64; 2]; 28] = [
+        [50., 30.],
+        [70., 30.],
+        [70., 20.],
+        [60., 20.],
+        [60., 10.],
+        [50., 10.],
+        [50., 30.],
+        [30., 30.],
+        [10., 30.],
+        [10., 20.],
+        [20., 20.],
+        [20., 10.],
+        [30., 10.],
+        [30., 30.],
+        [30., 50.],
+        [10., 50.],
+        [10., 60.],
+        [20., 60.],
+        [20., 70.],
+        [30., 70.],
+        [30., 50.],
+        [50., 50.],
+        [70., 50.],
+        [70., 60.],
+        [60., 60.],
+        [60., 70.],
+        [50., 70.],
+        [50., 50.],
+    ];
+    assert_eq!(xz.len(), 28);
+    for (g, w) in xz.iter().zip(want.iter()) {
+        assert!(close(g[0], w[0], 1e-9) && close(g[1], w[1], 1e-9), "{xz:?}");
+    }
+    assert!(codes(&out).contains(&"F006"), "no M02/M30 (SW019)");
+}
+
+#[test]
+fn tv47_rotation() {
+    let main = "G68 X0. Y0. R45\nM98 P100\nM30\n";
+    let sub = "%O100\nG00 X0. Y0.\nG00 G91 X10. Y40.\nY70.\nX-20.\nY-70.\nX20.\nG90\nM99\n";
+    let out = run_with(Dialect::Servoworks, main, "", &[("100", sub)], None);
+    let want = [
+        [0.0, 0.0],
+        [-21.213, 35.355],
+        [-70.711, 84.853],
+        [-84.853, 70.711],
+        [-35.355, 21.213],
+        [-21.213, 35.355],
+    ];
+    assert_eq!(out.motions.len(), 6);
+    for (m, w) in out.motions.iter().zip(want.iter()) {
+        assert!(
+            close(m.end[0], w[0], 1e-3) && close(m.end[1], w[1], 1e-3),
+            "{:?}",
+            m.end
+        );
+    }
+}
+
+#[test]
+fn tv48_g28_and_g54_during_rotation() {
+    let out = run_sw("G68 X0 Y0 R30\nG28 X0\nG54\nG69\nM30\n", "");
+    assert_eq!(codes(&out), vec!["K001", "K001"]);
+}
+
+#[test]
+fn tv49_local_coordinate_system() {
+    let out = run_sw(
+        "G90 G52 X5.6 Z8.6\nG00 X0 Z0\nG52 X0 Z0\nG00 X0 Z0\nM30\n",
+        "",
+    );
+    assert_pt(out.motions[0].end, &[5.6, 0.0, 8.6], 1e-12);
+    assert_pt(out.motions[1].end, &[0.0, 0.0, 0.0], 1e-12);
+}
+
+#[test]
+fn tv51_scaling() {
+    let out = run_sw("G51 X10. Y10. Z10. P2.0\nG01 X20. Y10. F100\nM30\n", "");
+    assert_pt(out.motions[0].end, &[30.0, 10.0], 1e-12);
+}
+
+#[test]
+fn tv52_per_axis_scaling() {
+    let out = run_sw("G51 X0 Y0 I2. J0.5\nG01 X10. Y10. F100\nM30\n", "");
+    assert_pt(out.motions[0].end, &[20.0, 5.0], 1e-12);
+}
+
+fn cycle_stats(out: &runtime::RunOutput) -> (f64, f64, usize) {
+    let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+    let rapid_down: f64 = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] < m.start[2])
+        .map(|m| m.start[2] - m.end[2])
+        .sum();
+    let retracts = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] > m.start[2])
+        .count();
+    (feed, rapid_down, retracts)
+}
+
+#[test]
+fn tv55_g73_high_speed_peck() {
+    let out = run_sw(
+        "M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n",
+        "",
+    );
+    let (feed, _, retracts) = cycle_stats(&out);
+    assert!(close(feed, 109.0, 1e-9), "{feed}");
+    assert_eq!(retracts, 10, "9 peck retracts and the return");
+    let last = out.motions.last().map(|m| m.end).unwrap_or_default();
+    assert_pt(last, &[200.0, 200.0, -20.0], 1e-9);
+    let next = run_sw(
+        "M3 S500;\nG91 G99 G73 X200 Y200 Z-100 R-20 Q10 F200;\nY250;\nM30\n",
+        "",
+    );
+    let last = next.motions.last().map(|m| m.end).unwrap_or_default();
+    assert_pt(last, &[200.0, 450.0, -20.0], 1e-9);
+}
+
+#[test]
+fn tv56_g83_peck() {
+    let out = run_sw(
+        "M3 S500;\nG91 G99 G83 X200 Y200 Z-100 R-20 Q10 F200;\nM30\n",
+        "",
+    );
+    let (feed, down, _) = cycle_stats(&out);
+    assert!(close(feed, 109.0, 1e-9));
+    // 20 to reach R, then Σ(10k − 1) for k = 1…9.
+    assert!(close(down - 20.0, 441.0, 1e-9), "{down}");
+    let up: f64 = out
+        .motions
+        .iter()
+        .filter(|m| is_rapid(m) && m.end[2] > m.start[2])
+        .map(|m| m.end[2] - m.start[2])
+        .sum();
+    assert!(close(up, 550.0, 1e-9), "{up}");
+}
+
+#[test]
+fn tv57_g81_holes_and_return_levels() {
+    let prog = "G00 Z50.\nM4 S500;\nG90 G99 G81 X200 Y200 Z-100 R-20 F200;\nY250;\nY300;\nG98 Y350;\nM30\n";
+    let out = run_sw(prog, "");
+    let feeds: Vec<_> = out.motions.iter().filter(|m| is_feed(m)).collect();
+    assert_eq!(feeds.len(), 4);
+    for (m, y) in feeds.iter().zip([200.0, 250.0, 300.0, 350.0]) {
+        assert_pt(m.start, &[200.0, y, -20.0], 1e-9);
+        assert_pt(m.end, &[200.0, y, -100.0], 1e-9);
+    }
+    let total: f64 = feeds.iter().map(|m| length(m)).sum();
+    assert_eq!(total, 320.0);
+    let last = out.motions.last().map(|m| m.end).unwrap_or_default();
+    assert_pt(last, &[200.0, 350.0, 50.0], 1e-9);
+}
+
+#[test]
+fn tv66_t_word_changes_tool_in_block() {
+    let out = run_sw("N00100 T1 G00 X1.0 Y2.0\nM30\n", "");
+    assert_eq!(out.motions[0].tool, 1);
+}

@@ -1,0 +1,273 @@
+//! Which settings apply to a document.
+//!
+//! Sources, most specific first:
+//! 1. the nearest `partscope.toml`, walking up from the document's folder and
+//!    stopping at the workspace folder that holds it (a project's file beats
+//!    an editor-wide setting);
+//! 2. a `(partscope: dialect=…)` comment on the first line (it names the
+//!    dialect of this one file);
+//! 3. the client's options: `initializationOptions` or the `partscope`
+//!    section of `workspace/configuration` (`{dialect, machine, select, ignore,
+//!    maxFileSize}`);
+//! 4. sniffing the extension and content; the default is `rs274ngc`.
+//!
+//! Rule `select`/`ignore` lists of the client are added to the file's.
+
+use std::path::{Path, PathBuf};
+
+use analyzer::settings::{dialect_directive, sniff_dialect};
+use analyzer::{Config, Dialect, Settings};
+use serde_json::Value;
+
+/// Default size above which a document is only parsed (no rules, no dry run).
+pub const DEFAULT_MAX_FILE_SIZE: usize = 20 * 1024 * 1024;
+
+/// Options the client sends (initializationOptions or workspace/configuration).
+#[derive(Debug, Clone, Default)]
+pub struct ClientOptions {
+    pub dialect: Option<Dialect>,
+    /// An inline machine table, or the path of a machine-profile TOML (relative
+    /// to the first workspace folder).
+    pub machine: Option<MachineOption>,
+    pub select: Vec<String>,
+    pub ignore: Vec<String>,
+    pub max_file_size: Option<usize>,
+}
+
+#[derive(Debug, Clone)]
+pub enum MachineOption {
+    Table(toml::Table),
+    Path(String),
+}
+
+impl ClientOptions {
+    /// Reads options from JSON, accepting either the options object itself or
+    /// an object with a `partscope` key. Unknown keys and wrong types are ignored.
+    pub fn from_json(v: &Value) -> ClientOptions {
+        let v = v.get("partscope").unwrap_or(v);
+        let strings = |key: &str| -> Vec<String> {
+            match v.get(key) {
+                Some(Value::Array(a)) => a
+                    .iter()
+                    .filter_map(|s| s.as_str().map(str::to_string))
+                    .collect(),
+                Some(Value::String(s)) => s
+                    .split(',')
+                    .map(|s| s.trim().to_string())
+                    .filter(|s| !s.is_empty())
+                    .collect(),
+                _ => Vec::new(),
+            }
+        };
+        let machine = match v.get("machine") {
+            Some(Value::String(s)) if !s.is_empty() => Some(MachineOption::Path(s.clone())),
+            Some(obj @ Value::Object(_)) => {
+                // JSON → TOML through serde; values TOML cannot hold (null) make it fail, and then it is ignored.
+                serde_json::from_value::<toml::Table>(obj.clone())
+                    .ok()
+                    .map(MachineOption::Table)
+            }
+            _ => None,
+        };
+        ClientOptions {
+            dialect: v
+                .get("dialect")
+                .and_then(Value::as_str)
+                .and_then(Dialect::parse),
+            machine,
+            select: strings("select"),
+            ignore: strings("ignore"),
+            max_file_size: v
+                .get("maxFileSize")
+                .or_else(|| v.get("max_file_size"))
+                .and_then(Value::as_u64)
+                .map(|n| n as usize),
+        }
+    }
+}
+
+/// Everything a document's analysis needs besides its text.
+#[derive(Debug, Clone)]
+pub struct DocSettings {
+    pub settings: Settings,
+    /// The machine profile for the runtime.
+    pub machine: toml::Table,
+    /// The `partscope.toml` the settings came from.
+    pub config_path: Option<PathBuf>,
+    /// A problem reading the configuration, reported to the user.
+    pub config_error: Option<String>,
+    pub max_file_size: usize,
+}
+
+/// Finds the nearest `partscope.toml` for `doc`, never looking above `root`
+/// (and not at all when the document is outside every workspace folder).
+pub fn find_config(doc: &Path, roots: &[PathBuf]) -> Option<PathBuf> {
+    let root = roots
+        .iter()
+        .filter(|r| doc.starts_with(r))
+        .max_by_key(|r| r.components().count())?;
+    let mut dir = doc.parent()?;
+    loop {
+        let candidate = dir.join("partscope.toml");
+        if candidate.is_file() {
+            return Some(candidate);
+        }
+        if dir == root.as_path() {
+            return None;
+        }
+        dir = dir.parent()?;
+    }
+}
+
+/// Resolves the settings of one document. Reads at most two small files (the
+/// config and a machine profile); the caller runs it off the async threads.
+pub fn resolve(
+    doc: Option<&Path>,
+    text: &[u8],
+    roots: &[PathBuf],
+    client: &ClientOptions,
+) -> DocSettings {
+    let mut config_error = None;
+    let mut config_path = None;
+    let mut config = Config::default();
+    if let Some(path) = doc.and_then(|d| find_config(d, roots)) {
+        match std::fs::read_to_string(&path)
+            .map_err(|e| e.to_string())
+            .and_then(|t| Config::from_toml(&t))
+        {
+            Ok(c) => config = c,
+            Err(e) => config_error = Some(format!("{}: {e}", path.display())),
+        }
+        config_path = Some(path);
+    }
+    let dialect = config
+        .dialect
+        .as_deref()
+        .and_then(Dialect::parse)
+        .or_else(|| dialect_directive(text))
+        .or(client.dialect)
+        .or_else(|| {
+            sniff_dialect(
+                doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
+                text,
+            )
+        })
+        .unwrap_or(Dialect::Rs274ngc);
+    if config.machine.is_empty() {
+        match &client.machine {
+            Some(MachineOption::Table(t)) => config.machine = t.clone(),
+            Some(MachineOption::Path(p)) => {
+                let base = roots.first().cloned().unwrap_or_default();
+                let path = base.join(p);
+                // The profile must stay inside the workspace, like every file the server reads.
+                match crate::lsp::workspace::confine(&path, roots)
+                    .ok_or_else(|| {
+                        format!(
+                            "machine profile {} is outside the workspace",
+                            path.display()
+                        )
+                    })
+                    .and_then(|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))
+                    .and_then(|t| toml::from_str::<toml::Table>(&t).map_err(|e| e.to_string()))
+                {
+                    Ok(t) => {
+                        config.machine = t
+                            .get("machine")
+                            .and_then(|m| m.as_table())
+                            .cloned()
+                            .unwrap_or(t)
+                    }
+                    Err(e) => config_error = Some(e),
+                }
+            }
+            None => {}
+        }
+    }
+    config.rules.select.extend(client.select.iter().cloned());
+    config.rules.ignore.extend(client.ignore.iter().cloned());
+    let settings = match Settings::from_config(&config, Some(dialect)) {
+        Ok(s) => s,
+        Err(e) => {
+            config_error.get_or_insert(e);
+            Settings::new(dialect)
+        }
+    };
+    DocSettings {
+        settings,
+        machine: config.machine,
+        config_path,
+        config_error,
+        max_file_size: client.max_file_size.unwrap_or(DEFAULT_MAX_FILE_SIZE),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tmp(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!(
+            "partscope-lsp-config-{name}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d.canonicalize().unwrap()
+    }
+
+    #[test]
+    fn nearest_config_wins_and_search_stops_at_root() {
+        let root = tmp("nearest");
+        std::fs::create_dir_all(root.join("a/b")).unwrap();
+        std::fs::write(root.join("partscope.toml"), "dialect = \"fanuc\"\n").unwrap();
+        std::fs::write(root.join("a/partscope.toml"), "dialect = \"servoworks\"\n").unwrap();
+        let doc = root.join("a/b/p.nc");
+        let roots = vec![root.clone()];
+        assert_eq!(
+            find_config(&doc, &roots),
+            Some(root.join("a/partscope.toml"))
+        );
+        let s = resolve(Some(&doc), b"G0 X1\n", &roots, &ClientOptions::default());
+        assert_eq!(s.settings.dialect, Dialect::Servoworks);
+        // With the workspace folder at `a/b`, neither file is seen.
+        let inner = vec![root.join("a/b")];
+        assert_eq!(find_config(&doc, &inner), None);
+        // Outside every workspace folder: nothing is read.
+        assert_eq!(find_config(&doc, &[tmp("other")]), None);
+    }
+
+    #[test]
+    fn precedence_directive_then_client_then_sniff() {
+        let client = ClientOptions::from_json(
+            &serde_json::json!({"partscope": {"dialect": "fanuc", "ignore": ["L008"]}}),
+        );
+        assert_eq!(client.dialect, Some(Dialect::Fanuc));
+        let s = resolve(None, b"(partscope: dialect=servoworks)\nG0\n", &[], &client);
+        assert_eq!(s.settings.dialect, Dialect::Servoworks);
+        assert!(!s.settings.code_enabled("L008"));
+        let s = resolve(None, b"G0\n", &[], &client);
+        assert_eq!(s.settings.dialect, Dialect::Fanuc);
+        let s = resolve(
+            Some(Path::new("/nowhere/x.dat")),
+            b"G0\n",
+            &[],
+            &ClientOptions::default(),
+        );
+        assert_eq!(s.settings.dialect, Dialect::Servoworks);
+        assert_eq!(s.max_file_size, DEFAULT_MAX_FILE_SIZE);
+    }
+
+    #[test]
+    fn bad_config_is_reported_not_fatal() {
+        let root = tmp("bad");
+        std::fs::write(root.join("partscope.toml"), "dialekt = 3\n").unwrap();
+        let s = resolve(
+            Some(&root.join("p.ngc")),
+            b"G0\n",
+            std::slice::from_ref(&root),
+            &ClientOptions::default(),
+        );
+        assert!(s.config_error.is_some());
+        assert_eq!(s.settings.dialect, Dialect::Rs274ngc);
+    }
+}

@@ -1,0 +1,264 @@
+//! The dry run (interpreter + planner) as the language server sees it.
+//!
+//! The runtime is built on other branches; everything the server needs from
+//! it goes through [`DryRunner`], so wiring it is one new implementation of
+//! that trait. The result shape ([`DryRunResult`]) is what the VS Code
+//! preview consumes, produced by [`summarize`] from runtime-neutral
+//! [`Segment`]s and [`Timing`].
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+use analyzer::{Diagnostic, Settings};
+use serde::Serialize;
+
+/// What one dry run needs. The fields are read by the runtime-backed runner;
+/// until that lands only [`Unavailable`] exists, which reads none.
+#[allow(dead_code)]
+pub struct DryRunInput<'a> {
+    pub program: &'a analyzer::syntax::Program,
+    pub settings: &'a Settings,
+    pub machine: &'a toml::Table,
+    pub doc_path: Option<PathBuf>,
+    pub roots: &'a [PathBuf],
+    /// Set when the client cancelled the request; a runner checks it between steps.
+    pub cancel: &'a CancelFlag,
+}
+
+/// The kind of a toolpath segment (built by the runtime-backed runner).
+#[allow(dead_code)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SegmentKind {
+    Rapid,
+    Feed,
+    Arc,
+}
+
+/// One motion, already sampled into points (arcs at a chord tolerance).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Segment {
+    pub kind: SegmentKind,
+    /// 0-based line of the block in the document.
+    pub line: u32,
+    pub feed: f64,
+    pub tool: u32,
+    pub points: Vec<[f64; 3]>,
+}
+
+/// Times from the planner, in seconds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct Timing {
+    pub rapid_s: f64,
+    pub cutting_s: f64,
+    pub dwell_s: f64,
+    pub tool_change_s: f64,
+    /// Other non-motion time (spindle ramps, M-code times, block processing).
+    pub other_s: f64,
+}
+
+/// What a runner returns: segments, timing, and the time at which each tool
+/// change happens (for inlay hints).
+#[derive(Debug, Clone, Default)]
+pub struct RunReport {
+    pub segments: Vec<Segment>,
+    pub timing: Timing,
+    /// (0-based line, seconds since start) of each tool change, for inlay
+    /// hints once the runtime is wired.
+    #[allow(dead_code)]
+    pub tool_changes: Vec<(u32, f64)>,
+    /// Runtime diagnostics in the document (FileId 0).
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Bounds {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Toolpath {
+    pub segments: Vec<Segment>,
+    pub bounds: Bounds,
+}
+
+/// The result of `partscope/dryRun` and of the `partscope.dryRun` command.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DryRunResult {
+    pub version: i32,
+    pub cycle_time_s: f64,
+    pub motion_s: f64,
+    pub rapid_s: f64,
+    pub cutting_s: f64,
+    pub dwell_s: f64,
+    pub tool_change_s: f64,
+    pub distance_mm: f64,
+    pub toolpath: Toolpath,
+    /// LSP diagnostics (converted by the caller).
+    pub diagnostics: Vec<serde_json::Value>,
+}
+
+/// Builds the preview result from a run report.
+pub fn summarize(
+    version: i32,
+    report: &RunReport,
+    diagnostics: Vec<serde_json::Value>,
+) -> DryRunResult {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    let mut distance = 0.0;
+    for seg in &report.segments {
+        for p in &seg.points {
+            for k in 0..3 {
+                min[k] = min[k].min(p[k]);
+                max[k] = max[k].max(p[k]);
+            }
+        }
+        for w in seg.points.windows(2) {
+            let d: f64 = (0..3).map(|k| (w[1][k] - w[0][k]).powi(2)).sum();
+            distance += d.sqrt();
+        }
+    }
+    if !min[0].is_finite() {
+        min = [0.0; 3];
+        max = [0.0; 3];
+    }
+    let t = report.timing;
+    let motion = t.rapid_s + t.cutting_s;
+    DryRunResult {
+        version,
+        cycle_time_s: motion + t.dwell_s + t.tool_change_s + t.other_s,
+        motion_s: motion,
+        rapid_s: t.rapid_s,
+        cutting_s: t.cutting_s,
+        dwell_s: t.dwell_s,
+        tool_change_s: t.tool_change_s,
+        distance_mm: distance,
+        toolpath: Toolpath {
+            segments: report.segments.clone(),
+            bounds: Bounds { min, max },
+        },
+        diagnostics,
+    }
+}
+
+/// Runs a program. `None` means no runtime is available.
+pub trait DryRunner: Send + Sync {
+    fn run(&self, input: &DryRunInput<'_>) -> Option<RunReport>;
+}
+
+/// Used until the runtime lands: there is nothing to run.
+pub struct Unavailable;
+
+impl DryRunner for Unavailable {
+    fn run(&self, _input: &DryRunInput<'_>) -> Option<RunReport> {
+        None
+    }
+}
+
+/// The runner the server uses.
+pub fn default_runner() -> Arc<dyn DryRunner> {
+    Arc::new(Unavailable)
+}
+
+/// A flag set when a request is cancelled (its future dropped).
+#[derive(Debug, Clone, Default)]
+pub struct CancelFlag(Arc<AtomicBool>);
+
+impl CancelFlag {
+    pub fn is_cancelled(&self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
+
+    /// A guard that sets the flag when dropped: the request future owns it,
+    /// so dropping the future (what `$/cancelRequest` does) cancels the work.
+    pub fn guard(&self) -> CancelOnDrop {
+        CancelOnDrop(self.clone())
+    }
+}
+
+pub struct CancelOnDrop(CancelFlag);
+
+impl Drop for CancelOnDrop {
+    fn drop(&mut self) {
+        self.0 .0.store(true, Ordering::Relaxed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_sums_lengths_bounds_and_times() {
+        let report = RunReport {
+            segments: vec![
+                Segment {
+                    kind: SegmentKind::Rapid,
+                    line: 0,
+                    feed: 0.0,
+                    tool: 1,
+                    points: vec![[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
+                },
+                Segment {
+                    kind: SegmentKind::Feed,
+                    line: 1,
+                    feed: 600.0,
+                    tool: 1,
+                    points: vec![[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
+                },
+            ],
+            timing: Timing {
+                rapid_s: 0.5,
+                cutting_s: 0.6,
+                dwell_s: 2.0,
+                tool_change_s: 4.0,
+                other_s: 0.25,
+            },
+            tool_changes: vec![],
+            diagnostics: vec![],
+        };
+        let r = summarize(7, &report, vec![]);
+        assert_eq!(r.version, 7);
+        assert_eq!(r.distance_mm, 11.0);
+        assert_eq!(
+            r.toolpath.bounds,
+            Bounds {
+                min: [0.0, 0.0, -1.0],
+                max: [3.0, 4.0, 5.0]
+            }
+        );
+        assert_eq!(r.motion_s, 1.1);
+        assert_eq!(r.cycle_time_s, 1.1 + 2.0 + 4.0 + 0.25);
+        let json = serde_json::to_value(&r).unwrap();
+        assert_eq!(json["toolpath"]["segments"][0]["kind"], "rapid");
+        assert_eq!(
+            json["toolpath"]["segments"][1]["points"][1],
+            serde_json::json!([3.0, 4.0, -1.0])
+        );
+    }
+
+    #[test]
+    fn empty_toolpath_has_zero_bounds() {
+        let r = summarize(1, &RunReport::default(), vec![]);
+        assert_eq!(
+            r.toolpath.bounds,
+            Bounds {
+                min: [0.0; 3],
+                max: [0.0; 3]
+            }
+        );
+        assert_eq!(r.cycle_time_s, 0.0);
+    }
+
+    #[test]
+    fn cancel_guard_sets_flag_on_drop() {
+        let f = CancelFlag::default();
+        let g = f.guard();
+        assert!(!f.is_cancelled());
+        drop(g);
+        assert!(f.is_cancelled());
+    }
+}

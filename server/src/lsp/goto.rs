@@ -1,0 +1,134 @@
+//! Go-to-definition and references: subprograms (`o<name> call` → `o<name>
+//! sub`, `M98 P1234`/`G65 P9100` → `O1234`, ServoWorks `M98 PMoveXY` →
+//! `OMoveXY.dat`), O-word labels, `GOTO n` → `N n`, and variables. Other files
+//! are only read inside the workspace folders.
+
+use std::path::PathBuf;
+
+use analyzer::syntax::{parse, ParseOptions, Program};
+use ropey::Rope;
+use tower_lsp_server::ls_types::{Location, Position, Range, Uri};
+
+use super::dry_run::CancelFlag;
+use super::nav::{self, Sym};
+use super::position::span_to_range;
+use super::snapshot::Snapshot;
+use super::workspace;
+
+/// Another document the references search looks at.
+pub struct OtherDoc {
+    pub uri: Uri,
+    pub rope: Rope,
+}
+
+fn parse_rope(snap: &Snapshot, rope: &Rope) -> Program {
+    let settings = &snap.doc.settings;
+    parse(
+        ParseOptions {
+            dialect: settings.dialect,
+            variant: settings.variant,
+        },
+        super::position::rope_bytes(rope),
+    )
+}
+
+/// The file that defines a subprogram/program the document calls but does not define.
+fn external_file(snap: &Snapshot, sym: &Sym, roots: &[PathBuf]) -> Option<PathBuf> {
+    let key = match sym {
+        Sym::OLabel(k) | Sym::Program(k) => k,
+        _ => return None,
+    };
+    let doc = snap.path.as_deref()?;
+    let subs = workspace::subroutine_path(&snap.doc.machine, snap.doc.config_path.as_deref());
+    let subs: Vec<PathBuf> = subs
+        .iter()
+        .filter_map(|p| workspace::confine(p, roots))
+        .collect();
+    workspace::find_program_file(snap.doc.settings.dialect, key, doc, &subs, roots)
+}
+
+/// Where the symbol under `offset` is defined.
+pub fn definition(
+    snap: &Snapshot,
+    offset: u32,
+    roots: &[PathBuf],
+    open: &dyn Fn(&Uri) -> Option<Rope>,
+) -> Option<Location> {
+    let program = snap.program();
+    let occ = nav::occurrence_at(program, offset)?;
+    if let Some(span) = nav::definition(program, &occ.sym) {
+        return Some(Location {
+            uri: snap.uri.clone(),
+            range: span_to_range(&snap.rope, span),
+        });
+    }
+    let path = external_file(snap, &occ.sym, roots)?;
+    let uri = Uri::from_file_path(&path)?;
+    // The open editor's text wins over the file on disk.
+    let rope = match open(&uri) {
+        Some(r) => r,
+        None => Rope::from_str(&workspace::read_confined(&path, roots)?.1),
+    };
+    let other = parse_rope(snap, &rope);
+    let range = match nav::definition(&other, &occ.sym) {
+        Some(span) => span_to_range(&rope, span),
+        None => Range::new(Position::new(0, 0), Position::new(0, 0)),
+    };
+    Some(Location { uri, range })
+}
+
+/// Every occurrence of the symbol under `offset`: in this document, in the
+/// other open documents (for programs and subprograms) and in the file that
+/// defines it.
+pub fn references(
+    snap: &Snapshot,
+    offset: u32,
+    include_declaration: bool,
+    others: &[OtherDoc],
+    roots: &[PathBuf],
+    cancel: &CancelFlag,
+) -> Vec<Location> {
+    let program = snap.program();
+    let Some(occ) = nav::occurrence_at(program, offset) else {
+        return Vec::new();
+    };
+    let keep = |o: &nav::Occ| include_declaration || !o.def;
+    let mut out: Vec<Location> = nav::references(program, &occ.sym)
+        .iter()
+        .filter(|o| keep(o))
+        .map(|o| Location {
+            uri: snap.uri.clone(),
+            range: span_to_range(&snap.rope, o.span),
+        })
+        .collect();
+    if !matches!(occ.sym, Sym::OLabel(_) | Sym::Program(_)) {
+        return out;
+    }
+    let mut docs: Vec<(Uri, Rope)> = others
+        .iter()
+        .filter(|d| d.uri != snap.uri)
+        .map(|d| (d.uri.clone(), d.rope.clone()))
+        .collect();
+    if let Some(path) = external_file(snap, &occ.sym, roots) {
+        if let Some(uri) = Uri::from_file_path(&path)
+            .filter(|u| *u != snap.uri && !docs.iter().any(|(d, _)| d == u))
+        {
+            if let Some((_, text)) = workspace::read_confined(&path, roots) {
+                docs.push((uri, Rope::from_str(&text)));
+            }
+        }
+    }
+    for (uri, rope) in docs {
+        if cancel.is_cancelled() {
+            return Vec::new();
+        }
+        let other = parse_rope(snap, &rope);
+        for o in nav::references(&other, &occ.sym).iter().filter(|o| keep(o)) {
+            out.push(Location {
+                uri: uri.clone(),
+                range: span_to_range(&rope, o.span),
+            });
+        }
+    }
+    out
+}

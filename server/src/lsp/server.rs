@@ -1,0 +1,728 @@
+//! The protocol layer: document store, scheduling of analyses, and one small
+//! handler per request (convert → analyse off-thread → convert back).
+//!
+//! Rules this file keeps:
+//! - `didChange` edits are applied synchronously, before the handler's first
+//!   `.await`, so they are applied in the order the client sent them.
+//! - The state lock is a `std::sync::Mutex` held only for short, non-async
+//!   sections; analyses run on blocking threads, tagged with the document
+//!   version, and a result for an older version is dropped.
+//! - Every handler body runs under `catch_unwind`, and analysis work runs in
+//!   `spawn_blocking` (whose panics come back as errors), so a bug in one
+//!   request cannot take the server down.
+
+use std::collections::HashMap;
+use std::future::Future;
+use std::panic::AssertUnwindSafe;
+use std::path::PathBuf;
+use std::sync::{Arc, Mutex, MutexGuard};
+use std::time::Duration;
+
+use futures::FutureExt;
+use ropey::Rope;
+use serde_json::Value;
+use tower_lsp_server::jsonrpc::{Error, ErrorCode, Result};
+use tower_lsp_server::ls_types::*;
+use tower_lsp_server::{Client, LanguageServer};
+
+use super::config::ClientOptions;
+use super::dry_run::{self, CancelFlag, DryRunInput, DryRunResult, DryRunner};
+use super::goto::OtherDoc;
+use super::position::{apply_change, position_to_offset, span_to_range};
+use super::snapshot::{self, Inputs, Snapshot};
+use super::{actions, completion, goto, hover, semantic, signature, symbols, workspace};
+
+/// How long edits must pause before diagnostics are recomputed.
+const DEBOUNCE: Duration = Duration::from_millis(50);
+/// Above this many tokens a full semantic-tokens response is refused (the
+/// client then asks for the visible range).
+const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
+pub const DRY_RUN_COMMAND: &str = "partscope.dryRun";
+
+struct Doc {
+    rope: Rope,
+    version: i32,
+    path: Option<PathBuf>,
+    /// Bumped by every change; a debounced analysis runs only if it is still current.
+    generation: u64,
+    snapshot: Option<Arc<Snapshot>>,
+}
+
+#[derive(Default)]
+struct State {
+    docs: HashMap<Uri, Doc>,
+    roots: Vec<PathBuf>,
+    init_options: ClientOptions,
+    client_options: ClientOptions,
+    supports_configuration: bool,
+    supports_watch_registration: bool,
+    /// Config errors already shown, so each is shown once.
+    shown_errors: Vec<String>,
+}
+
+#[derive(Clone)]
+pub struct Backend {
+    client: Client,
+    state: Arc<Mutex<State>>,
+    runner: Arc<dyn DryRunner>,
+}
+
+fn internal(msg: impl Into<String>) -> Error {
+    Error {
+        code: ErrorCode::InternalError,
+        message: msg.into().into(),
+        data: None,
+    }
+}
+
+/// Runs a request handler body, turning a panic into an internal error.
+async fn guarded<T>(name: &str, fut: impl Future<Output = Result<T>>) -> Result<T> {
+    match AssertUnwindSafe(fut).catch_unwind().await {
+        Ok(r) => r,
+        Err(_) => {
+            eprintln!("partscope lsp: handler `{name}` panicked");
+            Err(internal(format!("internal error in {name}")))
+        }
+    }
+}
+
+/// Runs a notification handler body, swallowing a panic.
+async fn guarded_notify(name: &str, fut: impl Future<Output = ()>) {
+    if AssertUnwindSafe(fut).catch_unwind().await.is_err() {
+        eprintln!("partscope lsp: notification `{name}` panicked");
+    }
+}
+
+/// Runs `f` on a blocking thread; a panic there becomes an internal error.
+async fn blocking<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> Result<T> {
+    tokio::task::spawn_blocking(f)
+        .await
+        .map_err(|e| internal(format!("analysis failed: {e}")))
+}
+
+fn uri_path(uri: &Uri) -> Option<PathBuf> {
+    uri.to_file_path().map(|p| p.into_owned())
+}
+
+impl Backend {
+    pub fn new(client: Client) -> Backend {
+        Backend {
+            client,
+            state: Arc::new(Mutex::new(State::default())),
+            runner: dry_run::default_runner(),
+        }
+    }
+
+    fn lock(&self) -> MutexGuard<'_, State> {
+        // A panic while holding the lock poisons it; the state is still usable
+        // (every critical section leaves it consistent), so keep going.
+        self.state.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    fn client_options(state: &State) -> ClientOptions {
+        let mut o = state.init_options.clone();
+        let c = &state.client_options;
+        o.dialect = c.dialect.or(o.dialect);
+        if c.machine.is_some() {
+            o.machine = c.machine.clone();
+        }
+        o.select.extend(c.select.iter().cloned());
+        o.ignore.extend(c.ignore.iter().cloned());
+        o.max_file_size = c.max_file_size.or(o.max_file_size);
+        o
+    }
+
+    fn inputs(state: &State, uri: &Uri) -> Option<Inputs> {
+        let doc = state.docs.get(uri)?;
+        Some(Inputs {
+            uri: uri.clone(),
+            version: doc.version,
+            rope: doc.rope.clone(),
+            path: doc.path.clone(),
+            roots: state.roots.clone(),
+            client: Self::client_options(state),
+        })
+    }
+
+    /// Schedules a debounced analysis of `uri` followed by publishing its diagnostics.
+    fn schedule(&self, uri: Uri, delay: Duration) {
+        let generation = {
+            let mut st = self.lock();
+            let Some(doc) = st.docs.get_mut(&uri) else {
+                return;
+            };
+            doc.generation += 1;
+            doc.generation
+        };
+        let this = self.clone();
+        tokio::spawn(async move {
+            tokio::time::sleep(delay).await;
+            let inputs = {
+                let st = this.lock();
+                match st.docs.get(&uri) {
+                    Some(doc) if doc.generation == generation => Self::inputs(&st, &uri),
+                    _ => None,
+                }
+            };
+            let Some(inputs) = inputs else { return };
+            let Ok(snap) = blocking(move || snapshot::analyze(inputs)).await else {
+                return;
+            };
+            let snap = Arc::new(snap);
+            if !this.store(&snap) {
+                return;
+            }
+            this.publish(&snap).await;
+        });
+    }
+
+    /// Stores a snapshot if it is for the document's current version.
+    fn store(&self, snap: &Arc<Snapshot>) -> bool {
+        let mut st = self.lock();
+        match st.docs.get_mut(&snap.uri) {
+            Some(doc) if doc.version == snap.version => {
+                doc.snapshot = Some(snap.clone());
+                true
+            }
+            _ => false,
+        }
+    }
+
+    async fn publish(&self, snap: &Arc<Snapshot>) {
+        let s = snap.clone();
+        let Ok(diags) = blocking(move || s.lsp_diagnostics()).await else {
+            return;
+        };
+        if let Some(err) = &snap.doc.config_error {
+            let first = {
+                let mut st = self.lock();
+                let new = !st.shown_errors.contains(err);
+                if new {
+                    st.shown_errors.push(err.clone());
+                }
+                new
+            };
+            if first {
+                self.client
+                    .show_message(MessageType::WARNING, format!("partscope: {err}"))
+                    .await;
+            }
+        }
+        self.client
+            .publish_diagnostics(snap.uri.clone(), diags, Some(snap.version))
+            .await;
+    }
+
+    /// The analysis of the document's current version, computing it if the
+    /// stored one is stale.
+    async fn snapshot(&self, uri: &Uri) -> Option<Arc<Snapshot>> {
+        let inputs = {
+            let st = self.lock();
+            let doc = st.docs.get(uri)?;
+            if let Some(s) = doc.snapshot.as_ref().filter(|s| s.version == doc.version) {
+                return Some(s.clone());
+            }
+            Self::inputs(&st, uri)?
+        };
+        let snap = Arc::new(blocking(move || snapshot::analyze(inputs)).await.ok()?);
+        self.store(&snap);
+        Some(snap)
+    }
+
+    fn reanalyze_all(&self) {
+        let uris: Vec<Uri> = self.lock().docs.keys().cloned().collect();
+        for uri in uris {
+            self.schedule(uri, Duration::ZERO);
+        }
+    }
+
+    async fn fetch_configuration(&self) {
+        if !self.lock().supports_configuration {
+            return;
+        }
+        let item = ConfigurationItem {
+            scope_uri: None,
+            section: Some("partscope".into()),
+        };
+        if let Ok(values) = self.client.configuration(vec![item]).await {
+            if let Some(v) = values.into_iter().next().filter(|v| v.is_object()) {
+                self.lock().client_options = ClientOptions::from_json(&v);
+            }
+        }
+    }
+
+    fn roots(&self) -> Vec<PathBuf> {
+        self.lock().roots.clone()
+    }
+
+    fn other_docs(&self) -> Vec<OtherDoc> {
+        self.lock()
+            .docs
+            .iter()
+            .map(|(uri, d)| OtherDoc {
+                uri: uri.clone(),
+                rope: d.rope.clone(),
+            })
+            .collect()
+    }
+
+    fn open_rope(&self, uri: &Uri) -> Option<Rope> {
+        self.lock().docs.get(uri).map(|d| d.rope.clone())
+    }
+
+    /// The dry run of a document (the `partscope/dryRun` request).
+    pub async fn dry_run(&self, params: Value) -> Result<Value> {
+        guarded("partscope/dryRun", async {
+            let uri: Uri = params
+                .get("textDocument")
+                .and_then(|t| t.get("uri"))
+                .and_then(|u| serde_json::from_value(u.clone()).ok())
+                .ok_or_else(|| Error::invalid_params("expected {textDocument: {uri}}"))?;
+            let snap = self
+                .snapshot(&uri)
+                .await
+                .ok_or_else(|| Error::invalid_params("document is not open"))?;
+            if snap.syntax_only {
+                return Err(internal(
+                    "file is above the size limit: syntax-only mode, no dry run",
+                ));
+            }
+            let runner = self.runner.clone();
+            let roots = self.roots();
+            let cancel = CancelFlag::default();
+            let _guard = cancel.guard();
+            let result: Option<DryRunResult> = blocking(move || {
+                let input = DryRunInput {
+                    program: snap.program(),
+                    settings: &snap.doc.settings,
+                    machine: &snap.doc.machine,
+                    doc_path: snap.path.clone(),
+                    roots: &roots,
+                    cancel: &cancel,
+                };
+                let report = runner.run(&input)?;
+                let diags = report
+                    .diagnostics
+                    .iter()
+                    .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
+                    .collect();
+                Some(dry_run::summarize(snap.version, &report, diags))
+            })
+            .await?;
+            match result {
+                Some(r) => serde_json::to_value(r).map_err(|e| internal(e.to_string())),
+                None => Err(Error {
+                    code: ErrorCode::ServerError(-32001),
+                    message: "dry run is not available: this build has no runtime".into(),
+                    data: None,
+                }),
+            }
+        })
+        .await
+    }
+
+    fn offset(snap: &Snapshot, pos: Position) -> u32 {
+        position_to_offset(&snap.rope, pos) as u32
+    }
+}
+
+fn capabilities() -> ServerCapabilities {
+    ServerCapabilities {
+        position_encoding: Some(PositionEncodingKind::UTF16),
+        text_document_sync: Some(TextDocumentSyncCapability::Options(
+            TextDocumentSyncOptions {
+                open_close: Some(true),
+                change: Some(TextDocumentSyncKind::INCREMENTAL),
+                save: Some(TextDocumentSyncSaveOptions::Supported(false)),
+                ..Default::default()
+            },
+        )),
+        hover_provider: Some(HoverProviderCapability::Simple(true)),
+        completion_provider: Some(CompletionOptions {
+            trigger_characters: Some(vec!["#".into(), "<".into()]),
+            ..Default::default()
+        }),
+        signature_help_provider: Some(SignatureHelpOptions {
+            trigger_characters: Some(vec![" ".into()]),
+            retrigger_characters: None,
+            work_done_progress_options: Default::default(),
+        }),
+        definition_provider: Some(OneOf::Left(true)),
+        references_provider: Some(OneOf::Left(true)),
+        document_symbol_provider: Some(OneOf::Left(true)),
+        folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
+        semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
+            SemanticTokensOptions {
+                legend: semantic::legend(),
+                range: Some(true),
+                full: Some(SemanticTokensFullOptions::Bool(true)),
+                work_done_progress_options: Default::default(),
+            },
+        )),
+        code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
+            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            ..Default::default()
+        })),
+        inlay_hint_provider: Some(OneOf::Left(true)),
+        code_lens_provider: Some(CodeLensOptions {
+            resolve_provider: Some(false),
+        }),
+        execute_command_provider: Some(ExecuteCommandOptions {
+            commands: vec![DRY_RUN_COMMAND.into()],
+            work_done_progress_options: Default::default(),
+        }),
+        ..Default::default()
+    }
+}
+
+impl LanguageServer for Backend {
+    async fn initialize(&self, params: InitializeParams) -> Result<InitializeResult> {
+        guarded("initialize", async {
+            let mut folders: Vec<PathBuf> = params
+                .workspace_folders
+                .iter()
+                .flatten()
+                .filter_map(|f| uri_path(&f.uri))
+                .collect();
+            #[allow(deprecated)]
+            if folders.is_empty() {
+                if let Some(root) = params.root_uri.as_ref().and_then(uri_path) {
+                    folders.push(root);
+                }
+            }
+            let ws = params.capabilities.workspace.as_ref();
+            let mut st = self.lock();
+            st.roots = workspace::canonical_roots(folders);
+            st.init_options = params
+                .initialization_options
+                .as_ref()
+                .map(ClientOptions::from_json)
+                .unwrap_or_default();
+            st.supports_configuration = ws.and_then(|w| w.configuration).unwrap_or(false);
+            st.supports_watch_registration = ws
+                .and_then(|w| w.did_change_watched_files.as_ref())
+                .and_then(|d| d.dynamic_registration)
+                .unwrap_or(false);
+            Ok(InitializeResult {
+                capabilities: capabilities(),
+                server_info: Some(ServerInfo {
+                    name: "partscope".into(),
+                    version: Some(env!("CARGO_PKG_VERSION").into()),
+                }),
+                offset_encoding: None,
+            })
+        })
+        .await
+    }
+
+    async fn initialized(&self, _: InitializedParams) {
+        guarded_notify("initialized", async {
+            if self.lock().supports_watch_registration {
+                let opts = DidChangeWatchedFilesRegistrationOptions {
+                    watchers: vec![FileSystemWatcher {
+                        glob_pattern: GlobPattern::String("**/partscope.toml".into()),
+                        kind: None,
+                    }],
+                };
+                let reg = Registration {
+                    id: "partscope-config-watcher".into(),
+                    method: "workspace/didChangeWatchedFiles".into(),
+                    register_options: serde_json::to_value(opts).ok(),
+                };
+                let _ = self.client.register_capability(vec![reg]).await;
+            }
+            if self.lock().supports_configuration {
+                self.fetch_configuration().await;
+                self.reanalyze_all();
+            }
+        })
+        .await
+    }
+
+    async fn shutdown(&self) -> Result<()> {
+        Ok(())
+    }
+
+    async fn did_open(&self, params: DidOpenTextDocumentParams) {
+        guarded_notify("didOpen", async {
+            let doc = params.text_document;
+            {
+                let mut st = self.lock();
+                st.docs.insert(
+                    doc.uri.clone(),
+                    Doc {
+                        rope: Rope::from_str(&doc.text),
+                        version: doc.version,
+                        path: uri_path(&doc.uri),
+                        generation: 0,
+                        snapshot: None,
+                    },
+                );
+            }
+            self.schedule(doc.uri, Duration::ZERO);
+        })
+        .await
+    }
+
+    async fn did_change(&self, params: DidChangeTextDocumentParams) {
+        guarded_notify("didChange", async {
+            let uri = params.text_document.uri;
+            // Applied here, before any await: edits keep the client's order.
+            {
+                let mut st = self.lock();
+                let Some(doc) = st.docs.get_mut(&uri) else {
+                    return;
+                };
+                for change in &params.content_changes {
+                    apply_change(&mut doc.rope, change.range, &change.text);
+                }
+                doc.version = params.text_document.version;
+            }
+            self.schedule(uri, DEBOUNCE);
+        })
+        .await
+    }
+
+    async fn did_close(&self, params: DidCloseTextDocumentParams) {
+        guarded_notify("didClose", async {
+            let uri = params.text_document.uri;
+            self.lock().docs.remove(&uri);
+            self.client.publish_diagnostics(uri, Vec::new(), None).await;
+        })
+        .await
+    }
+
+    async fn did_change_configuration(&self, params: DidChangeConfigurationParams) {
+        guarded_notify("didChangeConfiguration", async {
+            if params.settings.get("partscope").is_some() {
+                self.lock().client_options = ClientOptions::from_json(&params.settings);
+            } else {
+                self.fetch_configuration().await;
+            }
+            self.reanalyze_all();
+        })
+        .await
+    }
+
+    async fn did_change_watched_files(&self, params: DidChangeWatchedFilesParams) {
+        guarded_notify("didChangeWatchedFiles", async {
+            let config_changed = params
+                .changes
+                .iter()
+                .any(|c| c.uri.path().as_str().ends_with("partscope.toml"));
+            if config_changed {
+                self.lock().shown_errors.clear();
+                self.reanalyze_all();
+            }
+        })
+        .await
+    }
+
+    async fn hover(&self, params: HoverParams) -> Result<Option<Hover>> {
+        guarded("hover", async {
+            let p = params.text_document_position_params;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, p.position);
+            blocking(move || {
+                hover::hover(&snap, offset).map(|(md, span)| Hover {
+                    contents: HoverContents::Markup(MarkupContent {
+                        kind: MarkupKind::Markdown,
+                        value: md,
+                    }),
+                    range: Some(span_to_range(&snap.rope, span)),
+                })
+            })
+            .await
+        })
+        .await
+    }
+
+    async fn completion(&self, params: CompletionParams) -> Result<Option<CompletionResponse>> {
+        guarded("completion", async {
+            let p = params.text_document_position;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = position_to_offset(&snap.rope, p.position);
+            let items = blocking(move || completion::complete(&snap, offset)).await?;
+            Ok(Some(CompletionResponse::Array(items)))
+        })
+        .await
+    }
+
+    async fn signature_help(&self, params: SignatureHelpParams) -> Result<Option<SignatureHelp>> {
+        guarded("signatureHelp", async {
+            let p = params.text_document_position_params;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, p.position);
+            blocking(move || signature::signature_help(&snap, offset)).await
+        })
+        .await
+    }
+
+    async fn goto_definition(
+        &self,
+        params: GotoDefinitionParams,
+    ) -> Result<Option<GotoDefinitionResponse>> {
+        guarded("definition", async {
+            let p = params.text_document_position_params;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, p.position);
+            let roots = self.roots();
+            let this = self.clone();
+            let loc =
+                blocking(move || goto::definition(&snap, offset, &roots, &|u| this.open_rope(u)))
+                    .await?;
+            Ok(loc.map(GotoDefinitionResponse::Scalar))
+        })
+        .await
+    }
+
+    async fn references(&self, params: ReferenceParams) -> Result<Option<Vec<Location>>> {
+        guarded("references", async {
+            let p = params.text_document_position;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, p.position);
+            let roots = self.roots();
+            let others = self.other_docs();
+            let include = params.context.include_declaration;
+            let cancel = CancelFlag::default();
+            let _guard = cancel.guard();
+            let locs = blocking(move || {
+                goto::references(&snap, offset, include, &others, &roots, &cancel)
+            })
+            .await?;
+            Ok(Some(locs))
+        })
+        .await
+    }
+
+    async fn document_symbol(
+        &self,
+        params: DocumentSymbolParams,
+    ) -> Result<Option<DocumentSymbolResponse>> {
+        guarded("documentSymbol", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let syms =
+                blocking(move || symbols::document_symbols(snap.program(), &snap.rope)).await?;
+            Ok(Some(DocumentSymbolResponse::Nested(syms)))
+        })
+        .await
+    }
+
+    async fn folding_range(&self, params: FoldingRangeParams) -> Result<Option<Vec<FoldingRange>>> {
+        guarded("foldingRange", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            Ok(Some(
+                blocking(move || symbols::folding_ranges(snap.program(), &snap.rope)).await?,
+            ))
+        })
+        .await
+    }
+
+    async fn semantic_tokens_full(
+        &self,
+        params: SemanticTokensParams,
+    ) -> Result<Option<SemanticTokensResult>> {
+        guarded("semanticTokens/full", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let data = blocking(move || {
+                semantic::encode(snap.program(), 0, u32::MAX, MAX_FULL_SEMANTIC_TOKENS)
+            })
+            .await?;
+            Ok(data.map(|data| {
+                SemanticTokensResult::Tokens(SemanticTokens {
+                    result_id: None,
+                    data,
+                })
+            }))
+        })
+        .await
+    }
+
+    async fn semantic_tokens_range(
+        &self,
+        params: SemanticTokensRangeParams,
+    ) -> Result<Option<SemanticTokensRangeResult>> {
+        guarded("semanticTokens/range", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let (a, b) = super::position::range_to_offsets(&snap.rope, params.range);
+            let data =
+                blocking(move || semantic::encode(snap.program(), a as u32, b as u32, usize::MAX))
+                    .await?;
+            Ok(data.map(|data| {
+                SemanticTokensRangeResult::Tokens(SemanticTokens {
+                    result_id: None,
+                    data,
+                })
+            }))
+        })
+        .await
+    }
+
+    async fn code_action(&self, params: CodeActionParams) -> Result<Option<CodeActionResponse>> {
+        guarded("codeAction", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let range = params.range;
+            Ok(Some(
+                blocking(move || actions::code_actions(&snap, range)).await?,
+            ))
+        })
+        .await
+    }
+
+    async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
+        // Times at tool changes need the runtime; until it is wired there are none.
+        guarded("inlayHint", async {
+            let _ = params;
+            Ok(Some(Vec::new()))
+        })
+        .await
+    }
+
+    async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
+        // The cycle-time lens needs the runtime; without it there is no lens.
+        guarded("codeLens", async {
+            let _ = params;
+            Ok(Some(Vec::new()))
+        })
+        .await
+    }
+
+    async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<LSPAny>> {
+        if params.command != DRY_RUN_COMMAND {
+            return Err(Error::invalid_params(format!(
+                "unknown command `{}`",
+                params.command
+            )));
+        }
+        let arg = params.arguments.into_iter().next().unwrap_or(Value::Null);
+        // Accept `{textDocument:{uri}}`, `{uri}` or a bare URI string.
+        let arg = match arg {
+            Value::String(s) => serde_json::json!({"textDocument": {"uri": s}}),
+            Value::Object(ref o) if o.contains_key("uri") => {
+                serde_json::json!({"textDocument": {"uri": o["uri"]}})
+            }
+            other => other,
+        };
+        self.dry_run(arg).await.map(Some)
+    }
+}
