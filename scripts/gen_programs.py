@@ -89,6 +89,11 @@ def tool_change(w, dialect, tool, rpm):
     if dialect == "servoworks":
         w.line("T%02d M6" % tool)
         w.line("G43 H%d Z50." % tool)
+    elif dialect == "rs274ngc":
+        # LinuxCNC refuses axis words in a G43 block.
+        w.line("T%d M6" % tool)
+        w.line("G43 H%d" % tool)
+        w.line("G0 Z50.")
     else:
         w.line("T%d M6" % tool)
         w.line("G43 H%d Z50." % tool)
@@ -160,7 +165,9 @@ def drilling(w, dialect, budget, rng):
                 a = 2 * math.pi * i / n
                 w.line("X%s Y%s" % (fmt(radius * math.cos(a), 3), fmt(radius * math.sin(a), 3)))
         w.line("G80")
-        tool = tool % 20 + 1
+        # Tools 1-3 exist in LinuxCNC's sample tool table, so `rs274` can run
+        # the output unchanged.
+        tool = tool % 3 + 1
 
 
 def macro(w, dialect, budget, rng):
