@@ -3,6 +3,7 @@
 // The server does the analysis; this extension starts it, forwards settings, and adds what
 // LSP itself has no UI for: the cycle time in the status bar, the dry-run report, the
 // toolpath preview webview and "explain rule".
+import * as fs from "fs";
 import * as path from "path";
 import { execFile } from "child_process";
 import * as vscode from "vscode";
@@ -13,6 +14,7 @@ import {
   TransportKind,
 } from "vscode-languageclient/node";
 import { DryRunResult, formatDuration, summarize } from "./dryrun";
+import { webviewHtml } from "./webview";
 
 const LANGUAGE_ID = "gcode";
 // VS Code registers a client-side command for every command the server announces through
@@ -310,16 +312,12 @@ class ToolpathPreview {
 
   private html(media: vscode.Uri): string {
     const webview = this.panel.webview;
-    const fs = require("fs") as typeof import("fs");
-    let html = fs.readFileSync(vscode.Uri.joinPath(media, "preview.html").fsPath, "utf8");
-    const csp =
-      `<meta http-equiv="Content-Security-Policy" content="default-src 'none'; ` +
-      `img-src ${webview.cspSource} data:; style-src ${webview.cspSource} 'unsafe-inline'; ` +
-      `script-src ${webview.cspSource};">`;
-    html = html.replace("<!-- partscope:csp -->", csp);
-    html = html.replace('href="preview.css"', `href="${webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.css"))}"`);
-    html = html.replace('src="preview.js"', `src="${webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.js"))}"`);
-    return html;
+    const template = fs.readFileSync(vscode.Uri.joinPath(media, "preview.html").fsPath, "utf8");
+    return webviewHtml(template, {
+      cspSource: webview.cspSource,
+      cssUri: webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.css")).toString(),
+      scriptUri: webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.js")).toString(),
+    });
   }
 
   private async onMessage(m: { type?: string; line?: number }): Promise<void> {
