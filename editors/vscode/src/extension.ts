@@ -64,7 +64,7 @@ export function initializationOptions(): InitOptions {
   };
 }
 
-async function startClient(context: vscode.ExtensionContext): Promise<void> {
+async function startClient(): Promise<void> {
   const command = serverPath();
   const serverOptions: ServerOptions = {
     run: { command, args: ["lsp"], transport: TransportKind.stdio },
@@ -105,10 +105,9 @@ async function startClient(context: vscode.ExtensionContext): Promise<void> {
     if (choice) void vscode.commands.executeCommand("workbench.action.openSettings", "partscope.server.path");
     return;
   }
-  context.subscriptions.push({ dispose: () => void c.stop() });
 }
 
-async function restartClient(context: vscode.ExtensionContext): Promise<void> {
+async function restartClient(): Promise<void> {
   const old = client;
   client = undefined;
   if (old) {
@@ -118,7 +117,7 @@ async function restartClient(context: vscode.ExtensionContext): Promise<void> {
       // A server that already died cannot be stopped; starting a new one is all we want.
     }
   }
-  await startClient(context);
+  await startClient();
   void refreshStatus();
 }
 
@@ -395,7 +394,7 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand("partscope.runDryRun", runDryRunCommand),
     vscode.commands.registerCommand("partscope.showToolpath", showToolpathCommand),
     vscode.commands.registerCommand("partscope.explainRule", explainRuleCommand),
-    vscode.commands.registerCommand("partscope.restartServer", () => restartClient(context)),
+    vscode.commands.registerCommand("partscope.restartServer", () => restartClient()),
     vscode.languages.registerCodeActionsProvider({ language: LANGUAGE_ID }, new ExplainRuleActions(), {
       providedCodeActionKinds: ExplainRuleActions.kinds,
     }),
@@ -411,15 +410,17 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.workspace.onDidChangeConfiguration((e) => {
       // The server picks up dialect/machine/select/ignore through didChangeConfiguration;
       // only a different executable needs a new process.
-      if (e.affectsConfiguration("partscope.server.path")) void restartClient(context);
+      if (e.affectsConfiguration("partscope.server.path")) void restartClient();
       else if (e.affectsConfiguration("partscope")) scheduleStatus(300);
     }),
     { dispose: () => preview?.dispose() }
   );
-  await startClient(context);
+  await startClient();
   scheduleStatus(0);
 }
 
 export async function deactivate(): Promise<void> {
-  if (client) await client.stop();
+  const c = client;
+  client = undefined;
+  if (c) await c.stop();
 }
