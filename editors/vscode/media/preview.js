@@ -164,6 +164,7 @@
     this.bounds = { min: lo, max: hi };
     this.center = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
     this.feedRange = [minFeed, maxFeed];
+    this._dataVersion = (this._dataVersion || 0) + 1;
     this.buckets = segs.map(function (s) {
       if (s.kind === "rapid") return -1;
       if (maxFeed <= minFeed) return BUCKETS - 1;
@@ -364,9 +365,40 @@
     return { x: 0, y: 0, down: false };
   }
 
+  // Everything but the cursor highlight and the axis triad is drawn into an offscreen canvas
+  // that is reused while the view and the data stay the same, so following the editor's
+  // cursor through a big program costs one image copy per move instead of a full redraw.
   Preview.prototype.draw = function () {
     this._resize();
+    var dpr = global.devicePixelRatio || 1;
+    var key = [
+      this.canvas.width, this.canvas.height, this.yaw, this.pitch, this.scale, this.panX, this.panY,
+      this.showRapids, !!this._coarse, this._dataVersion, this.background,
+    ].join(",");
+    if (!this._base || key !== this._baseKey) {
+      if (!this._base) this._base = document.createElement("canvas");
+      this._base.width = this.canvas.width;
+      this._base.height = this.canvas.height;
+      var bctx = this._base.getContext("2d");
+      bctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      this._drawBase(bctx);
+      this._baseKey = key;
+    }
     var ctx = this.ctx;
+    ctx.save();
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(this._base, 0, 0);
+    ctx.restore();
+    ctx.save();
+    ctx.lineJoin = "round";
+    ctx.lineCap = "round";
+    this._drawHighlight(ctx);
+    this._drawAxes(ctx);
+    ctx.restore();
+    if (this.options.onDraw) this.options.onDraw(this);
+  };
+
+  Preview.prototype._drawBase = function (ctx) {
     ctx.save();
     ctx.fillStyle = this.background;
     ctx.fillRect(0, 0, this.width, this.height);
@@ -407,10 +439,7 @@
       ctx.strokeStyle = rampColour(Number(key) / (BUCKETS - 1));
       ctx.stroke();
     }
-    this._drawHighlight(ctx);
-    this._drawAxes(ctx);
     ctx.restore();
-    if (this.options.onDraw) this.options.onDraw(this);
   };
 
   Preview.prototype.highlightedSegments = function () {
@@ -569,6 +598,8 @@
     var self = this;
     var canvas = this.canvas;
     var drag = null;
+    var hoverPending = false;
+    var lastPos = { x: 0, y: 0 };
     var pos = function (ev) {
       var r = canvas.getBoundingClientRect();
       return { x: ev.clientX - r.left, y: ev.clientY - r.top };
@@ -592,10 +623,19 @@
     canvas.addEventListener("pointermove", function (ev) {
       var p = pos(ev);
       if (!drag) {
-        if (self.options.onHover) {
-          var i = self.hitTest(p.x, p.y);
-          self.options.onHover(i >= 0 ? self.segments[i] : null, p.x, p.y);
+        // Hit-testing walks every point, so hover runs at most once per frame.
+        if (self.options.onHover && !hoverPending) {
+          hoverPending = true;
+          var raf = global.requestAnimationFrame || function (f) {
+            return setTimeout(f, 16);
+          };
+          raf(function () {
+            hoverPending = false;
+            var i = self.hitTest(lastPos.x, lastPos.y);
+            self.options.onHover(i >= 0 ? self.segments[i] : null, lastPos.x, lastPos.y);
+          });
         }
+        lastPos = p;
         return;
       }
       var dx = p.x - drag.x;
