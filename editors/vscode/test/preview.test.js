@@ -177,6 +177,15 @@ test("toolpath preview in headless Chromium", async (t) => {
     assert.ok(colourDistance(after, HIGHLIGHT) < 40, `highlight colour after the click, got ${after}`);
   });
 
+  await t.test("hovering a segment shows its 1-based line, kind, feed and tool", async () => {
+    const p = await page.evaluate((i) => window.partscopePreview.segmentScreenPoint(i), plungeIndex);
+    await page.mouse.move(canvasBox.x + p.x + 1, canvasBox.y + p.y);
+    await page.waitForFunction(() => getComputedStyle(document.getElementById("tooltip")).display === "block");
+    assert.equal(await page.locator("#tooltip").innerText(), `line ${plunge.line + 1} · feed · 180 mm/min · T2`);
+    await page.mouse.move(canvasBox.x + canvasBox.width - 20, canvasBox.y + canvasBox.height - 60);
+    await page.waitForFunction(() => getComputedStyle(document.getElementById("tooltip")).display === "none");
+  });
+
   await t.test("cursor messages from the host move the highlight", async () => {
     const contour = fixture.toolpath.segments.findIndex((s) => s.kind === "arc");
     const line = fixture.toolpath.segments[contour].line;
