@@ -97,13 +97,16 @@ async function startClient(): Promise<void> {
     await c.start();
   } catch (err) {
     client = undefined;
-    const choice = await vscode.window.showErrorMessage(
-      `Partscope: could not start "${command} lsp" (${err instanceof Error ? err.message : String(err)}). ` +
-        "Install partscope or set partscope.server.path.",
-      "Open settings"
-    );
-    if (choice) void vscode.commands.executeCommand("workbench.action.openSettings", "partscope.server.path");
-    return;
+    // Not awaited: activation must not wait for the user to dismiss the message.
+    void vscode.window
+      .showErrorMessage(
+        `Partscope: could not start "${command} lsp" (${err instanceof Error ? err.message : String(err)}). ` +
+          "Install partscope or set partscope.server.path.",
+        "Open settings"
+      )
+      .then((choice) => {
+        if (choice) void vscode.commands.executeCommand("workbench.action.openSettings", "partscope.server.path");
+      });
   }
 }
 
