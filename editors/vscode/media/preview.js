@@ -766,9 +766,8 @@
       global.dispatchEvent(new CustomEvent("partscope-post", { detail: msg }));
     };
     var tooltip = byId("tooltip");
-    var bg = getComputedStyle(document.body).getPropertyValue("--vscode-editor-background").trim();
     var preview = new Preview(canvas, {
-      background: bg || "#1e1e1e",
+      background: "#1e1e1e",
       onReveal: function (line) {
         post({ type: "reveal", line: line });
       },
