@@ -164,6 +164,7 @@
     this.bounds = { min: lo, max: hi };
     this.center = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2];
     this.feedRange = [minFeed, maxFeed];
+    this._dataVersion = (this._dataVersion || 0) + 1;
     this.buckets = segs.map(function (s) {
       if (s.kind === "rapid") return -1;
       if (maxFeed <= minFeed) return BUCKETS - 1;
@@ -268,6 +269,18 @@
     this.requestDraw();
   };
 
+  // Marks the view as moving: big toolpaths draw coarsely until it settles.
+  Preview.prototype._interact = function () {
+    var self = this;
+    if (this.world.length / 3 < 50000) return;
+    this._coarse = true;
+    clearTimeout(this._settle);
+    this._settle = setTimeout(function () {
+      self._coarse = false;
+      self.requestDraw();
+    }, SETTLE_MS);
+  };
+
   Preview.prototype.requestDraw = function () {
     var self = this;
     if (this._frame) return;
@@ -302,22 +315,90 @@
     }
   };
 
-  Preview.prototype._tracePath = function (ctx, seg) {
+  // Adds segment `seg` to the current path. Consecutive segments that continue where the last
+  // one ended extend the same polyline, and points closer than MIN_STEP_PX to the last emitted
+  // point are skipped: CAM programs are mostly sub-pixel moves, and rasterising each of them
+  // as its own sub-path is what makes big toolpaths slow.
+  var MIN_STEP_PX = 0.75;
+  // While the user drags or zooms a big toolpath, a coarser step keeps frames fast; the full
+  // drawing follows once the view has been still for SETTLE_MS.
+  var COARSE_STEP_PX = 3;
+  var SETTLE_MS = 160;
+  Preview.prototype._tracePath = function (ctx, seg, pen) {
     var scr = this.screen;
     var a = this.offsets[seg];
     var e = this.offsets[seg + 1];
     if (e - a < 1) return;
-    ctx.moveTo(scr[2 * a], scr[2 * a + 1]);
-    if (e - a === 1) {
-      ctx.lineTo(scr[2 * a] + 0.01, scr[2 * a + 1]);
-      return;
+    var x = scr[2 * a];
+    var y = scr[2 * a + 1];
+    var dx = x - pen.x;
+    var dy = y - pen.y;
+    if (!pen.down || dx * dx + dy * dy > 0.25) {
+      ctx.moveTo(x, y);
+      pen.x = x;
+      pen.y = y;
+      pen.down = true;
+      if (e - a === 1) {
+        ctx.lineTo(x + 0.01, y);
+        return;
+      }
     }
-    for (var i = a + 1; i < e; i++) ctx.lineTo(scr[2 * i], scr[2 * i + 1]);
+    var step = this._coarse ? COARSE_STEP_PX : MIN_STEP_PX;
+    var min2 = step * step;
+    var emitted = false;
+    for (var i = a + 1; i < e; i++) {
+      x = scr[2 * i];
+      y = scr[2 * i + 1];
+      dx = x - pen.x;
+      dy = y - pen.y;
+      // A segment's last point is kept if nothing of the segment was drawn yet, so every move
+      // leaves at least a dot.
+      if (dx * dx + dy * dy < min2 && (i + 1 < e || emitted)) continue;
+      ctx.lineTo(x, y);
+      pen.x = x;
+      pen.y = y;
+      emitted = true;
+    }
   };
 
+  function newPen() {
+    return { x: 0, y: 0, down: false };
+  }
+
+  // Everything but the cursor highlight and the axis triad is drawn into an offscreen canvas
+  // that is reused while the view and the data stay the same, so following the editor's
+  // cursor through a big program costs one image copy per move instead of a full redraw.
   Preview.prototype.draw = function () {
     this._resize();
+    var dpr = global.devicePixelRatio || 1;
+    var key = [
+      this.canvas.width, this.canvas.height, this.yaw, this.pitch, this.scale, this.panX, this.panY,
+      this.showRapids, !!this._coarse, this._dataVersion, this.background,
+    ].join(",");
+    if (!this._base || key !== this._baseKey) {
+      if (!this._base) this._base = document.createElement("canvas");
+      this._base.width = this.canvas.width;
+      this._base.height = this.canvas.height;
+      var bctx = this._base.getContext("2d");
+      bctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      this._drawBase(bctx);
+      this._baseKey = key;
+    }
     var ctx = this.ctx;
+    ctx.save();
+    ctx.setTransform(1, 0, 0, 1, 0, 0);
+    ctx.drawImage(this._base, 0, 0);
+    ctx.restore();
+    ctx.save();
+    ctx.lineJoin = "round";
+    ctx.lineCap = "round";
+    this._drawHighlight(ctx);
+    this._drawAxes(ctx);
+    ctx.restore();
+    if (this.options.onDraw) this.options.onDraw(this);
+  };
+
+  Preview.prototype._drawBase = function (ctx) {
     ctx.save();
     ctx.fillStyle = this.background;
     ctx.fillRect(0, 0, this.width, this.height);
@@ -332,9 +413,10 @@
     // Rapids first, so cutting moves are drawn over them.
     if (this.showRapids) {
       ctx.beginPath();
-      for (i = 0; i < n; i++) if (this.buckets[i] === -1) this._tracePath(ctx, i);
+      var rapidPen = newPen();
+      for (i = 0; i < n; i++) if (this.buckets[i] === -1) this._tracePath(ctx, i, rapidPen);
       ctx.setLineDash([5, 4]);
-      ctx.lineWidth = 1.2;
+      ctx.lineWidth = 1;
       ctx.strokeStyle = "rgba(255, 170, 60, 0.85)";
       ctx.stroke();
       ctx.setLineDash([]);
@@ -346,18 +428,18 @@
       if (k < 0) continue;
       (byBucket[k] || (byBucket[k] = [])).push(i);
     }
-    ctx.lineWidth = 1.6;
+    // Lines of 1 px take the rasteriser's hairline path, several times faster than wider
+    // strokes; big toolpaths use them, small ones get the easier-to-see 1.6 px.
+    ctx.lineWidth = this.world.length / 3 > 20000 ? 1 : 1.6;
     for (var key in byBucket) {
       var list = byBucket[key];
       ctx.beginPath();
-      for (var j = 0; j < list.length; j++) this._tracePath(ctx, list[j]);
+      var pen = newPen();
+      for (var j = 0; j < list.length; j++) this._tracePath(ctx, list[j], pen);
       ctx.strokeStyle = rampColour(Number(key) / (BUCKETS - 1));
       ctx.stroke();
     }
-    this._drawHighlight(ctx);
-    this._drawAxes(ctx);
     ctx.restore();
-    if (this.options.onDraw) this.options.onDraw(this);
   };
 
   Preview.prototype.highlightedSegments = function () {
@@ -371,7 +453,8 @@
     var hl = this.highlightedSegments();
     if (!hl.length) return;
     ctx.beginPath();
-    for (var i = 0; i < hl.length; i++) this._tracePath(ctx, hl[i]);
+    var pen = newPen();
+    for (var i = 0; i < hl.length; i++) this._tracePath(ctx, hl[i], pen);
     ctx.setLineDash([]);
     ctx.lineWidth = 7;
     ctx.strokeStyle = "rgba(255, 255, 255, 0.35)";
@@ -515,6 +598,8 @@
     var self = this;
     var canvas = this.canvas;
     var drag = null;
+    var hoverPending = false;
+    var lastPos = { x: 0, y: 0 };
     var pos = function (ev) {
       var r = canvas.getBoundingClientRect();
       return { x: ev.clientX - r.left, y: ev.clientY - r.top };
@@ -538,10 +623,19 @@
     canvas.addEventListener("pointermove", function (ev) {
       var p = pos(ev);
       if (!drag) {
-        if (self.options.onHover) {
-          var i = self.hitTest(p.x, p.y);
-          self.options.onHover(i >= 0 ? self.segments[i] : null, p.x, p.y);
+        // Hit-testing walks every point, so hover runs at most once per frame.
+        if (self.options.onHover && !hoverPending) {
+          hoverPending = true;
+          var raf = global.requestAnimationFrame || function (f) {
+            return setTimeout(f, 16);
+          };
+          raf(function () {
+            hoverPending = false;
+            var i = self.hitTest(lastPos.x, lastPos.y);
+            self.options.onHover(i >= 0 ? self.segments[i] : null, lastPos.x, lastPos.y);
+          });
         }
+        lastPos = p;
         return;
       }
       var dx = p.x - drag.x;
@@ -550,6 +644,7 @@
       if (!drag.moved) return;
       drag.x = p.x;
       drag.y = p.y;
+      self._interact();
       if (drag.mode === "orbit") {
         self.yaw += dx * 0.01;
         self.pitch = Math.max(0, Math.min(Math.PI, self.pitch - dy * 0.01));
@@ -582,6 +677,7 @@
       "wheel",
       function (ev) {
         ev.preventDefault();
+        self._interact();
         var p = pos(ev);
         var f = Math.exp(-ev.deltaY * 0.0015);
         // Keep the world point under the pointer fixed while zooming.
@@ -670,9 +766,8 @@
       global.dispatchEvent(new CustomEvent("partscope-post", { detail: msg }));
     };
     var tooltip = byId("tooltip");
-    var bg = getComputedStyle(document.body).getPropertyValue("--vscode-editor-background").trim();
     var preview = new Preview(canvas, {
-      background: bg || "#1e1e1e",
+      background: "#1e1e1e",
       onReveal: function (line) {
         post({ type: "reveal", line: line });
       },

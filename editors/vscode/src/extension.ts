@@ -3,6 +3,7 @@
 // The server does the analysis; this extension starts it, forwards settings, and adds what
 // LSP itself has no UI for: the cycle time in the status bar, the dry-run report, the
 // toolpath preview webview and "explain rule".
+import * as fs from "fs";
 import * as path from "path";
 import { execFile } from "child_process";
 import * as vscode from "vscode";
@@ -13,6 +14,7 @@ import {
   TransportKind,
 } from "vscode-languageclient/node";
 import { DryRunResult, formatDuration, summarize } from "./dryrun";
+import { webviewHtml } from "./webview";
 
 const LANGUAGE_ID = "gcode";
 // VS Code registers a client-side command for every command the server announces through
@@ -62,7 +64,7 @@ export function initializationOptions(): InitOptions {
   };
 }
 
-async function startClient(context: vscode.ExtensionContext): Promise<void> {
+async function startClient(): Promise<void> {
   const command = serverPath();
   const serverOptions: ServerOptions = {
     run: { command, args: ["lsp"], transport: TransportKind.stdio },
@@ -95,18 +97,20 @@ async function startClient(context: vscode.ExtensionContext): Promise<void> {
     await c.start();
   } catch (err) {
     client = undefined;
-    const choice = await vscode.window.showErrorMessage(
-      `Partscope: could not start "${command} lsp" (${err instanceof Error ? err.message : String(err)}). ` +
-        "Install partscope or set partscope.server.path.",
-      "Open settings"
-    );
-    if (choice) void vscode.commands.executeCommand("workbench.action.openSettings", "partscope.server.path");
-    return;
+    // Not awaited: activation must not wait for the user to dismiss the message.
+    void vscode.window
+      .showErrorMessage(
+        `Partscope: could not start "${command} lsp" (${err instanceof Error ? err.message : String(err)}). ` +
+          "Install partscope or set partscope.server.path.",
+        "Open settings"
+      )
+      .then((choice) => {
+        if (choice) void vscode.commands.executeCommand("workbench.action.openSettings", "partscope.server.path");
+      });
   }
-  context.subscriptions.push({ dispose: () => void c.stop() });
 }
 
-async function restartClient(context: vscode.ExtensionContext): Promise<void> {
+async function restartClient(): Promise<void> {
   const old = client;
   client = undefined;
   if (old) {
@@ -116,7 +120,7 @@ async function restartClient(context: vscode.ExtensionContext): Promise<void> {
       // A server that already died cannot be stopped; starting a new one is all we want.
     }
   }
-  await startClient(context);
+  await startClient();
   void refreshStatus();
 }
 
@@ -310,16 +314,12 @@ class ToolpathPreview {
 
   private html(media: vscode.Uri): string {
     const webview = this.panel.webview;
-    const fs = require("fs") as typeof import("fs");
-    let html = fs.readFileSync(vscode.Uri.joinPath(media, "preview.html").fsPath, "utf8");
-    const csp =
-      `<meta http-equiv="Content-Security-Policy" content="default-src 'none'; ` +
-      `img-src ${webview.cspSource} data:; style-src ${webview.cspSource} 'unsafe-inline'; ` +
-      `script-src ${webview.cspSource};">`;
-    html = html.replace("<!-- partscope:csp -->", csp);
-    html = html.replace('href="preview.css"', `href="${webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.css"))}"`);
-    html = html.replace('src="preview.js"', `src="${webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.js"))}"`);
-    return html;
+    const template = fs.readFileSync(vscode.Uri.joinPath(media, "preview.html").fsPath, "utf8");
+    return webviewHtml(template, {
+      cspSource: webview.cspSource,
+      cssUri: webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.css")).toString(),
+      scriptUri: webview.asWebviewUri(vscode.Uri.joinPath(media, "preview.js")).toString(),
+    });
   }
 
   private async onMessage(m: { type?: string; line?: number }): Promise<void> {
@@ -397,7 +397,7 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand("partscope.runDryRun", runDryRunCommand),
     vscode.commands.registerCommand("partscope.showToolpath", showToolpathCommand),
     vscode.commands.registerCommand("partscope.explainRule", explainRuleCommand),
-    vscode.commands.registerCommand("partscope.restartServer", () => restartClient(context)),
+    vscode.commands.registerCommand("partscope.restartServer", () => restartClient()),
     vscode.languages.registerCodeActionsProvider({ language: LANGUAGE_ID }, new ExplainRuleActions(), {
       providedCodeActionKinds: ExplainRuleActions.kinds,
     }),
@@ -413,15 +413,17 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.workspace.onDidChangeConfiguration((e) => {
       // The server picks up dialect/machine/select/ignore through didChangeConfiguration;
       // only a different executable needs a new process.
-      if (e.affectsConfiguration("partscope.server.path")) void restartClient(context);
+      if (e.affectsConfiguration("partscope.server.path")) void restartClient();
       else if (e.affectsConfiguration("partscope")) scheduleStatus(300);
     }),
     { dispose: () => preview?.dispose() }
   );
-  await startClient(context);
+  await startClient();
   scheduleStatus(0);
 }
 
 export async function deactivate(): Promise<void> {
-  if (client) await client.stop();
+  const c = client;
+  client = undefined;
+  if (c) await c.stop();
 }

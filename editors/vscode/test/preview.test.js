@@ -9,6 +9,7 @@ const http = require("node:http");
 const os = require("node:os");
 const path = require("node:path");
 const { chromium } = require("playwright-core");
+const { webviewHtml } = require("../out/webview.js");
 
 const ROOT = path.resolve(__dirname, "..");
 const FIXTURE = path.join(__dirname, "fixtures", "sample-dryrun.json");
@@ -33,6 +34,25 @@ const TYPES = { ".html": "text/html", ".js": "text/javascript", ".css": "text/cs
 function serve() {
   const server = http.createServer((req, res) => {
     const url = new URL(req.url, "http://127.0.0.1");
+    if (url.pathname === "/favicon.ico") {
+      res.writeHead(204);
+      res.end();
+      return;
+    }
+    if (url.pathname === "/webview.html") {
+      // What the extension puts into the webview (src/webview.ts), with this server as the
+      // webview resource origin.
+      const origin = `http://127.0.0.1:${server.address().port}`;
+      const template = fs.readFileSync(path.join(ROOT, "media", "preview.html"), "utf8");
+      const html = webviewHtml(template, {
+        cspSource: origin,
+        cssUri: `${origin}/preview.css`,
+        scriptUri: `${origin}/preview.js`,
+      });
+      res.writeHead(200, { "content-type": "text/html" });
+      res.end(html);
+      return;
+    }
     let file;
     if (url.pathname.startsWith("/fixtures/")) file = path.join(__dirname, "fixtures", path.basename(url.pathname));
     else file = path.join(ROOT, "media", path.basename(url.pathname));
@@ -157,6 +177,15 @@ test("toolpath preview in headless Chromium", async (t) => {
     assert.ok(colourDistance(after, HIGHLIGHT) < 40, `highlight colour after the click, got ${after}`);
   });
 
+  await t.test("hovering a segment shows its 1-based line, kind, feed and tool", async () => {
+    const p = await page.evaluate((i) => window.partscopePreview.segmentScreenPoint(i), plungeIndex);
+    await page.mouse.move(canvasBox.x + p.x + 1, canvasBox.y + p.y);
+    await page.waitForFunction(() => getComputedStyle(document.getElementById("tooltip")).display === "block");
+    assert.equal(await page.locator("#tooltip").innerText(), `line ${plunge.line + 1} · feed · 180 mm/min · T2`);
+    await page.mouse.move(canvasBox.x + canvasBox.width - 20, canvasBox.y + canvasBox.height - 60);
+    await page.waitForFunction(() => getComputedStyle(document.getElementById("tooltip")).display === "none");
+  });
+
   await t.test("cursor messages from the host move the highlight", async () => {
     const contour = fixture.toolpath.segments.findIndex((s) => s.kind === "arc");
     const line = fixture.toolpath.segments[contour].line;
@@ -191,7 +220,7 @@ test("toolpath preview in headless Chromium", async (t) => {
   });
 });
 
-test("preview talks to the VS Code webview API when present", async (t) => {
+test("webview HTML runs under its Content-Security-Policy and talks to the VS Code API", async (t) => {
   const server = await serve();
   const port = server.address().port;
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), "partscope-chromium-"));
@@ -207,7 +236,13 @@ test("preview talks to the VS Code webview API when present", async (t) => {
     fs.rmSync(userDataDir, { recursive: true, force: true });
   });
   const page = context.pages()[0] || (await context.newPage());
+  const consoleErrors = [];
+  page.on("console", (m) => {
+    if (m.type() === "error") consoleErrors.push(m.text());
+  });
   await page.addInitScript(() => {
+    window.__violations = [];
+    document.addEventListener("securitypolicyviolation", (e) => window.__violations.push(e.violatedDirective + " " + e.blockedURI));
     window.__sent = [];
     window.acquireVsCodeApi = () => ({
       postMessage: (m) => window.__sent.push(m),
@@ -215,11 +250,25 @@ test("preview talks to the VS Code webview API when present", async (t) => {
       setState: () => undefined,
     });
   });
-  await page.goto(`http://127.0.0.1:${port}/preview.html`);
+  await page.goto(`http://127.0.0.1:${port}/webview.html`);
+  const csp = await page.locator('meta[http-equiv="Content-Security-Policy"]').getAttribute("content");
+  assert.match(csp, /script-src http:\/\/127\.0\.0\.1:\d+;/);
   await page.waitForFunction(() => window.__sent.length > 0);
   assert.deepEqual(await page.evaluate(() => window.__sent), [{ type: "ready" }]);
   const fixture = JSON.parse(fs.readFileSync(FIXTURE, "utf8"));
   await page.evaluate((data) => window.postMessage({ type: "data", data, title: "sample.ngc" }, "*"), fixture);
   await page.waitForFunction((n) => window.partscopePreview.segments.length === n, fixture.toolpath.segments.length);
   assert.equal(await page.locator("#title").innerText(), "sample.ngc");
+  // The legend's gradient is an inline style; the CSP must let it through.
+  const gradient = await page.locator(".legend-bar").evaluate((el) => getComputedStyle(el).backgroundImage);
+  assert.match(gradient, /linear-gradient/);
+  assert.deepEqual(await page.evaluate(() => window.__violations), []);
+  assert.deepEqual(consoleErrors, []);
+  // An injected inline script must be refused, or the policy is not in force at all.
+  await page.evaluate(() => {
+    const s = document.createElement("script");
+    s.textContent = "window.__inline = 1";
+    document.body.appendChild(s);
+  });
+  assert.equal(await page.evaluate(() => window.__inline), undefined);
 });
