@@ -210,3 +210,13 @@ fn fanuc_blocks_and_macro_b() {
     let (_, c) = prog.words(&prog.blocks[12]).next().unwrap();
     assert!(c.comma && c.letter == b'C');
 }
+
+#[test]
+fn ngc_bare_o_number_is_a_subprogram_head() {
+    let prog = p(Dialect::Rs274ngc, "O100\nG0 X1\nM99\n");
+    assert!(prog.diagnostics.is_empty(), "{:?}", prog.diagnostics);
+    assert_eq!(
+        codes(&p(Dialect::Rs274ngc, "o100 frobnicate\n")),
+        vec!["L010"]
+    );
+}

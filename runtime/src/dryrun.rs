@@ -24,6 +24,8 @@ const INTERPRETER_KEYS: &[&str] = &[
     "decimal_point_input",
     "max_call_depth",
     "optional_stop",
+    "g73_retract",
+    "g83_clearance",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the

@@ -1419,7 +1419,16 @@ impl<'p> Cx<'p> {
         if self.pos > ks {
             self.token(ks, TokenKind::Keyword);
         }
-        if keyword.is_none() {
+        // A bare `O100` (LinuxCNC 2.9: the head of an M98 subprogram or a title) has no
+        // keyword; only an unknown word after the label is an error.
+        let bare = kw_span.is_empty() && matches!(label, OLabel::Number(_) | OLabel::Name(_)) && {
+            let mut j = self.pos;
+            while self.at(j).is_some_and(is_ws) {
+                j += 1;
+            }
+            matches!(self.at(j), None | Some(b'(') | Some(b';'))
+        };
+        if keyword.is_none() && !bare {
             let msg = if kw_span.is_empty() {
                 "o-word without a keyword (sub, endsub, call, do, while, if, repeat, …)".to_string()
             } else {
