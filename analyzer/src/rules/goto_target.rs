@@ -88,6 +88,12 @@ impl Rule for GotoTarget {
                 }
             }
         }
+        // (program section, value bits) → first block with that sequence number.
+        let mut index: std::collections::HashMap<(usize, u64), usize> =
+            std::collections::HashMap::new();
+        for &(tb, v) in &numbers {
+            index.entry((section[tb], v.to_bits())).or_insert(tb);
+        }
         let ranges = loops(p, None);
         for (bi, b) in p.blocks.iter().enumerate() {
             for item in p.items_of(b) {
@@ -99,10 +105,7 @@ impl Rule for GotoTarget {
                 let Some(n) = literal(p, target) else {
                     continue;
                 };
-                let Some(&(tb, _)) = numbers
-                    .iter()
-                    .find(|(tb, v)| *v == n && section[*tb] == section[bi])
-                else {
+                let Some(&tb) = index.get(&(section[bi], n.to_bits())) else {
                     out.push(Diagnostic::error(
                         "P003",
                         item.span,

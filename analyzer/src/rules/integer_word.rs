@@ -1,7 +1,7 @@
 //! W006: decimal values in words that must be integers.
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 
 use super::util::{has, is_drilling_cycle, near_integer};
@@ -33,8 +33,8 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// FANUC: error at N, O, P, H, D, T, M, L, S, K (in a macro call only P and L; the
-    /// others are arguments). ServoWorks: warning at S, T, H, L, `M98 R`, `G04 P`, `G30 P`,
+    /// FANUC: error at N, O, P, H, D, L, K, warning at M, S, T (in a macro call only P and L
+    /// are checked; the others are arguments). ServoWorks: warning at S, T, H, L, `M98 R`, `G04 P`, `G30 P`,
     /// `G54.1 P`, and canned-cycle P and K. RS274/NGC: error at M, T, D, H, L and `G10 P`
     /// when the value is more than 0.0001 from an integer.
     ///
@@ -85,7 +85,13 @@ impl Rule for IntegerWord {
                     } else {
                         format!("`{text}`: address {l} takes an integer without a decimal point (alarm PS0007). Write `{l}{}`.", n.value.round())
                     };
-                    out.push(Diagnostic::error("W006", item.span, msg));
+                    // The digest grades M/S/T literals (FAN147) below the other addresses (FAN004).
+                    let sev = if matches!(w.letter, b'M' | b'S' | b'T') {
+                        Severity::Warning
+                    } else {
+                        Severity::Error
+                    };
+                    out.push(Diagnostic::new("W006", sev, item.span, msg));
                 }
                 Dialect::Servoworks => {
                     let int_here = match w.letter {

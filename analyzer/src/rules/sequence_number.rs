@@ -68,7 +68,9 @@ impl Rule for SequenceNumber {
         if d == Dialect::Servoworks {
             return;
         }
-        let mut seen: Vec<(f64, crate::span::Span)> = Vec::new();
+        // Sequence numbers of the current program, by the bits of their value.
+        let mut seen: std::collections::HashMap<u64, crate::span::Span> =
+            std::collections::HashMap::new();
         // RS274/NGC line numbers with more than five digits: reported once per file.
         let mut long: Vec<(crate::span::Span, String)> = Vec::new();
         for b in &p.blocks {
@@ -131,13 +133,13 @@ impl Rule for SequenceNumber {
                                 item.span,
                                 "N0 must not be used as a sequence number. Start numbering at N1.",
                             ));
-                        } else if let Some((_, first)) = seen.iter().find(|(v, _)| *v == n.value) {
+                        } else if let Some(first) = seen.get(&n.value.to_bits()) {
                             out.push(
                                 Diagnostic::warning("P007", item.span, format!("`{text}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number."))
                                     .with_related(*first, "first use"),
                             );
                         } else {
-                            seen.push((n.value, item.span));
+                            seen.insert(n.value.to_bits(), item.span);
                         }
                     }
                     Dialect::Servoworks => {}

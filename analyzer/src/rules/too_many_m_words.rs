@@ -31,7 +31,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: error above four. FANUC: error above three; info for two or three (needs
+    /// RS274/NGC: error above four. FANUC: error above three; warning for two or three (needs
     /// the multiple-M option). ServoWorks does not state a limit.
     ///
     /// Implements: NGC101, FAN016
@@ -69,7 +69,7 @@ impl Rule for TooManyMWords {
                 m[3].0.span,
                 format!("{n} M codes in one block: even with the multiple-M option (parameter 3404#7) a FANUC block takes at most 3. Move the extra M codes to another block."),
             )),
-            Dialect::Fanuc if n > 1 => out.push(Diagnostic::info(
+            Dialect::Fanuc if n > 1 => out.push(Diagnostic::warning(
                 "G003",
                 m[1].0.span,
                 format!("{n} M codes in one block need the multiple-M option (parameter 3404#7 M3B); without it the control raises an alarm. Put each M code in its own block if the option is not set."),
