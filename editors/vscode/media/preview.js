@@ -827,8 +827,14 @@
     if (rapids) rapids.addEventListener("change", function () {
       preview.setShowRapids(rapids.checked);
     });
+    // In a narrow panel only the cycle time stays on top of the drawing.
+    var layout = function () {
+      document.body.classList.toggle("compact", canvas.clientWidth < 640);
+    };
+    layout();
     if (global.ResizeObserver) {
       new ResizeObserver(function () {
+        layout();
         preview.requestDraw();
       }).observe(canvas);
     } else {

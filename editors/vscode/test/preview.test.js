@@ -215,6 +215,15 @@ test("toolpath preview in headless Chromium", async (t) => {
     await page.screenshot({ path: path.join(OUT, "preview-top.png") });
   });
 
+  await t.test("a narrow panel keeps only the cycle time over the drawing", async () => {
+    await page.setViewportSize({ width: 560, height: 600 });
+    await page.waitForFunction(() => document.body.classList.contains("compact"));
+    assert.equal(await page.locator("#stats tr:visible").count(), 1);
+    await page.setViewportSize({ width: 1100, height: 720 });
+    await page.waitForFunction(() => !document.body.classList.contains("compact"));
+    assert.ok((await page.locator("#stats tr:visible").count()) > 5);
+  });
+
   await t.test("no script errors", () => {
     assert.deepEqual(errors, []);
   });
