@@ -212,6 +212,10 @@ test("toolpath preview in headless Chromium", async (t) => {
     const y = await page.evaluate(() => window.partscopePreview.project([0, 50, 0]));
     assert.ok(x[0] > o[0] + 100 && Math.abs(x[1] - o[1]) < 1e-6);
     assert.ok(y[1] < o[1] - 100 && Math.abs(y[0] - o[0]) < 1e-6);
+    // Drill plunges look end-on from the top: each hole gets a ring in the plunge's feed colour.
+    const hole = await page.evaluate(() => window.partscopePreview.project([60, 35, 0]));
+    const ring = await strongestPixel(page, hole[0] + 4, hole[1]);
+    assert.ok(colourDistance(ring, BACKGROUND) > 60, `ring drawn around the hole at X60 Y35, got ${ring}`);
     await page.screenshot({ path: path.join(OUT, "preview-top.png") });
   });
 
