@@ -78,18 +78,30 @@ if command -v python3 >/dev/null && python3 -c 'import tomllib' 2>/dev/null; the
   run "helix: languages.toml" helix_toml
 fi
 
-if [[ -n "${PARTSCOPE_BIN:-}" ]]; then
+# Until the server grows its `lsp` subcommand (built on another branch), a binary without it is
+# reported as a skip rather than a failure; once `--help` lists `lsp`, the editor LSP tests are
+# mandatory.
+has_lsp() {
+  "$PARTSCOPE_BIN" --help 2>&1 | grep -Eq '^[[:space:]]+lsp([[:space:]]|$)'
+}
+skipped=0
+if [[ -n "${PARTSCOPE_BIN:-}" ]] && ! has_lsp; then
+  echo "::: editors: SKIPPED the Neovim/Emacs LSP tests: '$PARTSCOPE_BIN --help' lists no 'lsp' subcommand"
+  skipped=1
+fi
+
+if [[ -n "${PARTSCOPE_BIN:-}" && $skipped -eq 0 ]]; then
   run "nvim: LSP against $PARTSCOPE_BIN" "$here/nvim/test.sh" "$PARTSCOPE_BIN"
   if command -v emacs >/dev/null && emacs --batch -Q --eval \
     '(progn (let ((default-directory "/usr/share/emacs/site-lisp/elpa/")) (when (file-directory-p default-directory) (normal-top-level-add-subdirs-to-load-path))) (kill-emacs (if (require (quote eglot) nil t) 0 1)))' 2>/dev/null; then
     run "emacs: eglot against $PARTSCOPE_BIN" "$here/emacs/test.sh" "$PARTSCOPE_BIN"
   fi
 else
-  echo "::: editors: PARTSCOPE_BIN not set; skipping the Neovim and Emacs LSP tests"
+  [[ -z "${PARTSCOPE_BIN:-}" ]] && echo "::: editors: PARTSCOPE_BIN not set; skipping the Neovim and Emacs LSP tests"
   if command -v emacs >/dev/null; then
     run "emacs: byte-compile" emacs_compile
   fi
 fi
 
-echo "editors: ${passed} passed, ${failed} failed"
+echo "editors: ${passed} passed, ${failed} failed, ${skipped} skipped"
 [[ $failed -eq 0 ]]

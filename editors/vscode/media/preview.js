@@ -439,7 +439,33 @@
       ctx.strokeStyle = rampColour(Number(key) / (BUCKETS - 1));
       ctx.stroke();
     }
+    this._drawEndOnMoves(ctx);
     ctx.restore();
+  };
+
+  // A cutting move along the line of sight (a drill plunge in the top view) projects to a
+  // point; it gets a small ring so holes stay visible.
+  Preview.prototype._drawEndOnMoves = function (ctx) {
+    var w = this.world;
+    var scr = this.screen;
+    ctx.lineWidth = 1.5;
+    for (var i = 0; i < this.segments.length; i++) {
+      if (this.buckets[i] < 0) continue;
+      var a = this.offsets[i];
+      var e = this.offsets[i + 1] - 1;
+      if (e <= a) continue;
+      var dx = w[3 * e] - w[3 * a];
+      var dy = w[3 * e + 1] - w[3 * a + 1];
+      var dz = w[3 * e + 2] - w[3 * a + 2];
+      if (dx * dx + dy * dy + dz * dz < 0.25) continue;
+      var sx = scr[2 * e] - scr[2 * a];
+      var sy = scr[2 * e + 1] - scr[2 * a + 1];
+      if (sx * sx + sy * sy > 4) continue;
+      ctx.beginPath();
+      ctx.arc(scr[2 * e], scr[2 * e + 1], 4, 0, 2 * Math.PI);
+      ctx.strokeStyle = rampColour(this.buckets[i] / (BUCKETS - 1));
+      ctx.stroke();
+    }
   };
 
   Preview.prototype.highlightedSegments = function () {
@@ -827,8 +853,14 @@
     if (rapids) rapids.addEventListener("change", function () {
       preview.setShowRapids(rapids.checked);
     });
+    // In a narrow panel only the cycle time stays on top of the drawing.
+    var layout = function () {
+      document.body.classList.toggle("compact", canvas.clientWidth < 640);
+    };
+    layout();
     if (global.ResizeObserver) {
       new ResizeObserver(function () {
+        layout();
         preview.requestDraw();
       }).observe(canvas);
     } else {

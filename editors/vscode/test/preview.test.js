@@ -212,7 +212,20 @@ test("toolpath preview in headless Chromium", async (t) => {
     const y = await page.evaluate(() => window.partscopePreview.project([0, 50, 0]));
     assert.ok(x[0] > o[0] + 100 && Math.abs(x[1] - o[1]) < 1e-6);
     assert.ok(y[1] < o[1] - 100 && Math.abs(y[0] - o[0]) < 1e-6);
+    // Drill plunges look end-on from the top: each hole gets a ring in the plunge's feed colour.
+    const hole = await page.evaluate(() => window.partscopePreview.project([60, 35, 0]));
+    const ring = await strongestPixel(page, hole[0] + 4, hole[1]);
+    assert.ok(colourDistance(ring, BACKGROUND) > 60, `ring drawn around the hole at X60 Y35, got ${ring}`);
     await page.screenshot({ path: path.join(OUT, "preview-top.png") });
+  });
+
+  await t.test("a narrow panel keeps only the cycle time over the drawing", async () => {
+    await page.setViewportSize({ width: 560, height: 600 });
+    await page.waitForFunction(() => document.body.classList.contains("compact"));
+    assert.equal(await page.locator("#stats tr:visible").count(), 1);
+    await page.setViewportSize({ width: 1100, height: 720 });
+    await page.waitForFunction(() => !document.body.classList.contains("compact"));
+    assert.ok((await page.locator("#stats tr:visible").count()) > 5);
   });
 
   await t.test("no script errors", () => {
