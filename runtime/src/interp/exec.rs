@@ -29,7 +29,17 @@ pub const SNAPSHOT_LIMIT: usize = 2_000_000;
 
 /// Runs a program. Never panics; bounded by `step_budget` and the call depth.
 pub fn run(input: &RunInput<'_>) -> RunOutput {
+    run_with_snapshots(input, true)
+}
+
+/// Like [`run`]; with `snapshots` false no per-block state is kept (batch hosts that
+/// only need motions and diagnostics save about 500 bytes per block).
+pub fn run_with_snapshots(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
     let mut it = Interp::new(input);
+    if !snapshots {
+        it.nblocks_main = 0;
+        it.out.snapshots = Vec::new();
+    }
     it.run_main();
     it.finish()
 }

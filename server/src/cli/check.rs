@@ -131,7 +131,7 @@ fn check_file(
             tool_table: None,
             var_file: None,
         };
-        let out = runtime::run(&input);
+        let out = runtime::run_with_snapshots(&input, false);
         diagnostics.extend(analyzer::finish(
             &analysis.program,
             &settings,

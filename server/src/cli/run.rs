@@ -225,7 +225,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
     };
-    let out = runtime::run(&input);
+    let out = runtime::run_with_snapshots(&input, false);
     let mut diagnostics = analysis.diagnostics.clone();
     diagnostics.extend(analyzer::finish(
         &analysis.program,
