@@ -141,7 +141,10 @@ impl Frame {
 }
 
 /// Layout: a large isometric view on the left, three orthographic views stacked on the right.
-fn layout() -> (f64, f64, Vec<(View, (f64, f64, f64, f64))>) {
+/// A box in picture pixels: left, top, width, height.
+type Rect = (f64, f64, f64, f64);
+
+fn layout() -> (f64, f64, Vec<(View, Rect)>) {
     let (w, h) = (1200.0, 800.0);
     let top = 50.0;
     let main = (0.0, top, 800.0, h - top - 40.0);
@@ -292,8 +295,10 @@ pub fn png(tp: &Toolpath, path: &Path) -> Result<(), String> {
                 }
             }
             let Some(path) = pb.finish() else { continue };
-            let mut paint = Paint::default();
-            paint.anti_alias = true;
+            let mut paint = Paint {
+                anti_alias: true,
+                ..Paint::default()
+            };
             let mut stroke = Stroke {
                 width: 1.2,
                 ..Stroke::default()

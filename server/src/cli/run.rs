@@ -225,7 +225,10 @@ pub fn run(args: RunArgs) -> ExitCode {
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
     };
+    let progress = Progress::start(text.len());
+    progress.stage("interpreting");
     let out = runtime::run_with_snapshots(&input, false);
+    progress.stage("planning");
     let mut diagnostics = analysis.diagnostics.clone();
     diagnostics.extend(analyzer::finish(
         &analysis.program,
@@ -238,6 +241,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
 
     let dry = dryrun::plan_run(&out, &profile);
+    progress.finish();
     let extra_files: Vec<(PathBuf, Arc<[u8]>)> = out
         .files
         .iter()
@@ -499,5 +503,69 @@ fn emit_canon_output(
             ExitCode::from(1)
         }
         None => ExitCode::SUCCESS,
+    }
+}
+
+/// A status line on stderr for long runs, shown only when stderr is a terminal and the
+/// program is large (the interpreter and planner report no finer progress).
+/// The stage shown, the stop flag and the drawing thread.
+type ProgressState = (
+    std::sync::Arc<std::sync::Mutex<&'static str>>,
+    std::sync::Arc<std::sync::atomic::AtomicBool>,
+    std::thread::JoinHandle<()>,
+);
+
+struct Progress {
+    state: Option<ProgressState>,
+}
+
+impl Progress {
+    fn start(bytes: usize) -> Progress {
+        use std::io::IsTerminal;
+        if bytes < 2_000_000 || !std::io::stderr().is_terminal() {
+            return Progress { state: None };
+        }
+        let stage = std::sync::Arc::new(std::sync::Mutex::new("reading"));
+        let done = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+        let (s2, d2) = (stage.clone(), done.clone());
+        let handle = std::thread::spawn(move || {
+            let t0 = std::time::Instant::now();
+            let spin = ['|', '/', '-', '\\'];
+            let mut i = 0;
+            while !d2.load(std::sync::atomic::Ordering::Relaxed) {
+                let st = s2.lock().map(|s| *s).unwrap_or("");
+                eprint!(
+                    "\r{} {st}… {:.1} s   ",
+                    spin[i % 4],
+                    t0.elapsed().as_secs_f64()
+                );
+                i += 1;
+                std::thread::sleep(std::time::Duration::from_millis(120));
+            }
+            eprint!("\r{:40}\r", "");
+        });
+        Progress {
+            state: Some((stage, done, handle)),
+        }
+    }
+
+    fn stage(&self, name: &'static str) {
+        if let Some((s, _, _)) = &self.state {
+            if let Ok(mut g) = s.lock() {
+                *g = name;
+            }
+        }
+    }
+
+    fn finish(self) {}
+}
+
+impl Drop for Progress {
+    /// Clears the status line on every way out of `run`.
+    fn drop(&mut self) {
+        if let Some((_, done, handle)) = self.state.take() {
+            done.store(true, std::sync::atomic::Ordering::Relaxed);
+            let _ = handle.join();
+        }
     }
 }
