@@ -589,3 +589,28 @@ fn files_outside_the_workspace_are_not_read_until_the_folder_is_added() {
     assert_eq!(r["uri"], uri_of(&root.join("drill.ngc")));
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn cancelled_dry_run_answers_request_cancelled_and_the_server_goes_on() {
+    let root = workspace("cancel");
+    // A program long enough that analysis and run take far longer than the
+    // round trip of a cancel notification.
+    let mut text = String::from("G21 G90 F1000\n");
+    for i in 0..30_000 {
+        text.push_str(&format!("G1 X{} Y{}\n", i % 100, i / 100));
+    }
+    text.push_str("M2\n");
+    std::fs::write(root.join("long.ngc"), &text).unwrap();
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("long.ngc"), "ngc");
+    let id = c.send_request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    c.notify("$/cancelRequest", json!({"id": id}));
+    let r = c.response(id);
+    assert_eq!(r["error"]["code"], -32800, "{r}");
+    // The document's diagnostics still arrive, and a new dry run completes.
+    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    assert_eq!(r["toolpath"]["segments"].as_array().unwrap().len(), 30_000);
+    assert!(c.shutdown().success());
+}
