@@ -614,3 +614,56 @@ fn cancelled_dry_run_answers_request_cancelled_and_the_server_goes_on() {
     assert_eq!(r["toolpath"]["segments"].as_array().unwrap().len(), 30_000);
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn empty_and_odd_documents_are_served() {
+    let root = workspace("odd");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    for (name, text) in [
+        ("empty.ngc", ""),
+        (
+            "odd.ngc",
+            "\u{0}\u{1}G\u{7f}😀\r\r\n#<\n(((\no<\n[[[[\nG1 X#[#[#[1]]]\n",
+        ),
+    ] {
+        let uri = uri_of(&root.join(name));
+        c.notify(
+            "textDocument/didOpen",
+            json!({"textDocument": {"uri": uri, "languageId": "ngc", "version": 1, "text": text}}),
+        );
+        c.wait_for("textDocument/publishDiagnostics", |p| {
+            p["uri"] == uri.as_str()
+        });
+        let doc = json!({"uri": uri});
+        for (method, params) in [
+            ("textDocument/documentSymbol", json!({"textDocument": doc})),
+            ("textDocument/foldingRange", json!({"textDocument": doc})),
+            (
+                "textDocument/semanticTokens/full",
+                json!({"textDocument": doc}),
+            ),
+            (
+                "textDocument/hover",
+                json!({"textDocument": doc, "position": pos(1, 1)}),
+            ),
+            (
+                "textDocument/completion",
+                json!({"textDocument": doc, "position": pos(2, 2)}),
+            ),
+            (
+                "textDocument/signatureHelp",
+                json!({"textDocument": doc, "position": pos(6, 3)}),
+            ),
+            (
+                "textDocument/definition",
+                json!({"textDocument": doc, "position": pos(6, 5)}),
+            ),
+            ("partscope/dryRun", json!({"textDocument": doc})),
+        ] {
+            let r = c.request_full(method, params);
+            assert!(r.get("error").is_none(), "{name} {method}: {r}");
+        }
+    }
+    assert!(c.shutdown().success());
+}
