@@ -26,18 +26,50 @@ pub struct Analysis {
 
 /// Parses and checks one file.
 pub fn analyze(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Analysis {
-    let opts = syntax::ParseOptions { dialect: settings.dialect, variant: settings.variant };
+    let text: Arc<[u8]> = text.into();
+    let opts = syntax::ParseOptions {
+        dialect: settings.dialect,
+        variant: settings.variant,
+    };
+    if let Some(d) = binary_check(&text) {
+        // A binary file is reported once; parsing it would only produce noise.
+        let program = syntax::parse(opts, Arc::<[u8]>::from(&b""[..]));
+        let program = syntax::Program { text, ..program };
+        return Analysis {
+            program,
+            diagnostics: vec![d],
+        };
+    }
+    let utf8 = std::str::from_utf8(&text).err();
     let program = syntax::parse(opts, text);
     let mut diagnostics = program.diagnostics.clone();
-    let cx = rules::ProgramCx { program: &program, settings };
+    if let Some(e) = utf8 {
+        let at = e.valid_up_to() as u32;
+        diagnostics.push(Diagnostic::warning(
+            "L009",
+            Span::new(at, at + e.error_len().unwrap_or(1) as u32),
+            "the file is not valid UTF-8 (saved in a legacy code page?); text around here may show garbled",
+        ));
+    }
+    let cx = rules::ProgramCx {
+        program: &program,
+        settings,
+    };
     rules::check(&cx, &mut diagnostics);
     let diagnostics = finish(&program, settings, diagnostics);
-    Analysis { program, diagnostics }
+    Analysis {
+        program,
+        diagnostics,
+    }
 }
 
 /// Applies rule selection and suppression comments, and sorts. Hosts call this
 /// on the runtime's diagnostics too.
-pub fn finish(program: &syntax::Program, settings: &Settings, mut diagnostics: Vec<Diagnostic>) -> Vec<Diagnostic> {
+pub fn finish(
+    program: &syntax::Program,
+    settings: &Settings,
+    mut diagnostics: Vec<Diagnostic>,
+) -> Vec<Diagnostic> {
     let sup = Suppressions::collect(program);
     diagnostics.retain(|d| {
         let enabled = match rules::registry::lookup(d.code) {
@@ -47,6 +79,30 @@ pub fn finish(program: &syntax::Program, settings: &Settings, mut diagnostics: V
         enabled && (d.file != FileId(0) || !sup.is_suppressed(program, d))
     });
     diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
-    diagnostics.dedup_by(|a, b| a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message);
+    diagnostics.dedup_by(|a, b| {
+        a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message
+    });
     diagnostics
+}
+
+/// A file is binary when its first 8 KiB hold a NUL byte or mostly non-text bytes.
+fn binary_check(text: &[u8]) -> Option<Diagnostic> {
+    let head = &text[..text.len().min(8192)];
+    if head.is_empty() {
+        return None;
+    }
+    let nul = head.iter().position(|b| *b == 0);
+    let odd = head
+        .iter()
+        .filter(|b| **b < 0x20 && !matches!(**b, b'\n' | b'\r' | b'\t' | 0x0c))
+        .count();
+    if nul.is_some() || odd * 10 > head.len() {
+        let at = nul.unwrap_or(0) as u32;
+        return Some(Diagnostic::error(
+            "L009",
+            Span::new(at, at + 1),
+            "this is a binary file, not a part program; it was not analysed",
+        ));
+    }
+    None
 }

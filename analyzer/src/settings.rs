@@ -79,10 +79,14 @@ impl Settings {
     }
 
     /// Settings from a config, with an optional dialect override.
-    pub fn from_config(config: &Config, dialect_override: Option<Dialect>) -> Result<Settings, String> {
+    pub fn from_config(
+        config: &Config,
+        dialect_override: Option<Dialect>,
+    ) -> Result<Settings, String> {
         let dialect = match (dialect_override, &config.dialect) {
             (Some(d), _) => d,
-            (None, Some(s)) => Dialect::parse(s).ok_or_else(|| format!("unknown dialect `{s}` (servoworks, rs274ngc, fanuc)"))?,
+            (None, Some(s)) => Dialect::parse(s)
+                .ok_or_else(|| format!("unknown dialect `{s}` (servoworks, rs274ngc, fanuc)"))?,
             (None, None) => Dialect::Rs274ngc,
         };
         let mut s = Settings::new(dialect);
@@ -94,13 +98,21 @@ impl Settings {
         }
         s.select = config.rules.select.clone();
         s.ignore = config.rules.ignore.clone();
-        s.custom_codes = config.rules.custom_codes.iter().map(|c| c.to_ascii_uppercase()).collect();
+        s.custom_codes = config
+            .rules
+            .custom_codes
+            .iter()
+            .map(|c| c.to_ascii_uppercase())
+            .collect();
         if let Some(toml::Value::Array(axes)) = config.machine.get("axes") {
             let letters: Vec<char> = axes
                 .iter()
                 .filter_map(|a| match a {
                     toml::Value::String(s) => s.chars().next(),
-                    toml::Value::Table(t) => t.get("letter").and_then(|l| l.as_str()).and_then(|s| s.chars().next()),
+                    toml::Value::Table(t) => t
+                        .get("letter")
+                        .and_then(|l| l.as_str())
+                        .and_then(|s| s.chars().next()),
                     _ => None,
                 })
                 .map(|c| c.to_ascii_uppercase())
@@ -109,7 +121,11 @@ impl Settings {
                 s.axes = letters;
             }
         }
-        if let Some(v) = config.machine.get("integer_machine_unit").and_then(|v| v.as_bool()) {
+        if let Some(v) = config
+            .machine
+            .get("integer_machine_unit")
+            .and_then(|v| v.as_bool())
+        {
             s.integer_machine_unit = v;
         }
         Ok(s)
@@ -117,12 +133,18 @@ impl Settings {
 
     fn matches(pattern: &str, code: &str, name: &str) -> bool {
         let p = pattern.trim();
-        p.eq_ignore_ascii_case("ALL") || code.starts_with(&p.to_ascii_uppercase()) || p.eq_ignore_ascii_case(name)
+        p.eq_ignore_ascii_case("ALL")
+            || code.starts_with(&p.to_ascii_uppercase())
+            || p.eq_ignore_ascii_case(name)
     }
 
     /// Whether a rule runs under these settings.
     pub fn rule_enabled(&self, meta: &RuleMeta) -> bool {
-        if self.ignore.iter().any(|p| Self::matches(p, meta.code, meta.name)) {
+        if self
+            .ignore
+            .iter()
+            .any(|p| Self::matches(p, meta.code, meta.name))
+        {
             return false;
         }
         if self.select.is_empty() {
@@ -132,7 +154,12 @@ impl Settings {
             let p = p.trim();
             !p.eq_ignore_ascii_case("ALL") && Self::matches(p, meta.code, meta.name)
         });
-        explicit || (meta.default_enabled && self.select.iter().any(|p| Self::matches(p, meta.code, meta.name)))
+        explicit
+            || (meta.default_enabled
+                && self
+                    .select
+                    .iter()
+                    .any(|p| Self::matches(p, meta.code, meta.name)))
     }
 
     /// Whether a diagnostic code passes select/ignore (for codes without metadata).
@@ -165,7 +192,9 @@ impl Suppressions {
                 let text = program.str_of(item.span).into_owned();
                 for directive in parse_directives(&text) {
                     match directive {
-                        Directive::Allow(codes) => s.block.extend(codes.into_iter().map(|c| (bi, c))),
+                        Directive::Allow(codes) => {
+                            s.block.extend(codes.into_iter().map(|c| (bi, c)))
+                        }
                         Directive::AllowFile(codes) => s.file.extend(codes),
                         Directive::Dialect(_) => {}
                     }
@@ -183,7 +212,9 @@ impl Suppressions {
         if self.block.is_empty() {
             return false;
         }
-        let Some(bi) = program.block_at(d.span.start) else { return false };
+        let Some(bi) = program.block_at(d.span.start) else {
+            return false;
+        };
         self.block.iter().any(|(b, c)| *b == bi && m(c))
     }
 }
@@ -197,15 +228,25 @@ pub enum Directive {
 
 /// Reads `partscope:` directives from a comment's text.
 pub fn parse_directives(comment: &str) -> Vec<Directive> {
-    let body = comment.trim_start_matches(['(', ';']).trim_end_matches(')').trim();
-    let Some(rest) = body.get(10..).filter(|_| body.len() >= 10 && body[..10].eq_ignore_ascii_case("partscope:")) else {
+    let body = comment
+        .trim_start_matches(['(', ';'])
+        .trim_end_matches(')')
+        .trim();
+    let Some(rest) = body
+        .get(10..)
+        .filter(|_| body.len() >= 10 && body[..10].eq_ignore_ascii_case("partscope:"))
+    else {
         return Vec::new();
     };
     let mut out = Vec::new();
     let rest = rest.trim();
     let lower = rest.to_ascii_lowercase();
     let codes_after = |prefix: usize| -> Vec<String> {
-        rest[prefix..].split([',', ' ', '\t']).map(|c| c.trim().to_ascii_uppercase()).filter(|c| !c.is_empty()).collect()
+        rest[prefix..]
+            .split([',', ' ', '\t'])
+            .map(|c| c.trim().to_ascii_uppercase())
+            .filter(|c| !c.is_empty())
+            .collect()
     };
     if lower.starts_with("allow-file") {
         out.push(Directive::AllowFile(codes_after(10)));
@@ -213,7 +254,9 @@ pub fn parse_directives(comment: &str) -> Vec<Directive> {
         out.push(Directive::Allow(codes_after(5)));
     } else if let Some(d) = lower.strip_prefix("dialect") {
         let d = d.trim_start().trim_start_matches(['=', ':']).trim();
-        out.push(Directive::Dialect(d.split_whitespace().next().unwrap_or("").to_string()));
+        out.push(Directive::Dialect(
+            d.split_whitespace().next().unwrap_or("").to_string(),
+        ));
     }
     out
 }
@@ -221,13 +264,19 @@ pub fn parse_directives(comment: &str) -> Vec<Directive> {
 /// The dialect a file names in a `(partscope: dialect=…)` comment on its first
 /// non-blank line.
 pub fn dialect_directive(text: &[u8]) -> Option<Dialect> {
-    let line = text.split(|b| *b == b'\n').map(|l| l.trim_ascii()).find(|l| !l.is_empty())?;
+    // The first line that is neither blank nor a `%` tape mark.
+    let line = text
+        .split(|b| *b == b'\n')
+        .map(|l| l.trim_ascii())
+        .find(|l| !l.is_empty() && *l != b"%")?;
     let line = String::from_utf8_lossy(line);
     let start = line.find(['(', ';'])?;
-    parse_directives(&line[start..]).into_iter().find_map(|d| match d {
-        Directive::Dialect(name) => Dialect::parse(&name),
-        _ => None,
-    })
+    parse_directives(&line[start..])
+        .into_iter()
+        .find_map(|d| match d {
+            Directive::Dialect(name) => Dialect::parse(&name),
+            _ => None,
+        })
 }
 
 /// Guesses the dialect from a file's extension and content, when neither a
@@ -246,7 +295,8 @@ pub fn sniff_dialect(path_ext: Option<&str>, text: &[u8]) -> Option<Dialect> {
     if up.contains(" SUB") && up.contains("O<") || up.contains("#<") || up.contains("ENDSUB") {
         return Some(Dialect::Rs274ngc);
     }
-    if up.contains("WHILE[") || up.contains("WHILE [") || up.contains("GOTO") || up.contains(";\n") {
+    if up.contains("WHILE[") || up.contains("WHILE [") || up.contains("GOTO") || up.contains(";\n")
+    {
         return Some(Dialect::Fanuc);
     }
     None
@@ -254,7 +304,12 @@ pub fn sniff_dialect(path_ext: Option<&str>, text: &[u8]) -> Option<Dialect> {
 
 /// Severity threshold helper for exit codes.
 pub fn fail_level(config: &Config) -> Severity {
-    config.rules.fail_level.as_deref().and_then(Severity::parse).unwrap_or(Severity::Warning)
+    config
+        .rules
+        .fail_level
+        .as_deref()
+        .and_then(Severity::parse)
+        .unwrap_or(Severity::Warning)
 }
 
 #[cfg(test)]
@@ -263,17 +318,39 @@ mod tests {
 
     #[test]
     fn directives_are_parsed() {
-        assert_eq!(parse_directives("(partscope: allow G001, W001)"), vec![Directive::Allow(vec!["G001".into(), "W001".into()])]);
-        assert_eq!(parse_directives("(PARTSCOPE: allow-file L008)"), vec![Directive::AllowFile(vec!["L008".into()])]);
-        assert_eq!(parse_directives("; partscope: dialect=fanuc"), vec![Directive::Dialect("fanuc".into())]);
+        assert_eq!(
+            parse_directives("(partscope: allow G001, W001)"),
+            vec![Directive::Allow(vec!["G001".into(), "W001".into()])]
+        );
+        assert_eq!(
+            parse_directives("(PARTSCOPE: allow-file L008)"),
+            vec![Directive::AllowFile(vec!["L008".into()])]
+        );
+        assert_eq!(
+            parse_directives("; partscope: dialect=fanuc"),
+            vec![Directive::Dialect("fanuc".into())]
+        );
         assert!(parse_directives("(plain comment)").is_empty());
     }
 
     #[test]
     fn dialect_directive_reads_first_line() {
-        assert_eq!(dialect_directive(b"\n(partscope: dialect=servoworks)\nG0 X1\n"), Some(Dialect::Servoworks));
-        assert_eq!(dialect_directive(b"G0 X1 (partscope: dialect=fanuc)\n"), Some(Dialect::Fanuc));
-        assert_eq!(dialect_directive(b"G0 X1\n(partscope: dialect=fanuc)\n"), None);
+        assert_eq!(
+            dialect_directive(b"\n(partscope: dialect=servoworks)\nG0 X1\n"),
+            Some(Dialect::Servoworks)
+        );
+        assert_eq!(
+            dialect_directive(b"G0 X1 (partscope: dialect=fanuc)\n"),
+            Some(Dialect::Fanuc)
+        );
+        assert_eq!(
+            dialect_directive(b"G0 X1\n(partscope: dialect=fanuc)\n"),
+            None
+        );
+        assert_eq!(
+            dialect_directive(b"%\n(partscope: dialect=fanuc)\nO1\n"),
+            Some(Dialect::Fanuc)
+        );
     }
 
     #[test]
@@ -282,7 +359,12 @@ mod tests {
         let s = Settings::from_config(&c, None).unwrap();
         assert_eq!(s.dialect, Dialect::Servoworks);
         assert_eq!(s.variant, Variant::S100M);
-        assert_eq!(c.machine.get("circle_error_allowance").and_then(|v| v.as_float()), Some(0.01));
+        assert_eq!(
+            c.machine
+                .get("circle_error_allowance")
+                .and_then(|v| v.as_float()),
+            Some(0.01)
+        );
         assert!(!s.code_enabled("L008"));
         assert!(Config::from_toml("dialekt = 1").is_err());
     }

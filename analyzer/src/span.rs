@@ -68,7 +68,10 @@ impl LineIndex {
             }
             i += 1;
         }
-        LineIndex { starts, len: src.len() as u32 }
+        LineIndex {
+            starts,
+            len: src.len() as u32,
+        }
     }
 
     /// 0-based line and byte column of `offset`.

@@ -27,24 +27,59 @@ fn ngc_whitespace_inside_numbers_and_case() {
 
 #[test]
 fn ngc_expressions_use_five_precedence_levels() {
-    let prog = p(Dialect::Rs274ngc, "#1 = [0 AND 0 + 1]\n#2=[2**3**2]\n#3 = ATAN[1]/[1]\n");
+    let prog = p(
+        Dialect::Rs274ngc,
+        "#1 = [0 AND 0 + 1]\n#2=[2**3**2]\n#3 = ATAN[1]/[1]\n",
+    );
     assert!(prog.diagnostics.is_empty(), "{:?}", prog.diagnostics);
     let items = prog.items_of(&prog.blocks[0]);
-    let ItemKind::Assign { value, .. } = items[0].kind else { panic!("not an assignment: {items:?}") };
+    let ItemKind::Assign { value, .. } = items[0].kind else {
+        panic!("not an assignment: {items:?}")
+    };
     // value = Group(Binary(And, 0, Binary(Add, 0, 1)))
-    let Expr::Group { inner } = prog.expr(value).expr else { panic!() };
-    let Expr::Binary { op, rhs, .. } = prog.expr(inner).expr else { panic!() };
+    let Expr::Group { inner } = prog.expr(value).expr else {
+        panic!()
+    };
+    let Expr::Binary { op, rhs, .. } = prog.expr(inner).expr else {
+        panic!()
+    };
     assert_eq!(op, BinOp::And);
-    assert!(matches!(prog.expr(rhs).expr, Expr::Binary { op: BinOp::Add, .. }));
+    assert!(matches!(
+        prog.expr(rhs).expr,
+        Expr::Binary { op: BinOp::Add, .. }
+    ));
     // `**` is left-associative: (2**3)**2.
     let items = prog.items_of(&prog.blocks[1]);
-    let ItemKind::Assign { value, .. } = items[0].kind else { panic!() };
-    let Expr::Group { inner } = prog.expr(value).expr else { panic!() };
-    let Expr::Binary { op: BinOp::Pow, lhs, .. } = prog.expr(inner).expr else { panic!() };
-    assert!(matches!(prog.expr(lhs).expr, Expr::Binary { op: BinOp::Pow, .. }));
+    let ItemKind::Assign { value, .. } = items[0].kind else {
+        panic!()
+    };
+    let Expr::Group { inner } = prog.expr(value).expr else {
+        panic!()
+    };
+    let Expr::Binary {
+        op: BinOp::Pow,
+        lhs,
+        ..
+    } = prog.expr(inner).expr
+    else {
+        panic!()
+    };
+    assert!(matches!(
+        prog.expr(lhs).expr,
+        Expr::Binary { op: BinOp::Pow, .. }
+    ));
     let items = prog.items_of(&prog.blocks[2]);
-    let ItemKind::Assign { value, .. } = items[0].kind else { panic!() };
-    assert!(matches!(prog.expr(value).expr, Expr::Call { func: Func::Atan, arg2: Some(_), .. }));
+    let ItemKind::Assign { value, .. } = items[0].kind else {
+        panic!()
+    };
+    assert!(matches!(
+        prog.expr(value).expr,
+        Expr::Call {
+            func: Func::Atan,
+            arg2: Some(_),
+            ..
+        }
+    ));
 }
 
 #[test]
@@ -61,16 +96,26 @@ fn ngc_owords_and_named_parameters() {
         .collect();
     assert_eq!(
         ow,
-        vec![(Some(OKeyword::Sub), 0), (Some(OKeyword::Endsub), 0), (Some(OKeyword::Call), 2), (Some(OKeyword::While), 1)]
+        vec![
+            (Some(OKeyword::Sub), 0),
+            (Some(OKeyword::Endsub), 0),
+            (Some(OKeyword::Call), 2),
+            (Some(OKeyword::While), 1)
+        ]
     );
-    let ItemKind::OWord(o) = prog.items_of(&prog.blocks[0])[0].kind else { panic!() };
+    let ItemKind::OWord(o) = prog.items_of(&prog.blocks[0])[0].kind else {
+        panic!()
+    };
     let OLabel::Name(n) = o.label else { panic!() };
     assert_eq!(&*prog.str_of(n), "drill");
 }
 
 #[test]
 fn ngc_semicolon_comment_and_percent_demarcation() {
-    let prog = p(Dialect::Rs274ngc, "%\nG0 X1 ; go (there)\n%\nthis is ignored\n");
+    let prog = p(
+        Dialect::Rs274ngc,
+        "%\nG0 X1 ; go (there)\n%\nthis is ignored\n",
+    );
     assert!(prog.diagnostics.is_empty(), "{:?}", prog.diagnostics);
     assert_eq!(prog.blocks[0].kind, BlockKind::Percent);
     assert_eq!(prog.blocks[2].kind, BlockKind::Percent);
@@ -85,7 +130,10 @@ fn ngc_malformed_numbers() {
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X1.2.3\n")), vec!["L004"]);
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X F100\n")), vec!["L003"]);
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X1 (open\n")), vec!["L001"]);
-    assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X1 (a (b) c)\n")), vec!["L002"]);
+    assert_eq!(
+        codes(&p(Dialect::Rs274ngc, "G1 X1 (a (b) c)\n")),
+        vec!["L002"]
+    );
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X[1+2 F1\n")), vec!["L006"]);
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X1 /Y2\n")), vec!["L007"]);
     assert_eq!(codes(&p(Dialect::Rs274ngc, "G1 X#1+2\n")), vec!["L005"]);
@@ -97,18 +145,32 @@ fn servoworks_lexical_rules() {
     assert_eq!(prog.blocks[0].kind, BlockKind::Percent);
     assert_eq!(prog.blocks[1].kind, BlockKind::Deleted);
     assert!(prog.blocks[2].skip.is_some());
-    let (_, p98) = prog.words(&prog.blocks[3]).find(|(_, w)| w.letter == b'P').unwrap();
-    let WordValue::Name(n) = p98.value else { panic!("{p98:?}") };
+    let (_, p98) = prog
+        .words(&prog.blocks[3])
+        .find(|(_, w)| w.letter == b'P')
+        .unwrap();
+    let WordValue::Name(n) = p98.value else {
+        panic!("{p98:?}")
+    };
     assert_eq!(&*prog.str_of(n), "MoveXY");
     let (_, s) = prog.words(&prog.blocks[4]).next().unwrap();
     assert!(matches!(s.value, WordValue::Indexed(2, n) if n.value == 1500.0));
-    assert!(matches!(prog.items_of(&prog.blocks[5])[0].kind, ItemKind::ProgramHead { number: None, .. }));
-    assert!(matches!(prog.items_of(&prog.blocks[6])[0].kind, ItemKind::Assign { .. }));
+    assert!(matches!(
+        prog.items_of(&prog.blocks[5])[0].kind,
+        ItemKind::ProgramHead { number: None, .. }
+    ));
+    assert!(matches!(
+        prog.items_of(&prog.blocks[6])[0].kind,
+        ItemKind::Assign { .. }
+    ));
     assert_eq!(codes(&prog), vec!["L013"]);
     // Lower case is ignored; `/` must be in column 1; `%` elsewhere is ignored.
     assert_eq!(codes(&p(Dialect::Servoworks, "G01 x10.0\n")), vec!["L008"]);
     assert_eq!(codes(&p(Dialect::Servoworks, " /G01 X1\n")), vec!["L007"]);
-    assert_eq!(codes(&p(Dialect::Servoworks, "G01 X1 % Y2\n")), vec!["L011"]);
+    assert_eq!(
+        codes(&p(Dialect::Servoworks, "G01 X1 % Y2\n")),
+        vec!["L011"]
+    );
     // Duplicate words stay in the tree (rules decide what they mean).
     let prog = p(Dialect::Servoworks, "N100 G00 X13.0 Z3.0 X2.0 X9.5\n");
     assert_eq!(words(&prog, 0).len(), 6);
@@ -124,7 +186,13 @@ fn fanuc_blocks_and_macro_b() {
     // `;` followed by more text starts a new block on the same line.
     let lines: Vec<u32> = prog.blocks.iter().map(|b| b.line).collect();
     assert_eq!(lines, vec![0, 1, 2, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13]);
-    assert!(matches!(prog.items_of(&prog.blocks[1])[0].kind, ItemKind::ProgramHead { number: Some(1000), .. }));
+    assert!(matches!(
+        prog.items_of(&prog.blocks[1])[0].kind,
+        ItemKind::ProgramHead {
+            number: Some(1000),
+            ..
+        }
+    ));
     let stmts: Vec<&MacroStmt> = prog
         .items
         .iter()

@@ -11,14 +11,25 @@ fn check_lossless(program: &Program, input: &[u8]) {
         assert!(program.tokens.is_empty());
         return;
     }
-    assert_eq!(program.tokens.first().map(|t| t.start), Some(0), "first token must start at 0");
+    assert_eq!(
+        program.tokens.first().map(|t| t.start),
+        Some(0),
+        "first token must start at 0"
+    );
     for w in program.tokens.windows(2) {
-        assert!(w[0].start < w[1].start, "tokens must be strictly increasing: {:?}", w);
+        assert!(
+            w[0].start < w[1].start,
+            "tokens must be strictly increasing: {:?}",
+            w
+        );
     }
     for b in &program.blocks {
         assert!(b.span.start <= b.span.end && b.span.end <= b.end.end);
         for it in program.items_of(b) {
-            assert!(it.span.start >= b.span.start && it.span.end <= b.span.end, "item outside block: {it:?} {b:?}");
+            assert!(
+                it.span.start >= b.span.start && it.span.end <= b.span.end,
+                "item outside block: {it:?} {b:?}"
+            );
         }
     }
     for d in &program.diagnostics {
@@ -28,15 +39,53 @@ fn check_lossless(program: &Program, input: &[u8]) {
 
 /// Bytes biased towards the characters G-code uses.
 fn gcode_bytes() -> impl Strategy<Value = Vec<u8>> {
-    let alphabet: Vec<u8> = b"GMXYZIJKRFPSTNOgmxyz0123456789.+-*/#[]()<>=;% \t\r\n_,:ABCDEHLQUVWabcdehlqw$@^!".to_vec();
-    prop::collection::vec(prop_oneof![9 => prop::sample::select(alphabet), 1 => any::<u8>()], 0..200)
+    let alphabet: Vec<u8> =
+        b"GMXYZIJKRFPSTNOgmxyz0123456789.+-*/#[]()<>=;% \t\r\n_,:ABCDEHLQUVWabcdehlqw$@^!".to_vec();
+    prop::collection::vec(
+        prop_oneof![9 => prop::sample::select(alphabet), 1 => any::<u8>()],
+        0..200,
+    )
 }
 
 fn keyword_soup() -> impl Strategy<Value = Vec<u8>> {
     let words = vec![
-        "G1 ", "X1.5", "#1=", "[", "]", "ATAN", "/", "SIN", "o100 ", "sub", "endsub", "while", "if", "IF", "GOTO",
-        "WHILE", "DO1", "END1", "THEN", "#<a>", "(msg,x)", "; c", "\n", "%\n", "/1", "M98 PMoveXY", "S2_1500", "EQ",
-        "MOD", "**", "O100", "<prog>", ",C1.", "N10", "-", "+", "1 2 .3",
+        "G1 ",
+        "X1.5",
+        "#1=",
+        "[",
+        "]",
+        "ATAN",
+        "/",
+        "SIN",
+        "o100 ",
+        "sub",
+        "endsub",
+        "while",
+        "if",
+        "IF",
+        "GOTO",
+        "WHILE",
+        "DO1",
+        "END1",
+        "THEN",
+        "#<a>",
+        "(msg,x)",
+        "; c",
+        "\n",
+        "%\n",
+        "/1",
+        "M98 PMoveXY",
+        "S2_1500",
+        "EQ",
+        "MOD",
+        "**",
+        "O100",
+        "<prog>",
+        ",C1.",
+        "N10",
+        "-",
+        "+",
+        "1 2 .3",
     ];
     prop::collection::vec(prop::sample::select(words), 0..40).prop_map(|v| v.concat().into_bytes())
 }

@@ -1,7 +1,10 @@
 //! Partscope runtime: interpreter, interpolator and motion planner. Pure: no IO.
 
 pub mod canon;
+pub mod dryrun;
 pub mod interp;
+pub mod machine;
+pub mod plan;
 pub mod rules;
 
 pub use interp::{

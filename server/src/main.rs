@@ -2,6 +2,9 @@
 
 mod cli;
 mod lsp;
+mod picture;
+mod resolve;
+mod rules;
 
 use std::process::ExitCode;
 

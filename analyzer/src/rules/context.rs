@@ -50,12 +50,16 @@ impl<'a> BlockCx<'a> {
     }
 
     /// The words of this block.
-    pub fn words(&self) -> impl Iterator<Item = (&'a crate::syntax::Item, &'a crate::syntax::Word)> + 'a {
+    pub fn words(
+        &self,
+    ) -> impl Iterator<Item = (&'a crate::syntax::Item, &'a crate::syntax::Word)> + 'a {
         self.program.words(self.block)
     }
 
     pub fn word(&self, letter: u8) -> Option<&'a crate::syntax::Word> {
-        self.words().find(|(_, w)| w.letter == letter && !w.comma).map(|(_, w)| w)
+        self.words()
+            .find(|(_, w)| w.letter == letter && !w.comma)
+            .map(|(_, w)| w)
     }
 }
 
@@ -67,7 +71,9 @@ pub struct ProgramCx<'a> {
 /// Collects the literal G and M codes of a block.
 pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>) {
     for (i, item) in program.items_of(block).iter().enumerate() {
-        let ItemKind::Word(w) = &item.kind else { continue };
+        let ItemKind::Word(w) = &item.kind else {
+            continue;
+        };
         if w.comma || !(w.letter == b'G' || w.letter == b'M') {
             continue;
         }
@@ -77,6 +83,12 @@ pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>)
             _ => None,
         };
         let info = num.and_then(|n| dialect::lookup(program.dialect, letter, n));
-        out.push(BlockCode { item: i, letter, num, info, span: item.span });
+        out.push(BlockCode {
+            item: i,
+            letter,
+            num,
+            info,
+            span: item.span,
+        });
     }
 }

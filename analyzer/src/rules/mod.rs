@@ -13,11 +13,62 @@
 //! compensation, `K` coordinates/kinematics/limits, `D` look-ahead modes,
 //! `F` flow/subprograms/feed, `X` execution.
 
+mod axis_word_conflict;
+mod block_too_long;
+mod bracket_nesting;
+mod code_not_on_variant;
+mod comment_use;
+mod conflicting_words;
+mod constant_expression;
 pub mod context;
+mod control_notes;
+mod cycle_words;
+mod dlacc_form;
+mod duplicate_word;
+mod endless_loop;
+mod eq_non_integer;
+mod expression_form;
+mod g54_with_words;
+mod goto_target;
+mod integer_machine_unit;
+mod integer_word;
+mod m98_with_motion;
+mod m_group_conflict;
+mod macro_call_arguments;
+mod macro_loop_structure;
+mod macro_with_nc_words;
+mod missing_required_word;
+mod modal_group_conflict;
+mod oword_calls;
+mod oword_structure;
+mod parameter_number;
+mod parameter_same_line;
+mod program_end;
 pub mod registry;
+mod sequence_number;
+mod style_decimals;
+mod style_g92;
+mod style_line_numbers;
+mod style_lowercase_o;
+mod style_number_whitespace;
+mod style_order_of_execution;
+mod style_preamble;
+mod style_radius_arc;
+mod style_start_with_g40;
+mod style_units;
+mod subprogram_name_glued;
 mod syntax_rules;
+mod too_many_m_words;
+mod unknown_address;
+mod unknown_code;
+mod unreachable_after_end;
+pub(crate) mod util;
+mod word_value_range;
 
 pub use context::{BlockCode, BlockCx, ProgramCx};
+
+// Declared apart from the sorted list above so that branches adding rules merge cleanly.
+mod word_without_user;
 
 use crate::diagnostic::Diagnostic;
 
@@ -101,15 +152,32 @@ macro_rules! declare_rule {
 /// Runs every enabled static rule over a parsed program.
 pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     let rules = registry::STATIC_RULES;
-    let enabled: Vec<&&dyn Rule> = rules.iter().filter(|r| cx.settings.rule_enabled(r.meta())).collect();
+    let enabled: Vec<&&dyn Rule> = rules
+        .iter()
+        .filter(|r| cx.settings.rule_enabled(r.meta()))
+        .collect();
     if enabled.is_empty() {
         return;
     }
     let mut codes = Vec::new();
+    // Lines LinuxCNC never reads are only reported as unreachable (P006).
+    let dead = util::dead_blocks(cx.program);
+    let unreadable = util::unreadable_blocks(cx.program);
     for (i, block) in cx.program.blocks.iter().enumerate() {
+        // A block the parser could not read is reported by the parser alone: rules
+        // would only describe the debris of the syntax error.
+        if dead.get(i).copied().unwrap_or(false) || unreadable.get(i).copied().unwrap_or(false) {
+            continue;
+        }
         codes.clear();
         context::collect_codes(cx.program, block, &mut codes);
-        let bcx = BlockCx { program: cx.program, block, index: i, settings: cx.settings, codes: &codes };
+        let bcx = BlockCx {
+            program: cx.program,
+            block,
+            index: i,
+            settings: cx.settings,
+            codes: &codes,
+        };
         for r in &enabled {
             r.check_block(&bcx, out);
         }

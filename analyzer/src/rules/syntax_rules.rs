@@ -27,12 +27,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error everywhere. A quick fix appends the missing `)`.
     ///
-    /// Implements: SW010, NGC001, FAN010
+    /// Implements: SW010, NGC003, FAN006
     pub static UNCLOSED_COMMENT = {
         code: "L001",
         name: "unclosed-comment",
         summary: "Comment not closed before the end of the block",
-        implements: &["SW010", "NGC001", "FAN010"],
+        implements: &["SW010", "NGC003", "FAN006"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -62,12 +62,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC and FANUC (error). ServoWorks does not define nesting.
     ///
-    /// Implements: NGC002, FAN011
+    /// Implements: NGC004
     pub static NESTED_COMMENT = {
         code: "L002",
         name: "nested-comment",
         summary: "Comment inside a comment",
-        implements: &["NGC002", "FAN011"],
+        implements: &["NGC004"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -98,12 +98,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: SW014, NGC003, FAN005
+    /// Implements: SW014, NGC006, NGC030, FAN002
     pub static MISSING_VALUE = {
         code: "L003",
         name: "missing-value",
         summary: "Address letter without a value",
-        implements: &["SW014", "NGC003", "FAN005"],
+        implements: &["SW014", "NGC006", "NGC030", "FAN002"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -133,12 +133,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: NGC004, FAN007
+    /// Implements: NGC005
     pub static MALFORMED_NUMBER = {
         code: "L004",
         name: "malformed-number",
         summary: "Number that cannot be read",
-        implements: &["NGC004", "FAN007"],
+        implements: &["NGC005"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -168,12 +168,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored).
     ///
-    /// Implements: SW008, NGC005, FAN009
+    /// Implements: SW008, NGC002, NGC011, NGC111
     pub static UNKNOWN_CHARACTER = {
         code: "L005",
         name: "unknown-character",
         summary: "Character that is not part of the language",
-        implements: &["SW008", "NGC005", "FAN009"],
+        implements: &["SW008", "NGC002", "NGC011", "NGC111"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -202,12 +202,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: NGC006, FAN114
+    /// Implements: NGC010
     pub static UNBALANCED_BRACKET = {
         code: "L006",
         name: "unbalanced-bracket",
         summary: "Unclosed `[` expression",
-        implements: &["NGC006", "FAN114"],
+        implements: &["NGC010"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -237,12 +237,12 @@ declare_rule! {
     /// ## Dialects
     /// ServoWorks and RS274/NGC: error. FANUC: warning.
     ///
-    /// Implements: SW002, NGC007, FAN014
+    /// Implements: SW002, FAN014
     pub static MISPLACED_BLOCK_SKIP = {
         code: "L007",
         name: "misplaced-block-skip",
         summary: "`/` not at the start of the block",
-        implements: &["SW002", "NGC007", "FAN014"],
+        implements: &["SW002", "FAN014"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -309,12 +309,12 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: NGC008, NGC009, FAN125
+    /// Implements: NGC012, NGC013, NGC020, NGC027, NGC600, NGC611, NGC612, FAN130, FAN131, FAN132
     pub static BAD_EXPRESSION = {
         code: "L010",
         name: "bad-expression",
         summary: "Malformed expression or statement",
-        implements: &["NGC008", "NGC009", "FAN125"],
+        implements: &["NGC012", "NGC013", "NGC020", "NGC027", "NGC600", "NGC611", "NGC612", "FAN130", "FAN131", "FAN132"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -345,12 +345,12 @@ declare_rule! {
     /// ## Dialects
     /// ServoWorks: warning. RS274/NGC and FANUC: error.
     ///
-    /// Implements: SW003, NGC010
+    /// Implements: SW003
     pub static MISPLACED_PERCENT = {
         code: "L011",
         name: "misplaced-percent",
         summary: "`%` where it has no meaning",
-        implements: &["SW003", "NGC010"],
+        implements: &["SW003"],
         origin: Syntax,
         default_enabled: true,
     }
@@ -415,12 +415,58 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
-    /// Implements: FAN118
+    /// Implements: (none; FANUC's five-level limit is checked by W014)
     pub static EXPRESSION_TOO_DEEP = {
         code: "L014",
         name: "expression-too-deep",
         summary: "Expression nested too deeply",
-        implements: &["FAN118"],
+        implements: &[],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Reports a file that could not be read (missing, unreadable, a directory).
+    ///
+    /// ## Why is this bad?
+    /// Nothing in it could be checked.
+    ///
+    /// ## Dialects
+    /// All, error. `partscope check` exits with status 2 when a file could not be read.
+    ///
+    /// Implements:
+    pub static IO_ERROR = {
+        code: "L000",
+        name: "io-error",
+        summary: "File could not be read",
+        implements: &[],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
+    /// Flags a file that is not text (it contains NUL bytes or mostly non-text bytes), and
+    /// text that is not valid UTF-8.
+    ///
+    /// ## Why is this bad?
+    /// A binary file is not a part program: it was probably picked up by mistake (an image,
+    /// a compiled post-processor). Invalid UTF-8 usually means a file saved in a legacy code
+    /// page; controls read only ASCII outside comments, and the comment text will show
+    /// garbled in editors. A binary file is reported once and not analysed further.
+    ///
+    /// ## Dialects
+    /// All. Binary: error. Invalid UTF-8: warning.
+    ///
+    /// Implements:
+    pub static NOT_TEXT = {
+        code: "L009",
+        name: "not-text",
+        summary: "Binary file or invalid UTF-8",
+        implements: &[],
         origin: Syntax,
         default_enabled: true,
     }

@@ -108,7 +108,10 @@ impl BinOp {
     }
 
     pub fn is_relational(self) -> bool {
-        matches!(self, BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Ge | BinOp::Lt | BinOp::Le)
+        matches!(
+            self,
+            BinOp::Eq | BinOp::Ne | BinOp::Gt | BinOp::Ge | BinOp::Lt | BinOp::Le
+        )
     }
 }
 
@@ -173,17 +176,35 @@ impl Func {
 pub enum Expr {
     Num(Num),
     /// `#n`, `##n`, `#[expr]`: the variable whose number is the value of `index`.
-    Var { index: ExprId },
+    Var {
+        index: ExprId,
+    },
     /// `#<name>`; the span of the whole token.
-    Named { name: Span },
+    Named {
+        name: Span,
+    },
     /// Unary minus or plus.
-    Neg { arg: ExprId },
-    Plus { arg: ExprId },
-    Binary { op: BinOp, lhs: ExprId, rhs: ExprId },
+    Neg {
+        arg: ExprId,
+    },
+    Plus {
+        arg: ExprId,
+    },
+    Binary {
+        op: BinOp,
+        lhs: ExprId,
+        rhs: ExprId,
+    },
     /// `NAME[a]`, `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
-    Call { func: Func, arg: ExprId, arg2: Option<ExprId> },
+    Call {
+        func: Func,
+        arg: ExprId,
+        arg2: Option<ExprId>,
+    },
     /// `[ inner ]`
-    Group { inner: ExprId },
+    Group {
+        inner: ExprId,
+    },
     /// Something that could not be parsed; a diagnostic was emitted.
     Error,
 }
@@ -356,13 +377,19 @@ pub enum MacroStmt {
 pub enum ItemKind {
     Word(Word),
     /// `#n = expr` / `#<name> = expr`; `target` is a `Var` or `Named` node.
-    Assign { target: ExprId, value: ExprId },
+    Assign {
+        target: ExprId,
+        value: ExprId,
+    },
     Comment(CommentKind),
     OWord(OWord),
     Macro(MacroStmt),
     /// A program head: `O1234`, `:1234`, `OMoveXY`, `<name>`. `name` is the span of the
     /// number or name after the `O`.
-    ProgramHead { name: Span, number: Option<u32> },
+    ProgramHead {
+        name: Span,
+        number: Option<u32>,
+    },
     /// Input that could not be parsed (a diagnostic was emitted).
     Error,
 }
@@ -421,16 +448,23 @@ pub struct Program {
 
 impl Program {
     pub fn items_of(&self, block: &Block) -> &[Item] {
-        self.items.get(block.items.0 as usize..block.items.1 as usize).unwrap_or(&[])
+        self.items
+            .get(block.items.0 as usize..block.items.1 as usize)
+            .unwrap_or(&[])
     }
 
     pub fn expr(&self, id: ExprId) -> &ExprNode {
-        static ERROR: ExprNode = ExprNode { expr: Expr::Error, span: Span { start: 0, end: 0 } };
+        static ERROR: ExprNode = ExprNode {
+            expr: Expr::Error,
+            span: Span { start: 0, end: 0 },
+        };
         self.exprs.get(id.0 as usize).unwrap_or(&ERROR)
     }
 
     pub fn expr_list(&self, range: (u32, u32)) -> &[ExprId] {
-        self.expr_lists.get(range.0 as usize..range.1 as usize).unwrap_or(&[])
+        self.expr_lists
+            .get(range.0 as usize..range.1 as usize)
+            .unwrap_or(&[])
     }
 
     pub fn slice(&self, span: Span) -> &[u8] {
@@ -444,7 +478,11 @@ impl Program {
 
     pub fn token_span(&self, i: usize) -> Span {
         let start = self.tokens[i].start;
-        let end = self.tokens.get(i + 1).map(|t| t.start).unwrap_or(self.text.len() as u32);
+        let end = self
+            .tokens
+            .get(i + 1)
+            .map(|t| t.start)
+            .unwrap_or(self.text.len() as u32);
         Span::new(start, end)
     }
 
@@ -458,7 +496,10 @@ impl Program {
     }
 
     /// The words of a block.
-    pub fn words<'a>(&'a self, block: &'a Block) -> impl Iterator<Item = (&'a Item, &'a Word)> + 'a {
+    pub fn words<'a>(
+        &'a self,
+        block: &'a Block,
+    ) -> impl Iterator<Item = (&'a Item, &'a Word)> + 'a {
         self.items_of(block).iter().filter_map(|it| match &it.kind {
             ItemKind::Word(w) => Some((it, w)),
             _ => None,

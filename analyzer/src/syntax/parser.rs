@@ -38,7 +38,10 @@ pub struct ParseOptions {
 
 impl ParseOptions {
     pub fn new(dialect: Dialect) -> ParseOptions {
-        ParseOptions { dialect, variant: dialect.default_variant() }
+        ParseOptions {
+            dialect,
+            variant: dialect.default_variant(),
+        }
     }
 }
 
@@ -52,8 +55,8 @@ pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let mut program = Program {
         dialect: opts.dialect,
         text: text.clone(),
-        tokens: Vec::with_capacity(text.len() / 3 + 1),
-        blocks: Vec::with_capacity(text.len() / 24 + 1),
+        tokens: Vec::with_capacity(text.len() / 2 + 1),
+        blocks: Vec::with_capacity(text.len() / 16 + 1),
         items: Vec::with_capacity(text.len() / 5 + 1),
         exprs: Vec::new(),
         expr_lists: Vec::new(),
@@ -81,7 +84,9 @@ pub struct Parser {
 /// Per-block working state.
 struct Cx<'p> {
     p: &'p mut Program,
-    text: Arc<[u8]>,
+    /// The file's text up to the end of this block's content: nothing a block
+    /// item reads lies beyond it, and one bound check covers both limits.
+    text: &'p [u8],
     pos: usize,
     /// Byte where the block ends (before its terminator).
     limit: usize,
@@ -99,7 +104,15 @@ fn is_digit(b: u8) -> bool {
 
 impl Parser {
     pub fn new(opts: ParseOptions, text: Arc<[u8]>) -> Parser {
-        Parser { opts, text, pos: 0, line: 0, percent_seen: false, after_end: false, seen_content: false }
+        Parser {
+            opts,
+            text,
+            pos: 0,
+            line: 0,
+            percent_seen: false,
+            after_end: false,
+            seen_content: false,
+        }
     }
 
     pub fn is_done(&self) -> bool {
@@ -122,17 +135,22 @@ impl Parser {
         let t = &self.text;
         let mut i = self.pos;
         let semicolon_ends = self.opts.dialect == Dialect::Fanuc;
-        // A comment may contain `;` without ending the block; parentheses do not span lines.
-        let mut in_comment = false;
-        while i < t.len() {
-            match t[i] {
-                b'\n' | b'\r' => break,
-                b'(' => in_comment = true,
-                b')' => in_comment = false,
-                b';' if semicolon_ends && !in_comment => break,
-                _ => {}
+        if !semicolon_ends {
+            // Only a line break ends the block: a vectorised search.
+            i = memchr::memchr2(b'\n', b'\r', &t[i..]).map_or(t.len(), |k| i + k);
+        } else {
+            // A comment may contain `;` without ending the block; parentheses do not span lines.
+            let mut in_comment = false;
+            while i < t.len() {
+                match t[i] {
+                    b'\n' | b'\r' => break,
+                    b'(' => in_comment = true,
+                    b')' => in_comment = false,
+                    b';' if !in_comment => break,
+                    _ => {}
+                }
+                i += 1;
             }
-            i += 1;
         }
         let content_end = i;
         let mut end = i;
@@ -171,14 +189,21 @@ impl Parser {
         let content = &text[start..content_end];
         // First and last non-blank bytes decide the line's kind without allocating.
         let first_nb = content.iter().position(|b| !is_ws(*b));
-        let last_nb = content.iter().rposition(|b| !is_ws(*b));
         let blank = first_nb.is_none();
         let first_byte = first_nb.map(|i| content[i]);
-        let only_percent = first_byte == Some(b'%') && first_nb == last_nb;
+        let only_percent = first_byte == Some(b'%')
+            && first_nb.is_some_and(|i| content[i + 1..].iter().all(|b| is_ws(*b)));
 
         let mut kind = BlockKind::Normal;
         let mut skip = None;
-        let mut cx = Cx { p, text: text.clone(), pos: start, limit: content_end, dialect, depth: 0 };
+        let mut cx = Cx {
+            p,
+            text: &text[..content_end],
+            pos: start,
+            limit: content_end,
+            dialect,
+            depth: 0,
+        };
 
         if self.after_end {
             kind = BlockKind::Ignored;
@@ -187,8 +212,19 @@ impl Parser {
             }
         } else if dialect == Dialect::Servoworks && content.first() == Some(&b'%') {
             // ServoWorks: `%` in column 1 deletes the whole line, unconditionally.
-            kind = if only_percent { BlockKind::Percent } else { BlockKind::Deleted };
-            cx.token(start, if kind == BlockKind::Percent { TokenKind::Percent } else { TokenKind::LineComment });
+            kind = if only_percent {
+                BlockKind::Percent
+            } else {
+                BlockKind::Deleted
+            };
+            cx.token(
+                start,
+                if kind == BlockKind::Percent {
+                    TokenKind::Percent
+                } else {
+                    TokenKind::LineComment
+                },
+            );
         } else if first_byte == Some(b'%') && (dialect == Dialect::Fanuc || only_percent) {
             kind = BlockKind::Percent;
             cx.ws();
@@ -271,11 +307,7 @@ impl Parser {
 
 impl<'p> Cx<'p> {
     fn at(&self, i: usize) -> Option<u8> {
-        if i < self.limit {
-            self.text.get(i).copied()
-        } else {
-            None
-        }
+        self.text.get(i).copied()
     }
 
     fn peek(&self) -> Option<u8> {
@@ -301,7 +333,9 @@ impl<'p> Cx<'p> {
     }
 
     fn diag(&mut self, code: &'static str, sev: Severity, span: Span, msg: impl Into<String>) {
-        self.p.diagnostics.push(Diagnostic::new(code, sev, span, msg));
+        self.p
+            .diagnostics
+            .push(Diagnostic::new(code, sev, span, msg));
     }
 
     fn push_item(&mut self, kind: ItemKind, start: usize) {
@@ -311,7 +345,10 @@ impl<'p> Cx<'p> {
 
     fn push_expr(&mut self, expr: Expr, start: usize) -> ExprId {
         let id = ExprId(self.p.exprs.len() as u32);
-        self.p.exprs.push(ExprNode { expr, span: Span::new(start as u32, self.pos as u32) });
+        self.p.exprs.push(ExprNode {
+            expr,
+            span: Span::new(start as u32, self.pos as u32),
+        });
         id
     }
 
@@ -379,7 +416,12 @@ impl<'p> Cx<'p> {
                     };
                     self.pos += 1;
                     self.token(start, TokenKind::BlockSkip);
-                    self.diag(codes::MISPLACED_BLOCK_SKIP, sev, Span::new(start as u32, self.pos as u32), msg);
+                    self.diag(
+                        codes::MISPLACED_BLOCK_SKIP,
+                        sev,
+                        Span::new(start as u32, self.pos as u32),
+                        msg,
+                    );
                     self.push_item(ItemKind::Error, start);
                 }
                 b'%' => {
@@ -390,7 +432,12 @@ impl<'p> Cx<'p> {
                         Dialect::Rs274ngc => (Severity::Error, "`%` must stand alone on its line (rs274: Bad character '%' used)"),
                         Dialect::Fanuc => (Severity::Error, "`%` marks the start or end of the tape and must stand alone on its line"),
                     };
-                    self.diag(codes::MISPLACED_PERCENT, sev, Span::new(start as u32, self.pos as u32), msg);
+                    self.diag(
+                        codes::MISPLACED_PERCENT,
+                        sev,
+                        Span::new(start as u32, self.pos as u32),
+                        msg,
+                    );
                     self.push_item(ItemKind::Error, start);
                 }
                 b'<' if self.dialect == Dialect::Fanuc && first => self.fanuc_name_head(),
@@ -401,7 +448,9 @@ impl<'p> Cx<'p> {
                     self.program_number(start);
                 }
                 b',' if self.dialect == Dialect::Fanuc
-                    && self.at(self.pos + 1).is_some_and(|c| matches!(c.to_ascii_uppercase(), b'C' | b'R' | b'A')) =>
+                    && self
+                        .at(self.pos + 1)
+                        .is_some_and(|c| matches!(c.to_ascii_uppercase(), b'C' | b'R' | b'A')) =>
                 {
                     self.token(start, TokenKind::Comma);
                     self.pos += 1;
@@ -420,7 +469,9 @@ impl<'p> Cx<'p> {
         // Consume a run of bytes that cannot start an item, so one stray sequence
         // gives one diagnostic.
         while let Some(b) = self.peek() {
-            if b.is_ascii_alphabetic() || matches!(b, b'(' | b';' | b'#' | b'/' | b'%' | b' ' | b'\t') {
+            if b.is_ascii_alphabetic()
+                || matches!(b, b'(' | b';' | b'#' | b'/' | b'%' | b' ' | b'\t')
+            {
                 break;
             }
             self.pos += 1;
@@ -429,11 +480,17 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let span = Span::new(start as u32, self.pos as u32);
-        let text = String::from_utf8_lossy(span.slice(&self.text)).into_owned();
+        let text = String::from_utf8_lossy(span.slice(self.text)).into_owned();
         let sev = self.sev_for_unknown();
         let msg = match self.dialect {
-            Dialect::Servoworks => format!("unrecognised data `{}` is ignored by the control", printable(&text)),
-            _ => format!("unexpected `{}`: not a word, comment or statement", printable(&text)),
+            Dialect::Servoworks => format!(
+                "unrecognised data `{}` is ignored by the control",
+                printable(&text)
+            ),
+            _ => format!(
+                "unexpected `{}`: not a word, comment or statement",
+                printable(&text)
+            ),
         };
         self.token(start, TokenKind::Unknown);
         self.diag(codes::UNKNOWN_CHARACTER, sev, span, msg);
@@ -468,11 +525,19 @@ impl<'p> Cx<'p> {
         let span = Span::new(start as u32, self.pos as u32);
         if !closed {
             let sev = Severity::Error;
-            self.diag(codes::UNCLOSED_COMMENT, sev, span, "comment is not closed with `)` before the end of the block");
+            self.diag(
+                codes::UNCLOSED_COMMENT,
+                sev,
+                span,
+                "comment is not closed with `)` before the end of the block",
+            );
             let d = self.p.diagnostics.len() - 1;
             self.p.diagnostics[d].fixes.push(crate::diagnostic::Fix {
                 title: "Close the comment".into(),
-                edits: vec![crate::diagnostic::TextEdit { span: Span::new(span.end, span.end), new_text: ")".into() }],
+                edits: vec![crate::diagnostic::TextEdit {
+                    span: Span::new(span.end, span.end),
+                    new_text: ")".into(),
+                }],
             });
         }
         if let Some(n) = nested {
@@ -485,7 +550,7 @@ impl<'p> Cx<'p> {
                 );
             }
         }
-        let kind = comment_kind(span.slice(&self.text));
+        let kind = comment_kind(span.slice(self.text));
         self.push_item(ItemKind::Comment(kind), start);
     }
 
@@ -495,7 +560,7 @@ impl<'p> Cx<'p> {
             Dialect::Rs274ngc => {
                 self.pos = self.limit;
                 self.token(start, TokenKind::LineComment);
-                let kind = comment_kind(Span::new(start as u32, self.pos as u32).slice(&self.text));
+                let kind = comment_kind(Span::new(start as u32, self.pos as u32).slice(self.text));
                 self.push_item(ItemKind::Comment(kind), start);
             }
             _ => {
@@ -531,7 +596,11 @@ impl<'p> Cx<'p> {
             self.ws();
             // Custom Macro B (and ServoWorks macros) allow an unbracketed expression on the
             // right-hand side; RS274/NGC requires brackets around operators.
-            let value = if self.dialect == Dialect::Rs274ngc { self.value_expr() } else { self.binary(0) };
+            let value = if self.dialect == Dialect::Rs274ngc {
+                self.value_expr()
+            } else {
+                self.binary(0)
+            };
             self.push_item(ItemKind::Assign { target, value }, start);
         } else {
             let span = Span::new(start as u32, self.pos as u32);
@@ -570,7 +639,12 @@ impl<'p> Cx<'p> {
                 }
                 self.pos = self.limit;
                 self.token(start, TokenKind::NamedParam);
-                self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "named parameter is missing its closing `>`");
+                self.diag(
+                    codes::BAD_EXPRESSION,
+                    Severity::Error,
+                    Span::new(start as u32, self.pos as u32),
+                    "named parameter is missing its closing `>`",
+                );
                 return self.push_expr(Expr::Error, start);
             }
         }
@@ -581,7 +655,12 @@ impl<'p> Cx<'p> {
             Some(b'#') => {
                 if self.dialect == Dialect::Fanuc {
                     let s = self.pos;
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, s as u32 + 1), "`##n` is not allowed in Custom Macro B; write `#[#n]`");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        Span::new(s as u32, s as u32 + 1),
+                        "`##n` is not allowed in Custom Macro B; write `#[#n]`",
+                    );
                 }
                 self.param_ref()
             }
@@ -598,7 +677,12 @@ impl<'p> Cx<'p> {
             }
             _ => {
                 let span = Span::new(start as u32, self.pos as u32);
-                self.diag(codes::MISSING_VALUE, Severity::Error, span, "`#` must be followed by a parameter number, `[expression]` or `<name>`");
+                self.diag(
+                    codes::MISSING_VALUE,
+                    Severity::Error,
+                    span,
+                    "`#` must be followed by a parameter number, `[expression]` or `<name>`",
+                );
                 self.push_expr(Expr::Error, self.pos)
             }
         };
@@ -610,73 +694,119 @@ impl<'p> Cx<'p> {
     fn number(&mut self, allow_sign: bool) -> Num {
         let start = self.pos;
         let inner_ws = self.dialect != Dialect::Servoworks;
-        let mut s = String::new();
+        let t = self.text;
+        let mut i = self.pos;
+        let mut signed = false;
+        let mut negative = false;
+        if allow_sign && i < t.len() && (t[i] == b'+' || t[i] == b'-') {
+            signed = true;
+            negative = t[i] == b'-';
+            i += 1;
+        }
+        // The value is accumulated while scanning: up to 15 significant digits fit a
+        // u64 exactly, and one division by an exact power of ten then rounds correctly.
+        let mut mant: u64 = 0;
+        let mut frac_digits: u32 = 0;
         let mut digits = 0u16;
         let mut has_point = false;
-        let mut signed = false;
         let mut bad = false;
-        let mut end = self.pos;
-        if allow_sign {
-            if let Some(c @ (b'+' | b'-')) = self.peek() {
-                s.push(c as char);
-                signed = true;
-                self.pos += 1;
-                end = self.pos;
-            }
-        }
+        let mut had_ws = false;
         loop {
-            let mut j = self.pos;
-            if inner_ws {
-                while self.at(j).is_some_and(is_ws) {
+            // Integer and fraction digits in separate loops keep the common path tight.
+            if !has_point {
+                while i < t.len() && t[i].is_ascii_digit() {
+                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
+                    digits = digits.saturating_add(1);
+                    i += 1;
+                }
+            } else {
+                while i < t.len() && t[i].is_ascii_digit() {
+                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
+                    digits = digits.saturating_add(1);
+                    frac_digits += 1;
+                    i += 1;
+                }
+            }
+            if i < t.len() && t[i] == b'.' {
+                // A second decimal point makes the literal malformed; keep consuming it.
+                bad |= has_point;
+                has_point = true;
+                i += 1;
+                continue;
+            }
+            if inner_ws && i < t.len() && is_ws(t[i]) {
+                let mut j = i;
+                while j < t.len() && is_ws(t[j]) {
                     j += 1;
                 }
-            }
-            match self.at(j) {
-                Some(c) if is_digit(c) => {
-                    s.push(c as char);
-                    digits = digits.saturating_add(1);
-                    self.pos = j + 1;
-                    end = self.pos;
+                if j < t.len() && (t[j].is_ascii_digit() || t[j] == b'.') {
+                    had_ws = true;
+                    i = j;
+                    continue;
                 }
-                Some(b'.') => {
-                    if has_point {
-                        // A second decimal point: consume the rest of the malformed literal.
-                        bad = true;
-                    }
-                    has_point = true;
-                    s.push('.');
-                    self.pos = j + 1;
-                    end = self.pos;
-                }
-                _ => break,
             }
+            break;
         }
+        let end = i;
         self.pos = end;
         let span = Span::new(start as u32, end as u32);
         if end > start {
             self.token(start, TokenKind::Number);
         }
-        let value = if digits == 0 || bad { None } else { s.parse::<f64>().ok() };
-        let value = match value {
-            Some(v) if v.is_finite() => v,
-            _ => {
-                let what = if bad {
-                    "more than one decimal point in a number"
-                } else if digits == 0 {
-                    "no digits where a number should be"
-                } else {
-                    "number out of range"
-                };
-                let (code, span) = if end == start {
-                    (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
-                } else {
-                    (codes::MALFORMED_NUMBER, span)
-                };
-                self.diag(code, Severity::Error, span, format!("bad number format: {what}"));
-                f64::NAN
+        let value = if digits == 0 || bad {
+            None
+        } else if digits <= 15 {
+            const POW10: [f64; 16] = [
+                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
+                1e15,
+            ];
+            let v = mant as f64 / POW10[frac_digits as usize];
+            Some(if negative { -v } else { v })
+        } else {
+            let raw = span.slice(t);
+            if had_ws {
+                let compact: Vec<u8> = raw.iter().copied().filter(|b| !is_ws(*b)).collect();
+                parse_f64(&compact)
+            } else {
+                parse_f64(raw)
             }
         };
-        Num { value, span, has_point, signed, digits }
+        let value = match value {
+            Some(v) if v.is_finite() => v,
+            _ => self.bad_number(bad, digits, start, end),
+        };
+        Num {
+            value,
+            span,
+            has_point,
+            signed,
+            digits,
+        }
+    }
+
+    /// Reports a number that cannot be read; kept out of line so the hot path stays small.
+    #[cold]
+    #[inline(never)]
+    fn bad_number(&mut self, bad: bool, digits: u16, start: usize, end: usize) -> f64 {
+        let what = if bad {
+            "more than one decimal point in a number"
+        } else if digits == 0 {
+            "no digits where a number should be"
+        } else {
+            "number out of range"
+        };
+        let (code, span) = if end == start {
+            (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
+        } else {
+            (codes::MALFORMED_NUMBER, Span::new(start as u32, end as u32))
+        };
+        self.diag(
+            code,
+            Severity::Error,
+            span,
+            format!("bad number format: {what}"),
+        );
+        f64::NAN
     }
 
     /// Reads a real value after a letter: number, `#…`, `[expr]`, function, signed forms.
@@ -692,7 +822,12 @@ impl<'p> Cx<'p> {
         if self.depth > MAX_EXPR_DEPTH {
             self.pos = self.limit;
             self.token(start, TokenKind::Unknown);
-            self.diag(codes::EXPRESSION_TOO_DEEP, Severity::Error, Span::new(start as u32, self.pos as u32), "expression nested too deeply; the rest of the block is not read");
+            self.diag(
+                codes::EXPRESSION_TOO_DEEP,
+                Severity::Error,
+                Span::new(start as u32, self.pos as u32),
+                "expression nested too deeply; the rest of the block is not read",
+            );
             return self.push_expr(Expr::Error, start);
         }
         match self.peek() {
@@ -717,13 +852,22 @@ impl<'p> Cx<'p> {
                 self.pos += 1;
                 self.ws();
                 let arg = self.value_expr();
-                let e = if c == b'-' { Expr::Neg { arg } } else { Expr::Plus { arg } };
+                let e = if c == b'-' {
+                    Expr::Neg { arg }
+                } else {
+                    Expr::Plus { arg }
+                };
                 self.push_expr(e, start)
             }
             Some(c) if c.is_ascii_alphabetic() => self.function(),
             _ => {
                 let span = Span::new(start as u32, start as u32);
-                self.diag(codes::MISSING_VALUE, Severity::Error, span, "a value is missing here");
+                self.diag(
+                    codes::MISSING_VALUE,
+                    Severity::Error,
+                    span,
+                    "a value is missing here",
+                );
                 self.push_expr(Expr::Error, start)
             }
         }
@@ -772,7 +916,9 @@ impl<'p> Cx<'p> {
                 while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
                     j += 1;
                 }
-                let w = Span::new(self.pos as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                let w = Span::new(self.pos as u32, j as u32)
+                    .slice(self.text)
+                    .to_ascii_uppercase();
                 let op = match w.as_slice() {
                     b"MOD" => BinOp::Mod,
                     b"AND" => BinOp::And,
@@ -820,13 +966,22 @@ impl<'p> Cx<'p> {
         let mut lhs = self.value_expr();
         loop {
             self.ws();
-            let Some((op, len)) = self.binop_at() else { break };
+            let Some((op, len)) = self.binop_at() else {
+                break;
+            };
             let prec = self.precedence(op);
             if prec < min_prec {
                 break;
             }
             let s = self.pos;
-            self.token(s, if len > 1 && op != BinOp::Pow { TokenKind::Keyword } else { TokenKind::Operator });
+            self.token(
+                s,
+                if len > 1 && op != BinOp::Pow {
+                    TokenKind::Keyword
+                } else {
+                    TokenKind::Operator
+                },
+            );
             self.pos += len;
             let rhs = self.binary(prec + 1);
             lhs = self.push_expr(Expr::Binary { op, lhs, rhs }, start);
@@ -841,12 +996,18 @@ impl<'p> Cx<'p> {
         while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
             j += 1;
         }
-        let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text)).into_owned();
+        let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(self.text))
+            .into_owned();
         let func = Func::from_name(&name).filter(|f| f.in_dialect(self.dialect));
         let Some(func) = func else {
             // Not a function: leave the letter for the caller (it is the next word).
             let span = Span::new(start as u32, start as u32);
-            self.diag(codes::MISSING_VALUE, Severity::Error, span, "a value is missing here");
+            self.diag(
+                codes::MISSING_VALUE,
+                Severity::Error,
+                span,
+                "a value is missing here",
+            );
             return self.push_expr(Expr::Error, start);
         };
         self.pos = j;
@@ -854,7 +1015,12 @@ impl<'p> Cx<'p> {
         self.ws();
         if self.peek() != Some(b'[') {
             let span = Span::new(start as u32, self.pos as u32);
-            self.diag(codes::BAD_EXPRESSION, Severity::Error, span, format!("`{}` must be followed by `[`", name.to_ascii_uppercase()));
+            self.diag(
+                codes::BAD_EXPRESSION,
+                Severity::Error,
+                span,
+                format!("`{}` must be followed by `[`", name.to_ascii_uppercase()),
+            );
             return self.push_expr(Expr::Error, start);
         }
         // Two-argument forms: `ATAN[a]/[b]`, `ATAN[a,b]`, `POW[a,b]`.
@@ -875,10 +1041,20 @@ impl<'p> Cx<'p> {
                 if self.peek() == Some(b'[') {
                     arg2 = Some(self.group());
                 } else {
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, self.pos as u32), "`[` missing after the slash of ATAN[y]/[x]");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        Span::new(s as u32, self.pos as u32),
+                        "`[` missing after the slash of ATAN[y]/[x]",
+                    );
                 }
             } else {
-                self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "ATAN needs two arguments: ATAN[y]/[x]");
+                self.diag(
+                    codes::BAD_EXPRESSION,
+                    Severity::Error,
+                    Span::new(start as u32, self.pos as u32),
+                    "ATAN needs two arguments: ATAN[y]/[x]",
+                );
             }
         }
         self.push_expr(Expr::Call { func, arg, arg2 }, start)
@@ -906,7 +1082,12 @@ impl<'p> Cx<'p> {
             self.token(s, TokenKind::RBracket);
             self.pos += 1;
         } else {
-            self.diag(codes::UNBALANCED_BRACKET, Severity::Error, Span::new(start as u32, start as u32 + 1), "unclosed expression: this `[` has no matching `]`");
+            self.diag(
+                codes::UNBALANCED_BRACKET,
+                Severity::Error,
+                Span::new(start as u32, start as u32 + 1),
+                "unclosed expression: this `[` has no matching `]`",
+            );
         }
         let g = self.push_expr(Expr::Group { inner: a }, start);
         (g, b)
@@ -915,16 +1096,19 @@ impl<'p> Cx<'p> {
     /// An item starting with a letter: keyword statement, program head, O-word or word.
     fn letter_item(&mut self, first: bool) {
         let start = self.pos;
-        let mut j = self.pos;
-        while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
-            j += 1;
+        let mut j = self.pos + 1;
+        // Only FANUC and ServoWorks have multi-letter statements (IF, GOTO, WHILE …).
+        if self.dialect != Dialect::Rs274ngc {
+            while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+                j += 1;
+            }
         }
-        let run = Span::new(start as u32, j as u32).slice(&self.text).to_ascii_uppercase();
-        let c = run[0];
+        let run = Span::new(start as u32, j as u32).slice(self.text);
+        let c = run.first().map(|c| c.to_ascii_uppercase()).unwrap_or(b'?');
         match self.dialect {
             Dialect::Rs274ngc if c == b'O' => return self.oword(),
             Dialect::Fanuc | Dialect::Servoworks => {
-                if let Some(kw) = macro_keyword(&run) {
+                if let Some(kw) = (run.len() >= 2).then(|| macro_keyword(run)).flatten() {
                     return self.macro_stmt(kw);
                 }
                 if c == b'O' && self.text[start] == b'O' {
@@ -945,7 +1129,10 @@ impl<'p> Cx<'p> {
             // ServoWorks ignores lower-case letters outside comments and names (§3.1):
             // the letter and its value are dropped.
             self.pos += 1;
-            while self.peek().is_some_and(|b| is_digit(b) || b == b'.' || b == b'-' || b == b'+') {
+            while self
+                .peek()
+                .is_some_and(|b| is_digit(b) || b == b'.' || b == b'-' || b == b'+')
+            {
                 self.pos += 1;
             }
             self.token(start, TokenKind::Ignored);
@@ -979,16 +1166,30 @@ impl<'p> Cx<'p> {
         let letter_span = Span::new(ls as u32, self.pos as u32);
         self.ws();
         let value = self.word_value(letter);
-        self.push_item(ItemKind::Word(Word { letter, comma, letter_span, value }), start);
+        self.push_item(
+            ItemKind::Word(Word {
+                letter,
+                comma,
+                letter_span,
+                value,
+            }),
+            start,
+        );
     }
 
     fn in_m98_block(&self) -> bool {
         // The block's text mentions M98 (subprogram call): P is then a name.
         let b = Span::new(0, self.limit as u32);
-        let line_start = self.text[..self.pos].iter().rposition(|c| *c == b'\n' || *c == b'\r').map(|i| i + 1).unwrap_or(0);
-        let s = Span::new(line_start as u32, b.end).slice(&self.text);
+        let line_start = self.text[..self.pos]
+            .iter()
+            .rposition(|c| *c == b'\n' || *c == b'\r')
+            .map(|i| i + 1)
+            .unwrap_or(0);
+        let s = Span::new(line_start as u32, b.end).slice(self.text);
         let up: Vec<u8> = s.iter().map(|c| c.to_ascii_uppercase()).collect();
-        up.windows(3).enumerate().any(|(i, w)| w == b"M98" && !up.get(i + 3).is_some_and(|d| d.is_ascii_digit()))
+        up.windows(3)
+            .enumerate()
+            .any(|(i, w)| w == b"M98" && !up.get(i + 3).is_some_and(|d| d.is_ascii_digit()))
             || up.windows(4).any(|w| w == b"M098")
     }
 
@@ -998,9 +1199,15 @@ impl<'p> Cx<'p> {
             return self.missing(letter, start);
         };
         // ServoWorks: `M98 P<name>`: a name made of letters, digits and `_`.
-        if self.dialect == Dialect::Servoworks && letter == b'P' && (c.is_ascii_alphabetic() || c == b'_' || (is_digit(c) && self.in_m98_block())) {
+        if self.dialect == Dialect::Servoworks
+            && letter == b'P'
+            && (c.is_ascii_alphabetic() || c == b'_' || (is_digit(c) && self.in_m98_block()))
+        {
             let mut j = self.pos;
-            while self.at(j).is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
+            while self
+                .at(j)
+                .is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_')
+            {
                 j += 1;
             }
             self.pos = j;
@@ -1017,7 +1224,11 @@ impl<'p> Cx<'p> {
                     !self.at(j).is_some_and(|d| is_digit(d) || d == b'.')
                 };
                 if signed_non_literal {
-                    if self.dialect == Dialect::Rs274ngc && !self.at(self.pos + 1).is_some_and(|d| d == b'#' || d == b'[' || d.is_ascii_alphabetic() || is_ws(d)) {
+                    if self.dialect == Dialect::Rs274ngc
+                        && !self.at(self.pos + 1).is_some_and(|d| {
+                            d == b'#' || d == b'[' || d.is_ascii_alphabetic() || is_ws(d)
+                        })
+                    {
                         // `X-` followed by nothing usable.
                         return self.missing(letter, start);
                     }
@@ -1025,7 +1236,11 @@ impl<'p> Cx<'p> {
                 }
                 let n = self.number(true);
                 // ServoWorks multi-spindle `S2_1500`.
-                if self.dialect == Dialect::Servoworks && letter == b'S' && self.peek() == Some(b'_') && !n.has_point {
+                if self.dialect == Dialect::Servoworks
+                    && letter == b'S'
+                    && self.peek() == Some(b'_')
+                    && !n.has_point
+                {
                     self.pos += 1;
                     let speed_start = self.pos;
                     let speed = self.number(false);
@@ -1042,8 +1257,12 @@ impl<'p> Cx<'p> {
                 while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
                     j += 1;
                 }
-                let name = String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(&self.text)).into_owned();
-                if Func::from_name(&name).is_some_and(|f| f.in_dialect(self.dialect)) && self.next_non_ws(j) == Some(b'[') {
+                let name =
+                    String::from_utf8_lossy(Span::new(start as u32, j as u32).slice(self.text))
+                        .into_owned();
+                if Func::from_name(&name).is_some_and(|f| f.in_dialect(self.dialect))
+                    && self.next_non_ws(j) == Some(b'[')
+                {
                     WordValue::Expr(self.value_expr())
                 } else {
                     self.missing(letter, start)
@@ -1078,11 +1297,18 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let name = Span::new(ns as u32, self.pos as u32);
-        let number = std::str::from_utf8(name.slice(&self.text)).ok().and_then(|s| s.parse::<u32>().ok());
+        let number = std::str::from_utf8(name.slice(self.text))
+            .ok()
+            .and_then(|s| s.parse::<u32>().ok());
         if self.pos > ns {
             self.token(ns, TokenKind::Name);
         } else {
-            self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "program number missing after O");
+            self.diag(
+                codes::MISSING_VALUE,
+                Severity::Error,
+                Span::new(start as u32, self.pos as u32),
+                "program number missing after O",
+            );
         }
         self.push_item(ItemKind::ProgramHead { name, number }, start);
     }
@@ -1111,16 +1337,26 @@ impl<'p> Cx<'p> {
         self.token(start, TokenKind::Letter);
         self.ws();
         let ns = self.pos;
-        while self.peek().is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_') {
+        while self
+            .peek()
+            .is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_')
+        {
             self.pos += 1;
         }
         let name = Span::new(ns as u32, self.pos as u32);
         if self.pos > ns {
             self.token(ns, TokenKind::Name);
         } else {
-            self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "program name missing after O");
+            self.diag(
+                codes::MISSING_VALUE,
+                Severity::Error,
+                Span::new(start as u32, self.pos as u32),
+                "program name missing after O",
+            );
         }
-        let number = std::str::from_utf8(name.slice(&self.text)).ok().and_then(|s| s.parse::<u32>().ok());
+        let number = std::str::from_utf8(name.slice(self.text))
+            .ok()
+            .and_then(|s| s.parse::<u32>().ok());
         self.push_item(ItemKind::ProgramHead { name, number }, start);
     }
 
@@ -1144,7 +1380,12 @@ impl<'p> Cx<'p> {
                 } else {
                     self.pos = self.limit;
                     self.token(ls, TokenKind::Unknown);
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(ls as u32, self.pos as u32), "o-word name is missing its closing `>`");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        Span::new(ls as u32, self.pos as u32),
+                        "o-word name is missing its closing `>`",
+                    );
                     OLabel::Missing
                 }
             }
@@ -1158,7 +1399,12 @@ impl<'p> Cx<'p> {
             }
             Some(b'#') | Some(b'[') => OLabel::Expr(self.value_expr()),
             _ => {
-                self.diag(codes::MISSING_VALUE, Severity::Error, Span::new(start as u32, self.pos as u32), "o-word label missing after O");
+                self.diag(
+                    codes::MISSING_VALUE,
+                    Severity::Error,
+                    Span::new(start as u32, self.pos as u32),
+                    "o-word label missing after O",
+                );
                 OLabel::Missing
             }
         };
@@ -1169,7 +1415,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         }
         let kw_span = Span::new(ks as u32, self.pos as u32);
-        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(&self.text)));
+        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(self.text)));
         if self.pos > ks {
             self.token(ks, TokenKind::Keyword);
         }
@@ -1177,9 +1423,21 @@ impl<'p> Cx<'p> {
             let msg = if kw_span.is_empty() {
                 "o-word without a keyword (sub, endsub, call, do, while, if, repeat, …)".to_string()
             } else {
-                format!("unknown o-word keyword `{}`", String::from_utf8_lossy(kw_span.slice(&self.text)))
+                format!(
+                    "unknown o-word keyword `{}`",
+                    String::from_utf8_lossy(kw_span.slice(self.text))
+                )
             };
-            self.diag(codes::BAD_EXPRESSION, Severity::Error, if kw_span.is_empty() { Span::new(start as u32, self.pos as u32) } else { kw_span }, msg);
+            self.diag(
+                codes::BAD_EXPRESSION,
+                Severity::Error,
+                if kw_span.is_empty() {
+                    Span::new(start as u32, self.pos as u32)
+                } else {
+                    kw_span
+                },
+                msg,
+            );
         }
         // Arguments: bracketed expressions (call args, conditions, return values).
         let args_start = self.p.expr_lists.len() as u32;
@@ -1188,7 +1446,11 @@ impl<'p> Cx<'p> {
             self.ws();
             match self.peek() {
                 Some(b'[') => args.push(self.group()),
-                Some(b'#') if keyword == Some(OKeyword::Call) || keyword == Some(OKeyword::Return) || keyword == Some(OKeyword::Endsub) => {
+                Some(b'#')
+                    if keyword == Some(OKeyword::Call)
+                        || keyword == Some(OKeyword::Return)
+                        || keyword == Some(OKeyword::Endsub) =>
+                {
                     args.push(self.value_expr())
                 }
                 Some(b'(') => self.comment(),
@@ -1199,7 +1461,12 @@ impl<'p> Cx<'p> {
                     args.push(self.value_expr());
                     let id = *args.last().unwrap_or(&ExprId(0));
                     let span = self.p.expr(id).span;
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, span, "o-word arguments must be in brackets: `[value]`");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        span,
+                        "o-word arguments must be in brackets: `[value]`",
+                    );
                 }
                 Some(_) => {
                     self.unknown_run();
@@ -1208,7 +1475,13 @@ impl<'p> Cx<'p> {
         }
         self.p.expr_lists.extend(args);
         let args_end = self.p.expr_lists.len() as u32;
-        let ow = OWord { label, label_span, keyword, keyword_span: kw_span, args: (args_start, args_end) };
+        let ow = OWord {
+            label,
+            label_span,
+            keyword,
+            keyword_span: kw_span,
+            args: (args_start, args_end),
+        };
         // The O-word item spans up to the end of its arguments.
         self.push_item(ItemKind::OWord(ow), start);
     }
@@ -1220,7 +1493,9 @@ impl<'p> Cx<'p> {
         self.pos += kw_len;
         self.ws();
         let stmt = match kw {
-            "GOTO" => MacroStmt::Goto { target: self.value_expr() },
+            "GOTO" => MacroStmt::Goto {
+                target: self.value_expr(),
+            },
             "IF" => {
                 let cond = self.cond();
                 self.ws();
@@ -1229,18 +1504,28 @@ impl<'p> Cx<'p> {
                 while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
                     j += 1;
                 }
-                let w = Span::new(ks as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                let w = Span::new(ks as u32, j as u32)
+                    .slice(self.text)
+                    .to_ascii_uppercase();
                 if w == b"GOTO" {
                     self.pos = j;
                     self.token(ks, TokenKind::Keyword);
                     self.ws();
-                    MacroStmt::IfGoto { cond, target: self.value_expr() }
+                    MacroStmt::IfGoto {
+                        cond,
+                        target: self.value_expr(),
+                    }
                 } else if w == b"THEN" {
                     self.pos = j;
                     self.token(ks, TokenKind::Keyword);
                     MacroStmt::IfThen { cond }
                 } else {
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "IF [condition] must be followed by GOTO n or THEN statement");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        Span::new(start as u32, self.pos as u32),
+                        "IF [condition] must be followed by GOTO n or THEN statement",
+                    );
                     MacroStmt::IfThen { cond }
                 }
             }
@@ -1252,20 +1537,34 @@ impl<'p> Cx<'p> {
                 while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
                     j += 1;
                 }
-                let w = Span::new(ks as u32, j as u32).slice(&self.text).to_ascii_uppercase();
+                let w = Span::new(ks as u32, j as u32)
+                    .slice(self.text)
+                    .to_ascii_uppercase();
                 if w == b"DO" {
                     self.pos = j;
                     self.token(ks, TokenKind::Keyword);
                     self.ws();
-                    MacroStmt::While { cond, m: self.value_expr() }
+                    MacroStmt::While {
+                        cond,
+                        m: self.value_expr(),
+                    }
                 } else {
-                    self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(start as u32, self.pos as u32), "WHILE [condition] must be followed by DO m");
+                    self.diag(
+                        codes::BAD_EXPRESSION,
+                        Severity::Error,
+                        Span::new(start as u32, self.pos as u32),
+                        "WHILE [condition] must be followed by DO m",
+                    );
                     let m = self.push_expr(Expr::Error, self.pos);
                     MacroStmt::While { cond, m }
                 }
             }
-            "DO" => MacroStmt::Do { m: self.value_expr() },
-            "END" => MacroStmt::End { m: self.value_expr() },
+            "DO" => MacroStmt::Do {
+                m: self.value_expr(),
+            },
+            "END" => MacroStmt::End {
+                m: self.value_expr(),
+            },
             _ => {
                 // External output statements: keep their bracketed arguments as text.
                 if self.peek() == Some(b'[') {
@@ -1282,7 +1581,12 @@ impl<'p> Cx<'p> {
             self.group()
         } else {
             let s = self.pos;
-            self.diag(codes::BAD_EXPRESSION, Severity::Error, Span::new(s as u32, s as u32), "condition must be in brackets: [ … ]");
+            self.diag(
+                codes::BAD_EXPRESSION,
+                Severity::Error,
+                Span::new(s as u32, s as u32),
+                "condition must be in brackets: [ … ]",
+            );
             self.push_expr(Expr::Error, s)
         }
     }
@@ -1290,7 +1594,9 @@ impl<'p> Cx<'p> {
 
 /// Recognises Custom Macro B keywords at the start of a letter run.
 fn macro_keyword(run: &[u8]) -> Option<&'static str> {
-    for kw in ["GOTO", "WHILE", "IF", "DO", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT"] {
+    for kw in [
+        "GOTO", "WHILE", "IF", "DO", "END", "POPEN", "PCLOS", "DPRNT", "BPRNT",
+    ] {
         if run.starts_with(kw.as_bytes()) {
             // `IF` must be followed by `[` (I and F are also addresses); the caller's run
             // stops at non-letters, so `IF[` gives run "IF", while `IF10.` gives run "IF".
@@ -1308,8 +1614,15 @@ fn macro_keyword(run: &[u8]) -> Option<&'static str> {
 }
 
 fn comment_kind(text: &[u8]) -> CommentKind {
-    let body = text.strip_prefix(b"(").or_else(|| text.strip_prefix(b";")).unwrap_or(text);
-    let body: Vec<u8> = body.iter().skip_while(|c| is_ws(**c)).map(|c| c.to_ascii_lowercase()).collect();
+    let body = text
+        .strip_prefix(b"(")
+        .or_else(|| text.strip_prefix(b";"))
+        .unwrap_or(text);
+    let body: Vec<u8> = body
+        .iter()
+        .skip_while(|c| is_ws(**c))
+        .map(|c| c.to_ascii_lowercase())
+        .collect();
     let starts = |p: &[u8]| body.starts_with(p);
     if starts(b"msg,") {
         CommentKind::Msg
@@ -1340,10 +1653,101 @@ fn comment_kind(text: &[u8]) -> CommentKind {
     }
 }
 
+/// Reads a literal made of an optional sign, digits and at most one point.
+fn parse_f64(raw: &[u8]) -> Option<f64> {
+    // Fast path: up to 15 significant digits fit a u64 exactly, and dividing by an
+    // exact power of ten gives the correctly rounded result.
+    let (neg, body) = match raw.first() {
+        Some(b'-') => (true, &raw[1..]),
+        Some(b'+') => (false, &raw[1..]),
+        _ => (false, raw),
+    };
+    if body.len() <= 16 {
+        let mut mant: u64 = 0;
+        let mut frac_digits: i32 = -1;
+        let mut n = 0;
+        for &b in body {
+            if b == b'.' {
+                frac_digits = 0;
+                continue;
+            }
+            mant = mant * 10 + (b - b'0') as u64;
+            n += 1;
+            if frac_digits >= 0 {
+                frac_digits += 1;
+            }
+        }
+        if n <= 15 {
+            const POW10: [f64; 16] = [
+                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
+                1e15,
+            ];
+            let v = mant as f64 / POW10[frac_digits.max(0) as usize];
+            return Some(if neg { -v } else { v });
+        }
+    }
+    std::str::from_utf8(raw).ok()?.parse::<f64>().ok()
+}
+
 fn printable(s: &str) -> String {
-    let mut out: String = s.chars().take(20).map(|c| if c.is_control() { '\u{FFFD}' } else { c }).collect();
+    let mut out: String = s
+        .chars()
+        .take(20)
+        .map(|c| if c.is_control() { '\u{FFFD}' } else { c })
+        .collect();
     if s.chars().count() > 20 {
         out.push('…');
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_f64;
+
+    #[test]
+    fn fast_number_path_agrees_with_std() {
+        let samples = [
+            "0",
+            "-0",
+            "1",
+            "+1",
+            ".5",
+            "5.",
+            "-.5",
+            "0.1",
+            "0.3",
+            "123.456",
+            "-99999.999",
+            "0.0001",
+            "1234567890.12345",
+            "123456789012345",
+            "1234567890123456",
+            "12345678901234567890",
+            "0.000000000000001",
+            "3.14159265358979",
+        ];
+        for s in samples {
+            assert_eq!(
+                parse_f64(s.as_bytes()).map(f64::to_bits),
+                s.parse::<f64>().ok().map(f64::to_bits),
+                "{s}"
+            );
+        }
+        // A deterministic sweep of short decimals.
+        let mut x: u64 = 12345;
+        for _ in 0..20000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let int = (x >> 40) % 100000;
+            let frac = (x >> 10) % 10000;
+            let s = format!("{int}.{frac:04}");
+            assert_eq!(
+                parse_f64(s.as_bytes()).map(f64::to_bits),
+                s.parse::<f64>().ok().map(f64::to_bits),
+                "{s}"
+            );
+        }
+    }
 }

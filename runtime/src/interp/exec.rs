@@ -2801,6 +2801,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                 None
             },
             exact_stop: exact,
+            exact_path: self.st.modal.path == 610
+                && !self.block_exact
+                && self.input.program.dialect == analyzer::Dialect::Rs274ngc,
             blend_tolerance: if self.st.modal.path == 640 {
                 self.st.modal.path_tol.map(|t| t * lu)
             } else {

@@ -78,6 +78,9 @@ pub struct Motion {
     /// G93 inverse-time value (1/min) when in inverse-time mode.
     pub inverse_time: Option<f64>,
     pub exact_stop: bool,
+    /// LinuxCNC G61 "exact path": the planner stops only at corners, not at tangent
+    /// joints (G61.1 and G09 are true exact stops).
+    pub exact_path: bool,
     pub blend_tolerance: Option<f64>,
     pub file: FileId,
     pub block: u32,

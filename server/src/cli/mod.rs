@@ -1,25 +1,161 @@
-//! Command-line interface.
+//! Command-line interface: `check`, `run`, `rule`, `lsp`.
 
+mod check;
+mod output;
+mod run;
+pub mod workspace;
+
+use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{Parser, Subcommand, ValueEnum};
 
 #[derive(Parser)]
-#[command(name = "partscope", version, about = "Lint, dry-run and language server for CNC part programs")]
+#[command(
+    name = "partscope",
+    version,
+    about = "Lint, dry-run and language server for CNC part programs"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
 
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum Format {
+    Human,
+    Json,
+    Sarif,
+    Github,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum DialectArg {
+    Servoworks,
+    Rs274ngc,
+    Fanuc,
+}
+
+impl DialectArg {
+    pub fn dialect(self) -> analyzer::Dialect {
+        match self {
+            DialectArg::Servoworks => analyzer::Dialect::Servoworks,
+            DialectArg::Rs274ngc => analyzer::Dialect::Rs274ngc,
+            DialectArg::Fanuc => analyzer::Dialect::Fanuc,
+        }
+    }
+}
+
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// Files or directories (walked recursively, honouring .gitignore).
+    #[arg(required = true)]
+    pub paths: Vec<PathBuf>,
+    /// Dialect of the programs (overrides config and sniffing).
+    #[arg(long, value_enum)]
+    pub dialect: Option<DialectArg>,
+    /// A partscope.toml to use instead of discovering one upward from each file.
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Rules to enable, by code, prefix or name (comma separated); adds off-by-default rules.
+    #[arg(long, value_delimiter = ',')]
+    pub select: Vec<String>,
+    /// Rules to disable, by code, prefix or name (comma separated).
+    #[arg(long, value_delimiter = ',')]
+    pub ignore: Vec<String>,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: Format,
+    /// Lowest severity that makes the exit status 1: error, warning, info or hint.
+    #[arg(long)]
+    pub fail_level: Option<String>,
+    /// Only the static checks (no interpreter).
+    #[arg(long)]
+    pub no_run: bool,
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Lint part programs.
+    Check(CheckArgs),
+    /// Dry-run a program: cycle time, breakdown, toolpath.
+    Run(run::RunArgs),
+    /// Explain a rule (`partscope rule G001`), or list all rules (`--all`).
+    Rule {
+        code: Option<String>,
+        #[arg(long)]
+        all: bool,
+        /// Print as JSON (code, name, summary, origin, default, implements, doc).
+        #[arg(long)]
+        json: bool,
+    },
     /// Run the language server on stdio.
     Lsp,
 }
 
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
     match cli.command {
+        Command::Check(args) => check::run(args),
+        Command::Run(args) => run::run(args),
+        Command::Rule { code, all, json } => rule(code, all, json),
         Command::Lsp => crate::lsp::run(),
+    }
+}
+
+fn rule(code: Option<String>, all: bool, json: bool) -> ExitCode {
+    let rules = crate::rules::all();
+    if json {
+        let pick: Vec<_> = rules
+            .iter()
+            .filter(|r| {
+                all || code.as_deref().is_none_or(|c| {
+                    r.code.eq_ignore_ascii_case(c) || r.name.eq_ignore_ascii_case(c)
+                })
+            })
+            .map(|r| {
+                serde_json::json!({
+                    "code": r.code, "name": r.name, "summary": r.summary,
+                    "origin": format!("{:?}", r.origin).to_ascii_lowercase(),
+                    "default_enabled": r.default_enabled, "implements": r.implements,
+                    "doc": crate::rules::clean_doc(r.doc),
+                })
+            })
+            .collect();
+        println!("{}", serde_json::Value::Array(pick));
+        return ExitCode::SUCCESS;
+    }
+    if all || code.is_none() {
+        for r in &rules {
+            let off = if r.default_enabled {
+                ""
+            } else {
+                " (off by default)"
+            };
+            println!("{:<6} {:<36} {}{}", r.code, r.name, r.summary, off);
+        }
+        return ExitCode::SUCCESS;
+    }
+    let code = code.unwrap_or_default();
+    match crate::rules::lookup(&code) {
+        Some(r) => {
+            println!("# {} {}\n", r.code, r.name);
+            println!("{}\n", r.summary);
+            println!("{}", crate::rules::clean_doc(r.doc));
+            ExitCode::SUCCESS
+        }
+        None => {
+            eprintln!("partscope: unknown rule `{code}` (see `partscope rule --all`)");
+            ExitCode::from(2)
+        }
     }
 }

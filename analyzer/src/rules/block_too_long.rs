@@ -1,0 +1,99 @@
+//! W011: lines longer than the control reads.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::span::Span;
+
+use super::util::is_emc2;
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Flags physical lines longer than the control accepts: 85 characters on ServoWorks;
+    /// on LinuxCNC 2.9 more than 252 characters before the line end (251 when the line ends
+    /// with CR LF), and more than 256 in the 2007 `emc2` profile.
+    ///
+    /// ## Why is this bad?
+    /// ServoWorks limits a block to 85 characters; LinuxCNC reads lines into a fixed buffer
+    /// and stops with `Command too long`. Long lines usually come from generated comments
+    /// or joined blocks.
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// G01 X10.0 Y10.0 Z10.0 F1000.0 (this comment makes the line longer than 85 characters.)
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// (this comment now has a line of its own)
+    /// G01 X10.0 Y10.0 Z10.0 F1000.0
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks and RS274/NGC, error. FANUC does not state a block length limit.
+    ///
+    /// Implements: SW001, NGC001
+    pub static BLOCK_TOO_LONG = {
+        code: "W011",
+        name: "block-too-long",
+        summary: "Line longer than the control accepts",
+        implements: &["SW001", "NGC001"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct BlockTooLong;
+
+impl Rule for BlockTooLong {
+    fn meta(&self) -> &'static RuleMeta {
+        &BLOCK_TOO_LONG
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let d = cx.program.dialect;
+        if d == Dialect::Fanuc {
+            return;
+        }
+        let text = &cx.program.text;
+        let mut start = 0usize;
+        while start < text.len() {
+            let nl = text[start..]
+                .iter()
+                .position(|b| *b == b'\n' || *b == b'\r')
+                .map(|i| start + i);
+            let end = nl.unwrap_or(text.len());
+            let crlf =
+                nl.is_some_and(|i| text.get(i) == Some(&b'\r') && text.get(i + 1) == Some(&b'\n'));
+            let len = text[start..end]
+                .iter()
+                .filter(|b| (**b & 0xC0) != 0x80)
+                .count();
+            let limit = match d {
+                Dialect::Servoworks => 85,
+                _ if is_emc2(cx.settings) => 256,
+                _ if crlf => 251,
+                _ => 252,
+            };
+            if len > limit {
+                let msg = match d {
+                    Dialect::Servoworks => format!("Line is {len} characters long; ServoWorks blocks are limited to 85. Split the line or shorten its comment."),
+                    _ => format!("Command too long: the line has {len} characters and LinuxCNC reads at most {limit}{}. Split it into several lines.", if crlf { " with a CR LF ending" } else { "" }),
+                };
+                out.push(Diagnostic::error(
+                    "W011",
+                    Span::new(start as u32, end as u32),
+                    msg,
+                ));
+            }
+            start = match nl {
+                Some(i) if crlf => i + 2,
+                Some(i) => i + 1,
+                None => text.len(),
+            };
+        }
+    }
+}

@@ -1,0 +1,91 @@
+//! W014: FANUC brackets nested deeper than five levels.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::syntax::TokenKind;
+
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Flags FANUC macro expressions whose brackets `[ ]` nest more than five levels
+    /// deep. Function brackets (`SIN[…]`) count as levels too.
+    ///
+    /// ## Why is this bad?
+    /// Custom Macro B evaluates at most five levels of brackets; a sixth raises alarm
+    /// PS0118 when the block runs.
+    ///
+    /// ## Example
+    /// ```fanuc
+    /// %
+    /// O1000;
+    /// #1 = [[[[[[1]]]]]];
+    /// M30;
+    /// %
+    /// ```
+    ///
+    /// Use instead:
+    /// ```fanuc
+    /// %
+    /// O1000;
+    /// #2 = [[[1]]];
+    /// #1 = [[[#2]]];
+    /// M30;
+    /// %
+    /// ```
+    ///
+    /// ## Dialects
+    /// FANUC, error. Split the expression with intermediate variables.
+    ///
+    /// Implements: FAN120
+    pub static BRACKET_NESTING = {
+        code: "W014",
+        name: "bracket-nesting",
+        summary: "FANUC brackets nested deeper than five levels",
+        implements: &["FAN120"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct BracketNesting;
+
+/// The deepest nesting Custom Macro B evaluates.
+const MAX_DEPTH: u32 = 5;
+
+impl Rule for BracketNesting {
+    fn meta(&self) -> &'static RuleMeta {
+        &BRACKET_NESTING
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        if p.dialect != Dialect::Fanuc {
+            return;
+        }
+        let mut depth = 0u32;
+        let mut reported = false;
+        for (i, t) in p.tokens.iter().enumerate() {
+            match t.kind {
+                TokenKind::Newline | TokenKind::Eob => {
+                    depth = 0;
+                    reported = false;
+                }
+                TokenKind::LBracket => {
+                    depth += 1;
+                    if depth > MAX_DEPTH && !reported {
+                        reported = true;
+                        out.push(Diagnostic::error(
+                            "W014",
+                            p.token_span(i),
+                            "Brackets nested more than five levels deep: Custom Macro B evaluates at most five (alarm PS0118). Compute part of the expression into a variable first.",
+                        ));
+                    }
+                }
+                TokenKind::RBracket => depth = depth.saturating_sub(1),
+                _ => {}
+            }
+        }
+    }
+}

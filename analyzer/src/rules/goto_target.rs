@@ -1,0 +1,130 @@
+//! P003: FANUC `GOTO` targets that do not exist or jump into a loop.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::syntax::{ItemKind, MacroStmt};
+
+use super::macro_loop_structure::{literal, loops};
+use super::util::lit;
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Checks the targets of `GOTO n` and `IF […] GOTO n` when `n` is a number: a block
+    /// with sequence number `N n` must exist in the same `O` program, and it must not lie
+    /// inside a `DO … END` loop that the `GOTO` is outside of.
+    ///
+    /// ## Why is this bad?
+    /// A missing target stops the program with alarm PS0128 when the branch is taken —
+    /// possibly late in a long run. Branching into a loop skips its `WHILE`, so the
+    /// control does not know which loop the `END` belongs to.
+    ///
+    /// ## Example
+    /// ```fanuc
+    /// %
+    /// O1000;
+    /// IF [#1 EQ 1] GOTO 20;
+    /// N10 G00 X0;
+    /// M30;
+    /// %
+    /// ```
+    ///
+    /// Use instead:
+    /// ```fanuc
+    /// %
+    /// O1000;
+    /// IF [#1 EQ 1] GOTO 20;
+    /// N10 G00 X0;
+    /// N20 M30;
+    /// %
+    /// ```
+    ///
+    /// ## Dialects
+    /// FANUC, error. Computed targets (`GOTO #1`) are checked when the program runs.
+    ///
+    /// Implements: FAN124, FAN125
+    pub static GOTO_TARGET = {
+        code: "P003",
+        name: "goto-target",
+        summary: "GOTO target missing or inside a loop",
+        implements: &["FAN124", "FAN125"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct GotoTarget;
+
+impl Rule for GotoTarget {
+    fn meta(&self) -> &'static RuleMeta {
+        &GOTO_TARGET
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        if p.dialect != Dialect::Fanuc {
+            return;
+        }
+        // Program sections: a new `O` head starts a new search scope.
+        let mut section = vec![0usize; p.blocks.len()];
+        let mut cur = 0;
+        for (bi, b) in p.blocks.iter().enumerate() {
+            if p.items_of(b)
+                .iter()
+                .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }))
+            {
+                cur += 1;
+            }
+            section[bi] = cur;
+        }
+        let mut numbers: Vec<(usize, f64)> = Vec::new();
+        for (bi, b) in p.blocks.iter().enumerate() {
+            for (_, w) in p.words(b) {
+                if w.letter == b'N' {
+                    if let Some(v) = lit(w) {
+                        numbers.push((bi, v));
+                    }
+                }
+            }
+        }
+        let ranges = loops(p, None);
+        for (bi, b) in p.blocks.iter().enumerate() {
+            for item in p.items_of(b) {
+                let target = match item.kind {
+                    ItemKind::Macro(MacroStmt::Goto { target })
+                    | ItemKind::Macro(MacroStmt::IfGoto { target, .. }) => target,
+                    _ => continue,
+                };
+                let Some(n) = literal(p, target) else {
+                    continue;
+                };
+                let Some(&(tb, _)) = numbers
+                    .iter()
+                    .find(|(tb, v)| *v == n && section[*tb] == section[bi])
+                else {
+                    out.push(Diagnostic::error(
+                        "P003",
+                        item.span,
+                        format!("GOTO {n}: no block N{n} in this program, so the branch stops with alarm PS0128. Add the sequence number or fix the target."),
+                    ));
+                    continue;
+                };
+                if let Some(&(s, _)) = ranges
+                    .iter()
+                    .find(|(s, e)| *s < tb && tb <= *e && !(*s <= bi && bi <= *e))
+                {
+                    let mut d = Diagnostic::error(
+                        "P003",
+                        item.span,
+                        format!("GOTO {n} jumps into a DO … END loop from outside it: the loop's WHILE is skipped and its END has no open DO. Branch to the WHILE block instead."),
+                    );
+                    if let Some(w) = p.blocks.get(s) {
+                        d = d.with_related(w.span, "loop start");
+                    }
+                    out.push(d);
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,126 @@
+//! W012: word order and argument letters of a G65 macro call.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+
+use super::util::has;
+use super::{BlockCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Checks the words of a `G65` (and FANUC `G66`) macro call: on ServoWorks `G65` must
+    /// come before its arguments; on FANUC the letters G and N cannot be arguments,
+    /// argument specification I (letters) and II (repeated I/J/K) should not be mixed, and
+    /// argument values should have a decimal point.
+    ///
+    /// ## Why is this bad?
+    /// ServoWorks requires `G65` first in the block. FANUC raises PS0129 for a G word
+    /// among the arguments; when both specifications set the same local variable the later
+    /// word silently wins; and an argument without a decimal point is read in the least
+    /// input increment, so `A1` may arrive as 0.001.
+    ///
+    /// ## Example
+    /// ```servoworks
+    /// Z20.0 G65 P100 R2.5
+    /// M30
+    /// ```
+    ///
+    /// Use instead:
+    /// ```servoworks
+    /// G65 P100 Z20.0 R2.5
+    /// M30
+    /// ```
+    ///
+    /// ## Dialects
+    /// ServoWorks: error for an argument before `G65`. FANUC: error for a G argument,
+    /// warnings for N as an argument, mixed specifications and integer argument values.
+    ///
+    /// Implements: SW029, FAN134, FAN135, FAN136, FAN137
+    pub static MACRO_CALL_ARGUMENTS = {
+        code: "W012",
+        name: "macro-call-arguments",
+        summary: "Word order and argument letters of a G65 call",
+        implements: &["SW029", "FAN134", "FAN135", "FAN136", "FAN137"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct MacroCallArguments;
+
+impl Rule for MacroCallArguments {
+    fn meta(&self) -> &'static RuleMeta {
+        &MACRO_CALL_ARGUMENTS
+    }
+
+    fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
+        let d = cx.program.dialect;
+        let Some(call) = cx
+            .codes
+            .iter()
+            .find(|c| c.is('G', 650) || (d == Dialect::Fanuc && c.is('G', 660)))
+        else {
+            return;
+        };
+        let words: Vec<_> = cx.words().filter(|(_, w)| !w.comma).collect();
+        match d {
+            Dialect::Servoworks => {
+                let before = words.iter().find(|(i, w)| {
+                    i.span.start < call.span.start && !matches!(w.letter, b'N' | b'G')
+                });
+                if let Some((i, _)) = before {
+                    out.push(
+                        Diagnostic::error(
+                            "W012",
+                            i.span,
+                            format!("`{}` comes before G65: ServoWorks requires G65 before its arguments. Move G65 to the front of the block.", cx.program.str_of(i.span)),
+                        )
+                        .with_related(call.span, "macro call"),
+                    );
+                }
+            }
+            Dialect::Fanuc => {
+                let every_block = has(cx, 'G', 661);
+                for (i, w) in &words {
+                    let text = cx.program.str_of(i.span).into_owned();
+                    match w.letter {
+                        b'G' if !every_block && i.span != call.span => out.push(Diagnostic::error(
+                            "W012",
+                            i.span,
+                            format!("`{text}` in a macro call: G cannot be an argument (alarm PS0129; only G66.1 passes G words). Put the G code in its own block."),
+                        )),
+                        b'N' if i.span.start > call.span.start => out.push(Diagnostic::warning(
+                            "W012",
+                            i.span,
+                            format!("`{text}` after the macro call is not an argument: N is a sequence number and belongs at the start of the block."),
+                        )),
+                        b'G' | b'N' | b'P' | b'L' | b'O' => {}
+                        _ => {
+                            if w.num().is_some_and(|n| !n.has_point) {
+                                out.push(Diagnostic::warning(
+                                    "W012",
+                                    i.span,
+                                    format!("`{text}`: a macro argument without a decimal point is read in the least input increment of its address (A1 may arrive as 0.001). Write `{text}.`."),
+                                ));
+                            }
+                        }
+                    }
+                }
+                let count = |l: u8| words.iter().filter(|(_, w)| w.letter == l).count();
+                let type2 = [b'I', b'J', b'K'].into_iter().any(|l| count(l) > 1);
+                let type1 = words
+                    .iter()
+                    .find(|(_, w)| b"DEFHMQRSTUVWXYZ".contains(&w.letter));
+                if let (true, Some((i, _))) = (type2, type1) {
+                    out.push(Diagnostic::warning(
+                        "W012",
+                        i.span,
+                        "Argument specifications I and II are mixed: repeated I/J/K (specification II) fill #4–#33, which overlap the variables of letters such as D, E, F; the later word wins. Use one specification.",
+                    ));
+                }
+            }
+            Dialect::Rs274ngc => {}
+        }
+    }
+}

@@ -1,0 +1,321 @@
+//! P001: RS274/NGC O-word blocks that do not nest or match.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::span::Span;
+use crate::syntax::{ItemKind, OKeyword, OLabel, Program};
+
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Checks the structure of RS274/NGC O-word flow control: every `sub` has its
+    /// `endsub`, `while` its `endwhile`, `do` its closing `while`, `if` its `endif`,
+    /// `repeat` its `endrepeat`, with the same label; `else`/`elseif` only inside an
+    /// `if`; `break`/`continue` only inside a loop of the same label; `return`/`endsub`
+    /// only inside a subroutine; and no subroutine defined inside another.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC finds the matching statement by its label when it runs the program. A
+    /// missing or mislabelled end makes it search to the end of the file and stop with an
+    /// error, sometimes only after part of the program has run.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// o101 while [#1 LT 3]
+    /// #1 = [#1 + 1]
+    /// o102 endwhile
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// o101 while [#1 LT 3]
+    /// #1 = [#1 + 1]
+    /// o101 endwhile
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC, error.
+    ///
+    /// Implements: NGC601, NGC602, NGC603, NGC604, NGC605
+    pub static OWORD_STRUCTURE = {
+        code: "P001",
+        name: "oword-structure",
+        summary: "O-word blocks that do not nest or match",
+        implements: &["NGC601", "NGC602", "NGC603", "NGC604", "NGC605"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct OwordStructure;
+
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Open {
+    Sub,
+    While,
+    Do,
+    If { seen_else: bool },
+    Repeat,
+}
+
+impl Open {
+    fn opener(self) -> &'static str {
+        match self {
+            Open::Sub => "sub",
+            Open::While => "while",
+            Open::Do => "do",
+            Open::If { .. } => "if",
+            Open::Repeat => "repeat",
+        }
+    }
+
+    fn closer(self) -> &'static str {
+        match self {
+            Open::Sub => "endsub",
+            Open::While => "endwhile",
+            Open::Do => "while",
+            Open::If { .. } => "endif",
+            Open::Repeat => "endrepeat",
+        }
+    }
+
+    fn is_loop(self) -> bool {
+        matches!(self, Open::While | Open::Do | Open::Repeat)
+    }
+}
+
+/// A label as text for comparison (`o100` and `o<name>`, case-insensitive).
+fn label_key(p: &Program, l: OLabel) -> Option<String> {
+    match l {
+        OLabel::Number(n) => Some(n.to_string()),
+        OLabel::Name(s) => Some(p.str_of(s).to_ascii_lowercase()),
+        OLabel::Expr(_) | OLabel::Missing => None,
+    }
+}
+
+fn same(a: &Option<String>, b: &Option<String>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => a == b,
+        // A computed label cannot be compared statically; trust it.
+        _ => true,
+    }
+}
+
+struct Frame {
+    kind: Open,
+    label: Option<String>,
+    span: Span,
+}
+
+impl Rule for OwordStructure {
+    fn meta(&self) -> &'static RuleMeta {
+        &OWORD_STRUCTURE
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        if p.dialect != Dialect::Rs274ngc {
+            return;
+        }
+        let mut stack: Vec<Frame> = Vec::new();
+        for block in &p.blocks {
+            let items = p.items_of(block);
+            let Some(pos) = items
+                .iter()
+                .position(|i| matches!(i.kind, ItemKind::OWord(_)))
+            else {
+                continue;
+            };
+            let ItemKind::OWord(ow) = items[pos].kind else {
+                continue;
+            };
+            let span = items[pos].span;
+            let Some(kw) = ow.keyword else { continue };
+            let label = label_key(p, ow.label);
+            let name = format!("o{}", p.str_of(ow.label_span));
+            match kw {
+                OKeyword::Sub => {
+                    if let Some(outer) = stack.iter().find(|f| f.kind == Open::Sub) {
+                        out.push(
+                            Diagnostic::error(
+                                "P001",
+                                span,
+                                "Subroutine defined inside another subroutine: RS274/NGC does not nest definitions. Move this `sub` … `endsub` outside.",
+                            )
+                            .with_related(outer.span, "enclosing subroutine"),
+                        );
+                    }
+                    stack.push(Frame {
+                        kind: Open::Sub,
+                        label,
+                        span,
+                    });
+                }
+                OKeyword::Endsub => close(
+                    &mut stack,
+                    |k| k == Open::Sub,
+                    "endsub",
+                    (&label, &name, span),
+                    out,
+                ),
+                OKeyword::Return => {
+                    // LinuxCNC accepts `return` with the label of any block inside the
+                    // subroutine (its own examples use the label of an enclosing `if`).
+                    if !stack.iter().any(|f| f.kind == Open::Sub) {
+                        out.push(Diagnostic::error(
+                            "P001",
+                            span,
+                            format!("`{name} return` is not inside a subroutine: return leaves the subroutine that is running."),
+                        ));
+                    }
+                }
+                OKeyword::Do => stack.push(Frame {
+                    kind: Open::Do,
+                    label,
+                    span,
+                }),
+                OKeyword::While => {
+                    if matches!(stack.last(), Some(top) if top.kind == Open::Do && same(&top.label, &label))
+                    {
+                        stack.pop();
+                    } else {
+                        stack.push(Frame {
+                            kind: Open::While,
+                            label,
+                            span,
+                        });
+                    }
+                }
+                OKeyword::Endwhile => close(
+                    &mut stack,
+                    |k| k == Open::While,
+                    "endwhile",
+                    (&label, &name, span),
+                    out,
+                ),
+                OKeyword::Repeat => stack.push(Frame {
+                    kind: Open::Repeat,
+                    label,
+                    span,
+                }),
+                OKeyword::Endrepeat => close(
+                    &mut stack,
+                    |k| k == Open::Repeat,
+                    "endrepeat",
+                    (&label, &name, span),
+                    out,
+                ),
+                OKeyword::If => stack.push(Frame {
+                    kind: Open::If { seen_else: false },
+                    label,
+                    span,
+                }),
+                OKeyword::Elseif | OKeyword::Else => match stack.last_mut() {
+                    Some(top)
+                        if matches!(top.kind, Open::If { .. }) && same(&top.label, &label) =>
+                    {
+                        if top.kind == (Open::If { seen_else: true }) {
+                            out.push(
+                                Diagnostic::error(
+                                    "P001",
+                                    span,
+                                    format!("`{name} {}` after `else`: the `else` branch must be the last one of the `if`.", kw.as_str()),
+                                )
+                                .with_related(top.span, "the if"),
+                            );
+                        }
+                        if kw == OKeyword::Else {
+                            top.kind = Open::If { seen_else: true };
+                        }
+                    }
+                    _ => out.push(Diagnostic::error(
+                        "P001",
+                        span,
+                        format!(
+                            "`{name} {}` is not inside an `{name} if` … `endif` block.",
+                            kw.as_str()
+                        ),
+                    )),
+                },
+                OKeyword::Endif => close(
+                    &mut stack,
+                    |k| matches!(k, Open::If { .. }),
+                    "endif",
+                    (&label, &name, span),
+                    out,
+                ),
+                OKeyword::Break | OKeyword::Continue => {
+                    if !stack
+                        .iter()
+                        .any(|f| f.kind.is_loop() && same(&f.label, &label))
+                    {
+                        out.push(Diagnostic::error(
+                            "P001",
+                            span,
+                            format!(
+                                "`{name} {}` is not inside a loop labelled {name}: break and continue act on the enclosing while, do or repeat of the same label.",
+                                kw.as_str()
+                            ),
+                        ));
+                    }
+                }
+                OKeyword::Call => {}
+            }
+        }
+        for f in stack {
+            out.push(Diagnostic::error(
+                "P001",
+                f.span,
+                format!(
+                    "`{}` is never closed: add the matching `{}` with the same label. LinuxCNC would search to the end of the file and stop.",
+                    p.str_of(f.span).trim(),
+                    f.kind.closer()
+                ),
+            ));
+        }
+    }
+}
+
+/// Closes the innermost block if it is of the wanted kind and label, and
+/// reports what does not match.
+fn close(
+    stack: &mut Vec<Frame>,
+    want: fn(Open) -> bool,
+    closer: &str,
+    (label, name, span): (&Option<String>, &str, Span),
+    out: &mut Vec<Diagnostic>,
+) {
+    match stack.last() {
+        Some(top) if want(top.kind) && same(&top.label, label) => {
+            stack.pop();
+        }
+        Some(top) if want(top.kind) => {
+            let msg = format!(
+                "`{name} {closer}` closes the `{}` opened with another label: the statement pairs are found by label, so both must use the same one.",
+                top.kind.opener()
+            );
+            out.push(Diagnostic::error("P001", span, msg).with_related(top.span, "opened here"));
+            stack.pop();
+        }
+        Some(top) => {
+            let msg = format!(
+                "`{name} {closer}` does not match the innermost open block, a `{}` that still needs its `{}`. Close blocks in the reverse order of opening.",
+                top.kind.opener(),
+                top.kind.closer()
+            );
+            out.push(Diagnostic::error("P001", span, msg).with_related(top.span, "innermost open block"));
+            if let Some(i) = stack.iter().rposition(|f| want(f.kind)) {
+                stack.truncate(i);
+            }
+        }
+        None => out.push(Diagnostic::error(
+            "P001",
+            span,
+            format!("`{name} {closer}` has no matching opening statement. Remove it, or add the statement that opens the block."),
+        )),
+    }
+}

@@ -1,0 +1,192 @@
+//! P005: a program that does not end properly.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::span::Span;
+use crate::syntax::{BlockKind, ItemKind, OKeyword, Program};
+
+use super::util::{has_code_items, lit};
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Checks that a main program ends: with `M2`/`M30` (RS274/NGC, unless the file is
+    /// wrapped in `%` lines), with `M02`/`M30` (ServoWorks main programs), or with
+    /// `M02`/`M30`/`M99` (FANUC). An RS274/NGC file that opens with `%` needs its closing
+    /// `%` unless it reaches `M2`/`M30` first, a ServoWorks file must end with a `%` line or a line break, and a FANUC file
+    /// starts with `%` and an `O` number.
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops with `File ended with no percent sign or program end` (or `File ended
+    /// with no percent sign` when the opening `%` has no partner). A ServoWorks or FANUC
+    /// program without an end code does not reset the modal state, and the last line of a
+    /// ServoWorks file without a line break may not be read at all.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G0 X1
+    /// G1 X2 F100
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G0 X1
+    /// G1 X2 F100
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC: error (files that only define subroutines are exempt). ServoWorks and
+    /// FANUC: warning; files that contain `M99` are subprograms and need no `M30`.
+    ///
+    /// Implements: SW011, SW019, NGC024, NGC025, FAN010, FAN012
+    pub static PROGRAM_END = {
+        code: "P005",
+        name: "missing-program-end",
+        summary: "Program without an end code",
+        implements: &["SW011", "SW019", "NGC024", "NGC025", "FAN010", "FAN012"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct ProgramEnd;
+
+/// Whether the block holds one of the M codes (whole numbers).
+fn has_m(p: &Program, b: &crate::syntax::Block, ms: &[f64]) -> bool {
+    p.words(b)
+        .any(|(_, w)| w.letter == b'M' && !w.comma && lit(w).is_some_and(|v| ms.contains(&v)))
+}
+
+fn end_span(p: &Program) -> Span {
+    let n = p.text.len() as u32;
+    let start = p
+        .blocks
+        .iter()
+        .rev()
+        .find(|b| has_code_items(p, b))
+        .map(|b| b.span.start)
+        .unwrap_or(0);
+    Span::new(start, n.max(start))
+}
+
+impl Rule for ProgramEnd {
+    fn meta(&self) -> &'static RuleMeta {
+        &PROGRAM_END
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        let code_blocks: Vec<_> = p
+            .blocks
+            .iter()
+            .filter(|b| b.kind == BlockKind::Normal && has_code_items(p, b))
+            .collect();
+        if code_blocks.is_empty() {
+            return;
+        }
+        let ends = |ms: &[f64]| p.blocks.iter().any(|b| has_m(p, b, ms));
+        match p.dialect {
+            Dialect::Rs274ngc => {
+                let first = p.blocks.iter().find(|b| {
+                    b.kind != BlockKind::Normal || has_code_items(p, b) || !p.items_of(b).is_empty()
+                });
+                let opens_with_percent = first.is_some_and(|b| b.kind == BlockKind::Percent);
+                if opens_with_percent {
+                    let percents = p
+                        .blocks
+                        .iter()
+                        .filter(|b| b.kind == BlockKind::Percent)
+                        .count();
+                    // Reading stops at M2/M30 too, so the closing `%` is not needed after one.
+                    if percents < 2 && !ends(&[2.0, 30.0]) {
+                        out.push(Diagnostic::error(
+                            "P005",
+                            end_span(p),
+                            "File ended with no percent sign: the file opens with `%`, so it must end with a second `%` line. Add it after the last line.",
+                        ));
+                    }
+                    return;
+                }
+                // A file that only defines subroutines is a library called by others.
+                let mut depth = 0i32;
+                let mut top_level_code = false;
+                for b in &code_blocks {
+                    let ow = p.items_of(b).iter().find_map(|i| match i.kind {
+                        ItemKind::OWord(o) => o.keyword,
+                        _ => None,
+                    });
+                    match ow {
+                        Some(OKeyword::Sub) => depth += 1,
+                        Some(OKeyword::Endsub) => depth -= 1,
+                        _ if depth <= 0 => top_level_code = true,
+                        _ => {}
+                    }
+                }
+                if top_level_code && !ends(&[2.0, 30.0]) {
+                    out.push(Diagnostic::error(
+                        "P005",
+                        end_span(p),
+                        "File ended with no percent sign or program end: add M2 (or M30) after the last line, or wrap the program in `%` lines.",
+                    ));
+                }
+            }
+            Dialect::Servoworks => {
+                let last_byte = p.text.last().copied();
+                let last_is_percent = p
+                    .blocks
+                    .iter()
+                    .rev()
+                    .find(|b| b.kind != BlockKind::Normal || !p.items_of(b).is_empty())
+                    .is_some_and(|b| b.kind == BlockKind::Percent);
+                if !matches!(last_byte, Some(b'\n') | Some(b'\r')) && !last_is_percent {
+                    let n = p.text.len() as u32;
+                    out.push(Diagnostic::warning(
+                        "P005",
+                        Span::new(n.saturating_sub(1), n),
+                        "The file must end with a `%` line or a line break; the last block may not be read. Add a line break at the end.",
+                    ));
+                }
+                if !ends(&[2.0, 30.0, 99.0]) {
+                    out.push(Diagnostic::warning(
+                        "P005",
+                        end_span(p),
+                        "The main program does not end with M02 or M30, so the control does not reset at the end. Add M30 (or M02) as the last block; subprograms end with M99.",
+                    ));
+                }
+            }
+            Dialect::Fanuc => {
+                let opens_with_percent = p
+                    .blocks
+                    .iter()
+                    .find(|b| b.kind != BlockKind::Normal || !p.items_of(b).is_empty())
+                    .is_some_and(|b| b.kind == BlockKind::Percent);
+                let has_head = p
+                    .items
+                    .iter()
+                    .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }));
+                if !opens_with_percent || !has_head {
+                    let what = match (opens_with_percent, has_head) {
+                        (false, false) => "does not start with a `%` line and has no O number",
+                        (false, true) => "does not start with a `%` line",
+                        _ => "has no O program number",
+                    };
+                    let start = code_blocks.first().map(|b| b.span).unwrap_or_default();
+                    out.push(Diagnostic::warning(
+                        "P005",
+                        start,
+                        format!("The file {what}: a FANUC program is stored as `%`, `O1234;`, blocks, end code, `%`. Text between the first `%` and the first end of block is skipped as the leader."),
+                    ));
+                }
+                if !ends(&[2.0, 30.0, 99.0]) {
+                    out.push(Diagnostic::warning(
+                        "P005",
+                        end_span(p),
+                        "The program does not end with M02, M30 or M99 before the closing `%`. Add M30 (main program) or M99 (subprogram) as the last block.",
+                    ));
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,112 @@
+//! W005: address letters the dialect or the machine does not have.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+
+use super::util::{has, is_emc2, is_machine_axis};
+use super::{BlockCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Flags words whose letter the dialect does not define (for example `E`, `U`, `V`, `W`
+    /// in the 2007 RS274/NGC profile), and axis words for axes the configured machine does
+    /// not have (`machine.axes` in `partscope.toml`; default X Y Z A B C).
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC stops with `Unknown word starting with …` or an unconfigured-axis error;
+    /// FANUC raises PS0009. ServoWorks treats an axis it does not have as an error, and the
+    /// manual names its axes X, Y, Z, A, B, C only: `E`, `U`, `V`, `W` as axis names work
+    /// only when the machine is set up that way.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G0 X1 U2
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G0 X1 Y2
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, error; ServoWorks `E`/`U`/`V`/`W` axes that are configured get a warning.
+    /// Words of a `G65`/`G66` macro call are arguments, not axes, and are not checked.
+    ///
+    /// Implements: SW015, SW016, NGC007, NGC231, FAN001
+    pub static UNKNOWN_ADDRESS = {
+        code: "W005",
+        name: "unknown-address",
+        summary: "Address letter the dialect or machine does not have",
+        implements: &["SW015", "SW016", "NGC007", "NGC231", "FAN001"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct UnknownAddress;
+
+impl Rule for UnknownAddress {
+    fn meta(&self) -> &'static RuleMeta {
+        &UNKNOWN_ADDRESS
+    }
+
+    fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
+        let d = cx.program.dialect;
+        let emc2 = is_emc2(cx.settings);
+        let (other, axes): (&[u8], &[u8]) = match d {
+            Dialect::Rs274ngc if emc2 => (b"DFGHIJKLMNPQRST", b"XYZABC"),
+            Dialect::Rs274ngc => (b"DEFGHIJKLMNPQRST$@^", b"XYZABCUVW"),
+            Dialect::Servoworks => (b"DFGHIJKLMNOPQRST", b"XYZABCEUVW"),
+            Dialect::Fanuc => (b"DEFGHIJKLMNOPQRST", b"XYZABCUVW"),
+        };
+        let macro_call =
+            d != Dialect::Rs274ngc && (has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661));
+        for (item, w) in cx.words() {
+            if w.comma || other.contains(&w.letter) {
+                continue;
+            }
+            let l = w.letter_char();
+            if !axes.contains(&w.letter) {
+                let msg = match d {
+                    Dialect::Rs274ngc => format!(
+                        "Unknown word starting with {l}: {l} is not a word letter in the `{}` profile.",
+                        cx.settings.variant.as_str()
+                    ),
+                    _ => format!("{l} is not an address of this control (FANUC alarm PS0009)."),
+                };
+                out.push(Diagnostic::error(
+                    "W005",
+                    w.letter_span.cover(item.span),
+                    msg,
+                ));
+                continue;
+            }
+            if macro_call {
+                continue;
+            }
+            let configured = is_machine_axis(cx.settings, w.letter);
+            if d == Dialect::Servoworks
+                && matches!(w.letter, b'E' | b'U' | b'V' | b'W')
+                && configured
+            {
+                out.push(Diagnostic::warning(
+                    "W005",
+                    item.span,
+                    format!("{l} as an axis name: the ServoWorks manual names axes X, Y, Z, A, B, C only. Make sure the control is configured with a {l} axis."),
+                ));
+                continue;
+            }
+            if !configured {
+                let have: String = cx.settings.axes.iter().collect();
+                out.push(Diagnostic::error(
+                    "W005",
+                    item.span,
+                    format!("The machine has no {l} axis (configured axes: {have}); the control rejects the word. Fix the letter, or add the axis to `machine.axes` in partscope.toml."),
+                ));
+            }
+        }
+    }
+}

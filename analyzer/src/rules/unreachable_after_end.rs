@@ -1,0 +1,193 @@
+//! P006: blocks after the program end that never run.
+
+use crate::declare_rule;
+use crate::diagnostic::Diagnostic;
+use crate::dialect::Dialect;
+use crate::syntax::{BlockKind, ItemKind, MacroStmt, OKeyword};
+
+use super::macro_loop_structure::literal;
+use super::util::{has_code_items, lit};
+use super::{ProgramCx, Rule, RuleMeta};
+
+declare_rule! {
+    /// ## What it does
+    /// Flags blocks after `M2`/`M30` that can never run: the rest of the main program
+    /// up to the end of the file, the next `O` program head (ServoWorks, FANUC) or the next
+    /// subroutine definition (RS274/NGC).
+    ///
+    /// ## Why is this bad?
+    /// The control stops reading at the program end, so the code after it is dead. It
+    /// usually means a misplaced `M30`, or blocks that were meant to be a subprogram.
+    ///
+    /// ## Example
+    /// ```ngc
+    /// G0 X0
+    /// M2
+    /// G0 X10
+    /// ```
+    ///
+    /// Use instead:
+    /// ```ngc
+    /// G0 X0
+    /// G0 X10
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// All, warning. FANUC blocks whose sequence number is a `GOTO` target are reachable.
+    ///
+    /// Implements: SW018, NGC026, FAN013
+    pub static UNREACHABLE_AFTER_END = {
+        code: "P006",
+        name: "unreachable-after-end",
+        summary: "Blocks after M2/M30 that never run",
+        implements: &["SW018", "NGC026", "FAN013"],
+        origin: Static,
+        default_enabled: true,
+    }
+}
+
+pub struct UnreachableAfterEnd;
+
+impl Rule for UnreachableAfterEnd {
+    fn meta(&self) -> &'static RuleMeta {
+        &UNREACHABLE_AFTER_END
+    }
+
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        let d = p.dialect;
+        let mut targets: Vec<f64> = Vec::new();
+        if d == Dialect::Fanuc {
+            for item in &p.items {
+                if let ItemKind::Macro(
+                    MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. },
+                ) = item.kind
+                {
+                    targets.extend(literal(p, target));
+                }
+            }
+        }
+        if d == Dialect::Rs274ngc {
+            // LinuxCNC stops reading at an unconditional top-level end; `dead_blocks`
+            // knows which lines that leaves out (the same set the block rules skip).
+            let dead = super::util::dead_blocks(p);
+            let mut run: Option<(crate::span::Span, usize)> = None;
+            let mut end = "M2";
+            for (i, b) in p.blocks.iter().enumerate() {
+                if !dead[i] {
+                    if let Some(e) = p.words(b).find_map(|(_, w)| match lit(w) {
+                        Some(v) if w.letter == b'M' && v == 30.0 => Some("M30"),
+                        Some(v) if w.letter == b'M' && v == 2.0 => Some("M2"),
+                        _ => None,
+                    }) {
+                        end = e;
+                    }
+                    if let Some((span, n)) = run.take() {
+                        out.push(unreachable(span, n, end));
+                    }
+                    continue;
+                }
+                if b.kind == BlockKind::Normal && has_code_items(p, b) {
+                    run = Some(match run {
+                        Some((s, n)) => (s.cover(b.span), n + 1),
+                        None => (b.span, 1),
+                    });
+                }
+            }
+            if let Some((span, n)) = run {
+                out.push(unreachable(span, n, end));
+            }
+            return;
+        }
+        let mut ended: Option<&'static str> = None;
+        let mut sub_depth = 0i32;
+        let mut run: Option<(crate::span::Span, usize)> = None;
+        let flush = |run: &mut Option<(crate::span::Span, usize)>,
+                     end: &str,
+                     out: &mut Vec<Diagnostic>| {
+            if let Some((span, n)) = run.take() {
+                let what = if n == 1 {
+                    "This block is never executed: it follows".to_string()
+                } else {
+                    format!("These {n} blocks are never executed: they follow")
+                };
+                out.push(Diagnostic::warning(
+                    "P006",
+                    span,
+                    format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
+                ));
+            }
+        };
+        for b in &p.blocks {
+            if b.kind != BlockKind::Normal || !has_code_items(p, b) {
+                continue;
+            }
+            let items = p.items_of(b);
+            let head = items
+                .iter()
+                .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }));
+            let okw = items.iter().find_map(|i| match i.kind {
+                ItemKind::OWord(o) => o.keyword,
+                _ => None,
+            });
+            let fanuc_head = items
+                .iter()
+                .any(|i| matches!(i.kind, ItemKind::OWord(o) if o.keyword.is_none()));
+            let target = p
+                .words(b)
+                .any(|(_, w)| w.letter == b'N' && lit(w).is_some_and(|v| targets.contains(&v)));
+            let starts_scope = match d {
+                // A Fanuc-style `O…` program head (no keyword) starts an M98 subprogram.
+                Dialect::Rs274ngc => okw == Some(OKeyword::Sub) || sub_depth > 0 || fanuc_head,
+                _ => head || target,
+            };
+            match okw {
+                Some(OKeyword::Sub) => sub_depth += 1,
+                Some(OKeyword::Endsub) => sub_depth -= 1,
+                _ => {}
+            }
+            if let Some(end) = ended {
+                if starts_scope {
+                    flush(&mut run, end, out);
+                    ended = None;
+                } else {
+                    run = Some(match run {
+                        Some((s, n)) => (s.cover(b.span), n + 1),
+                        None => (b.span, 1),
+                    });
+                    continue;
+                }
+            }
+            if d == Dialect::Rs274ngc && sub_depth > 0 {
+                continue;
+            }
+            for (_, w) in p.words(b) {
+                if w.letter == b'M' && !w.comma {
+                    let v = lit(w);
+                    if v == Some(2.0) {
+                        ended = Some(if d == Dialect::Rs274ngc { "M2" } else { "M02" });
+                    } else if v == Some(30.0) {
+                        ended = Some("M30");
+                    }
+                }
+            }
+        }
+        if let Some(end) = ended {
+            flush(&mut run, end, out);
+        }
+    }
+}
+
+fn unreachable(span: crate::span::Span, n: usize, end: &str) -> Diagnostic {
+    let what = if n == 1 {
+        "This block is never executed: it follows".to_string()
+    } else {
+        format!("These {n} blocks are never executed: they follow")
+    };
+    Diagnostic::warning(
+        "P006",
+        span,
+        format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
+    )
+}

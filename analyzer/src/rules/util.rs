@@ -1,0 +1,268 @@
+//! Small helpers shared by the static rules.
+
+use crate::dialect::{CodeNum, Dialect, Variant};
+use crate::settings::Settings;
+use crate::span::Span;
+use crate::syntax::{Block, Item, ItemKind, Program, Word, WordValue};
+
+use super::context::BlockCx;
+
+/// The literal numeric value of a word, if it is a plain number.
+pub fn lit(w: &Word) -> Option<f64> {
+    match &w.value {
+        WordValue::Num(n) => Some(n.value),
+        _ => None,
+    }
+}
+
+/// Whether a letter is an axis of the configured machine.
+pub fn is_machine_axis(settings: &Settings, letter: u8) -> bool {
+    settings.axes.iter().any(|a| *a as u32 == letter as u32)
+}
+
+/// The words of the block that are configured axes.
+pub fn axis_words<'a>(cx: &BlockCx<'a>) -> Vec<(&'a Item, &'a Word)> {
+    cx.words()
+        .filter(|(_, w)| !w.comma && is_machine_axis(cx.settings, w.letter))
+        .collect()
+}
+
+/// Whether the block holds the code `letter``tenths` written as a literal.
+pub fn has(cx: &BlockCx<'_>, letter: char, tenths: u32) -> bool {
+    cx.has_code(letter, tenths)
+}
+
+/// The first code of the block among `tenths` (G letter).
+pub fn first_g<'a>(cx: &BlockCx<'a>, tenths: &[u32]) -> Option<&'a super::BlockCode> {
+    cx.codes
+        .iter()
+        .find(|c| c.letter == 'G' && c.num.is_some_and(|n| tenths.contains(&n.0)))
+}
+
+/// The word of `letter` (not after a comma), with its item.
+pub fn word_item<'a>(cx: &BlockCx<'a>, letter: u8) -> Option<(&'a Item, &'a Word)> {
+    cx.words().find(|(_, w)| w.letter == letter && !w.comma)
+}
+
+/// Whether the dialect's table has any code of this letter (the tables are
+/// filled in stages; an empty table must not make every code "unknown").
+pub fn table_has_letter(dialect: Dialect, letter: char) -> bool {
+    dialect.codes().iter().any(|c| c.letter == letter)
+}
+
+/// Whether `code` (e.g. `G100`, `M150`, `G05.1`) is in the settings' custom codes.
+pub fn is_custom(settings: &Settings, letter: char, num: CodeNum) -> bool {
+    settings.custom_codes.iter().any(|c| {
+        let c = c.trim();
+        let mut chars = c.chars();
+        let Some(l) = chars.next() else { return false };
+        l.eq_ignore_ascii_case(&letter)
+            && chars
+                .as_str()
+                .parse::<f64>()
+                .ok()
+                .and_then(CodeNum::from_value)
+                == Some(num)
+    })
+}
+
+/// Name of a code as the dialect writes it (`G02.3` style for ServoWorks and
+/// FANUC, `G2.3` for RS274/NGC).
+pub fn code_name(dialect: Dialect, letter: char, num: CodeNum) -> String {
+    let d = num.display();
+    match dialect {
+        Dialect::Rs274ngc => format!("{letter}{d}"),
+        _ if num.0 < 100 => format!("{letter}0{d}"),
+        _ => format!("{letter}{d}"),
+    }
+}
+
+/// Whether the block has items other than comments.
+pub fn has_code_items(program: &Program, b: &Block) -> bool {
+    program
+        .items_of(b)
+        .iter()
+        .any(|i| !matches!(i.kind, ItemKind::Comment(_)))
+}
+
+/// The profile is the 2007 seed (`emc2`).
+pub fn is_emc2(settings: &Settings) -> bool {
+    settings.variant == Variant::Emc2
+}
+
+/// Whether a value is within 0.0001 of an integer (the RS274/NGC rule).
+pub fn near_integer(v: f64) -> bool {
+    (v - v.round()).abs() <= 0.0001
+}
+
+/// The span of an item plus the blanks after it, for a fix that removes it.
+pub fn removal_span(program: &Program, span: Span) -> Span {
+    let mut end = span.end as usize;
+    while matches!(program.text.get(end), Some(b' ') | Some(b'\t')) {
+        end += 1;
+    }
+    Span::new(span.start, end as u32)
+}
+
+/// Drilling cycles by code number in tenths (RS274/NGC G76 is threading).
+pub fn is_drilling_cycle(d: Dialect, tenths: u32) -> bool {
+    match tenths {
+        730 | 740 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890 => true,
+        760 => d != Dialect::Rs274ngc,
+        _ => false,
+    }
+}
+
+/// Whether a block has a literal word of `letter` with value `v`.
+pub fn block_has_word_value(program: &Program, b: &Block, letter: u8, v: f64) -> bool {
+    program
+        .words(b)
+        .any(|(_, w)| w.letter == letter && !w.comma && lit(w) == Some(v))
+}
+
+/// The G code values (in tenths) written as literals in a block.
+pub fn block_g_codes(program: &Program, b: &Block) -> Vec<u32> {
+    program
+        .words(b)
+        .filter(|(_, w)| w.letter == b'G' && !w.comma)
+        .filter_map(|(_, w)| lit(w))
+        .filter_map(CodeNum::from_value)
+        .map(|n| n.0)
+        .collect()
+}
+
+/// Whether a block has an axis word of the machine.
+pub fn block_has_axis(program: &Program, b: &Block, settings: &Settings) -> bool {
+    program
+        .words(b)
+        .any(|(_, w)| !w.comma && is_machine_axis(settings, w.letter))
+}
+
+/// The root expressions of a block: word values, assignment sides, O-word
+/// arguments and macro statement operands.
+pub fn block_exprs(program: &Program, items: &[Item]) -> Vec<crate::syntax::ExprId> {
+    use crate::syntax::MacroStmt as M;
+    let mut out = Vec::new();
+    for item in items {
+        match item.kind {
+            ItemKind::Word(Word {
+                value: WordValue::Expr(e),
+                ..
+            }) => out.push(e),
+            ItemKind::Assign { target, value } => out.extend([target, value]),
+            ItemKind::OWord(o) => out.extend(program.expr_list(o.args).iter().copied()),
+            ItemKind::Macro(m) => match m {
+                M::Goto { target } => out.push(target),
+                M::IfGoto { cond, target } => out.extend([cond, target]),
+                M::IfThen { cond } => out.push(cond),
+                M::While { cond, m } => out.extend([cond, m]),
+                M::Do { m } | M::End { m } => out.push(m),
+                M::Output => {}
+            },
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The direct children of an expression node.
+pub fn expr_children(program: &Program, id: crate::syntax::ExprId) -> Vec<crate::syntax::ExprId> {
+    use crate::syntax::Expr as E;
+    match program.expr(id).expr {
+        E::Var { index } => vec![index],
+        E::Neg { arg } | E::Plus { arg } => vec![arg],
+        E::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+        E::Call { arg, arg2, .. } => std::iter::once(arg).chain(arg2).collect(),
+        E::Group { inner } => vec![inner],
+        E::Num(_) | E::Named { .. } | E::Error => Vec::new(),
+    }
+}
+
+/// Every node of an expression tree, parents before children.
+pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::syntax::ExprId> {
+    let mut out = Vec::new();
+    let mut stack = vec![root];
+    while let Some(id) = stack.pop() {
+        // Guards against malformed trees; the parser caps depth at 64 anyway.
+        if out.len() > 100_000 {
+            break;
+        }
+        out.push(id);
+        stack.extend(expr_children(program, id));
+    }
+    out
+}
+
+/// RS274/NGC blocks the interpreter never reads: top-level lines after an
+/// `M2`/`M30` that is itself outside every O-word block (an `M30` inside an `if`
+/// may not run). Subroutine definitions further down stay reachable, because a
+/// call searches the file for them, and so do Fanuc-style `O…` programs.
+/// Other dialects: none.
+pub fn dead_blocks(program: &Program) -> Vec<bool> {
+    use crate::dialect::Dialect;
+    use crate::syntax::OKeyword as K;
+    let mut dead = vec![false; program.blocks.len()];
+    if program.dialect != Dialect::Rs274ngc {
+        return dead;
+    }
+    let mut ended = false;
+    // Open O-word blocks: (is a `do`, label text).
+    let mut open: Vec<(bool, String)> = Vec::new();
+    for (i, b) in program.blocks.iter().enumerate() {
+        let ow = program.items_of(b).iter().find_map(|it| match it.kind {
+            ItemKind::OWord(o) => Some(o),
+            _ => None,
+        });
+        let label = ow
+            .map(|o| program.str_of(o.label_span).to_ascii_lowercase())
+            .unwrap_or_default();
+        match ow.map(|o| o.keyword) {
+            Some(None) => ended = false,
+            Some(Some(K::Sub)) => {
+                ended = false;
+                open.push((false, label.clone()));
+            }
+            _ => {}
+        }
+        if ended && open.is_empty() {
+            dead[i] = true;
+            continue;
+        }
+        match ow.and_then(|o| o.keyword) {
+            Some(K::Do) => open.push((true, label)),
+            Some(K::If) | Some(K::Repeat) => open.push((false, label)),
+            Some(K::While) if open.last().is_some_and(|(d, l)| *d && *l == label) => {
+                open.pop();
+            }
+            Some(K::While) => open.push((false, label)),
+            Some(K::Endsub) | Some(K::Endif) | Some(K::Endwhile) | Some(K::Endrepeat) => {
+                open.pop();
+            }
+            _ => {}
+        }
+        if open.is_empty()
+            && program.words(b).any(|(_, w)| {
+                w.letter == b'M' && matches!(lit(w), Some(v) if v == 2.0 || v == 30.0)
+            })
+        {
+            ended = true;
+        }
+    }
+    dead
+}
+
+/// Blocks that hold a syntax error (an error-severity parser diagnostic).
+pub fn unreadable_blocks(program: &Program) -> Vec<bool> {
+    let mut out = vec![false; program.blocks.len()];
+    for d in &program.diagnostics {
+        if d.severity != crate::diagnostic::Severity::Error {
+            continue;
+        }
+        if let Some(i) = program.block_at(d.span.start) {
+            if let Some(flag) = out.get_mut(i) {
+                *flag = true;
+            }
+        }
+    }
+    out
+}

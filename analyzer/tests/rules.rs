@@ -1,0 +1,328 @@
+//! Data-driven rule fixtures: `tests/rules/<CODE>/{valid,invalid}_*.<ext>`.
+//!
+//! The extension chooses the dialect (`.ngc` RS274/NGC, `.sw` ServoWorks,
+//! `.fnc` FANUC) unless the first line holds a `(partscope: dialect=…)`
+//! directive. A sibling `<stem>.toml` is read as a `partscope.toml` (variant,
+//! machine axes, custom codes). The rule under test is selected on top of the
+//! default rules, so off-by-default style rules run too.
+//!
+//! `valid_*` files must produce no diagnostic at all; `invalid_*` files must
+//! produce the directory's code, and their whole diagnostic list is an insta
+//! snapshot (`tests/rules/snapshots/`).
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use analyzer::dialect::Dialect;
+use analyzer::{analyze, Config, LineIndex, Settings};
+
+fn fixture_dialect(path: &Path, text: &[u8]) -> Option<Dialect> {
+    if let Some(d) = analyzer::settings::dialect_directive(text) {
+        return Some(d);
+    }
+    match path.extension()?.to_str()? {
+        "ngc" => Some(Dialect::Rs274ngc),
+        "sw" => Some(Dialect::Servoworks),
+        "fnc" => Some(Dialect::Fanuc),
+        _ => None,
+    }
+}
+
+fn settings_for(path: &Path, dialect: Dialect, code: &str) -> Settings {
+    let cfg_path = path.with_extension("toml");
+    let mut settings = if cfg_path.exists() {
+        let text = std::fs::read_to_string(&cfg_path).expect("read fixture config");
+        let config =
+            Config::from_toml(&text).unwrap_or_else(|e| panic!("{}: {e}", cfg_path.display()));
+        Settings::from_config(&config, Some(dialect)).expect("fixture settings")
+    } else {
+        Settings::new(dialect)
+    };
+    settings.select = vec!["ALL".to_string(), code.to_string()];
+    settings
+}
+
+/// One line per diagnostic: `line:col code severity message` (1-based).
+pub fn render(text: &[u8], diags: &[analyzer::Diagnostic]) -> String {
+    let index = LineIndex::new(text);
+    let mut out = String::new();
+    for d in diags {
+        let (l, c) = index.line_col(d.span.start);
+        let _ = writeln!(
+            out,
+            "{}:{} {} {} {}",
+            l + 1,
+            c + 1,
+            d.code,
+            d.severity.as_str(),
+            d.message
+        );
+        for r in &d.related {
+            let (l, c) = index.line_col(r.span.start);
+            let _ = writeln!(out, "    related {}:{} {}", l + 1, c + 1, r.message);
+        }
+        for f in &d.fixes {
+            let _ = writeln!(out, "    fix: {}", f.title);
+        }
+    }
+    out
+}
+
+fn fixtures() -> Vec<(String, PathBuf)> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/rules");
+    let mut out = Vec::new();
+    let mut dirs: Vec<_> = std::fs::read_dir(&root)
+        .expect("tests/rules")
+        .flatten()
+        .map(|e| e.path())
+        .collect();
+    dirs.sort();
+    for dir in dirs {
+        let Some(code) = dir.file_name().and_then(|n| n.to_str()).map(str::to_string) else {
+            continue;
+        };
+        if !dir.is_dir() || code == "snapshots" {
+            continue;
+        }
+        let mut files: Vec<_> = std::fs::read_dir(&dir)
+            .expect("rule dir")
+            .flatten()
+            .map(|e| e.path())
+            .collect();
+        files.sort();
+        for f in files {
+            let name = f.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if (name.starts_with("valid_") || name.starts_with("invalid_"))
+                && !name.ends_with(".toml")
+            {
+                out.push((code.clone(), f));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn rule_fixtures() {
+    let files = fixtures();
+    assert!(files.len() > 20, "fixtures not found");
+    let mut failures = Vec::new();
+    for (code, path) in &files {
+        assert!(
+            analyzer::rules::registry::lookup(code).is_some(),
+            "{}: directory names an unregistered code",
+            path.display()
+        );
+        let text = std::fs::read(path).expect("read fixture");
+        let Some(dialect) = fixture_dialect(path, &text) else {
+            failures.push(format!(
+                "{}: unknown dialect (extension or directive)",
+                path.display()
+            ));
+            continue;
+        };
+        let settings = settings_for(path, dialect, code);
+        let analysis = analyze(text.clone(), &settings);
+        let rendered = render(&text, &analysis.diagnostics);
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if name.starts_with("valid_") {
+            if !analysis.diagnostics.is_empty() {
+                failures.push(format!(
+                    "{}: expected no diagnostics, got\n{rendered}",
+                    path.display()
+                ));
+            }
+            continue;
+        }
+        if !analysis.diagnostics.iter().any(|d| d.code == code.as_str()) {
+            failures.push(format!(
+                "{}: expected {code}, got\n{rendered}",
+                path.display()
+            ));
+        }
+        let snap = format!("{code}__{}", name.replace('.', "_"));
+        insta::with_settings!({
+            snapshot_path => Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/rules/snapshots"),
+            prepend_module_to_snapshot => false,
+            description => String::from_utf8_lossy(&text).into_owned(),
+            omit_expression => true,
+        }, {
+            insta::assert_snapshot!(snap, rendered);
+        });
+    }
+    assert!(
+        failures.is_empty(),
+        "{} fixture failure(s):\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// Applies one fix's edits to a text (edits do not overlap; applied back to front).
+fn apply(text: &[u8], fix: &analyzer::Fix) -> Vec<u8> {
+    let mut edits = fix.edits.clone();
+    edits.sort_by_key(|e| std::cmp::Reverse(e.span.start));
+    let mut out = text.to_vec();
+    for e in edits {
+        out.splice(e.span.range(), e.new_text.bytes());
+    }
+    out
+}
+
+#[test]
+fn fixes_remove_their_diagnostic() {
+    let mut checked = 0;
+    let mut failures = Vec::new();
+    for (code, path) in fixtures() {
+        let text = std::fs::read(&path).expect("read fixture");
+        let Some(dialect) = fixture_dialect(&path, &text) else {
+            continue;
+        };
+        let settings = settings_for(&path, dialect, &code);
+        let before = analyze(text.clone(), &settings).diagnostics;
+        let count =
+            |ds: &[analyzer::Diagnostic], c: &str| ds.iter().filter(|d| d.code == c).count();
+        for d in &before {
+            for fix in &d.fixes {
+                checked += 1;
+                let fixed = apply(&text, fix);
+                let after = analyze(fixed.clone(), &settings).diagnostics;
+                if count(&after, d.code) >= count(&before, d.code) {
+                    failures.push(format!(
+                        "{}: fix `{}` for {} leaves as many {} diagnostics:\n{}",
+                        path.display(),
+                        fix.title,
+                        d.code,
+                        d.code,
+                        String::from_utf8_lossy(&fixed)
+                    ));
+                }
+                let new_errors = after
+                    .iter()
+                    .filter(|a| a.severity == analyzer::Severity::Error)
+                    .count();
+                let old_errors = before
+                    .iter()
+                    .filter(|b| b.severity == analyzer::Severity::Error)
+                    .count();
+                if new_errors > old_errors {
+                    failures.push(format!(
+                        "{}: fix `{}` introduces errors:\n{}",
+                        path.display(),
+                        fix.title,
+                        render(&fixed, &after)
+                    ));
+                }
+            }
+        }
+    }
+    assert!(checked >= 5, "only {checked} fixes exercised");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+mod robustness {
+    use analyzer::dialect::{Dialect, Variant};
+    use analyzer::{analyze, Settings};
+    use proptest::prelude::*;
+
+    /// Fragments that reach the rules' corner cases: codes, words, O-words, macro
+    /// statements, comments, brackets, multi-byte text.
+    const PIECES: &[&str] = &[
+        "G0 ",
+        "G1 ",
+        "G2 ",
+        "G3 ",
+        "G4 ",
+        "G10 L2 P1 ",
+        "G28 ",
+        "G43.2 ",
+        "G65 P9010 ",
+        "G81 ",
+        "G83 ",
+        "G80 ",
+        "G92 ",
+        "G54 ",
+        "G02.3 ",
+        "G05 ",
+        "G51 ",
+        "M98 ",
+        "M99 ",
+        "M3 ",
+        "M30 ",
+        "M2 ",
+        "X1 ",
+        "Y-2.5 ",
+        "Z ",
+        "R0 ",
+        "I1 ",
+        "K2 ",
+        "P1.5 ",
+        "Q-1 ",
+        "L0 ",
+        "D0.5 ",
+        "E1 ",
+        "@1 ",
+        "N10 ",
+        "N#1 ",
+        "T1.5 ",
+        "S2_100 ",
+        "#1=",
+        "#<a>=",
+        "[1/0]",
+        "SQRT[-1]",
+        "EXISTS[#1]",
+        "o100 sub",
+        "o100 endsub",
+        "o100 while [1]",
+        "o100 endwhile",
+        "o100 call [1]",
+        "o1 do",
+        "o1 while [1]",
+        "o2 if [1]",
+        "o2 else",
+        "o2 endif",
+        "WHILE [#1 LT 3] DO 1",
+        "DO 4",
+        "END 1",
+        "GOTO 10",
+        "IF [#1 EQ 0.5] GOTO 7",
+        "(MSG hi)",
+        "(DEBUG,%x)",
+        ";(debug x)",
+        "(ünïcödé 😀)",
+        "(",
+        ")",
+        "[",
+        "]",
+        "%",
+        "/",
+        ";",
+        "\n",
+        "\r\n",
+        "O0",
+        "0100 sub",
+    ];
+
+    fn program() -> impl Strategy<Value = String> {
+        prop::collection::vec(0..PIECES.len(), 0..40)
+            .prop_map(|ix| ix.into_iter().map(|i| PIECES[i]).collect())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        #[test]
+        fn rules_never_panic(text in program(), d in 0usize..3, v in 0usize..2, raw in prop::collection::vec(any::<u8>(), 0..64)) {
+            let dialect = Dialect::ALL[d];
+            let variants = [[Variant::S100M, Variant::S140M], [Variant::Linuxcnc, Variant::Emc2], [Variant::Fanuc30i, Variant::Fanuc30i]];
+            let mut settings = Settings::new(dialect);
+            settings.variant = variants[d][v];
+            settings.select = vec!["ALL".into(), "S".into(), "W023".into()];
+            settings.integer_machine_unit = v == 1;
+            let a = analyze(text.into_bytes(), &settings);
+            for diag in &a.diagnostics {
+                prop_assert!(diag.span.start <= diag.span.end);
+            }
+            let _ = analyze(raw, &settings);
+        }
+    }
+}

@@ -1,0 +1,15 @@
+%
+O1000;
+WHILE [#1 LT 3] DO 4;
+END 4;
+WHILE [#1 LT 3] DO 1;
+WHILE [#2 LT 3] DO 2;
+END 1;
+END 2;
+END 3;
+DO 1;
+DO 2;
+DO 3;
+DO 1;
+M30;
+%

@@ -1,0 +1,9 @@
+%
+O1000;
+IF [#1 EQ 1] GOTO 99;
+GOTO 20;
+WHILE [#1 LT 3] DO 1;
+N20 #1 = #1 + 1;
+END 1;
+M30;
+%

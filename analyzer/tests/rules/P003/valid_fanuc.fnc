@@ -1,0 +1,11 @@
+%
+O1000;
+N10 #1 = 0;
+IF [#1 GT 3] GOTO 30;
+WHILE [#1 LT 3] DO 1;
+N20 #1 = #1 + 1;
+IF [#1 EQ 2] GOTO 20;
+END 1;
+GOTO #1;
+N30 M30;
+%

@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# CI for the editor integrations (called by .ci/run with PARTSCOPE_BIN set to a built binary).
+#
+# Debian packages it needs, installed by .ci/run:
+#   nodejs (>= 20; @vscode/vsce 3 refuses older) with npm, chromium, neovim (0.7+), unzip
+# Optional: emacs-nox + elpa-eglot — when present, the Emacs test runs as well.
+# npm packages come from the npm registry through `npm ci` (package-lock.json is committed);
+# no browser is downloaded: the preview test drives /usr/bin/chromium via playwright-core.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+passed=0
+failed=0
+run() {
+  local name="$1"
+  shift
+  echo "::: editors: $name"
+  if "$@"; then
+    passed=$((passed + 1))
+  else
+    echo "::: editors: $name FAILED"
+    failed=$((failed + 1))
+  fi
+}
+
+vscode() {
+  cd "$here/vscode"
+  npm ci --no-audit --no-fund
+  npm run package </dev/null
+  npm test
+}
+
+vsix_contents() {
+  local listing missing=0
+  listing="$(unzip -l "$here/vscode/partscope.vsix")"
+  echo "$listing"
+  for f in extension/package.json extension/language-configuration.json \
+    extension/syntaxes/gcode.tmLanguage.json extension/out/extension.js \
+    extension/media/preview.html extension/media/preview.js extension/media/preview.css; do
+    if ! grep -qE "[[:space:]]$f\$" <<<"$listing"; then
+      echo "missing from partscope.vsix: $f"
+      missing=1
+    fi
+  done
+  # The bundle must carry the language client; node_modules is not shipped.
+  # grep -c reads to the end: an early exit (grep -q) would SIGPIPE unzip and trip pipefail.
+  if ! unzip -p "$here/vscode/partscope.vsix" extension/out/extension.js | grep -c "LanguageClient" >/dev/null; then
+    echo "extension/out/extension.js does not contain the bundled language client"
+    missing=1
+  fi
+  return "$missing"
+}
+
+helix_toml() {
+  python3 - "$here/helix/languages.toml" <<'PY'
+import sys, tomllib
+cfg = tomllib.load(open(sys.argv[1], "rb"))
+lang = next(l for l in cfg["language"] if l["name"] == "gcode")
+assert lang["language-servers"] == ["partscope"], lang
+assert cfg["language-server"]["partscope"]["args"] == ["lsp"]
+assert set(lang["file-types"]) == {"nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf"}
+print("helix languages.toml ok")
+PY
+}
+
+emacs_compile() {
+  local work
+  work="$(mktemp -d)"
+  cp "$here/emacs/partscope.el" "$work/"
+  emacs --batch -Q -L "$work" --eval '(setq byte-compile-error-on-warn t)' -f batch-byte-compile "$work/partscope.el"
+  local rc=$?
+  rm -rf "$work"
+  return $rc
+}
+
+run "vscode: npm ci, package, test" vscode
+run "vscode: .vsix contents" vsix_contents
+if command -v python3 >/dev/null && python3 -c 'import tomllib' 2>/dev/null; then
+  run "helix: languages.toml" helix_toml
+fi
+
+if [[ -n "${PARTSCOPE_BIN:-}" ]]; then
+  run "nvim: LSP against $PARTSCOPE_BIN" "$here/nvim/test.sh" "$PARTSCOPE_BIN"
+  if command -v emacs >/dev/null && emacs --batch -Q --eval \
+    '(progn (let ((default-directory "/usr/share/emacs/site-lisp/elpa/")) (when (file-directory-p default-directory) (normal-top-level-add-subdirs-to-load-path))) (kill-emacs (if (require (quote eglot) nil t) 0 1)))' 2>/dev/null; then
+    run "emacs: eglot against $PARTSCOPE_BIN" "$here/emacs/test.sh" "$PARTSCOPE_BIN"
+  fi
+else
+  echo "::: editors: PARTSCOPE_BIN not set; skipping the Neovim and Emacs LSP tests"
+  if command -v emacs >/dev/null; then
+    run "emacs: byte-compile" emacs_compile
+  fi
+fi
+
+echo "editors: ${passed} passed, ${failed} failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,56 @@
+;;; eglot-test.el --- Batch check of partscope.el with eglot  -*- lexical-binding: t; -*-
+;; Run by editors/emacs/test.sh: opens a sample with known errors in `partscope-gcode-mode',
+;; connects eglot to PARTSCOPE_BIN and requires diagnostics and a non-empty hover.
+
+(require 'cl-lib)
+;; Debian's elpa-* packages live here; -Q skips the site files that would add them.
+(let ((default-directory "/usr/share/emacs/site-lisp/elpa/"))
+  (when (file-directory-p default-directory)
+    (normal-top-level-add-subdirs-to-load-path)))
+(require 'partscope)
+(require 'eglot)
+(require 'flymake)
+
+(defvar partscope-test-deadline (+ (float-time) (string-to-number (or (getenv "PARTSCOPE_TIMEOUT_S") "20"))))
+
+(defun partscope-test-finish (ok msg)
+  (princ (format "%s: %s\n" (if ok "ok" "FAIL") msg) #'external-debugging-output)
+  (ignore-errors (eglot-shutdown (eglot-current-server)))
+  (kill-emacs (if ok 0 1)))
+
+(defun partscope-test-wait (pred)
+  (while (and (not (funcall pred)) (< (float-time) partscope-test-deadline))
+    (accept-process-output nil 0.05))
+  (funcall pred))
+
+(setq partscope-server-command (list (getenv "PARTSCOPE_BIN") "lsp"))
+(find-file (getenv "PARTSCOPE_SAMPLE"))
+(unless (eq major-mode 'partscope-gcode-mode)
+  (partscope-test-finish nil (format "major mode is %s, not partscope-gcode-mode" major-mode)))
+(condition-case err
+    (apply #'eglot (eglot--guess-contact))
+  (error (partscope-test-finish nil (format "eglot did not start: %S" err))))
+(unless (partscope-test-wait (lambda () (and (fboundp 'eglot-current-server) (eglot-current-server))))
+  (partscope-test-finish nil "no eglot server for the buffer"))
+(unless (partscope-test-wait (lambda ()
+                               (flymake-start)
+                               (flymake-diagnostics)))
+  (partscope-test-finish nil "no diagnostics arrived for a sample with known errors"))
+(goto-char (point-min))
+(search-forward "G21")
+(backward-char 2)
+(let* ((hover (jsonrpc-request (eglot-current-server) :textDocument/hover
+                               (eglot--TextDocumentPositionParams)))
+       (contents (plist-get hover :contents))
+       (text (cond ((stringp contents) contents)
+                   ((and (listp contents) (plist-get contents :value)))
+                   ((vectorp contents) (mapconcat (lambda (c) (if (stringp c) c (or (plist-get c :value) "")))
+                                                  contents "\n"))
+                   (t ""))))
+  (if (string-blank-p (or text ""))
+      (partscope-test-finish nil (format "hover returned no content: %S" hover))
+    (partscope-test-finish t (format "%d diagnostic(s), first: %s; hover: %s"
+                                     (length (flymake-diagnostics))
+                                     (flymake-diagnostic-text (car (flymake-diagnostics)))
+                                     (truncate-string-to-width (replace-regexp-in-string "\\s-+" " " text) 80)))))
+;;; eglot-test.el ends here

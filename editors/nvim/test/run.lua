@@ -1,0 +1,118 @@
+-- Headless check driven by test.sh: opens the sample through require("partscope").setup() and
+-- requires both published diagnostics and a non-empty hover from the real server.
+local bin = os.getenv("PARTSCOPE_BIN")
+local sample = os.getenv("PARTSCOPE_SAMPLE")
+local timeout_ms = tonumber(os.getenv("PARTSCOPE_TIMEOUT_MS") or "20000")
+local deadline = (vim.uv or vim.loop).now() + timeout_ms
+
+local function finish(ok, msg)
+  io.stderr:write((ok and "ok: " or "FAIL: ") .. msg .. "\n")
+  io.stderr:flush()
+  for _, c in pairs(vim.lsp.get_clients and vim.lsp.get_clients() or vim.lsp.get_active_clients()) do
+    vim.lsp.stop_client(c.id)
+  end
+  vim.wait(500, function()
+    return #(vim.lsp.get_clients and vim.lsp.get_clients() or vim.lsp.get_active_clients()) == 0
+  end, 20)
+  vim.cmd(ok and "qall!" or "cquit 1")
+end
+
+local function remaining()
+  return math.max(0, deadline - (vim.uv or vim.loop).now())
+end
+
+local ok, err = pcall(function()
+  require("partscope").setup({ cmd = { bin, "lsp" } })
+end)
+if not ok then
+  finish(false, "setup() raised: " .. tostring(err))
+  return
+end
+
+vim.cmd("edit " .. vim.fn.fnameescape(sample))
+local buf = vim.api.nvim_get_current_buf()
+if vim.bo[buf].filetype ~= "gcode" then
+  finish(false, "filetype of " .. sample .. " is '" .. vim.bo[buf].filetype .. "', expected 'gcode'")
+  return
+end
+
+local function attached()
+  local list = vim.lsp.get_clients and vim.lsp.get_clients({ bufnr = buf }) or vim.lsp.buf_get_clients(buf)
+  for _, c in pairs(list) do
+    if c.name == "partscope" then
+      return c
+    end
+  end
+  return nil
+end
+
+if not vim.wait(remaining(), function()
+  local c = attached()
+  return c ~= nil and c.initialized
+end, 50) then
+  finish(false, ("the partscope client did not initialize within %d ms (is '%s lsp' a working LSP server?)"):format(timeout_ms, bin))
+  return
+end
+
+if not vim.wait(remaining(), function()
+  return #vim.diagnostic.get(buf) > 0
+end, 50) then
+  finish(false, ("no diagnostics arrived within %d ms for %s, which has known errors"):format(timeout_ms, sample))
+  return
+end
+local diags = vim.diagnostic.get(buf)
+local first = diags[1]
+
+-- Hover on the G21 of line 2.
+local row, col
+for i, line in ipairs(vim.api.nvim_buf_get_lines(buf, 0, -1, false)) do
+  local s = line:find("G21", 1, true)
+  if s then
+    row, col = i - 1, s
+    break
+  end
+end
+local params = { textDocument = { uri = vim.uri_from_bufnr(buf) }, position = { line = row, character = col } }
+local responses, herr = vim.lsp.buf_request_sync(buf, "textDocument/hover", params, math.max(1, remaining()))
+if not responses then
+  finish(false, "hover request failed: " .. tostring(herr or ("no answer within " .. timeout_ms .. " ms")))
+  return
+end
+
+local function text_of(contents)
+  if type(contents) == "string" then
+    return contents
+  end
+  if type(contents) ~= "table" then
+    return ""
+  end
+  if contents.value ~= nil then
+    return tostring(contents.value)
+  end
+  local parts = {}
+  for _, c in ipairs(contents) do
+    table.insert(parts, text_of(c))
+  end
+  return table.concat(parts, "\n")
+end
+
+local hover = ""
+for _, r in pairs(responses) do
+  if r.result and r.result.contents then
+    hover = hover .. text_of(r.result.contents)
+  end
+end
+if hover:match("^%s*$") then
+  finish(false, ("hover at line %d col %d returned no content (%s)"):format(row + 1, col, vim.inspect(responses)))
+  return
+end
+
+finish(
+  true,
+  ("%d diagnostic(s), first: [%s] %s; hover: %s"):format(
+    #diags,
+    tostring(first.code or (first.user_data and first.user_data.lsp and first.user_data.lsp.code) or "?"),
+    first.message,
+    (hover:gsub("%s+", " ")):sub(1, 80)
+  )
+)

@@ -1,0 +1,25 @@
+// Unit tests of the status-bar / report formatting (out/dryrun.js is built by `npm run compile`).
+"use strict";
+const test = require("node:test");
+const assert = require("node:assert/strict");
+const { formatDuration, summarize } = require("../out/dryrun.js");
+const fixture = require("./fixtures/sample-dryrun.json");
+
+test("formatDuration", () => {
+  assert.equal(formatDuration(63.927), "1:03.9");
+  assert.equal(formatDuration(0), "0:00.0");
+  assert.equal(formatDuration(59.96), "1:00.0");
+  assert.equal(formatDuration(3600 * 2 + 61.4), "2:01:01");
+  assert.equal(formatDuration(3599.6), "59:59.6");
+  assert.equal(formatDuration(3599.97), "1:00:00");
+  assert.equal(formatDuration(7199.6), "2:00:00");
+  assert.equal(formatDuration(NaN), "–");
+});
+
+test("summarize", () => {
+  const lines = summarize(fixture).split("\n");
+  assert.equal(lines[0], "cycle time" + " ".repeat(4) + "1:03.9".padStart(22));
+  assert.ok(lines.some((l) => /^distance\s+1067\.9 mm$/.test(l)), lines.join("\n"));
+  assert.ok(lines.some((l) => /^segments\s+38$/.test(l)));
+  assert.ok(lines.some((l) => /^Z range\s+-14\.000 … 50\.000$/.test(l)));
+});

@@ -1,0 +1,10 @@
+%
+(partscope: dialect=servoworks)
+N10 G90 G17 G21
+N20 G05 P10000 (3D-DLACC on)
+N30 G01 X10.0 Y0.0 F1000.0
+N40 G02 X20.0 Y0.0 R5.0
+N50 G05 P0 (3D-DLACC off)
+N60 M98 PMoveXY R2
+N70 M30
+%

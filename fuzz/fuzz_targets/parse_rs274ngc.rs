@@ -1,0 +1,9 @@
+//! Parse, print and analyse arbitrary bytes as a Rs274ngc program.
+#![no_main]
+
+use analyzer::dialect::Dialect;
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    partscope_fuzz::parse_and_analyze(Dialect::Rs274ngc, 0, data);
+});

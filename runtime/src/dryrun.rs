@@ -1,0 +1,412 @@
+//! The dry run: interpreter output → planner input → cycle time and toolpath.
+//!
+//! This is the glue every host uses (`partscope run`, the language server's
+//! preview and code lens), so the conversion of the interpreter's motions into
+//! planner segments lives in one place.
+
+use std::collections::BTreeMap;
+
+use analyzer::Dialect;
+use serde::Serialize;
+
+use crate::interp::{Event as IEvent, EventKind, Motion, MotionKind, RunOutput};
+use crate::machine::MachineProfile;
+use crate::plan::{self, PathMode, Segment, SegmentKind, SegmentTiming, Totals};
+
+/// Keys of `[machine]` that the interpreter reads and the planner profile does not know.
+const INTERPRETER_KEYS: &[&str] = &[
+    "machine_units",
+    "tools",
+    "work_offsets",
+    "integer_machine_unit",
+    "machine_unit",
+    "block_skip",
+    "decimal_point_input",
+    "max_call_depth",
+    "optional_stop",
+];
+
+/// The planner profile from a `[machine]` table: the dialect's defaults with the
+/// table's planner keys applied. Interpreter-only keys are skipped here (the
+/// interpreter reads them from the same table); anything else unknown is an error.
+pub fn profile_from_table(table: &toml::Table, dialect: Dialect) -> Result<MachineProfile, String> {
+    let mut merged =
+        toml::Table::try_from(MachineProfile::default_for(dialect)).map_err(|e| e.to_string())?;
+    let base_axis = merged
+        .get("axes")
+        .and_then(|a| a.as_array())
+        .and_then(|a| a.first())
+        .cloned();
+    for (k, v) in table {
+        if INTERPRETER_KEYS.contains(&k.as_str()) {
+            continue;
+        }
+        if k == "axes" {
+            // Axis entries may give only some fields (`letter`, travel limits…): fill
+            // the rest from the default axis.
+            let axes = v.as_array().cloned().unwrap_or_default();
+            let filled: Vec<toml::Value> = axes
+                .into_iter()
+                .map(|a| match (a, &base_axis) {
+                    (toml::Value::Table(t), Some(toml::Value::Table(base))) => {
+                        let mut full = base.clone();
+                        for (ak, av) in t {
+                            full.insert(ak, av);
+                        }
+                        toml::Value::Table(full)
+                    }
+                    (toml::Value::String(s), Some(toml::Value::Table(base))) => {
+                        let mut full = base.clone();
+                        full.insert("letter".into(), toml::Value::String(s));
+                        toml::Value::Table(full)
+                    }
+                    (a, _) => a,
+                })
+                .collect();
+            merged.insert(k.clone(), toml::Value::Array(filled));
+            continue;
+        }
+        merged.insert(k.clone(), v.clone());
+    }
+    toml::Value::Table(merged)
+        .try_into()
+        .map_err(|e: toml::de::Error| format!("[machine]: {e}"))
+}
+
+/// One toolpath polyline for previews: a motion sampled at a chord tolerance.
+#[derive(Debug, Clone, Serialize)]
+pub struct ToolpathSegment {
+    /// `rapid`, `feed` or `arc`.
+    pub kind: &'static str,
+    /// 0-based source line (in `file`).
+    pub line: u32,
+    /// 0 = the main file; otherwise an index into the run's files + 1.
+    pub file: u32,
+    /// Programmed feed in mm/min (0 for rapids).
+    pub feed: f64,
+    pub tool: u32,
+    pub points: Vec<[f64; 3]>,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Toolpath {
+    pub segments: Vec<ToolpathSegment>,
+    pub bounds: Bounds,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Bounds {
+    pub min: [f64; 3],
+    pub max: [f64; 3],
+}
+
+/// Timing of one source block (main file) or of a subprogram block.
+#[derive(Debug, Clone, Serialize)]
+pub struct BlockTime {
+    pub file: u32,
+    pub line: u32,
+    pub start_s: f64,
+    pub end_s: f64,
+    /// Time spent moving in this block, summed over every execution (loops, calls).
+    pub duration_s: f64,
+    pub length_mm: f64,
+    /// Highest path speed reached in the block, mm/min.
+    pub peak_feed: f64,
+}
+
+/// What a dry run computes.
+#[derive(Debug, Clone, Default)]
+pub struct DryRun {
+    pub totals: Totals,
+    /// Per executed motion (index = motion index), start and end time.
+    pub motion_times: Vec<(f64, f64, f64)>,
+    /// Program time at which each interpreter event happens (same order as `RunOutput::events`).
+    pub event_times: Vec<f64>,
+}
+
+/// The sweep angle (radians, signed: + counter-clockwise about `normal`) of an arc motion.
+fn arc_sweep(m: &Motion, center: [f64; 3], normal: [f64; 3], turns: i32) -> f64 {
+    let s = [
+        m.start[0] - center[0],
+        m.start[1] - center[1],
+        m.start[2] - center[2],
+    ];
+    let e = [
+        m.end[0] - center[0],
+        m.end[1] - center[1],
+        m.end[2] - center[2],
+    ];
+    // Project both radius vectors on the arc plane.
+    let proj = |v: [f64; 3]| {
+        let d = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2];
+        [
+            v[0] - d * normal[0],
+            v[1] - d * normal[1],
+            v[2] - d * normal[2],
+        ]
+    };
+    let (s, e) = (proj(s), proj(e));
+    let cross = [
+        s[1] * e[2] - s[2] * e[1],
+        s[2] * e[0] - s[0] * e[2],
+        s[0] * e[1] - s[1] * e[0],
+    ];
+    let sin = cross[0] * normal[0] + cross[1] * normal[1] + cross[2] * normal[2];
+    let cos = s[0] * e[0] + s[1] * e[1] + s[2] * e[2];
+    let mut angle = sin.atan2(cos);
+    if angle <= 1e-12 {
+        // Counter-clockwise about the normal: a zero angle is a full circle.
+        angle += std::f64::consts::TAU;
+    }
+    angle + std::f64::consts::TAU * turns.max(0) as f64
+}
+
+fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The planner segment of a motion; `index` is stored as the segment's block so
+/// timings map back to motions.
+pub fn segment_of(m: &Motion, index: u32) -> Segment {
+    let mode = if m.exact_path {
+        PathMode::ExactPath
+    } else if m.exact_stop {
+        PathMode::ExactStop
+    } else {
+        PathMode::Blend {
+            tolerance: m.blend_tolerance.unwrap_or(0.0),
+        }
+    };
+    let straight = dist(&m.start, &m.end);
+    let rot = ((m.end[3] - m.start[3]).powi(2)
+        + (m.end[4] - m.start[4]).powi(2)
+        + (m.end[5] - m.start[5]).powi(2))
+    .sqrt();
+    let (kind, length) = match m.kind {
+        MotionKind::Rapid => (SegmentKind::Rapid, straight),
+        MotionKind::Arc {
+            center,
+            normal,
+            turns,
+            radius,
+        } => {
+            let sweep = arc_sweep(m, center, normal, turns);
+            let rise = (m.end[0] - m.start[0]) * normal[0]
+                + (m.end[1] - m.start[1]) * normal[1]
+                + (m.end[2] - m.start[2]) * normal[2];
+            let planar = radius * sweep;
+            (
+                SegmentKind::Arc {
+                    center,
+                    normal,
+                    radius,
+                    sweep,
+                },
+                (planar * planar + rise * rise).sqrt(),
+            )
+        }
+        _ => (SegmentKind::Line, straight),
+    };
+    let length = if length > 1e-12 { length } else { rot };
+    // Feed in mm/s: inverse time gives the move's duration; per-revolution feeds
+    // (G95, threads) scale with the spindle speed.
+    let feed = match (m.inverse_time, m.kind) {
+        (_, MotionKind::Rapid) => 0.0,
+        (Some(inv), _) if inv > 0.0 => length * inv / 60.0,
+        (_, MotionKind::Thread) => m.feed * m.spindle_rpm / 60.0,
+        _ => m.feed / 60.0,
+    };
+    Segment {
+        kind,
+        start: m.start,
+        end: m.end,
+        length,
+        feed,
+        mode,
+        block: index,
+        tool: m.tool,
+    }
+}
+
+/// Interleaves the interpreter's motions and events into planner events.
+pub fn planner_events(out: &RunOutput) -> Vec<plan::Event> {
+    let mut evs = Vec::with_capacity(out.motions.len() + out.events.len());
+    let mut e = out.events.iter().peekable();
+    let push_event = |ev: &IEvent, evs: &mut Vec<plan::Event>| {
+        let block = u32::MAX;
+        match &ev.kind {
+            EventKind::Dwell(s) => evs.push(plan::Event::Dwell {
+                seconds: s.max(0.0),
+                block,
+            }),
+            EventKind::ToolChange { tool } => {
+                evs.push(plan::Event::ToolChange { tool: *tool, block })
+            }
+            EventKind::Spindle { dir, .. } => {
+                if *dir == 0 {
+                    evs.push(plan::Event::SpindleStop { block })
+                } else {
+                    evs.push(plan::Event::SpindleStart { block })
+                }
+            }
+            EventKind::Stop { optional } => evs.push(plan::Event::ProgramStop {
+                optional: *optional,
+                block,
+            }),
+            _ => {}
+        }
+    };
+    for (i, m) in out.motions.iter().enumerate() {
+        while let Some(ev) = e.next_if(|ev| ev.motion_index <= i) {
+            push_event(ev, &mut evs);
+        }
+        evs.push(plan::Event::Motion(segment_of(m, i as u32)));
+    }
+    for ev in e {
+        push_event(ev, &mut evs);
+    }
+    evs
+}
+
+/// Plans a run.
+pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
+    let events = planner_events(out);
+    let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
+    let mut planner = plan::Planner::new(profile);
+    let mut record = |t: SegmentTiming| {
+        if let Some(slot) = motion_times.get_mut(t.block as usize) {
+            if slot.1 == 0.0 {
+                slot.0 = t.start_s;
+            }
+            slot.1 = slot.1.max(t.end_s);
+            slot.2 = slot.2.max(t.peak_speed);
+        }
+    };
+    for ev in events {
+        planner.push(ev, &mut record);
+    }
+    let totals = planner.finish(&mut record);
+    // Events happen at the end of the motion before them (the planner stops first).
+    let mut event_times = Vec::with_capacity(out.events.len());
+    for ev in &out.events {
+        let t = if ev.motion_index == 0 {
+            0.0
+        } else {
+            motion_times
+                .get(ev.motion_index - 1)
+                .map(|m| m.1)
+                .unwrap_or(totals.cycle_time_s)
+        };
+        event_times.push(t);
+    }
+    DryRun {
+        totals,
+        motion_times,
+        event_times,
+    }
+}
+
+/// Samples motions into polylines with at most `chord` mm deviation on arcs.
+pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
+    let chord = if chord > 0.0 { chord } else { 0.01 };
+    let mut tp = Toolpath::default();
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for m in &out.motions {
+        let mut points = vec![[m.start[0], m.start[1], m.start[2]]];
+        let kind = match m.kind {
+            MotionKind::Rapid => "rapid",
+            MotionKind::Arc { .. } => "arc",
+            _ => "feed",
+        };
+        if let MotionKind::Arc {
+            center,
+            normal,
+            turns,
+            radius,
+        } = m.kind
+        {
+            let sweep = arc_sweep(m, center, normal, turns);
+            let r = radius.max(1e-9);
+            let step = if chord < r {
+                2.0 * (1.0 - chord / r).acos()
+            } else {
+                std::f64::consts::FRAC_PI_2
+            };
+            let n = ((sweep / step.max(1e-3)).ceil() as usize).clamp(2, 2048);
+            let s = [
+                m.start[0] - center[0],
+                m.start[1] - center[1],
+                m.start[2] - center[2],
+            ];
+            let along = s[0] * normal[0] + s[1] * normal[1] + s[2] * normal[2];
+            let radial = [
+                s[0] - along * normal[0],
+                s[1] - along * normal[1],
+                s[2] - along * normal[2],
+            ];
+            let b = [
+                normal[1] * radial[2] - normal[2] * radial[1],
+                normal[2] * radial[0] - normal[0] * radial[2],
+                normal[0] * radial[1] - normal[1] * radial[0],
+            ];
+            let rise = (m.end[0] - m.start[0]) * normal[0]
+                + (m.end[1] - m.start[1]) * normal[1]
+                + (m.end[2] - m.start[2]) * normal[2];
+            for k in 1..n {
+                let f = k as f64 / n as f64;
+                let (sn, cs) = (sweep * f).sin_cos();
+                points.push([
+                    center[0] + (along + rise * f) * normal[0] + radial[0] * cs + b[0] * sn,
+                    center[1] + (along + rise * f) * normal[1] + radial[1] * cs + b[1] * sn,
+                    center[2] + (along + rise * f) * normal[2] + radial[2] * cs + b[2] * sn,
+                ]);
+            }
+        }
+        points.push([m.end[0], m.end[1], m.end[2]]);
+        for p in &points {
+            for i in 0..3 {
+                if p[i].is_finite() {
+                    min[i] = min[i].min(p[i]);
+                    max[i] = max[i].max(p[i]);
+                }
+            }
+        }
+        tp.segments.push(ToolpathSegment {
+            kind,
+            line: m.line,
+            file: m.file.0,
+            feed: m.feed,
+            tool: m.tool,
+            points,
+        });
+    }
+    if min[0].is_finite() {
+        tp.bounds = Bounds { min, max };
+    }
+    tp
+}
+
+/// Per-block times (summed over the motions of each (file, line)).
+pub fn block_times(out: &RunOutput, dry: &DryRun) -> Vec<BlockTime> {
+    let mut by_line: BTreeMap<(u32, u32), BlockTime> = BTreeMap::new();
+    for (m, t) in out.motions.iter().zip(&dry.motion_times) {
+        let e = by_line.entry((m.file.0, m.line)).or_insert(BlockTime {
+            file: m.file.0,
+            line: m.line,
+            start_s: t.0,
+            end_s: t.1,
+            duration_s: 0.0,
+            length_mm: 0.0,
+            peak_feed: 0.0,
+        });
+        e.start_s = e.start_s.min(t.0);
+        e.end_s = e.end_s.max(t.1);
+        e.duration_s += (t.1 - t.0).max(0.0);
+        e.length_mm += segment_of(m, 0).length;
+        e.peak_feed = e.peak_feed.max(t.2 * 60.0);
+    }
+    let mut v: Vec<BlockTime> = by_line.into_values().collect();
+    v.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+    v
+}

@@ -1,0 +1,431 @@
+//! Machine profile: the controller and machine parameters that the planner and the
+//! interpreter need (axes, limits, tolerances, non-motion times).
+//!
+//! The profile is the `[machine]` section of `partscope.toml`. Every field has a
+//! default, so a profile only needs to state what differs from
+//! [`MachineProfile::default_for`]. For the `rs274ngc` dialect a LinuxCNC `.ini`
+//! file can be read directly with [`MachineProfile::from_linuxcnc_ini`].
+//!
+//! All lengths are millimetres and all times seconds, whatever the machine's own
+//! units: the `.ini` reader converts inch machines on the way in.
+
+use analyzer::Dialect;
+use serde::{Deserialize, Serialize};
+
+/// Whether an axis moves along a line (mm) or turns (degrees).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum AxisKind {
+    #[default]
+    Linear,
+    Rotary,
+}
+
+/// One machine axis. Velocities are units/s, accelerations units/s², jerk units/s³,
+/// where units are mm for linear and degrees for rotary axes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Axis {
+    /// Axis letter as used in programs (`X`, `Y`, `Z`, `A`, `B`, `C`, …).
+    pub letter: char,
+    pub kind: AxisKind,
+    pub min_travel: f64,
+    pub max_travel: f64,
+    /// Highest speed of this axis in coordinated (feed) motion.
+    pub max_velocity: f64,
+    /// Rapid (G0) rate of this axis; LinuxCNC uses `max_velocity` for both.
+    pub rapid_rate: f64,
+    pub max_acceleration: f64,
+    /// Jerk limit, used only by the S-curve planner model.
+    pub jerk: f64,
+    /// Least input increment (ServoWorks "machine unit").
+    pub machine_unit: f64,
+}
+
+impl Default for Axis {
+    fn default() -> Self {
+        Axis {
+            letter: 'X',
+            kind: AxisKind::Linear,
+            min_travel: -1.0e9,
+            max_travel: 1.0e9,
+            max_velocity: 100.0,
+            rapid_rate: 100.0,
+            max_acceleration: 1000.0,
+            jerk: 10_000.0,
+            machine_unit: 0.001,
+        }
+    }
+}
+
+impl Axis {
+    /// A linear axis with the given letter and limits (rapid rate = max velocity).
+    pub fn linear(letter: char, max_velocity: f64, max_acceleration: f64) -> Axis {
+        Axis {
+            letter,
+            max_velocity,
+            rapid_rate: max_velocity,
+            max_acceleration,
+            ..Axis::default()
+        }
+    }
+
+    /// A rotary axis (degrees) with the given letter and limits.
+    pub fn rotary(letter: char, max_velocity: f64, max_acceleration: f64) -> Axis {
+        Axis {
+            letter,
+            kind: AxisKind::Rotary,
+            max_velocity,
+            rapid_rate: max_velocity,
+            max_acceleration,
+            jerk: max_acceleration * 10.0,
+            ..Axis::default()
+        }
+    }
+}
+
+/// Which velocity-planning model the cycle-time estimator uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum PlannerModel {
+    /// Reproduces LinuxCNC 2.9's trajectory planner: trapezoidal profiles, arcs at
+    /// half the tangential acceleration, 10 % acceleration cut at G61 corners, blend
+    /// arcs for G64, a 1 ms servo period.
+    #[default]
+    Linuxcnc,
+    /// Generic look-ahead planner with trapezoidal (constant acceleration) profiles.
+    Trapezoid,
+    /// Generic look-ahead planner with jerk-limited (S-curve) profiles.
+    Scurve,
+}
+
+/// Machine and controller parameters used by the interpreter and the planner.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MachineProfile {
+    pub axes: Vec<Axis>,
+    /// Cap on the Cartesian (XYZ) path speed, mm/s (LinuxCNC `[TRAJ]MAX_LINEAR_VELOCITY`).
+    pub traj_max_velocity: f64,
+    /// Cap on the path acceleration, mm/s². LinuxCNC does not apply it to
+    /// coordinated moves (measured), so the `linuxcnc` model ignores it.
+    pub traj_max_acceleration: f64,
+    /// Tolerated end-point error of programmed arcs, mm.
+    pub circle_error_allowance: f64,
+    /// Tolerated difference between start and end radius of an arc, mm.
+    pub arc_radius_tolerance: f64,
+    /// Minimum time the control spends per motion block, s (0 = none): shorter
+    /// moves are slowed down to take this long.
+    pub block_processing_time: f64,
+    /// Duration of a tool change (M6), s.
+    pub tool_change_time: f64,
+    /// Time for the spindle to reach speed after a start or to stop, s.
+    pub spindle_ramp_time: f64,
+    /// Time for an M code that waits for a machine handshake, s.
+    pub m_code_time: f64,
+    /// Time charged for a program stop (M0) or optional stop (M1), s.
+    pub program_stop_time: f64,
+    /// Settling time added at every exact stop (FANUC in-position check), s.
+    /// Applied by the generic models and the closed-form `linuxcnc` execution.
+    pub in_position_time: f64,
+    pub planner: PlannerModel,
+    /// Number of segments the planner looks ahead (LinuxCNC
+    /// `[TRAJ]ARC_BLEND_OPTIMIZATION_DEPTH`).
+    pub lookahead: u32,
+    /// Blend tolerance used for G64 without P, mm (0 = as large as the geometry allows).
+    pub default_blend_tolerance: f64,
+    /// Servo / interpolation period, s.
+    pub servo_period: f64,
+    /// Feed override applied to feed moves (1.0 = 100 %).
+    pub feed_override: f64,
+    /// Override applied to rapid moves (1.0 = 100 %).
+    pub rapid_override: f64,
+    /// LinuxCNC `[TRAJ]ARC_BLEND_KINK_RATIO`: acceleration share given up at
+    /// corners that are not blended.
+    pub tangent_kink_ratio: f64,
+    /// `linuxcnc` model: execute period by period like LinuxCNC's servo thread
+    /// (default; matches LinuxCNC to the period, cost proportional to machine time)
+    /// instead of with closed-form profiles (cost proportional to the number of
+    /// moves; up to 0.5 % off where short moves sit at the ramp threshold).
+    pub servo_simulation: bool,
+}
+
+impl Default for MachineProfile {
+    fn default() -> Self {
+        MachineProfile::default_for(Dialect::Rs274ngc)
+    }
+}
+
+/// Values of a LinuxCNC `.ini` that the host must resolve (paths are as written,
+/// relative to the `.ini` file's directory).
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct IniExtras {
+    /// `[EMCIO]TOOL_TABLE`.
+    pub tool_table: Option<String>,
+    /// `[RS274NGC]PARAMETER_FILE`.
+    pub parameter_file: Option<String>,
+    /// `[TRAJ]LINEAR_UNITS` as written (`mm`, `inch`, …).
+    pub linear_units: Option<String>,
+}
+
+impl MachineProfile {
+    /// The documented default machine for a dialect: a 3-axis mill with 100 mm/s and
+    /// 1000 mm/s² per axis (the LinuxCNC oracle's default machine), planner model
+    /// and tolerances as the dialect's control behaves.
+    pub fn default_for(dialect: Dialect) -> MachineProfile {
+        let axes = vec![
+            Axis::linear('X', 100.0, 1000.0),
+            Axis::linear('Y', 100.0, 1000.0),
+            Axis::linear('Z', 100.0, 1000.0),
+        ];
+        let base = MachineProfile {
+            axes,
+            traj_max_velocity: 100.0,
+            traj_max_acceleration: 1000.0,
+            circle_error_allowance: 0.005,
+            arc_radius_tolerance: 0.005,
+            block_processing_time: 0.0,
+            tool_change_time: 0.0,
+            spindle_ramp_time: 0.0,
+            m_code_time: 0.0,
+            program_stop_time: 0.0,
+            in_position_time: 0.0,
+            planner: PlannerModel::Trapezoid,
+            lookahead: 50,
+            default_blend_tolerance: 0.0,
+            servo_period: 0.001,
+            feed_override: 1.0,
+            rapid_override: 1.0,
+            tangent_kink_ratio: 0.1,
+            servo_simulation: true,
+        };
+        match dialect {
+            // LinuxCNC 2.9: centre-format arcs may differ by 2·0.01·√2 mm in radius;
+            // the optimisation depth default is 50 segments.
+            Dialect::Rs274ngc => MachineProfile {
+                arc_radius_tolerance: 0.028_284,
+                planner: PlannerModel::Linuxcnc,
+                ..base
+            },
+            // FANUC AI contour control looks 40 blocks ahead.
+            Dialect::Fanuc => MachineProfile {
+                lookahead: 40,
+                ..base
+            },
+            // ServoWorks TRC/DLACC buffers 100 blocks.
+            Dialect::Servoworks => MachineProfile {
+                lookahead: 100,
+                ..base
+            },
+        }
+    }
+
+    /// Parses the `[machine]` table of a `partscope.toml` text (or a bare profile
+    /// table). Missing keys keep the dialect's defaults.
+    pub fn from_toml(text: &str, dialect: Dialect) -> Result<MachineProfile, String> {
+        let value: toml::Table = toml::from_str(text).map_err(|e| e.to_string())?;
+        let table = match value.get("machine") {
+            Some(toml::Value::Table(t)) => t.clone(),
+            Some(_) => return Err("`machine` must be a table".to_string()),
+            None => value,
+        };
+        let mut merged = toml::Table::try_from(MachineProfile::default_for(dialect))
+            .map_err(|e| e.to_string())?;
+        for (k, v) in table {
+            merged.insert(k, v);
+        }
+        toml::Value::Table(merged)
+            .try_into()
+            .map_err(|e: toml::de::Error| e.to_string())
+    }
+
+    /// The axis with this letter (case-insensitive).
+    pub fn axis(&self, letter: char) -> Option<&Axis> {
+        let l = letter.to_ascii_uppercase();
+        self.axes
+            .iter()
+            .find(|a| a.letter.to_ascii_uppercase() == l)
+    }
+
+    /// Velocity, acceleration limits of the six program axes X Y Z A B C; an axis
+    /// the machine lacks gets 0 (meaning "not present").
+    pub fn xyzabc_limits(&self) -> ([f64; 6], [f64; 6]) {
+        let mut v = [0.0; 6];
+        let mut a = [0.0; 6];
+        for (i, l) in ['X', 'Y', 'Z', 'A', 'B', 'C'].iter().enumerate() {
+            if let Some(ax) = self.axis(*l) {
+                v[i] = ax.max_velocity;
+                a[i] = ax.max_acceleration;
+            }
+        }
+        (v, a)
+    }
+
+    /// Builds a profile from the text of a LinuxCNC `.ini` file.
+    ///
+    /// Reads `[TRAJ]` `COORDINATES`, `LINEAR_UNITS`, `MAX_LINEAR_VELOCITY` (or the older
+    /// `MAX_VELOCITY`), `MAX_LINEAR_ACCELERATION`, `ARC_BLEND_OPTIMIZATION_DEPTH`,
+    /// `ARC_BLEND_KINK_RATIO`, `[EMCMOT]SERVO_PERIOD`, and per axis
+    /// `[AXIS_<L>]` `MAX_VELOCITY`, `MAX_ACCELERATION`, `MIN_LIMIT`, `MAX_LIMIT`,
+    /// falling back to the `[JOINT_<n>]` (or 2.7-style `[AXIS_<n>]`) section of the
+    /// joint that drives the letter under trivkins. Inch machines are converted to mm.
+    pub fn from_linuxcnc_ini(text: &str) -> Result<(MachineProfile, IniExtras), String> {
+        let ini = Ini::parse(text);
+        let mut p = MachineProfile::default_for(Dialect::Rs274ngc);
+        let mut extras = IniExtras {
+            tool_table: ini.get("EMCIO", "TOOL_TABLE").map(str::to_string),
+            parameter_file: ini.get("RS274NGC", "PARAMETER_FILE").map(str::to_string),
+            linear_units: ini.get("TRAJ", "LINEAR_UNITS").map(str::to_string),
+        };
+        let scale = match extras.linear_units.as_deref().map(str::to_ascii_lowercase) {
+            None => 1.0,
+            Some(u) => match u.as_str() {
+                "mm" | "metric" => 1.0,
+                "inch" | "imperial" | "in" => 25.4,
+                "cm" => 10.0,
+                other => other
+                    .parse::<f64>()
+                    // A number is "machine units per mm".
+                    .ok()
+                    .filter(|f| *f > 0.0)
+                    .map(|f| 1.0 / f)
+                    .ok_or_else(|| format!("unknown [TRAJ]LINEAR_UNITS `{other}`"))?,
+            },
+        };
+        let num = |sec: &str, key: &str| -> Result<Option<f64>, String> {
+            match ini.get(sec, key) {
+                None => Ok(None),
+                Some(s) => s
+                    .parse::<f64>()
+                    .map(Some)
+                    .map_err(|_| format!("[{sec}]{key} = `{s}` is not a number")),
+            }
+        };
+        let coords: Vec<char> = match ini.get("TRAJ", "COORDINATES") {
+            Some(c) => c
+                .chars()
+                .filter(|c| c.is_ascii_alphabetic())
+                .map(|c| c.to_ascii_uppercase())
+                .collect(),
+            None => match ini
+                .get("KINS", "KINEMATICS")
+                .and_then(|k| k.split("coordinates=").nth(1))
+            {
+                Some(c) => c
+                    .chars()
+                    .take_while(|c| c.is_ascii_alphabetic())
+                    .map(|c| c.to_ascii_uppercase())
+                    .collect(),
+                None => vec!['X', 'Y', 'Z'],
+            },
+        };
+        if coords.is_empty() {
+            return Err("[TRAJ]COORDINATES names no axes".to_string());
+        }
+        let traj_v = num("TRAJ", "MAX_LINEAR_VELOCITY")?.or(num("TRAJ", "MAX_VELOCITY")?);
+        let traj_a = num("TRAJ", "MAX_LINEAR_ACCELERATION")?.or(num("TRAJ", "MAX_ACCELERATION")?);
+        let mut axes = Vec::new();
+        let mut seen = String::new();
+        for (joint, letter) in coords.iter().enumerate() {
+            if seen.contains(*letter) {
+                // Gantry: a second joint for the same letter adds no axis.
+                continue;
+            }
+            seen.push(*letter);
+            let rotary = matches!(letter, 'A' | 'B' | 'C');
+            let unit = if rotary { 1.0 } else { scale };
+            let axis_sec = format!("AXIS_{letter}");
+            let joint_secs = [format!("JOINT_{joint}"), format!("AXIS_{joint}")];
+            let get = |key: &str| -> Result<Option<f64>, String> {
+                if let Some(v) = num(&axis_sec, key)? {
+                    return Ok(Some(v));
+                }
+                for s in &joint_secs {
+                    if let Some(v) = num(s, key)? {
+                        return Ok(Some(v));
+                    }
+                }
+                Ok(None)
+            };
+            let mut ax = if rotary {
+                Axis::rotary(*letter, 360.0, 3600.0)
+            } else {
+                Axis::linear(*letter, 100.0, 1000.0)
+            };
+            if let Some(v) = get("MAX_VELOCITY")? {
+                ax.max_velocity = v * unit;
+                ax.rapid_rate = v * unit;
+            }
+            if let Some(a) = get("MAX_ACCELERATION")? {
+                ax.max_acceleration = a * unit;
+                ax.jerk = a * unit * 10.0;
+            }
+            if let Some(v) = get("MIN_LIMIT")? {
+                ax.min_travel = v * unit;
+            }
+            if let Some(v) = get("MAX_LIMIT")? {
+                ax.max_travel = v * unit;
+            }
+            axes.push(ax);
+        }
+        p.axes = axes;
+        // Without a TRAJ cap LinuxCNC lets the axes decide; model that as "no cap".
+        p.traj_max_velocity = traj_v.map(|v| v * scale).unwrap_or(f64::INFINITY);
+        p.traj_max_acceleration = traj_a.map(|a| a * scale).unwrap_or(f64::INFINITY);
+        if let Some(d) = num("TRAJ", "ARC_BLEND_OPTIMIZATION_DEPTH")? {
+            p.lookahead = d.max(0.0) as u32;
+        }
+        if let Some(k) = num("TRAJ", "ARC_BLEND_KINK_RATIO")? {
+            p.tangent_kink_ratio = k;
+        }
+        if let Some(ns) = num("EMCMOT", "SERVO_PERIOD")? {
+            if ns > 0.0 {
+                p.servo_period = ns * 1e-9;
+            }
+        }
+        if extras.linear_units.is_none() {
+            extras.linear_units = Some("mm".to_string());
+        }
+        Ok((p, extras))
+    }
+}
+
+/// Minimal `.ini` reader: `[SECTION]` headers, `KEY = VALUE` lines, `#`/`;` comments.
+/// The first occurrence of a key wins, as in LinuxCNC's IniFile::Find.
+struct Ini {
+    entries: Vec<(String, String, String)>,
+}
+
+impl Ini {
+    fn parse(text: &str) -> Ini {
+        let mut entries = Vec::new();
+        let mut section = String::new();
+        for raw in text.lines() {
+            let line = raw.trim();
+            if line.is_empty() || line.starts_with('#') || line.starts_with(';') {
+                continue;
+            }
+            if let Some(rest) = line.strip_prefix('[') {
+                if let Some(end) = rest.find(']') {
+                    section = rest[..end].trim().to_ascii_uppercase();
+                }
+                continue;
+            }
+            if let Some((k, v)) = line.split_once('=') {
+                let v = v.split('#').next().unwrap_or("").trim();
+                entries.push((
+                    section.clone(),
+                    k.trim().to_ascii_uppercase(),
+                    v.to_string(),
+                ));
+            }
+        }
+        Ini { entries }
+    }
+
+    fn get(&self, section: &str, key: &str) -> Option<&str> {
+        self.entries
+            .iter()
+            .find(|(s, k, _)| s == section && k == key)
+            .map(|(_, _, v)| v.as_str())
+    }
+}

@@ -1,0 +1,1126 @@
+//! The streaming planner: a queue of planner elements ("tc"s, after LinuxCNC's
+//! trajectory components), junction set-up when an element is queued, a backward
+//! pass over the look-ahead window after every addition, and execution of the
+//! oldest element once the window is full.
+
+use std::collections::VecDeque;
+use std::f64::consts::PI;
+
+use super::profile::{scurve_penalty, trapezoid};
+use super::servo::{self, Run, View};
+
+mod blend;
+use super::{
+    cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel, Segment,
+    SegmentKind, SegmentTiming, Totals,
+};
+use blend::Circ;
+
+/// Share of the acceleration arcs keep for the tangential direction until LinuxCNC
+/// finalises them (`BLEND_ACC_RATIO_TANGENTIAL`).
+const ACC_RATIO_TAN: f64 = 0.5;
+/// Gap cycles below which a blend arc swallows the rest of the previous line.
+const GAP_CYCLES: f64 = 4.0;
+/// Short tangent segments below this duration use a linear velocity ramp
+/// (1 / `ARC_BLEND_RAMP_FREQ`).
+const RAMP_CUTOFF_S: f64 = 0.01;
+/// Minimum number of servo cycles per optimised segment (`TP_MIN_SEGMENT_CYCLES`).
+const MIN_SEGMENT_CYCLES: f64 = 1.02;
+const POS_EPS: f64 = 1e-12;
+/// Longest element (in servo periods at its target speed) run period by period.
+const MAX_SERVO_CYCLES: f64 = 1e7;
+const ANGLE_EPS: f64 = 1e-6;
+
+fn acc_ratio_normal() -> f64 {
+    (1.0 - ACC_RATIO_TAN * ACC_RATIO_TAN).sqrt()
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Term {
+    Stop,
+    Exact,
+    Parabolic,
+    Tangent,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum TcType {
+    Line,
+    Circle,
+    Blend,
+    Path,
+}
+
+#[derive(Debug, Clone)]
+struct Tc {
+    ty: TcType,
+    rapid: bool,
+    rotary: bool,
+    pure_rotary: bool,
+    u_start: [f64; 3],
+    u_end: [f64; 3],
+    radius: f64,
+    /// Geometry of a planar arc (None for lines, helices and blends).
+    circ: Option<Circ>,
+    target: f64,
+    nominal: f64,
+    reqvel: f64,
+    maxvel: f64,
+    maxaccel: f64,
+    term: Term,
+    tolerance: f64,
+    kink_vel: f64,
+    kink_reduce: f64,
+    kink_reduce_prev: f64,
+    blend_prev: bool,
+    acc_ratio_tan: f64,
+    finalized: bool,
+    finalvel: f64,
+    block: u32,
+    tool: u32,
+    /// LinuxCNC model: a parabolic junction on either side halves the acceleration.
+    halve_parabolic: bool,
+    /// The backward pass found this element's final speed capped by a speed limit
+    /// rather than by the look-ahead (LinuxCNC never clears the flag).
+    at_max: bool,
+    /// The backward pass has set `finalvel` at least once.
+    optimized: bool,
+    /// Servo-period execution state.
+    run: Run,
+}
+
+impl Tc {
+    fn overall_accel(&self) -> f64 {
+        let mut s = 1.0 - self.kink_reduce.max(self.kink_reduce_prev);
+        if self.halve_parabolic && (self.blend_prev || self.term == Term::Parabolic) {
+            s *= 0.5;
+        }
+        self.maxaccel * s
+    }
+
+    fn tangential_accel(&self) -> f64 {
+        let a = self.overall_accel();
+        match self.ty {
+            TcType::Circle | TcType::Blend | TcType::Path => a * self.acc_ratio_tan,
+            TcType::Line => a,
+        }
+    }
+
+    /// Highest target speed with feed override at most 1 (`tcGetMaxTargetVel`).
+    fn max_target_vel(&self) -> f64 {
+        self.reqvel.min(self.maxvel)
+    }
+}
+
+/// The streaming planner. See the module documentation of [`super`].
+pub struct Planner {
+    p: MachineProfile,
+    model: PlannerModel,
+    vel: [f64; 6],
+    /// Per-axis rapid rates (G0), X Y Z A B C.
+    rapid: [f64; 6],
+    acc: [f64; 6],
+    cycle: f64,
+    depth: usize,
+    queue: VecDeque<Tc>,
+    v_cur: f64,
+    t: f64,
+    run_start: f64,
+    /// Time the next element may start before the previous one ends (parabolic blend).
+    overlap: f64,
+    totals: Totals,
+    /// Straight feed moves held back by the `linuxcnc` model's naive-CAM detector.
+    chain: Vec<Segment>,
+}
+
+impl Planner {
+    pub fn new(profile: &MachineProfile) -> Planner {
+        let (vel, acc) = profile.xyzabc_limits();
+        let rapid: [f64; 6] = std::array::from_fn(|i| {
+            profile
+                .axis(['X', 'Y', 'Z', 'A', 'B', 'C'][i])
+                .map(|a| a.rapid_rate)
+                .unwrap_or(0.0)
+        });
+        let cycle = if profile.servo_period > 0.0 {
+            profile.servo_period
+        } else {
+            0.001
+        };
+        Planner {
+            p: profile.clone(),
+            model: profile.planner,
+            vel,
+            rapid,
+            acc,
+            cycle,
+            depth: profile.lookahead.max(1) as usize,
+            queue: VecDeque::new(),
+            v_cur: 0.0,
+            t: 0.0,
+            run_start: 0.0,
+            overlap: 0.0,
+            totals: Totals::default(),
+            chain: Vec::new(),
+        }
+    }
+
+    fn lcnc(&self) -> bool {
+        self.model == PlannerModel::Linuxcnc
+    }
+
+    /// Feeds one event; timings of elements that leave the look-ahead window are
+    /// passed to `out`.
+    pub fn push(&mut self, ev: Event, out: &mut dyn FnMut(SegmentTiming)) {
+        match ev {
+            Event::Motion(seg) => {
+                if self.lcnc() && chainable(&seg) {
+                    if !self.chain.is_empty() && !self.linkable(&seg) {
+                        self.flush_chain(out);
+                    }
+                    self.chain.push(seg);
+                } else {
+                    self.flush_chain(out);
+                    self.add_segment(&seg, out);
+                }
+            }
+            Event::Dwell { seconds, .. } => {
+                self.flush(out);
+                let s = seconds.max(0.0);
+                self.totals.dwell_s += s;
+            }
+            Event::ToolChange { .. } => {
+                self.flush(out);
+                self.totals.tool_change_s += self.p.tool_change_time;
+            }
+            Event::SpindleStart { .. } | Event::SpindleStop { .. } => {
+                self.flush(out);
+                self.totals.other_s += self.p.spindle_ramp_time;
+            }
+            Event::ProgramStop { .. } => {
+                self.flush(out);
+                self.totals.other_s += self.p.program_stop_time;
+            }
+            Event::MCode { .. } => {
+                self.flush(out);
+                self.totals.other_s += self.p.m_code_time;
+            }
+        }
+    }
+
+    /// Runs out the queue and returns the totals.
+    pub fn finish(mut self, out: &mut dyn FnMut(SegmentTiming)) -> Totals {
+        self.flush_chain(out);
+        self.flush(out);
+        let t = &mut self.totals;
+        t.cycle_time_s = t.motion_s + t.dwell_s + t.tool_change_s + t.other_s;
+        self.totals
+    }
+
+    fn add_segment(&mut self, seg: &Segment, out: &mut dyn FnMut(SegmentTiming)) {
+        if let Some(tc) = self.build(seg) {
+            self.add(tc, out);
+        }
+    }
+
+    /// LinuxCNC's canonical layer joins consecutive G64 P… straight moves into one
+    /// while every intermediate point stays within the tolerance (its "naive CAM
+    /// detector", Q defaulting to P), up to 100 points.
+    fn linkable(&self, seg: &Segment) -> bool {
+        let Some(first) = self.chain.first() else {
+            return false;
+        };
+        let last = &self.chain[self.chain.len() - 1];
+        if self.chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
+            return false;
+        }
+        let PathMode::Blend { tolerance } = seg.mode else {
+            return false;
+        };
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [seg.end[0], seg.end[1], seg.end[2]];
+        if b == e {
+            return false;
+        }
+        let m = sub3(&e, &b);
+        let mm = dot3(&m, &m);
+        self.chain.iter().all(|p| {
+            let pt = [p.end[0], p.end[1], p.end[2]];
+            let t0 = (dot3(&m, &sub3(&pt, &b)) / mm).clamp(0.0, 1.0);
+            let q = [b[0] + t0 * m[0], b[1] + t0 * m[1], b[2] + t0 * m[2]];
+            norm3(&sub3(&pt, &q)) <= tolerance
+        })
+    }
+
+    /// Sends the held-back moves on as one straight move.
+    fn flush_chain(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        if self.chain.is_empty() {
+            return;
+        }
+        let first = self.chain[0];
+        let last = self.chain[self.chain.len() - 1];
+        self.chain.clear();
+        let mut seg = last;
+        seg.start = first.start;
+        let b = [first.start[0], first.start[1], first.start[2]];
+        let e = [last.end[0], last.end[1], last.end[2]];
+        seg.length = norm3(&sub3(&e, &b));
+        self.add_segment(&seg, out);
+    }
+
+    /// Brings motion to a stop at the end of the queued path and executes it.
+    fn flush(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        self.flush_chain(out);
+        // LinuxCNC leaves the last move's junction type alone (a G64 move keeps its
+        // halved acceleration); its final speed is zero either way.
+        if !self.lcnc() {
+            if let Some(back) = self.queue.back_mut() {
+                back.term = Term::Stop;
+            }
+        }
+        self.optimize();
+        while !self.queue.is_empty() {
+            self.execute_front(out);
+        }
+    }
+
+    // ------------------------------------------------------------------ building
+
+    /// Converts a segment into a planner element with the velocity and acceleration
+    /// limits LinuxCNC's canonical layer derives from the axis limits.
+    fn build(&self, seg: &Segment) -> Option<Tc> {
+        let d: [f64; 6] = std::array::from_fn(|i| seg.end[i] - seg.start[i]);
+        let dxyz = [d[0], d[1], d[2]];
+        let xyz_len = norm3(&dxyz);
+        let abc_len = (d[3] * d[3] + d[4] * d[4] + d[5] * d[5]).sqrt();
+        let cart = xyz_len > 1e-9;
+        let ang = abc_len > 1e-9;
+        let lcnc = self.lcnc();
+        let (term, tolerance) = match seg.mode {
+            PathMode::ExactStop => (Term::Stop, 0.0),
+            PathMode::ExactPath => (Term::Exact, 0.0),
+            PathMode::Blend { tolerance } => {
+                let tol = if tolerance > 0.0 {
+                    tolerance
+                } else {
+                    self.p.default_blend_tolerance.max(0.0)
+                };
+                (Term::Parabolic, tol)
+            }
+        };
+        let rapid = matches!(seg.kind, SegmentKind::Rapid);
+        // Straight-move limits: the time the slowest axis needs at its own limit.
+        let axis_time = |lim: &[f64; 6], sel: &dyn Fn(usize) -> bool| -> f64 {
+            let mut t: f64 = 0.0;
+            for i in 0..6 {
+                if sel(i) && lim[i] > 0.0 && d[i] != 0.0 {
+                    t = t.max(d[i].abs() / lim[i]);
+                }
+            }
+            t
+        };
+        let sel: &dyn Fn(usize) -> bool = if cart && !ang {
+            &|i| i < 3
+        } else if ang && !cart {
+            &|i| i >= 3
+        } else {
+            &|_| true
+        };
+        let mut tc = Tc {
+            ty: TcType::Line,
+            rapid,
+            rotary: ang,
+            pure_rotary: ang && !cart,
+            u_start: unit3(&dxyz),
+            u_end: unit3(&dxyz),
+            radius: 0.0,
+            circ: None,
+            target: 0.0,
+            nominal: 0.0,
+            reqvel: 0.0,
+            maxvel: 0.0,
+            maxaccel: 0.0,
+            term,
+            tolerance,
+            kink_vel: -1.0,
+            kink_reduce: 0.0,
+            kink_reduce_prev: 0.0,
+            blend_prev: false,
+            acc_ratio_tan: 1.0,
+            finalized: false,
+            finalvel: 0.0,
+            block: seg.block,
+            tool: seg.tool,
+            halve_parabolic: lcnc,
+            at_max: false,
+            optimized: false,
+            run: Run::default(),
+        };
+        let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
+        match seg.kind {
+            SegmentKind::Rapid | SegmentKind::Line => {
+                if !cart && !ang {
+                    return None;
+                }
+                let dtot = if cart { xyz_len } else { abc_len };
+                // G0 runs each axis at most at its rapid rate (LinuxCNC: the same as
+                // its maximum velocity).
+                let tv = axis_time(if rapid { &self.rapid } else { &self.vel }, sel);
+                let ta = axis_time(&self.acc, sel);
+                let vmax = if tv > 0.0 {
+                    dtot / tv
+                } else {
+                    feed_cap(seg.feed)
+                };
+                let amax = if ta > 0.0 {
+                    dtot / ta
+                } else {
+                    self.p.traj_max_acceleration
+                };
+                tc.target = dtot;
+                tc.maxvel = vmax;
+                tc.reqvel = if rapid {
+                    vmax
+                } else {
+                    vmax.min(feed_cap(seg.feed))
+                };
+                tc.maxaccel = amax;
+            }
+            SegmentKind::Arc {
+                center,
+                normal,
+                radius,
+                sweep,
+            } => {
+                let n = unit3(&normal);
+                if norm3(&n) == 0.0 || radius <= 0.0 || sweep == 0.0 {
+                    return None;
+                }
+                let s3 = [seg.start[0], seg.start[1], seg.start[2]];
+                let e3 = [seg.end[0], seg.end[1], seg.end[2]];
+                let rise = dot3(&dxyz, &n);
+                let planar = radius * sweep.abs();
+                let total = (planar * planar + rise * rise).sqrt();
+                if total < POS_EPS {
+                    return None;
+                }
+                // The two axes of the arc's plane: the ones the normal does not point along.
+                let k = (0..3)
+                    .max_by(|a, b| n[*a].abs().total_cmp(&n[*b].abs()))
+                    .unwrap_or(2);
+                let (i1, i2) = ((k + 1) % 3, (k + 2) % 3);
+                let present = |lim: &[f64; 6], i: usize| {
+                    if lim[i] > 0.0 {
+                        lim[i]
+                    } else {
+                        f64::INFINITY
+                    }
+                };
+                let v_axes = present(&self.vel, i1).min(present(&self.vel, i2));
+                let a_axes = present(&self.acc, i1).min(present(&self.acc, i2));
+                let a_normal = a_axes * 3f64.sqrt() / 2.0;
+                let v_radial = (a_normal * radius).sqrt();
+                let v_planar = v_radial.min(v_axes);
+                let t_motion = axis_time(&self.vel, &|_| true);
+                let t_spiral = planar / v_planar;
+                let t_max = t_motion.max(t_spiral);
+                let vmax = if t_max > 0.0 { total / t_max } else { v_planar };
+                let tt_motion = axis_time(&self.acc, &|_| true);
+                let tt_spiral = planar / a_axes;
+                let tt = tt_motion.max(tt_spiral);
+                let amax = if tt > 0.0 { total / tt } else { a_axes };
+                tc.ty = TcType::Circle;
+                tc.radius = radius;
+                tc.target = total;
+                tc.maxvel = vmax;
+                tc.reqvel = vmax.min(feed_cap(seg.feed));
+                tc.maxaccel = amax;
+                tc.acc_ratio_tan = ACC_RATIO_TAN;
+                let sign = if sweep >= 0.0 { 1.0 } else { -1.0 };
+                let tangent = |p: &[f64; 3]| -> [f64; 3] {
+                    let r = sub3(p, &center);
+                    let t = cross3(&n, &r);
+                    let t = unit3(&t);
+                    let mut v = [0.0; 3];
+                    for i in 0..3 {
+                        v[i] = t[i] * sign * planar + n[i] * rise;
+                    }
+                    unit3(&v)
+                };
+                tc.u_start = tangent(&s3);
+                tc.u_end = tangent(&e3);
+                if rise.abs() < 1e-9 {
+                    let n_eff = if sweep >= 0.0 {
+                        n
+                    } else {
+                        [-n[0], -n[1], -n[2]]
+                    };
+                    let r0 = sub3(&s3, &center);
+                    let along = dot3(&r0, &n);
+                    let c_plane = [
+                        center[0] + along * n[0],
+                        center[1] + along * n[1],
+                        center[2] + along * n[2],
+                    ];
+                    tc.circ = Some(Circ {
+                        center: c_plane,
+                        normal: n_eff,
+                        start: s3,
+                        angle: sweep.abs(),
+                        radius,
+                    });
+                }
+                if !lcnc {
+                    tc.acc_ratio_tan = 1.0;
+                    tc.maxaccel = tc.maxaccel.min(a_axes);
+                    tc.maxvel = tc.maxvel.min((a_axes * radius).sqrt());
+                    tc.reqvel = tc.reqvel.min(tc.maxvel);
+                }
+            }
+            SegmentKind::Path {
+                start_tangent,
+                end_tangent,
+                max_curvature,
+            } => {
+                if seg.length < POS_EPS {
+                    return None;
+                }
+                let v_axes = (0..3)
+                    .filter(|i| self.vel[*i] > 0.0)
+                    .map(|i| self.vel[i])
+                    .fold(f64::INFINITY, f64::min);
+                let a_axes = (0..3)
+                    .filter(|i| self.acc[*i] > 0.0)
+                    .map(|i| self.acc[i])
+                    .fold(f64::INFINITY, f64::min);
+                let v_curv = if max_curvature > 0.0 {
+                    (a_axes * acc_ratio_normal() / max_curvature).sqrt()
+                } else {
+                    f64::INFINITY
+                };
+                tc.ty = TcType::Path;
+                tc.target = seg.length;
+                tc.maxvel = v_axes.min(v_curv);
+                tc.reqvel = tc.maxvel.min(feed_cap(seg.feed));
+                tc.maxaccel = a_axes;
+                tc.acc_ratio_tan = if lcnc { ACC_RATIO_TAN } else { 1.0 };
+                tc.u_start = unit3(&start_tangent);
+                tc.u_end = unit3(&end_tangent);
+            }
+        }
+        if !tc.maxvel.is_finite() {
+            tc.maxvel = self.p.traj_max_velocity;
+        }
+        if !tc.maxaccel.is_finite() || tc.maxaccel <= 0.0 {
+            tc.maxaccel = self.p.traj_max_acceleration.min(1e6);
+        }
+        if !lcnc {
+            // The generic models honour the path acceleration cap.
+            tc.maxaccel = tc.maxaccel.min(self.p.traj_max_acceleration);
+        }
+        tc.nominal = tc.target;
+        // Every segment takes at least one servo period.
+        tc.maxvel = tc.maxvel.min(tc.target / self.cycle);
+        Some(tc)
+    }
+
+    // ------------------------------------------------------------------ queueing
+
+    fn add(&mut self, mut tc: Tc, out: &mut dyn FnMut(SegmentTiming)) {
+        let mut blend: Option<Tc> = None;
+        let mut consumed = false;
+        if let Some(mut prev) = self.queue.pop_back() {
+            if prev.rapid != tc.rapid {
+                // Rapid and feed moves are never blended.
+                set_term(&mut prev, Some(&mut tc), Term::Stop);
+            }
+            if self.lcnc() {
+                (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
+            } else {
+                self.generic_junction(&mut prev, &mut tc);
+            }
+            if !consumed {
+                self.finalize(&mut prev);
+                self.queue.push_back(prev);
+            }
+        }
+        if let Some(b) = blend {
+            self.queue.push_back(b);
+        }
+        self.queue.push_back(tc);
+        self.optimize();
+        while self.queue.len() > self.depth + 2 {
+            self.execute_front(out);
+        }
+    }
+
+    /// `tcFinalizeLength`: the element's length can no longer change.
+    fn finalize(&self, tc: &mut Tc) {
+        if tc.finalized {
+            return;
+        }
+        tc.maxvel = tc.maxvel.min(tc.target / self.cycle);
+        if tc.ty == TcType::Circle && self.lcnc() {
+            let a_max = tc.overall_accel();
+            let a_n_cut = acc_ratio_normal() * a_max;
+            let r = tc.radius.max(1e-12);
+            let a_n_vmax = tc.maxvel * tc.maxvel / r;
+            if a_n_vmax > a_n_cut {
+                tc.maxvel = (a_n_cut * r).sqrt();
+            } else if a_max > 0.0 {
+                tc.acc_ratio_tan = (1.0 - (a_n_vmax / a_max).powi(2)).max(0.0).sqrt();
+            }
+        }
+        tc.finalized = true;
+    }
+
+    /// LinuxCNC junction set-up (`tpSetupTangent`, `tpHandleBlendArc`). Returns the
+    /// blend arc to insert and whether `prev` was swallowed by it.
+    fn lcnc_junction(&self, prev: &mut Tc, tc: &mut Tc) -> (Option<Tc>, bool) {
+        if tc.rotary || prev.rotary || prev.term == Term::Stop {
+            return (None, false);
+        }
+        let u1 = prev.u_end;
+        let u2 = tc.u_start;
+        let sum = [u1[0] + u2[0], u1[1] + u2[1], u1[2] + u2[2]];
+        let sharp = (PI * 2.0 / 180.0).powi(2);
+        if dot3(&sum, &sum) < sharp {
+            set_term(prev, Some(tc), Term::Stop);
+            return (None, false);
+        }
+        let v_max = prev.max_target_vel().min(tc.max_target_vel());
+        let a_inst = v_max / self.cycle + tc.maxaccel;
+        let mut scale: f64 = 0.0;
+        for i in 0..3 {
+            if self.acc[i] > 0.0 {
+                scale = scale.max((a_inst * (u2[i] - u1[i]) / self.acc[i]).abs());
+            }
+        }
+        if prev.ty == TcType::Circle || tc.ty == TcType::Circle {
+            scale /= ACC_RATIO_TAN;
+        }
+        // LinuxCNC bounds the ratio to [0.001, 0.7071].
+        let kink = self
+            .p
+            .tangent_kink_ratio
+            .clamp(0.001, std::f64::consts::FRAC_1_SQRT_2);
+        if scale < kink {
+            set_term(prev, Some(tc), Term::Tangent);
+            set_kink(prev, tc, v_max, scale);
+            return (None, false);
+        }
+        set_kink(prev, tc, v_max * kink / scale, kink);
+        if prev.term != Term::Parabolic {
+            // Exact path: the corner stops, but both moves keep the reduced acceleration.
+            return (None, false);
+        }
+        if !prev.finalized && !tc.finalized {
+            if let Some(b) = self.blend_arc(prev, tc) {
+                let perf_arc = b.arc.maxvel;
+                let perf_par = self.parabolic_performance(prev, tc) / 2.0;
+                let perf_tan = prev.kink_vel;
+                if perf_arc > perf_par && perf_arc > perf_tan {
+                    remove_kink(prev, tc);
+                    tc.target = (tc.target - b.trim_next).max(0.0);
+                    if let Some(c) = b.next_circ {
+                        tc.circ = Some(c);
+                        tc.u_start = c.tangent(0.0);
+                    }
+                    set_term(prev, Some(tc), Term::Tangent);
+                    if !b.consume {
+                        prev.target = (prev.target - b.trim_prev).max(0.0);
+                        if let Some(c) = b.prev_circ {
+                            prev.circ = Some(c);
+                            prev.u_end = c.tangent(c.angle);
+                        }
+                    }
+                    return (Some(b.arc), b.consume);
+                }
+            }
+        }
+        // No arc: the better of a parabolic blend and an approximate tangent.
+        let perf_par = self.parabolic_performance(prev, tc) / 2.0;
+        if perf_par >= prev.kink_vel {
+            remove_kink(prev, tc);
+            set_term(prev, Some(tc), Term::Parabolic);
+        } else {
+            set_term(prev, Some(tc), Term::Tangent);
+        }
+        (None, false)
+    }
+
+    /// `estimateParabolicBlendPerformance`: net speed through a parabolic blend.
+    fn parabolic_performance(&self, prev: &Tc, tc: &Tc) -> f64 {
+        let (vb1, vb2, theta) = self.parabolic_blend_vel(prev, tc);
+        theta.sin() * (vb1 + vb2) / 2.0
+    }
+
+    /// `tpComputeBlendVelocity`: the speeds at which a parabolic blend starts on
+    /// each side, and the intersection half-angle.
+    fn parabolic_blend_vel(&self, a: &Tc, b: &Tc) -> (f64, f64, f64) {
+        let acc1 = a.tangential_accel().max(1e-9);
+        let acc2 = b.tangential_accel().max(1e-9);
+        let tv1 = self.real_target_vel(a);
+        let tv2 = self.real_target_vel(b);
+        let tri = |t: &Tc| {
+            let l = if t.finalized {
+                t.target
+            } else {
+                t.target / 2.0
+            };
+            (t.tangential_accel() * l).sqrt()
+        };
+        let vr1 = tri(a).min(tv1).max(1e-9);
+        let vr2 = tri(b).min(tv2).max(1e-9);
+        let t_reach = (a.target / vr1).min(b.target / vr2);
+        let t_blend = t_reach.min((vr1 / acc1).max(vr2 / acc2));
+        let mut v1 = vr1.min(t_blend * acc1);
+        let mut v2 = vr2.min(t_blend * acc2);
+        let theta = (-dot3(&a.u_end, &b.u_start)).clamp(-1.0, 1.0).acos() / 2.0;
+        if a.tolerance > 0.0 {
+            let c = theta.cos();
+            if c > (PI / 2.0 - 1e-3).cos() {
+                let tb = 2.0 * (acc1 * a.tolerance / c).sqrt();
+                v1 = v1.min(tb);
+                v2 = v2.min(tb);
+            }
+        }
+        (v1, v2, theta)
+    }
+
+    /// Generic models: corner speed from the blend tolerance.
+    fn generic_junction(&self, prev: &mut Tc, tc: &mut Tc) {
+        if prev.term == Term::Stop {
+            return;
+        }
+        let u1 = prev.u_end;
+        let u2 = tc.u_start;
+        let c = dot3(&u1, &u2).clamp(-1.0, 1.0);
+        if prev.term == Term::Exact {
+            // Exact path: run through joints that are tangent within 1°.
+            if c > (PI / 180.0).cos() {
+                set_term(prev, Some(tc), Term::Tangent);
+            } else {
+                set_term(prev, Some(tc), Term::Stop);
+            }
+            return;
+        }
+        let theta = (-c).acos() / 2.0;
+        if theta < ANGLE_EPS {
+            set_term(prev, Some(tc), Term::Stop);
+            return;
+        }
+        let v_corner = if PI / 2.0 - theta < ANGLE_EPS {
+            f64::INFINITY
+        } else {
+            let tol = if prev.tolerance > 0.0 {
+                prev.tolerance
+            } else {
+                prev.nominal.min(tc.nominal) * 0.25
+            };
+            let s = theta.sin();
+            let r_tol = tol * s / (1.0 - s);
+            let r_len = theta.tan() * prev.nominal.min(tc.nominal) * 0.5;
+            let a = prev.maxaccel.min(tc.maxaccel);
+            (a * r_tol.min(r_len)).sqrt()
+        };
+        set_term(prev, Some(tc), Term::Tangent);
+        prev.kink_vel = v_corner;
+    }
+
+    // ------------------------------------------------------------------ planning
+
+    /// `tpGetRealTargetVel` with the profile's overrides.
+    fn real_target_vel(&self, tc: &Tc) -> f64 {
+        let scale = if tc.rapid {
+            self.p.rapid_override
+        } else {
+            self.p.feed_override
+        };
+        let mut v = (tc.reqvel * scale).min(tc.maxvel);
+        if !tc.pure_rotary {
+            v = v.min(self.p.traj_max_velocity);
+        }
+        v.max(0.0)
+    }
+
+    /// `tpRunOptimization`: backward pass from the newest element over at most
+    /// `depth` junctions, stopping at the second junction that is not tangent.
+    fn optimize(&mut self) {
+        let len = self.queue.len();
+        let mut hit_non_tangent = false;
+        let mut hit_peaks = 0;
+        let lazy = self.lcnc();
+        for x in 1..self.depth + 2 {
+            if x + 1 > len {
+                return;
+            }
+            let ind = len - x;
+            let (head, tail) = self.queue.as_mut_slices();
+            let (prev, tc) = pair_mut(head, tail, ind - 1, ind);
+            if prev.term != Term::Tangent {
+                if hit_non_tangent {
+                    return;
+                }
+                hit_non_tangent = true;
+                continue;
+            }
+            if !tc.finalized {
+                let vpeak = (tc.tangential_accel() * tc.target).sqrt();
+                let mut tv = tc.max_target_vel();
+                if !tc.pure_rotary {
+                    tv = tv.min(self.p.traj_max_velocity);
+                }
+                let mut fv = prev.maxvel.min(vpeak.min(tv));
+                if prev.kink_vel >= 0.0 {
+                    fv = fv.min(prev.kink_vel);
+                }
+                prev.finalvel = fv;
+                tc.finalvel = 0.0;
+            } else {
+                let a = tc.tangential_accel();
+                let vs_back = (tc.finalvel * tc.finalvel + 2.0 * a * tc.target).sqrt();
+                let mut limit = tc.maxvel.min(prev.maxvel);
+                if prev.kink_vel >= 0.0 {
+                    limit = limit.min(prev.kink_vel);
+                }
+                if vs_back >= limit {
+                    prev.at_max = true;
+                }
+                let fv = vs_back.min(limit);
+                let clamp = tc.maxvel.min(tc.target / (self.cycle * MIN_SEGMENT_CYCLES));
+                // Once a junction comes out as it was, every earlier one would too
+                // (their inputs are unchanged), so the rest of the pass is skipped.
+                // The result equals LinuxCNC's full pass; the cost is O(1) amortised
+                // on long chains instead of O(depth).
+                let unchanged = prev.optimized && fv == prev.finalvel && clamp == tc.maxvel;
+                prev.finalvel = fv;
+                prev.optimized = true;
+                tc.maxvel = clamp;
+                if unchanged {
+                    return;
+                }
+            }
+            // LinuxCNC's lazy optimisation: stop after passing more than
+            // TP_OPTIMIZATION_CUTOFF (4) elements already at their speed limit.
+            if lazy && tc.at_max {
+                hit_peaks += 1;
+                if hit_peaks > 4 {
+                    return;
+                }
+            }
+        }
+    }
+
+    fn view(&self, tc: &Tc) -> View {
+        View {
+            target: tc.target,
+            v_target: self.real_target_vel(tc),
+            finalvel: tc.finalvel,
+            tangent: tc.term == Term::Tangent,
+            stop: matches!(tc.term, Term::Stop | Term::Exact),
+            accel: tc.tangential_accel().max(1e-9),
+        }
+    }
+
+    /// Executes the oldest queued element.
+    fn execute_front(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        // Servo periods cost machine time; an absurdly slow move (a feed of a few
+        // µm/min over metres) would take billions of them, so it runs in closed form.
+        let servo_ok = self.queue.front().is_some_and(|tc| {
+            let v = self.real_target_vel(tc);
+            v > 0.0 && tc.target / v / self.cycle < MAX_SERVO_CYCLES
+        });
+        if self.lcnc() && self.p.servo_simulation && servo_ok {
+            self.execute_front_servo(out);
+        } else {
+            self.execute_front_analytic(out);
+        }
+    }
+
+    /// LinuxCNC model, period by period (see [`servo`]).
+    fn execute_front_servo(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        let Some(mut tc) = self.queue.pop_front() else {
+            return;
+        };
+        let cycle = self.cycle;
+        let start = self.t;
+        if !tc.run.active && tc.run.progress == 0.0 && tc.run.currentvel == 0.0 {
+            // Entered from a closed-form element (or from rest).
+            tc.run.currentvel = self.v_cur;
+        }
+        let v0 = tc.run.currentvel;
+        let view = self.view(&tc);
+        // A move that cannot move (zero feed) is skipped rather than run forever.
+        let budget = if view.v_target > 0.0 {
+            let pr = trapezoid(tc.target, 0.0, view.v_target, 0.0, view.accel);
+            (pr.time * 4.0 / cycle) as u64 + 10_000
+        } else {
+            0
+        };
+        let mut cycles: u64 = 0;
+        loop {
+            if tc.run.remove || cycles >= budget {
+                if tc.run.remove {
+                    cycles += 1;
+                }
+                break;
+            }
+            if !tc.run.active {
+                tc.run.active = true;
+                let dist = tc.target - tc.run.progress;
+                let denom = tc.run.currentvel + tc.finalvel.min(view.v_target);
+                let seg_time = if denom > 0.0 {
+                    2.0 * dist / denom
+                } else {
+                    f64::INFINITY
+                };
+                tc.run.ramp = seg_time < RAMP_CUTOFF_S
+                    && !tc.rapid
+                    && tc.term == Term::Tangent
+                    && dist != 0.0;
+            }
+            if tc.run.splitting {
+                // The element ends inside this period; the next one gets the rest.
+                let next2 = self.queue.get(1).map(|n| self.real_target_vel(n));
+                let next_view = self.queue.front().map(|n| self.view(n));
+                if let (Some(next), Some(nv)) = (self.queue.front_mut(), next_view) {
+                    if tc.term == Term::Tangent {
+                        next.run.cycle_time = cycle - tc.run.cycle_time;
+                        next.run.currentvel = tc.run.term_vel;
+                    } else if next.run.cycle_time == 0.0 {
+                        next.run.cycle_time = cycle;
+                    }
+                    servo::update_cycle(&mut next.run, &nv, next2, cycle);
+                }
+                cycles += 1;
+                break;
+            }
+            tc.run.cycle_time = cycle;
+            let next_t = self.queue.front().map(|n| self.real_target_vel(n));
+            servo::update_cycle(&mut tc.run, &view, next_t, cycle);
+            cycles += 1;
+            if tc.term == Term::Parabolic {
+                // Parabolic blend: once this element decelerates below the blend
+                // speed, the next one starts moving in the same periods.
+                if let Some(next) = self.queue.front() {
+                    let (blend_vel, _, _) = self.parabolic_blend_vel(&tc, next);
+                    tc.run.blending_next |= tc.run.on_final_decel && tc.run.currentvel < blend_vel;
+                    if tc.run.blending_next {
+                        let nv = self.view(next);
+                        if let Some(next) = self.queue.front_mut() {
+                            if next.run.cycle_time == 0.0 {
+                                next.run.cycle_time = cycle;
+                            }
+                            servo::update_cycle(&mut next.run, &nv, None, cycle);
+                        }
+                    }
+                }
+            }
+            if tc.run.remove {
+                break;
+            }
+        }
+        // A control that needs a minimum time per block cannot run shorter elements.
+        let time = (cycles as f64 * cycle).max(self.p.block_processing_time);
+        let end = start + time;
+        self.t = end;
+        let v_end = if tc.term == Term::Tangent {
+            tc.run.term_vel
+        } else {
+            0.0
+        };
+        self.v_cur = v_end;
+        if v_end <= 0.0 {
+            self.run_start = end;
+        }
+        self.account(&tc, start, end, time, v0, tc.run.peak, v_end, out);
+    }
+
+    /// Executes the oldest queued element with closed-form profiles.
+    fn execute_front_analytic(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
+        let Some(tc) = self.queue.pop_front() else {
+            return;
+        };
+        let lcnc = self.lcnc();
+        let v_target = self.real_target_vel(&tc);
+        let next_target = self
+            .queue
+            .front()
+            .map(|n| self.real_target_vel(n))
+            .unwrap_or(0.0);
+        let v_final = if tc.term == Term::Tangent {
+            tc.finalvel.min(v_target).min(next_target)
+        } else {
+            0.0
+        };
+        let a = tc.tangential_accel().max(1e-9);
+        let v0 = self.v_cur.min(v_target);
+        let l = tc.target;
+        let ramp_time = {
+            let denom = v0 + tc.finalvel.min(v_target);
+            if denom > 0.0 {
+                2.0 * l / denom
+            } else {
+                f64::INFINITY
+            }
+        };
+        let (time, v_end, v_peak) = if lcnc
+            && !tc.rapid
+            && tc.term == Term::Tangent
+            && ramp_time < RAMP_CUTOFF_S
+            && v_final > 0.0
+        {
+            // Short segment: linear velocity ramp from v0 to the final speed.
+            let lo = (v0 * v0 - 2.0 * a * l).max(0.0).sqrt();
+            let hi = (v0 * v0 + 2.0 * a * l).sqrt();
+            let ve = v_final.clamp(lo, hi);
+            let t = if v0 + ve > 0.0 {
+                2.0 * l / (v0 + ve)
+            } else {
+                0.0
+            };
+            (t, ve, v0.max(ve))
+        } else {
+            let pr = trapezoid(l, v0, v_target, v_final, a);
+            let mut t = pr.time;
+            if self.model == PlannerModel::Scurve {
+                let j = self.jerk();
+                t += scurve_penalty(v0, pr.v_peak, pr.v_end, a, j);
+            }
+            (t, pr.v_end, pr.v_peak)
+        };
+        // A control that needs a minimum time per block cannot run shorter elements.
+        let time = time.max(self.p.block_processing_time);
+        // A parabolic blend lets this element start while the previous one is
+        // still decelerating.
+        let start = self.t - self.overlap.min(time);
+        self.overlap = 0.0;
+        if tc.term == Term::Parabolic {
+            if let Some(next) = self.queue.front() {
+                let (vb1, _, _) = self.parabolic_blend_vel(&tc, next);
+                self.overlap = (vb1 / a).min(time);
+            }
+        }
+        let mut end = start + time;
+        if v_end <= 0.0 && self.overlap == 0.0 {
+            if lcnc {
+                // The servo loop finishes a stop-to-stop run on a period boundary.
+                let run = end - self.run_start;
+                let cycles = (run / self.cycle - 1e-6).ceil().max(0.0);
+                let quantized = cycles * self.cycle;
+                end = self.run_start + quantized.max(run);
+            }
+            self.run_start = end;
+        }
+        // The clock advances by the element's time less the shared overlap.
+        let added = (end - self.t).max(0.0);
+        self.t = end;
+        self.v_cur = v_end;
+        self.account(&tc, start, end, added, v0, v_peak, v_end, out);
+        if v_end <= 0.0 && self.overlap == 0.0 && self.p.in_position_time > 0.0 {
+            // Settling into the in-position window before the next block starts.
+            self.t += self.p.in_position_time;
+            self.run_start = self.t;
+            self.totals.other_s += self.p.in_position_time;
+        }
+    }
+
+    /// Adds an executed element to the totals and reports it.
+    #[allow(clippy::too_many_arguments)]
+    fn account(
+        &mut self,
+        tc: &Tc,
+        start: f64,
+        end: f64,
+        added: f64,
+        v0: f64,
+        v_peak: f64,
+        v_end: f64,
+        out: &mut dyn FnMut(SegmentTiming),
+    ) {
+        let l = tc.target;
+        let tot = &mut self.totals;
+        tot.motion_s += added;
+        if tc.rapid {
+            tot.rapid_s += added;
+        } else {
+            tot.cutting_s += added;
+        }
+        tot.distance_mm += if tc.pure_rotary { 0.0 } else { l };
+        let tt = tot.per_tool.entry(tc.tool).or_default();
+        tt.motion_s += added;
+        if tc.rapid {
+            tt.rapid_s += added;
+        } else {
+            tt.cutting_s += added;
+        }
+        tt.distance_mm += if tc.pure_rotary { 0.0 } else { l };
+        out(SegmentTiming {
+            block: tc.block,
+            tool: tc.tool,
+            rapid: tc.rapid,
+            blend: tc.ty == TcType::Blend,
+            start_s: start,
+            end_s: end,
+            entry_speed: v0,
+            peak_speed: v_peak,
+            exit_speed: v_end,
+            length: l,
+        });
+    }
+
+    fn jerk(&self) -> f64 {
+        self.p
+            .axes
+            .iter()
+            .filter(|a| a.jerk > 0.0)
+            .map(|a| a.jerk)
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// A straight feed move of the linear axes in G64 with a tolerance.
+fn chainable(seg: &Segment) -> bool {
+    matches!(seg.kind, SegmentKind::Line)
+        && matches!(seg.mode, PathMode::Blend { tolerance } if tolerance > 0.0)
+        && seg.start[3..] == seg.end[3..]
+}
+
+fn set_term(prev: &mut Tc, tc: Option<&mut Tc>, term: Term) {
+    if let Some(tc) = tc {
+        tc.blend_prev = term == Term::Parabolic;
+    }
+    prev.term = term;
+}
+
+fn set_kink(prev: &mut Tc, tc: &mut Tc, kink_vel: f64, reduce: f64) {
+    prev.kink_vel = kink_vel;
+    prev.kink_reduce = prev.kink_reduce.max(reduce);
+    tc.kink_reduce_prev = tc.kink_reduce_prev.max(reduce);
+}
+
+fn remove_kink(prev: &mut Tc, tc: &mut Tc) {
+    prev.kink_vel = -1.0;
+    prev.kink_reduce = 0.0;
+    tc.kink_reduce_prev = 0.0;
+}
+
+/// Two distinct mutable elements `i < j` of a `VecDeque`'s slices.
+fn pair_mut<'a>(
+    head: &'a mut [Tc],
+    tail: &'a mut [Tc],
+    i: usize,
+    j: usize,
+) -> (&'a mut Tc, &'a mut Tc) {
+    let h = head.len();
+    if j < h {
+        let (a, b) = head.split_at_mut(j);
+        (&mut a[i], &mut b[0])
+    } else if i >= h {
+        let (a, b) = tail.split_at_mut(j - h);
+        (&mut a[i - h], &mut b[0])
+    } else {
+        (&mut head[i], &mut tail[j - h])
+    }
+}

@@ -1,0 +1,177 @@
+//! `partscope check`.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use analyzer::{Diagnostic, Severity, Span};
+use rayon::prelude::*;
+
+use super::output::{self, FileReport};
+use super::workspace::{self, ConfigCache, LoadedConfig};
+use super::CheckArgs;
+
+/// Blocks the interpreter may execute per checked file before it reports a runaway program.
+const CHECK_STEP_BUDGET: u64 = 20_000_000;
+
+pub fn run(args: CheckArgs) -> ExitCode {
+    let explicit = match &args.config {
+        Some(p) => match workspace::load_config(p) {
+            Ok(c) => Some(c),
+            Err(e) => {
+                eprintln!("partscope: {e}");
+                return ExitCode::from(2);
+            }
+        },
+        None => None,
+    };
+    let (files, walk_errors) = workspace::collect_files(&args.paths);
+    let cache = ConfigCache::default();
+    let mut reports: Vec<FileReport> = files
+        .par_iter()
+        .map(|f| check_file(f, &args, explicit.as_ref(), &cache))
+        .collect();
+    for (p, e) in walk_errors {
+        reports.push(FileReport::io_error(p, e));
+    }
+    reports.sort_by(|a, b| a.path.cmp(&b.path));
+    let fail_level = args
+        .fail_level
+        .as_deref()
+        .and_then(Severity::parse)
+        .or_else(|| {
+            explicit
+                .as_ref()
+                .map(|c| analyzer::settings::fail_level(&c.config))
+        })
+        .unwrap_or(Severity::Warning);
+    if let Err(e) = output::emit(args.format, &reports) {
+        eprintln!("partscope: cannot write output: {e}");
+        return ExitCode::from(2);
+    }
+    if reports.iter().any(|r| r.io_error) {
+        return ExitCode::from(2);
+    }
+    let failed = reports
+        .iter()
+        .any(|r| r.diagnostics.iter().any(|d| d.severity >= fail_level));
+    if failed {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn check_file(
+    path: &Path,
+    args: &CheckArgs,
+    explicit: Option<&LoadedConfig>,
+    cache: &ConfigCache,
+) -> FileReport {
+    let bytes = match std::fs::read(path) {
+        Ok(b) => b,
+        Err(e) => return FileReport::io_error(path.to_path_buf(), e.to_string()),
+    };
+    let dir = path
+        .parent()
+        .map(|p| {
+            if p.as_os_str().is_empty() {
+                Path::new(".")
+            } else {
+                p
+            }
+        })
+        .unwrap_or(Path::new("."));
+    let dir = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
+    let loaded = match explicit {
+        Some(c) => c.clone(),
+        None => match cache.for_dir(&dir) {
+            Ok(c) => c,
+            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+        },
+    };
+    let dialect = workspace::resolve_dialect(
+        args.dialect.map(|d| d.dialect()),
+        &loaded.config,
+        path,
+        &bytes,
+    );
+    let settings =
+        match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
+            Ok(s) => s,
+            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+        };
+    let text: Arc<[u8]> = bytes.into();
+    let analysis = analyzer::analyze(text.clone(), &settings);
+    let mut diagnostics = analysis.diagnostics;
+    let mut extra_files = Vec::new();
+    // Subprogram files are analysed when they are called, from the caller's point of view.
+    let is_subprogram = dialect == analyzer::Dialect::Servoworks
+        && path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("dat"))
+        && path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .is_some_and(|n| n.starts_with('O'));
+    if !args.no_run && !is_subprogram && !diagnostics.iter().any(|d| d.code == "L009") {
+        let config_dir = loaded
+            .path
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf));
+        let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
+        let input = runtime::RunInput {
+            program: &analysis.program,
+            settings: &settings,
+            machine: &loaded.config.machine,
+            resolver: &resolver,
+            step_budget: CHECK_STEP_BUDGET,
+            emit_canon: false,
+            tool_table: None,
+            var_file: None,
+        };
+        let out = runtime::run(&input);
+        diagnostics.extend(analyzer::finish(
+            &analysis.program,
+            &settings,
+            out.diagnostics,
+        ));
+        diagnostics.sort_by_key(|d| (d.file, d.span.start));
+        extra_files = out
+            .files
+            .iter()
+            .map(|p| {
+                (
+                    PathBuf::from(p),
+                    std::fs::read(p)
+                        .map(Arc::from)
+                        .unwrap_or_else(|_| Arc::from(&b""[..])),
+                )
+            })
+            .collect();
+    }
+    FileReport {
+        path: path.to_path_buf(),
+        text,
+        diagnostics,
+        io_error: false,
+        extra_files,
+    }
+}
+
+impl FileReport {
+    pub fn io_error(path: PathBuf, message: String) -> FileReport {
+        FileReport {
+            path,
+            text: Arc::from(&b""[..]),
+            diagnostics: vec![Diagnostic::error(
+                "L000",
+                Span::new(0, 0),
+                format!("cannot read file: {message}"),
+            )],
+            io_error: true,
+            extra_files: Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,503 @@
+//! `partscope run`: dry-run a program — cycle time, breakdown, toolpath.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Arc;
+
+use analyzer::{Diagnostic, Severity};
+use runtime::dryrun::{self, DryRun};
+use runtime::machine::MachineProfile;
+use serde_json::json;
+
+use super::output::{self, FileReport};
+use super::workspace::{self, ConfigCache};
+use super::DialectArg;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RunFormat {
+    Human,
+    Json,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Emit {
+    /// Per-block times as CSV (line, start, end, length, peak feed).
+    Blocks,
+    /// Per-block times as JSON.
+    BlocksJson,
+    /// The toolpath as JSON polylines.
+    Toolpath,
+    /// LinuxCNC canonical calls (rs274ngc), like `rs274`.
+    Canon,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    pub file: PathBuf,
+    #[arg(long, value_enum)]
+    pub dialect: Option<DialectArg>,
+    /// A partscope.toml (otherwise discovered upward from the file).
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Machine profile: a TOML file (`[machine]` table or bare) or a LinuxCNC `.ini`.
+    #[arg(long)]
+    pub machine: Option<PathBuf>,
+    /// Feed override as a factor (1.0 = 100 %) or percentage (`120%`).
+    #[arg(long)]
+    pub feed_override: Option<String>,
+    #[arg(long, value_enum, default_value = "human")]
+    pub format: RunFormat,
+    #[arg(long, value_enum)]
+    pub emit: Option<Emit>,
+    /// LinuxCNC tool table (`.tbl`).
+    #[arg(long)]
+    pub tool_table: Option<PathBuf>,
+    /// LinuxCNC parameter file (`.var`).
+    #[arg(long)]
+    pub var_file: Option<PathBuf>,
+    /// Write an SVG picture of the toolpath.
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// Write a PNG picture of the toolpath.
+    #[arg(long)]
+    pub png: Option<PathBuf>,
+    /// Step budget: blocks executed before a runaway program is stopped.
+    #[arg(long, default_value_t = 50_000_000)]
+    pub step_budget: u64,
+}
+
+fn fail(msg: impl std::fmt::Display) -> ExitCode {
+    eprintln!("partscope: {msg}");
+    ExitCode::from(2)
+}
+
+pub fn run(args: RunArgs) -> ExitCode {
+    let bytes = match std::fs::read(&args.file) {
+        Ok(b) => b,
+        Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
+    };
+    let loaded = match &args.config {
+        Some(p) => workspace::load_config(p),
+        None => {
+            let dir = args
+                .file
+                .parent()
+                .filter(|p| !p.as_os_str().is_empty())
+                .unwrap_or(Path::new("."));
+            ConfigCache::default()
+                .for_dir(&dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf()))
+        }
+    };
+    let loaded = match loaded {
+        Ok(l) => l,
+        Err(e) => return fail(e),
+    };
+    let dialect = workspace::resolve_dialect(
+        args.dialect.map(|d| d.dialect()),
+        &loaded.config,
+        &args.file,
+        &bytes,
+    );
+    let settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
+        Ok(s) => s,
+        Err(e) => return fail(e),
+    };
+    let config_dir = loaded
+        .path
+        .as_ref()
+        .and_then(|p| p.parent().map(Path::to_path_buf));
+
+    // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
+    let mut machine_table = loaded.config.machine.clone();
+    let mut profile_override: Option<MachineProfile> = None;
+    let mut tool_table_path = args.tool_table.clone();
+    let mut var_path = args.var_file.clone();
+    if let Some(m) = &args.machine {
+        let text = match std::fs::read_to_string(m) {
+            Ok(t) => t,
+            Err(e) => return fail(format_args!("{}: {e}", m.display())),
+        };
+        let is_ini = m
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("ini"));
+        if is_ini {
+            match MachineProfile::from_linuxcnc_ini(&text) {
+                Ok((p, extras)) => {
+                    let base = m.parent().unwrap_or(Path::new("."));
+                    if tool_table_path.is_none() {
+                        tool_table_path = extras.tool_table.map(|t| base.join(t));
+                    }
+                    if var_path.is_none() {
+                        var_path = extras.parameter_file.map(|t| base.join(t));
+                    }
+                    profile_override = Some(p);
+                }
+                Err(e) => return fail(format_args!("{}: {e}", m.display())),
+            }
+        } else {
+            match toml::from_str::<toml::Table>(&text) {
+                Ok(t) => {
+                    machine_table = match t.get("machine") {
+                        Some(toml::Value::Table(mt)) => mt.clone(),
+                        _ => t,
+                    }
+                }
+                Err(e) => return fail(format_args!("{}: {e}", m.display())),
+            }
+        }
+    }
+    if tool_table_path.is_none() {
+        tool_table_path = loaded
+            .config
+            .tool_table
+            .as_ref()
+            .map(|t| config_dir.clone().unwrap_or_default().join(t));
+    }
+    if var_path.is_none() {
+        var_path = loaded
+            .config
+            .var_file
+            .as_ref()
+            .map(|t| config_dir.clone().unwrap_or_default().join(t));
+    }
+    let mut profile = match profile_override {
+        Some(p) => p,
+        None => match dryrun::profile_from_table(&machine_table, dialect) {
+            Ok(p) => p,
+            Err(e) => return fail(e),
+        },
+    };
+    if let Some(fo) = &args.feed_override {
+        let v = fo.trim_end_matches('%').parse::<f64>().ok().map(|v| {
+            if fo.ends_with('%') {
+                v / 100.0
+            } else {
+                v
+            }
+        });
+        match v {
+            Some(v) if v > 0.0 && v.is_finite() => profile.feed_override = v,
+            _ => return fail(format_args!("bad --feed-override `{fo}`")),
+        }
+    }
+    let read_opt = |p: &Option<PathBuf>| -> Result<Option<String>, String> {
+        match p {
+            Some(p) => std::fs::read_to_string(p)
+                .map(Some)
+                .map_err(|e| format!("{}: {e}", p.display())),
+            None => Ok(None),
+        }
+    };
+    // Files named on the command line must exist; files an INI or config refers to
+    // are optional (a copied INI often names a tool table that is not beside it).
+    let explicit_tbl = args.tool_table.is_some();
+    let explicit_var = args.var_file.is_some();
+    let tool_table = match read_opt(&tool_table_path) {
+        Ok(t) => t,
+        Err(e) if explicit_tbl => return fail(e),
+        Err(e) => {
+            eprintln!("partscope: warning: {e}; running without a tool table");
+            None
+        }
+    };
+    let var_file = match read_opt(&var_path) {
+        Ok(t) => t,
+        Err(e) if explicit_var => return fail(e),
+        Err(e) => {
+            eprintln!("partscope: warning: {e}; running without a parameter file");
+            None
+        }
+    };
+
+    let text: Arc<[u8]> = bytes.into();
+    let analysis = analyzer::analyze(text.clone(), &settings);
+    let resolver = crate::resolve::FsResolver::new(&args.file, config_dir.as_deref(), dialect);
+    let emit_canon = args.emit == Some(Emit::Canon);
+    let input = runtime::RunInput {
+        program: &analysis.program,
+        settings: &settings,
+        machine: &machine_table,
+        resolver: &resolver,
+        step_budget: args.step_budget,
+        emit_canon,
+        tool_table: tool_table.as_deref(),
+        var_file: var_file.as_deref(),
+    };
+    let out = runtime::run(&input);
+    let mut diagnostics = analysis.diagnostics.clone();
+    diagnostics.extend(analyzer::finish(
+        &analysis.program,
+        &settings,
+        out.diagnostics.clone(),
+    ));
+
+    if emit_canon {
+        return emit_canon_output(&out, &analysis.program, &diagnostics);
+    }
+
+    let dry = dryrun::plan_run(&out, &profile);
+    let extra_files: Vec<(PathBuf, Arc<[u8]>)> = out
+        .files
+        .iter()
+        .map(|p| {
+            (
+                PathBuf::from(p),
+                std::fs::read(p)
+                    .map(Arc::from)
+                    .unwrap_or_else(|_| Arc::from(&b""[..])),
+            )
+        })
+        .collect();
+    let report = FileReport {
+        path: args.file.clone(),
+        text: text.clone(),
+        diagnostics,
+        io_error: false,
+        extra_files,
+    };
+
+    if let Some(svg) = &args.svg {
+        let tp = dryrun::toolpath(&out, 0.01);
+        if let Err(e) = std::fs::write(
+            svg,
+            crate::picture::svg(&tp, &args.file.display().to_string(), &dry),
+        ) {
+            return fail(format_args!("{}: {e}", svg.display()));
+        }
+    }
+    if let Some(png) = &args.png {
+        let tp = dryrun::toolpath(&out, 0.01);
+        if let Err(e) = crate::picture::png(&tp, png) {
+            return fail(format_args!("{}: {e}", png.display()));
+        }
+    }
+    let stdout = std::io::stdout();
+    let mut w = std::io::BufWriter::new(stdout.lock());
+    let res = match args.emit {
+        Some(Emit::Blocks) => {
+            let mut r = writeln!(
+                w,
+                "line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min"
+            );
+            for b in dryrun::block_times(&out, &dry) {
+                if r.is_ok() {
+                    r = writeln!(
+                        w,
+                        "{},{:.6},{:.6},{:.6},{:.6},{:.3}",
+                        b.line + 1,
+                        b.start_s,
+                        b.end_s,
+                        b.duration_s,
+                        b.length_mm,
+                        b.peak_feed
+                    );
+                }
+            }
+            r
+        }
+        Some(Emit::BlocksJson) => {
+            let v: Vec<_> = dryrun::block_times(&out, &dry)
+                .into_iter()
+                .map(|b| json!({"line": b.line + 1, "file": b.file, "start_s": b.start_s, "end_s": b.end_s, "duration_s": b.duration_s, "length_mm": b.length_mm, "peak_feed": b.peak_feed}))
+                .collect();
+            serde_json::to_writer_pretty(&mut w, &v)
+                .map_err(std::io::Error::other)
+                .and_then(|_| writeln!(w))
+        }
+        Some(Emit::Toolpath) => {
+            let tp = dryrun::toolpath(&out, 0.01);
+            serde_json::to_writer(&mut w, &tp)
+                .map_err(std::io::Error::other)
+                .and_then(|_| writeln!(w))
+        }
+        Some(Emit::Canon) | None => match args.format {
+            RunFormat::Json => {
+                let v = summary_json(&dry, &report);
+                serde_json::to_writer_pretty(&mut w, &v)
+                    .map_err(std::io::Error::other)
+                    .and_then(|_| writeln!(w))
+            }
+            RunFormat::Human => human(&mut w, &args.file, &dry, &out, &report),
+        },
+    };
+    if let Err(e) = res.and_then(|_| w.flush()) {
+        return fail(format_args!("cannot write output: {e}"));
+    }
+    if report
+        .diagnostics
+        .iter()
+        .any(|d| d.severity == Severity::Error)
+    {
+        ExitCode::from(1)
+    } else {
+        ExitCode::SUCCESS
+    }
+}
+
+fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
+    let t = &dry.totals;
+    let per_tool: serde_json::Map<String, serde_json::Value> = t
+        .per_tool
+        .iter()
+        .map(|(tool, tt)| {
+            (
+                tool.to_string(),
+                json!({"motion_s": tt.motion_s, "rapid_s": tt.rapid_s, "cutting_s": tt.cutting_s, "distance_mm": tt.distance_mm}),
+            )
+        })
+        .collect();
+    let located = output::locate(std::slice::from_ref(report));
+    let diags: Vec<serde_json::Value> = located
+        .iter()
+        .map(|l| {
+            json!({"path": l.path, "line": l.line, "column": l.column, "end_line": l.end_line, "end_column": l.end_column,
+                   "code": l.d.code, "severity": l.d.severity.as_str(), "message": l.d.message})
+        })
+        .collect();
+    json!({
+        "cycle_time_s": t.cycle_time_s,
+        "motion_s": t.motion_s,
+        "rapid_s": t.rapid_s,
+        "cutting_s": t.cutting_s,
+        "dwell_s": t.dwell_s,
+        "tool_change_s": t.tool_change_s,
+        "other_s": t.other_s,
+        "distance_mm": t.distance_mm,
+        "per_tool": per_tool,
+        "diagnostics": diags,
+    })
+}
+
+fn hms(s: f64) -> String {
+    let s = s.max(0.0);
+    let h = (s / 3600.0).floor();
+    let m = ((s - h * 3600.0) / 60.0).floor();
+    let sec = s - h * 3600.0 - m * 60.0;
+    if h > 0.0 {
+        format!("{}:{:02}:{:06.3}", h as u64, m as u64, sec)
+    } else {
+        format!("{:02}:{:06.3}", m as u64, sec)
+    }
+}
+
+fn human(
+    w: &mut impl Write,
+    file: &Path,
+    dry: &DryRun,
+    out: &runtime::RunOutput,
+    report: &FileReport,
+) -> std::io::Result<()> {
+    let t = &dry.totals;
+    writeln!(w, "{}", file.display())?;
+    writeln!(
+        w,
+        "  cycle time   {:>12}  ({:.3} s)",
+        hms(t.cycle_time_s),
+        t.cycle_time_s
+    )?;
+    writeln!(w, "  cutting      {:>12}", hms(t.cutting_s))?;
+    writeln!(w, "  rapid        {:>12}", hms(t.rapid_s))?;
+    writeln!(w, "  dwell        {:>12}", hms(t.dwell_s))?;
+    writeln!(w, "  tool change  {:>12}", hms(t.tool_change_s))?;
+    if t.other_s > 0.0 {
+        writeln!(w, "  other        {:>12}", hms(t.other_s))?;
+    }
+    writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
+    if !t.per_tool.is_empty() {
+        writeln!(
+            w,
+            "\n  tool    motion      cutting     rapid       distance"
+        )?;
+        for (tool, tt) in &t.per_tool {
+            writeln!(
+                w,
+                "  T{:<5} {:>11} {:>11} {:>11} {:>10.1} mm",
+                tool,
+                hms(tt.motion_s),
+                hms(tt.cutting_s),
+                hms(tt.rapid_s),
+                tt.distance_mm
+            )?;
+        }
+    }
+    let mut blocks = dryrun::block_times(out, dry);
+    blocks.sort_by(|a, b| b.duration_s.total_cmp(&a.duration_s));
+    if !blocks.is_empty() {
+        writeln!(w, "\n  slowest blocks")?;
+        for b in blocks.iter().take(5) {
+            let name = if b.file == 0 {
+                String::new()
+            } else {
+                format!(
+                    " ({})",
+                    out.files
+                        .get(b.file as usize - 1)
+                        .map(String::as_str)
+                        .unwrap_or("?")
+                )
+            };
+            writeln!(
+                w,
+                "  line {:<7} {:>9.3} s  {:>9.2} mm  peak {:>8.0} mm/min{}",
+                b.line + 1,
+                b.duration_s,
+                b.length_mm,
+                b.peak_feed,
+                name
+            )?;
+        }
+    }
+    let errors = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == Severity::Error)
+        .count();
+    let warnings = report
+        .diagnostics
+        .iter()
+        .filter(|d| d.severity == Severity::Warning)
+        .count();
+    if errors + warnings > 0 {
+        writeln!(
+            w,
+            "\n  {errors} error(s), {warnings} warning(s): run `partscope check {}` for details",
+            file.display()
+        )?;
+    }
+    Ok(())
+}
+
+/// Canonical output like `rs274`: the calls on stdout; on an error the message and the
+/// offending source line on stderr and exit status 1.
+fn emit_canon_output(
+    out: &runtime::RunOutput,
+    program: &analyzer::syntax::Program,
+    diagnostics: &[Diagnostic],
+) -> ExitCode {
+    let stdout = std::io::stdout();
+    let mut w = std::io::BufWriter::new(stdout.lock());
+    for l in &out.canon {
+        if writeln!(w, "{l}").is_err() {
+            return ExitCode::from(2);
+        }
+    }
+    let _ = w.flush();
+    let first_error = diagnostics
+        .iter()
+        .filter(|d| d.severity == Severity::Error && d.file == analyzer::FileId(0))
+        .min_by_key(|d| d.span.start);
+    match first_error {
+        Some(d) => {
+            let line = program
+                .block_at(d.span.start)
+                .and_then(|b| program.blocks.get(b))
+                .map(|b| program.str_of(b.span).trim().to_string())
+                .unwrap_or_default();
+            eprintln!("{}\n{}", d.message, line);
+            ExitCode::from(1)
+        }
+        None => ExitCode::SUCCESS,
+    }
+}

@@ -1,0 +1,125 @@
+//! Finding files, configs and dialects on disk (the host side of the pure analyzer).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use analyzer::{Config, Dialect, Settings};
+
+/// File extensions `check` picks up when walking a directory.
+pub const EXTENSIONS: &[&str] = &[
+    "nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf", "fnc", "sw",
+];
+
+/// A loaded config and where it came from.
+#[derive(Clone, Debug)]
+pub struct LoadedConfig {
+    pub config: Config,
+    /// Where the config was found (for messages and relative paths).
+    #[allow(dead_code)]
+    pub path: Option<PathBuf>,
+}
+
+/// Caches `partscope.toml` lookups per directory.
+#[derive(Default)]
+pub struct ConfigCache {
+    by_dir: Mutex<HashMap<PathBuf, Result<LoadedConfig, String>>>,
+}
+
+impl ConfigCache {
+    /// The nearest `partscope.toml` at or above `dir`, or the empty config.
+    pub fn for_dir(&self, dir: &Path) -> Result<LoadedConfig, String> {
+        if let Ok(map) = self.by_dir.lock() {
+            if let Some(c) = map.get(dir) {
+                return c.clone();
+            }
+        }
+        let candidate = dir.join("partscope.toml");
+        let result = if candidate.is_file() {
+            load_config(&candidate)
+        } else {
+            match dir.parent() {
+                Some(parent) if parent != dir => self.for_dir(parent),
+                _ => Ok(LoadedConfig {
+                    config: Config::default(),
+                    path: None,
+                }),
+            }
+        };
+        if let Ok(mut map) = self.by_dir.lock() {
+            map.insert(dir.to_path_buf(), result.clone());
+        }
+        result
+    }
+}
+
+pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let config = Config::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(LoadedConfig {
+        config,
+        path: Some(path.to_path_buf()),
+    })
+}
+
+/// Chooses a file's dialect: command line, then config, then a first-line
+/// directive, then the extension and content, then RS274/NGC.
+pub fn resolve_dialect(cli: Option<Dialect>, config: &Config, path: &Path, text: &[u8]) -> Dialect {
+    if let Some(d) = cli {
+        return d;
+    }
+    if let Some(d) = config.dialect.as_deref().and_then(Dialect::parse) {
+        return d;
+    }
+    let ext = path.extension().and_then(|e| e.to_str());
+    match ext.map(|e| e.to_ascii_lowercase()).as_deref() {
+        Some("fnc") => return Dialect::Fanuc,
+        Some("sw") => return Dialect::Servoworks,
+        _ => {}
+    }
+    analyzer::settings::sniff_dialect(ext, text).unwrap_or(Dialect::Rs274ngc)
+}
+
+/// Settings for one file.
+pub fn settings_for(
+    config: &Config,
+    dialect: Dialect,
+    select: &[String],
+    ignore: &[String],
+) -> Result<Settings, String> {
+    let mut s = Settings::from_config(config, Some(dialect))?;
+    s.select.extend(select.iter().cloned());
+    s.ignore.extend(ignore.iter().cloned());
+    Ok(s)
+}
+
+/// Expands the command-line paths: files as given, directories walked with
+/// .gitignore respected, keeping G-code extensions.
+pub fn collect_files(paths: &[PathBuf]) -> (Vec<PathBuf>, Vec<(PathBuf, String)>) {
+    let mut files = Vec::new();
+    let mut errors = Vec::new();
+    for p in paths {
+        if p.is_dir() {
+            for entry in ignore::WalkBuilder::new(p).build() {
+                match entry {
+                    Ok(e) => {
+                        let path = e.path();
+                        let ok = e.file_type().is_some_and(|t| t.is_file())
+                            && path.extension().and_then(|x| x.to_str()).is_some_and(|x| {
+                                EXTENSIONS.contains(&x.to_ascii_lowercase().as_str())
+                            });
+                        if ok {
+                            files.push(path.to_path_buf());
+                        }
+                    }
+                    Err(e) => errors.push((p.clone(), e.to_string())),
+                }
+            }
+        } else {
+            files.push(p.clone());
+        }
+    }
+    files.sort();
+    files.dedup();
+    (files, errors)
+}

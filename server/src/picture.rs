@@ -1,0 +1,313 @@
+//! Pictures of a toolpath: SVG (isometric view plus top/front/side views) and PNG.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use runtime::dryrun::{DryRun, Toolpath};
+
+/// A view: projects a 3D point to 2D (x right, y up).
+#[derive(Clone, Copy)]
+enum View {
+    Iso,
+    Top,
+    Front,
+    Side,
+}
+
+impl View {
+    fn project(self, p: [f64; 3]) -> (f64, f64) {
+        match self {
+            View::Top => (p[0], p[1]),
+            View::Front => (p[0], p[2]),
+            View::Side => (p[1], p[2]),
+            View::Iso => {
+                // Standard isometric: X to the lower right, Y to the upper right, Z up.
+                let c = std::f64::consts::FRAC_PI_6.cos();
+                let s = std::f64::consts::FRAC_PI_6.sin();
+                ((p[0] - p[1]) * c, (p[0] + p[1]) * s + p[2])
+            }
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            View::Iso => "isometric",
+            View::Top => "top (XY)",
+            View::Front => "front (XZ)",
+            View::Side => "side (YZ)",
+        }
+    }
+}
+
+/// Colour for a feed on a blue → green → yellow → red ramp.
+fn feed_colour(feed: f64, min: f64, max: f64) -> (u8, u8, u8) {
+    let t = if max > min {
+        ((feed - min) / (max - min)).clamp(0.0, 1.0)
+    } else {
+        0.5
+    };
+    let stops = [
+        (0.0, (49, 54, 149)),
+        (0.33, (38, 166, 91)),
+        (0.66, (230, 200, 30)),
+        (1.0, (215, 48, 39)),
+    ];
+    for w in stops.windows(2) {
+        let (t0, c0) = w[0];
+        let (t1, c1) = w[1];
+        if t <= t1 {
+            let f = (t - t0) / (t1 - t0);
+            let lerp = |a: u8, b: u8| (a as f64 + (b as f64 - a as f64) * f).round() as u8;
+            return (lerp(c0.0, c1.0), lerp(c0.1, c1.1), lerp(c0.2, c1.2));
+        }
+    }
+    (215, 48, 39)
+}
+
+fn feed_range(tp: &Toolpath) -> (f64, f64) {
+    let feeds = tp
+        .segments
+        .iter()
+        .filter(|s| s.kind != "rapid" && s.feed.is_finite())
+        .map(|s| s.feed);
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for f in feeds {
+        lo = lo.min(f);
+        hi = hi.max(f);
+    }
+    if lo.is_finite() {
+        (lo, hi)
+    } else {
+        (0.0, 1.0)
+    }
+}
+
+/// 2D bounds of the toolpath in a view.
+fn bounds(tp: &Toolpath, view: View) -> (f64, f64, f64, f64) {
+    let (mut x0, mut y0, mut x1, mut y1) = (
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for s in &tp.segments {
+        for p in &s.points {
+            let (x, y) = view.project(*p);
+            if x.is_finite() && y.is_finite() {
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+    }
+    if !x0.is_finite() {
+        return (0.0, 0.0, 1.0, 1.0);
+    }
+    (x0, y0, x1.max(x0 + 1e-6), y1.max(y0 + 1e-6))
+}
+
+/// Maps a view into a box `(left, top, width, height)` in picture pixels.
+struct Frame {
+    view: View,
+    scale: f64,
+    ox: f64,
+    oy: f64,
+}
+
+impl Frame {
+    fn new(tp: &Toolpath, view: View, bx: (f64, f64, f64, f64)) -> Frame {
+        let (x0, y0, x1, y1) = bounds(tp, view);
+        let pad = 12.0;
+        let sx = (bx.2 - 2.0 * pad) / (x1 - x0);
+        let sy = (bx.3 - 2.0 * pad) / (y1 - y0);
+        let scale = sx.min(sy);
+        let used_w = (x1 - x0) * scale;
+        let used_h = (y1 - y0) * scale;
+        let ox = bx.0 + pad + (bx.2 - 2.0 * pad - used_w) / 2.0 - x0 * scale;
+        let oy = bx.1 + pad + (bx.3 - 2.0 * pad - used_h) / 2.0 + y1 * scale;
+        Frame {
+            view,
+            scale,
+            ox,
+            oy,
+        }
+    }
+
+    fn map(&self, p: [f64; 3]) -> (f64, f64) {
+        let (x, y) = self.view.project(p);
+        (self.ox + x * self.scale, self.oy - y * self.scale)
+    }
+}
+
+/// Layout: a large isometric view on the left, three orthographic views stacked on the right.
+fn layout() -> (f64, f64, Vec<(View, (f64, f64, f64, f64))>) {
+    let (w, h) = (1200.0, 800.0);
+    let top = 50.0;
+    let main = (0.0, top, 800.0, h - top - 40.0);
+    let side_h = (h - top - 40.0) / 3.0;
+    let views = vec![
+        (View::Iso, main),
+        (View::Top, (800.0, top, 400.0, side_h)),
+        (View::Front, (800.0, top + side_h, 400.0, side_h)),
+        (View::Side, (800.0, top + 2.0 * side_h, 400.0, side_h)),
+    ];
+    (w, h, views)
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+pub fn svg(tp: &Toolpath, title: &str, dry: &DryRun) -> String {
+    let (w, h, views) = layout();
+    let (fmin, fmax) = feed_range(tp);
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif">"#
+    );
+    let _ = writeln!(s, r##"<rect width="100%" height="100%" fill="#fafafa"/>"##);
+    let t = &dry.totals;
+    let _ = writeln!(
+        s,
+        r##"<text x="16" y="30" font-size="18" fill="#222">{} — cycle {:.1} s (cutting {:.1} s, rapid {:.1} s), {:.0} mm</text>"##,
+        esc(title),
+        t.cycle_time_s,
+        t.cutting_s,
+        t.rapid_s,
+        t.distance_mm
+    );
+    for (view, bx) in views {
+        let f = Frame::new(tp, view, bx);
+        let _ = writeln!(
+            s,
+            r##"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#ddd"/>"##,
+            bx.0 + 2.0,
+            bx.1,
+            bx.2 - 4.0,
+            bx.3 - 2.0
+        );
+        let _ = writeln!(
+            s,
+            r##"<text x="{}" y="{}" font-size="12" fill="#666">{}</text>"##,
+            bx.0 + 8.0,
+            bx.1 + 14.0,
+            view.name()
+        );
+        for seg in &tp.segments {
+            let pts: Vec<String> = seg
+                .points
+                .iter()
+                .map(|p| f.map(*p))
+                .filter(|(x, y)| x.is_finite() && y.is_finite())
+                .map(|(x, y)| format!("{x:.2},{y:.2}"))
+                .collect();
+            if pts.len() < 2 {
+                continue;
+            }
+            if seg.kind == "rapid" {
+                let _ = writeln!(
+                    s,
+                    r##"<polyline points="{}" fill="none" stroke="#e04040" stroke-width="0.8" stroke-dasharray="4 3" opacity="0.7"/>"##,
+                    pts.join(" ")
+                );
+            } else {
+                let (r, g, b) = feed_colour(seg.feed, fmin, fmax);
+                let _ = writeln!(
+                    s,
+                    r#"<polyline points="{}" fill="none" stroke="rgb({r},{g},{b})" stroke-width="1.2" data-line="{}"/>"#,
+                    pts.join(" "),
+                    seg.line + 1
+                );
+            }
+        }
+    }
+    // Legend: rapids and the feed colour ramp.
+    let ly = h - 22.0;
+    let _ = writeln!(
+        s,
+        r##"<line x1="16" y1="{ly}" x2="56" y2="{ly}" stroke="#e04040" stroke-dasharray="4 3"/><text x="62" y="{}" font-size="12" fill="#333">rapid</text>"##,
+        ly + 4.0
+    );
+    for i in 0..40 {
+        let f = fmin + (fmax - fmin) * i as f64 / 39.0;
+        let (r, g, b) = feed_colour(f, fmin, fmax);
+        let _ = writeln!(
+            s,
+            r#"<rect x="{}" y="{}" width="4" height="10" fill="rgb({r},{g},{b})"/>"#,
+            140.0 + i as f64 * 4.0,
+            ly - 5.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        r##"<text x="310" y="{}" font-size="12" fill="#333">feed {:.0} – {:.0} mm/min</text>"##,
+        ly + 4.0,
+        fmin,
+        fmax
+    );
+    s.push_str("</svg>\n");
+    s
+}
+
+pub fn png(tp: &Toolpath, path: &Path) -> Result<(), String> {
+    use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
+    let (w, h, views) = layout();
+    let mut pm = Pixmap::new(w as u32, h as u32).ok_or("cannot allocate the picture")?;
+    pm.fill(Color::from_rgba8(250, 250, 250, 255));
+    let (fmin, fmax) = feed_range(tp);
+    for (view, bx) in views {
+        let f = Frame::new(tp, view, bx);
+        let mut frame = PathBuilder::new();
+        frame.push_rect(
+            tiny_skia::Rect::from_xywh(
+                (bx.0 + 2.0) as f32,
+                bx.1 as f32,
+                (bx.2 - 4.0) as f32,
+                (bx.3 - 2.0) as f32,
+            )
+            .ok_or("bad frame")?,
+        );
+        if let Some(p) = frame.finish() {
+            let mut paint = Paint::default();
+            paint.set_color_rgba8(221, 221, 221, 255);
+            pm.stroke_path(&p, &paint, &Stroke::default(), Transform::identity(), None);
+        }
+        for seg in &tp.segments {
+            let mut pb = PathBuilder::new();
+            let mut first = true;
+            for p in &seg.points {
+                let (x, y) = f.map(*p);
+                if !(x.is_finite() && y.is_finite()) {
+                    continue;
+                }
+                if first {
+                    pb.move_to(x as f32, y as f32);
+                    first = false;
+                } else {
+                    pb.line_to(x as f32, y as f32);
+                }
+            }
+            let Some(path) = pb.finish() else { continue };
+            let mut paint = Paint::default();
+            paint.anti_alias = true;
+            let mut stroke = Stroke {
+                width: 1.2,
+                ..Stroke::default()
+            };
+            if seg.kind == "rapid" {
+                paint.set_color_rgba8(224, 64, 64, 180);
+                stroke.width = 0.8;
+                stroke.dash = StrokeDash::new(vec![4.0, 3.0], 0.0);
+            } else {
+                let (r, g, b) = feed_colour(seg.feed, fmin, fmax);
+                paint.set_color_rgba8(r, g, b, 255);
+            }
+            pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+        }
+    }
+    pm.save_png(path).map_err(|e| e.to_string())
+}

@@ -1,0 +1,225 @@
+//! End-to-end tests of `partscope check` and `partscope rule` against the built binary.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_partscope"))
+}
+
+fn tempdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("partscope-cli-{}-{}", name, std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &Path, name: &str, text: &[u8]) -> PathBuf {
+    let p = dir.join(name);
+    if let Some(parent) = p.parent() {
+        std::fs::create_dir_all(parent).unwrap();
+    }
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn check_json(args: &[&str]) -> (i32, Vec<Value>) {
+    let out = bin()
+        .arg("check")
+        .arg("--format")
+        .arg("json")
+        .args(args)
+        .output()
+        .unwrap();
+    let code = out.status.code().unwrap_or(-1);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| {
+        panic!(
+            "not JSON ({e}): {}\n{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        )
+    });
+    (code, v.as_array().cloned().unwrap_or_default())
+}
+
+fn codes(diags: &[Value]) -> Vec<(String, u64, String)> {
+    diags
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or("").to_string(),
+                d["line"].as_u64().unwrap_or(0),
+                d["severity"].as_str().unwrap_or("").to_string(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn json_output_has_documented_fields_and_exit_1() {
+    let d = tempdir("json");
+    let f = write(&d, "a.ngc", "G0 X1\nG1 X1.2.3 F100 (open\nM2\n".as_bytes());
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    let first = &diags[0];
+    for key in [
+        "path",
+        "line",
+        "column",
+        "end_line",
+        "end_column",
+        "code",
+        "name",
+        "severity",
+        "message",
+    ] {
+        assert!(first.get(key).is_some(), "missing {key} in {first}");
+    }
+    let c = codes(&diags);
+    assert!(c.contains(&("L004".into(), 2, "error".into())), "{c:?}");
+    assert!(c.contains(&("L001".into(), 2, "error".into())), "{c:?}");
+    let l004 = diags.iter().find(|d| d["code"] == "L004").unwrap();
+    assert_eq!(
+        (l004["column"].as_u64(), l004["end_column"].as_u64()),
+        (Some(5), Some(10))
+    );
+    assert_eq!(l004["name"], "malformed-number");
+}
+
+#[test]
+fn clean_file_exits_0_and_unreadable_exits_2() {
+    let d = tempdir("clean");
+    let f = write(&d, "ok.ngc", b"G0 X1\nM2\n");
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert!(diags.is_empty(), "{diags:?}");
+    assert_eq!(code, 0);
+    let missing = d.join("missing.ngc");
+    let (code, diags) = check_json(&[missing.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert_eq!(codes(&diags)[0].0, "L000");
+}
+
+#[test]
+fn binary_file_is_one_diagnostic() {
+    let d = tempdir("bin");
+    let mut junk = vec![0u8, 1, 2, 255, 254, 0, 7];
+    junk.extend(std::iter::repeat_n(0u8, 4000));
+    let f = write(&d, "junk.nc", &junk);
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        codes(&diags),
+        vec![("L009".to_string(), 1, "error".to_string())]
+    );
+}
+
+#[test]
+fn config_is_discovered_upward_and_selects_dialect_and_rules() {
+    let d = tempdir("config");
+    write(
+        &d,
+        "partscope.toml",
+        b"dialect = \"servoworks\"\n[rules]\nignore = [\"L013\"]\n",
+    );
+    // Lower case is ignored by ServoWorks (L008), `;` prose would be L013 but is ignored by config.
+    let f = write(&d, "sub/dir/p.nc", b"G01 x10.0 F100.0\nG80; cancel\nM30\n");
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    let c: Vec<String> = codes(&diags).into_iter().map(|c| c.0).collect();
+    assert!(c.contains(&"L008".to_string()), "{c:?}");
+    assert!(!c.contains(&"L013".to_string()), "{c:?}");
+    // --dialect overrides the config: RS274/NGC is case-insensitive.
+    let (_, diags) = check_json(&["--dialect", "rs274ngc", f.to_str().unwrap()]);
+    assert!(!codes(&diags).iter().any(|c| c.0 == "L008"));
+}
+
+#[test]
+fn suppression_comments() {
+    let d = tempdir("suppress");
+    let f = write(
+        &d,
+        "s.ngc",
+        b"G1 X1.2.3 F100 (partscope: allow L004)\nG1 X1.2.3\nM2\n",
+    );
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(
+        codes(&diags)
+            .iter()
+            .filter(|c| c.0 == "L004")
+            .map(|c| c.1)
+            .collect::<Vec<_>>(),
+        vec![2]
+    );
+    let f = write(
+        &d,
+        "t.ngc",
+        b"(partscope: allow-file L004)\nG1 X1.2.3 F100\nM2\n",
+    );
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    assert!(!codes(&diags).iter().any(|c| c.0 == "L004"));
+}
+
+#[test]
+fn directory_walk_respects_gitignore_and_extensions() {
+    let d = tempdir("walk");
+    std::fs::create_dir_all(d.join(".git")).unwrap();
+    write(&d, ".gitignore", b"ignored/\n");
+    write(&d, "a.ngc", b"G1 X1.2.3\nM2\n");
+    write(&d, "ignored/b.ngc", b"G1 X1.2.3\nM2\n");
+    write(&d, "notes.txt", b"G1 X1.2.3\n");
+    let (_, diags) = check_json(&[d.to_str().unwrap()]);
+    let paths: Vec<&str> = diags.iter().filter_map(|d| d["path"].as_str()).collect();
+    assert!(!paths.is_empty());
+    assert!(paths.iter().all(|p| p.ends_with("a.ngc")), "{paths:?}");
+}
+
+#[test]
+fn sarif_and_github_formats() {
+    let d = tempdir("sarif");
+    let f = write(&d, "a.ngc", b"G1 X1.2.3 F100\nM2\n");
+    let out = bin()
+        .args(["check", "--format", "sarif", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["version"], "2.1.0");
+    let run = &v["runs"][0];
+    assert!(run["tool"]["driver"]["rules"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|r| r["id"] == "L004"));
+    assert_eq!(run["results"][0]["ruleId"], "L004");
+    assert_eq!(
+        run["results"][0]["locations"][0]["physicalLocation"]["region"]["startLine"],
+        1
+    );
+    let out = bin()
+        .args(["check", "--format", "github", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let s = String::from_utf8_lossy(&out.stdout);
+    assert!(s.starts_with("::error file="), "{s}");
+    assert!(s.contains("line=1,col=5,endLine=1,endColumn=10"), "{s}");
+}
+
+#[test]
+fn rule_explains_and_lists() {
+    let out = bin().args(["rule", "L001"]).output().unwrap();
+    assert!(out.status.success());
+    let s = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        s.contains("## What it does") && s.contains("unclosed-comment"),
+        "{s}"
+    );
+    let out = bin().args(["rule", "--all"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&out.stdout).lines().count() >= 10);
+    let out = bin().args(["rule", "NOPE999"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = bin()
+        .args(["check", "--format", "yaml", "x.ngc"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
