@@ -386,8 +386,32 @@ fn editor_session_over_stdio() {
         (d - (17.0 + 5.0 * std::f64::consts::PI)).abs() < 1e-9,
         "{d}"
     );
-    // FIXME(planner): times are null until the velocity planner is wired.
-    assert_eq!(r["cycle_time_s"], Value::Null);
+    // Times from the planner (default rs274ngc machine): 6 + 5π mm of cutting at
+    // F100 take at least 13.02 s; the cycle is at least cutting plus rapids.
+    eprintln!(
+        "dry run times: {}",
+        json!({"cycle": r["cycle_time_s"], "cutting": r["cutting_s"], "rapid": r["rapid_s"]})
+    );
+    let cutting = r["cutting_s"].as_f64().unwrap();
+    assert!((13.02..13.3).contains(&cutting), "{cutting}");
+    let cycle = r["cycle_time_s"].as_f64().unwrap();
+    assert!(
+        cycle >= cutting + r["rapid_s"].as_f64().unwrap() - 1e-9,
+        "{r}"
+    );
+    // The code lens shows the cycle time and runs the dry run when clicked.
+    let lens = c.request(
+        "textDocument/codeLens",
+        json!({"textDocument": {"uri": puri}}),
+    );
+    assert!(
+        lens[0]["command"]["title"]
+            .as_str()
+            .unwrap()
+            .starts_with("Cycle time 0:1"),
+        "{lens}"
+    );
+    assert_eq!(lens[0]["command"]["command"], "partscope.dryRun");
     let r2 = c.request(
         "workspace/executeCommand",
         json!({"command": "partscope.dryRun", "arguments": [puri]}),
@@ -424,6 +448,15 @@ fn fanuc_subfolder_config_and_program_calls() {
         json!({"textDocument": {"uri": uri}, "position": pos(4, 5)}),
     );
     assert_eq!(r["range"], json!({"start": pos(5, 0), "end": pos(5, 3)}));
+    // The planned time of the tool change shows at the end of its line.
+    let hints = c.request(
+        "textDocument/inlayHint",
+        json!({
+            "textDocument": {"uri": uri}, "range": {"start": pos(0, 0), "end": pos(9, 0)}
+        }),
+    );
+    assert_eq!(hints[0]["position"], pos(2, 7), "{hints}");
+    assert_eq!(hints[0]["label"], "tool change at 0:00.0");
     // FANUC writes codes with two digits: completion and hover follow.
     let (suri, _) = open(&mut c, &root.join("fanuc/O1234.nc"), "gcode");
     assert_eq!(c.diagnostics(&suri, 1), vec![]);
