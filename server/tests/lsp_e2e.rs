@@ -700,3 +700,21 @@ fn empty_and_odd_documents_are_served() {
     }
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn tool_table_named_by_the_config_reaches_the_interpreter() {
+    let root = workspace("tools");
+    std::fs::create_dir_all(root.join("mill")).unwrap();
+    std::fs::write(
+        root.join("mill/partscope.toml"),
+        "dialect = \"rs274ngc\"\ntool_table = \"tools.tbl\"\n",
+    )
+    .unwrap();
+    std::fs::write(root.join("mill/tools.tbl"), "T1 P1 D6 Z0\n").unwrap();
+    std::fs::write(root.join("mill/job.ngc"), "T1 M6\nT2 M6\nM2\n").unwrap();
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("mill/job.ngc"), "ngc");
+    assert_eq!(c.diagnostics(&uri, 1), vec![("T001".to_string(), 1)]);
+    assert!(c.shutdown().success());
+}

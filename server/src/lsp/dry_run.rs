@@ -21,6 +21,8 @@ pub struct DryRunInput<'a> {
     pub doc_path: Option<PathBuf>,
     /// The `partscope.toml` in force (relative paths in it start at its folder).
     pub config_path: Option<PathBuf>,
+    pub tool_table: Option<PathBuf>,
+    pub var_file: Option<PathBuf>,
     pub roots: &'a [PathBuf],
     /// Set when the client cancelled the request; a runner checks it between steps.
     pub cancel: &'a CancelFlag,

@@ -120,6 +120,14 @@ impl DryRunner for RuntimeRunner {
             roots: input.roots,
             loaded: RefCell::new(Vec::new()),
         };
+        // Missing or outside-the-workspace files leave the run without them, as
+        // `partscope run` does for files a config names.
+        let read = |p: &Option<PathBuf>| {
+            p.as_deref()
+                .and_then(|p| workspace::read_confined(p, input.roots))
+                .map(|(_, t)| t)
+        };
+        let (tool_table, var_file) = (read(&input.tool_table), read(&input.var_file));
         let out = runtime::run(&RunInput {
             program: input.program,
             settings: input.settings,
@@ -127,8 +135,8 @@ impl DryRunner for RuntimeRunner {
             resolver: &resolver,
             step_budget: STEP_BUDGET,
             emit_canon: false,
-            tool_table: None,
-            var_file: None,
+            tool_table: tool_table.as_deref(),
+            var_file: var_file.as_deref(),
         });
         if input.cancel.is_cancelled() {
             return None;
@@ -231,6 +239,8 @@ mod run_tests {
             machine: &machine,
             doc_path: None,
             config_path: None,
+            tool_table: None,
+            var_file: None,
             roots: &[],
             cancel: &cancel,
         };

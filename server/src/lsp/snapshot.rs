@@ -164,6 +164,8 @@ impl Snapshot {
             machine: &self.doc.machine,
             doc_path: self.path.clone(),
             config_path: self.doc.config_path.clone(),
+            tool_table: self.doc.tool_table.clone(),
+            var_file: self.doc.var_file.clone(),
             roots: &self.roots,
             cancel,
         };
