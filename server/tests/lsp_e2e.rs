@@ -386,8 +386,32 @@ fn editor_session_over_stdio() {
         (d - (17.0 + 5.0 * std::f64::consts::PI)).abs() < 1e-9,
         "{d}"
     );
-    // FIXME(planner): times are null until the velocity planner is wired.
-    assert_eq!(r["cycle_time_s"], Value::Null);
+    // Times from the planner (default rs274ngc machine): 6 + 5π mm of cutting at
+    // F100 take at least 13.02 s; the cycle is at least cutting plus rapids.
+    eprintln!(
+        "dry run times: {}",
+        json!({"cycle": r["cycle_time_s"], "cutting": r["cutting_s"], "rapid": r["rapid_s"]})
+    );
+    let cutting = r["cutting_s"].as_f64().unwrap();
+    assert!((13.02..13.3).contains(&cutting), "{cutting}");
+    let cycle = r["cycle_time_s"].as_f64().unwrap();
+    assert!(
+        cycle >= cutting + r["rapid_s"].as_f64().unwrap() - 1e-9,
+        "{r}"
+    );
+    // The code lens shows the cycle time and runs the dry run when clicked.
+    let lens = c.request(
+        "textDocument/codeLens",
+        json!({"textDocument": {"uri": puri}}),
+    );
+    assert!(
+        lens[0]["command"]["title"]
+            .as_str()
+            .unwrap()
+            .starts_with("Cycle time 0:1"),
+        "{lens}"
+    );
+    assert_eq!(lens[0]["command"]["command"], "partscope.dryRun");
     let r2 = c.request(
         "workspace/executeCommand",
         json!({"command": "partscope.dryRun", "arguments": [puri]}),
@@ -424,6 +448,15 @@ fn fanuc_subfolder_config_and_program_calls() {
         json!({"textDocument": {"uri": uri}, "position": pos(4, 5)}),
     );
     assert_eq!(r["range"], json!({"start": pos(5, 0), "end": pos(5, 3)}));
+    // The planned time of the tool change shows at the end of its line.
+    let hints = c.request(
+        "textDocument/inlayHint",
+        json!({
+            "textDocument": {"uri": uri}, "range": {"start": pos(0, 0), "end": pos(9, 0)}
+        }),
+    );
+    assert_eq!(hints[0]["position"], pos(2, 7), "{hints}");
+    assert_eq!(hints[0]["label"], "tool change at 0:00.0");
     // FANUC writes codes with two digits: completion and hover follow.
     let (suri, _) = open(&mut c, &root.join("fanuc/O1234.nc"), "gcode");
     assert_eq!(c.diagnostics(&suri, 1), vec![]);
@@ -587,5 +620,101 @@ fn files_outside_the_workspace_are_not_read_until_the_folder_is_added() {
         json!({"textDocument": {"uri": uri}, "position": pos(1, 3)}),
     );
     assert_eq!(r["uri"], uri_of(&root.join("drill.ngc")));
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn cancelled_dry_run_answers_request_cancelled_and_the_server_goes_on() {
+    let root = workspace("cancel");
+    // A program long enough that analysis and run take far longer than the
+    // round trip of a cancel notification.
+    let mut text = String::from("G21 G90 F1000\n");
+    for i in 0..30_000 {
+        text.push_str(&format!("G1 X{} Y{}\n", i % 100, i / 100));
+    }
+    text.push_str("M2\n");
+    std::fs::write(root.join("long.ngc"), &text).unwrap();
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("long.ngc"), "ngc");
+    let id = c.send_request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    c.notify("$/cancelRequest", json!({"id": id}));
+    let r = c.response(id);
+    assert_eq!(r["error"]["code"], -32800, "{r}");
+    // The document's diagnostics still arrive, and a new dry run completes.
+    assert_eq!(c.diagnostics(&uri, 1), vec![]);
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    assert_eq!(r["toolpath"]["segments"].as_array().unwrap().len(), 30_000);
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn empty_and_odd_documents_are_served() {
+    let root = workspace("odd");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    for (name, text) in [
+        ("empty.ngc", ""),
+        (
+            "odd.ngc",
+            "\u{0}\u{1}G\u{7f}😀\r\r\n#<\n(((\no<\n[[[[\nG1 X#[#[#[1]]]\n",
+        ),
+    ] {
+        let uri = uri_of(&root.join(name));
+        c.notify(
+            "textDocument/didOpen",
+            json!({"textDocument": {"uri": uri, "languageId": "ngc", "version": 1, "text": text}}),
+        );
+        c.wait_for("textDocument/publishDiagnostics", |p| {
+            p["uri"] == uri.as_str()
+        });
+        let doc = json!({"uri": uri});
+        for (method, params) in [
+            ("textDocument/documentSymbol", json!({"textDocument": doc})),
+            ("textDocument/foldingRange", json!({"textDocument": doc})),
+            (
+                "textDocument/semanticTokens/full",
+                json!({"textDocument": doc}),
+            ),
+            (
+                "textDocument/hover",
+                json!({"textDocument": doc, "position": pos(1, 1)}),
+            ),
+            (
+                "textDocument/completion",
+                json!({"textDocument": doc, "position": pos(2, 2)}),
+            ),
+            (
+                "textDocument/signatureHelp",
+                json!({"textDocument": doc, "position": pos(6, 3)}),
+            ),
+            (
+                "textDocument/definition",
+                json!({"textDocument": doc, "position": pos(6, 5)}),
+            ),
+            ("partscope/dryRun", json!({"textDocument": doc})),
+        ] {
+            let r = c.request_full(method, params);
+            assert!(r.get("error").is_none(), "{name} {method}: {r}");
+        }
+    }
+    assert!(c.shutdown().success());
+}
+
+#[test]
+fn tool_table_named_by_the_config_reaches_the_interpreter() {
+    let root = workspace("tools");
+    std::fs::create_dir_all(root.join("mill")).unwrap();
+    std::fs::write(
+        root.join("mill/partscope.toml"),
+        "dialect = \"rs274ngc\"\ntool_table = \"tools.tbl\"\n",
+    )
+    .unwrap();
+    std::fs::write(root.join("mill/tools.tbl"), "T1 P1 D6 Z0\n").unwrap();
+    std::fs::write(root.join("mill/job.ngc"), "T1 M6\nT2 M6\nM2\n").unwrap();
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("mill/job.ngc"), "ngc");
+    assert_eq!(c.diagnostics(&uri, 1), vec![("T001".to_string(), 1)]);
     assert!(c.shutdown().success());
 }

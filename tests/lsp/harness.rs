@@ -130,6 +130,28 @@ impl Client {
         }
     }
 
+    /// Sends a request without waiting; returns its id.
+    pub fn send_request(&mut self, method: &str, params: Value) -> i64 {
+        let id = self.next_id;
+        self.next_id += 1;
+        self.send(&json!({"jsonrpc": "2.0", "id": id, "method": method, "params": params}));
+        id
+    }
+
+    /// Waits for the response to request `id`.
+    pub fn response(&mut self, id: i64) -> Value {
+        let deadline = Instant::now() + TIMEOUT;
+        loop {
+            let msg = self
+                .recv(deadline)
+                .unwrap_or_else(|| panic!("no response to request {id}"));
+            if msg.get("id") == Some(&json!(id)) {
+                return msg;
+            }
+            self.pending.push(msg);
+        }
+    }
+
     pub fn request(&mut self, method: &str, params: Value) -> Value {
         let r = self.request_full(method, params);
         assert!(r.get("error").is_none(), "{method} failed: {r}");

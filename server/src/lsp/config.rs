@@ -106,6 +106,10 @@ pub struct DocSettings {
     pub config_error: Option<String>,
     pub max_file_size: usize,
     pub max_run_file_size: usize,
+    /// LinuxCNC tool table and parameter file named by the config (resolved
+    /// against its folder; read only inside the workspace).
+    pub tool_table: Option<PathBuf>,
+    pub var_file: Option<PathBuf>,
 }
 
 /// Finds the nearest `partscope.toml` for `doc`, never looking above `root`
@@ -201,7 +205,17 @@ pub fn resolve(
             Settings::new(dialect)
         }
     };
+    let config_dir = config_path
+        .as_deref()
+        .and_then(Path::parent)
+        .map(Path::to_path_buf);
+    let beside_config = |p: &Option<String>| {
+        p.as_ref()
+            .map(|p| config_dir.clone().unwrap_or_default().join(p))
+    };
     DocSettings {
+        tool_table: beside_config(&config.tool_table),
+        var_file: beside_config(&config.var_file),
         settings,
         machine: config.machine,
         config_path,

@@ -21,6 +21,8 @@ pub struct DryRunInput<'a> {
     pub doc_path: Option<PathBuf>,
     /// The `partscope.toml` in force (relative paths in it start at its folder).
     pub config_path: Option<PathBuf>,
+    pub tool_table: Option<PathBuf>,
+    pub var_file: Option<PathBuf>,
     pub roots: &'a [PathBuf],
     /// Set when the client cancelled the request; a runner checks it between steps.
     pub cancel: &'a CancelFlag,
@@ -56,8 +58,12 @@ pub struct Timing {
     pub cutting_s: f64,
     pub dwell_s: f64,
     pub tool_change_s: f64,
-    /// Other non-motion time (spindle ramps, M-code times, block processing).
+    /// Other non-motion time (spindle ramps, M-code times, program stops).
     pub other_s: f64,
+    /// The planner's totals: motion time counts overlaps once, and the cycle
+    /// time is the end of the last event.
+    pub motion_s: f64,
+    pub cycle_time_s: f64,
 }
 
 /// The machine state after one block of the document.
@@ -78,9 +84,8 @@ pub struct BlockState {
 pub struct RunReport {
     pub segments: Vec<Segment>,
     pub timing: Option<Timing>,
-    /// 0-based lines of the document's tool changes.
-    #[allow(dead_code)] // For time-at-tool-change inlay hints once the planner is wired.
-    pub tool_changes: Vec<u32>,
+    /// The document's tool changes: 0-based line and program time (when planned).
+    pub tool_changes: Vec<(u32, Option<f64>)>,
     /// One entry per block of the document (`None`: never executed).
     pub snapshots: Vec<Option<BlockState>>,
     /// Runtime diagnostics in the document (FileId 0).
@@ -139,11 +144,10 @@ pub fn summarize(
         max = [0.0; 3];
     }
     let t = report.timing;
-    let motion = t.map(|t| t.rapid_s + t.cutting_s);
     DryRunResult {
         version,
-        cycle_time_s: t.map(|t| t.rapid_s + t.cutting_s + t.dwell_s + t.tool_change_s + t.other_s),
-        motion_s: motion,
+        cycle_time_s: t.map(|t| t.cycle_time_s),
+        motion_s: t.map(|t| t.motion_s),
         rapid_s: t.map(|t| t.rapid_s),
         cutting_s: t.map(|t| t.cutting_s),
         dwell_s: t.map(|t| t.dwell_s),
@@ -196,7 +200,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn summary_sums_lengths_bounds_and_times() {
+    fn summary_sums_lengths_and_bounds_and_passes_times() {
         let report = RunReport {
             segments: vec![
                 Segment {
@@ -222,6 +226,8 @@ mod tests {
                 dwell_s: 2.0,
                 tool_change_s: 4.0,
                 other_s: 0.25,
+                motion_s: 1.1,
+                cycle_time_s: 7.35,
             }),
             tool_changes: vec![],
             diagnostics: vec![],
@@ -238,7 +244,8 @@ mod tests {
             }
         );
         assert_eq!(r.motion_s, Some(1.1));
-        assert_eq!(r.cycle_time_s, Some(0.5 + 0.6 + 2.0 + 4.0 + 0.25));
+        assert_eq!(r.cycle_time_s, Some(7.35));
+        assert_eq!(r.tool_change_s, Some(4.0));
         let json = serde_json::to_value(&r).unwrap();
         assert_eq!(json["toolpath"]["segments"][0]["kind"], "rapid");
         assert_eq!(

@@ -10,11 +10,15 @@
 //!   blocking thread, tagged with the document version; a result for an older
 //!   version is dropped. Requests wait for that analysis instead of starting
 //!   their own.
-//! - The interpreter ([`runtime_runner`], behind the [`dry_run::DryRunner`]
-//!   trait) runs with the analysis for files up to `maxRunFileSize` (4 MB):
-//!   its diagnostics join the static ones (a diagnostic inside a subprogram
-//!   file is shown on the document's call of that file), its per-block state
-//!   shows on hover, and `partscope/dryRun` returns its toolpath. One run at a
+//! - The interpreter and planner ([`runtime_runner`], behind the
+//!   [`dry_run::DryRunner`] trait, through `runtime::dryrun`, the glue
+//!   `partscope run` uses too) run with the analysis for files up to
+//!   `maxRunFileSize` (4 MB): the interpreter's diagnostics join the static
+//!   ones (a diagnostic inside a subprogram file is shown on the document's
+//!   call of that file), its per-block state shows on hover, the cycle time is
+//!   a code lens, tool changes get their program time as inlay hints, and
+//!   `partscope/dryRun` returns toolpath and times. The config's
+//!   `tool_table`/`var_file` are passed to the interpreter. One run at a
 //!   time; a run for a superseded version is skipped. Large files publish the
 //!   static diagnostics first and the full set when the run ends. Subprogram
 //!   files (NGC `o<name> sub` libraries, FANUC/ServoWorks files ending in M99)
@@ -40,9 +44,9 @@
 //! [`dry_run::DryRunResult`]: `{version, cycle_time_s, motion_s, rapid_s,
 //! cutting_s, dwell_s, tool_change_s, distance_mm, toolpath: {segments:
 //! [{kind: "rapid"|"feed"|"arc", line, feed, tool, points: [[x,y,z]…]}],
-//! bounds: {min, max}}, diagnostics}`. Times are `null` until the velocity
-//! planner is wired; error -32001 when no run is possible (cancelled), -32603
-//! in syntax-only mode.
+//! bounds: {min, max}}, diagnostics}`. Times are `null` when the `[machine]`
+//! table is not a valid planner profile; error -32001 when no run is possible
+//! (cancelled), -32603 in syntax-only mode.
 
 mod actions;
 mod completion;

@@ -107,6 +107,14 @@ pub fn var_of(program: &Program, id: ExprId) -> Option<Sym> {
 /// The occurrences in one block, except variables (see [`var_occurrences`]).
 pub fn block_occurrences(program: &Program, block: &Block, out: &mut Vec<Occ>) {
     let calls = calls_program(program, block);
+    // FANUC `M98 P<rrrr><pppp>` without L: the digits above the last four
+    // are a repeat count (`M98 P50010` runs O0010 five times).
+    let packed_repeat = calls
+        && program.dialect == Dialect::Fanuc
+        && program
+            .words(block)
+            .any(|(_, w)| w.letter == b'M' && w.num().is_some_and(|n| n.value == 98.0))
+        && !program.words(block).any(|(_, w)| w.letter == b'L');
     for item in program.items_of(block) {
         match &item.kind {
             ItemKind::OWord(ow) => {
@@ -150,7 +158,15 @@ pub fn block_occurrences(program: &Program, block: &Block, out: &mut Vec<Occ>) {
                     WordValue::Num(n)
                         if n.value >= 0.0 && n.value.fract() == 0.0 && n.value < 1e9 =>
                     {
-                        Some((n.value as u32).to_string())
+                        let v = n.value as u32;
+                        Some(
+                            if packed_repeat && v > 9999 {
+                                v % 10000
+                            } else {
+                                v
+                            }
+                            .to_string(),
+                        )
                     }
                     _ => None,
                 };
@@ -363,6 +379,16 @@ mod tests {
             Some(text.find("N20").unwrap() as u32)
         );
         assert_eq!(references(&p, &Sym::Program("1234".into())).len(), 3);
+        // Packed repeat count without L; with L the whole P is the program.
+        let p = prog(Dialect::Fanuc, "M98 P50010;\nM98 P50010 L2;\n");
+        assert_eq!(
+            occurrence_at(&p, 5).map(|o| o.sym),
+            Some(Sym::Program("10".into()))
+        );
+        assert_eq!(
+            occurrence_at(&p, 17).map(|o| o.sym),
+            Some(Sym::Program("50010".into()))
+        );
     }
 
     #[test]

@@ -177,4 +177,79 @@ mod tests {
         let r = span_to_range(&rope, Span::new(s, s + 6));
         assert_eq!(r, Range::new(pos(0, 7), pos(0, 9)));
     }
+
+    /// A slow, obviously-correct model of LSP position → byte offset over a `&str`.
+    fn model_offset(text: &str, pos: Position) -> usize {
+        let (mut line, mut col) = (0u32, 0u32);
+        let mut chars = text.char_indices().peekable();
+        while let Some((i, c)) = chars.next() {
+            if line == pos.line {
+                if c == '\n' || c == '\r' {
+                    return i;
+                }
+                let w = c.len_utf16() as u32;
+                if col + w > pos.character {
+                    return i;
+                }
+                col += w;
+                continue;
+            }
+            if c == '\n' || (c == '\r' && chars.peek().map(|p| p.1) != Some('\n')) {
+                line += 1;
+                col = 0;
+            }
+        }
+        text.len()
+    }
+
+    #[test]
+    fn random_positions_and_edits_match_a_model() {
+        let alphabet = [
+            "G", "1", " ", "X", "\n", "\r\n", "\r", "é", "😀", "日", "(", ")", ";",
+        ];
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = move |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        for _ in 0..200 {
+            let mut text: String = (0..next(40))
+                .map(|_| alphabet[next(alphabet.len())])
+                .collect();
+            let mut rope = Rope::from_str(&text);
+            for _ in 0..10 {
+                let lines =
+                    text.matches('\n').count() as u32 + text.matches('\r').count() as u32 + 2;
+                let a = pos(next(lines as usize) as u32, next(12) as u32);
+                let b = pos(next(lines as usize) as u32, next(12) as u32);
+                assert_eq!(
+                    position_to_offset(&rope, a),
+                    model_offset(&text, a),
+                    "{text:?} {a:?}"
+                );
+                // Round trip from every char boundary (except between the CR and
+                // LF of a CRLF, which no position can name).
+                for (i, _) in text
+                    .char_indices()
+                    .filter(|&(i, c)| !(c == '\n' && text[..i].ends_with('\r')))
+                {
+                    assert_eq!(
+                        position_to_offset(&rope, offset_to_position(&rope, i)),
+                        i,
+                        "{text:?} @{i}"
+                    );
+                }
+                let insert: String = (0..next(4))
+                    .map(|_| alphabet[next(alphabet.len())])
+                    .collect();
+                let (x, y) = (model_offset(&text, a), model_offset(&text, b));
+                let (x, y) = (x.min(y), x.max(y));
+                text.replace_range(x..y, &insert);
+                apply_change(&mut rope, Some(Range::new(a, b)), &insert);
+                assert_eq!(rope.to_string(), text);
+            }
+        }
+    }
 }

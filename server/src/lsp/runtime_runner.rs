@@ -10,9 +10,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use analyzer::{Dialect, FileId};
-use runtime::{EventKind, MotionKind, ResolvedFile, Resolver, RunInput};
+use runtime::{dryrun, EventKind, ResolvedFile, Resolver, RunInput};
 
-use super::dry_run::{BlockState, DryRunInput, DryRunner, RunReport, Segment, SegmentKind};
+use super::dry_run::{BlockState, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
 use super::nav::{self, Sym};
 use super::workspace;
 
@@ -106,85 +106,6 @@ fn onto_call_site(
 
 pub struct RuntimeRunner;
 
-fn xyz(p: &[f64; 6]) -> [f64; 3] {
-    [p[0], p[1], p[2]]
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn scale(a: [f64; 3], k: f64) -> [f64; 3] {
-    [a[0] * k, a[1] * k, a[2] * k]
-}
-
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let d = sub(b, a);
-    dot(d, d).sqrt()
-}
-
-/// Samples an arc (possibly helical) turning counter-clockwise about `normal`
-/// from `start` to `end`, with `turns` extra full turns. Returns the points and
-/// the exact length of the helix.
-pub fn sample_arc(
-    start: [f64; 3],
-    end: [f64; 3],
-    center: [f64; 3],
-    normal: [f64; 3],
-    turns: i32,
-) -> (Vec<[f64; 3]>, f64) {
-    let nl = dot(normal, normal).sqrt();
-    // Also catches NaN: a normal that is not a positive length.
-    if nl.is_nan() || nl <= 0.0 {
-        return (vec![start, end], dist(start, end));
-    }
-    let n = scale(normal, 1.0 / nl);
-    let u = sub(start, center);
-    let v = sub(end, center);
-    let (h0, h1) = (dot(u, n), dot(v, n));
-    let up = sub(u, scale(n, h0));
-    let vp = sub(v, scale(n, h1));
-    let r = dot(up, up).sqrt();
-    if r.is_nan() || r <= 1e-9 {
-        return (vec![start, end], dist(start, end));
-    }
-    let mut theta = dot(cross(up, vp), n).atan2(dot(up, vp));
-    if theta <= 1e-9 {
-        theta += std::f64::consts::TAU;
-    }
-    theta += std::f64::consts::TAU * f64::from(turns.max(0));
-    // Steps so that the chord error stays below the tolerance, within sane bounds.
-    let max_step = 2.0 * (1.0 - (CHORD_TOLERANCE / r).min(1.0)).acos();
-    let steps = ((theta / max_step.max(1e-3)).ceil() as usize).clamp(2, 4096);
-    let w = cross(n, up);
-    let length = ((r * theta).powi(2) + (h1 - h0).powi(2)).sqrt();
-    let points = (0..=steps)
-        .map(|i| {
-            let t = i as f64 / steps as f64;
-            let a = theta * t;
-            let radial = add(scale(up, a.cos()), scale(w, a.sin()));
-            add(center, add(radial, scale(n, h0 + (h1 - h0) * t)))
-        })
-        .collect();
-    (points, length)
-}
-
 impl DryRunner for RuntimeRunner {
     fn run(&self, input: &DryRunInput<'_>) -> Option<RunReport> {
         let subs = workspace::subroutine_path(input.machine, input.config_path.as_deref());
@@ -199,6 +120,14 @@ impl DryRunner for RuntimeRunner {
             roots: input.roots,
             loaded: RefCell::new(Vec::new()),
         };
+        // Missing or outside-the-workspace files leave the run without them, as
+        // `partscope run` does for files a config names.
+        let read = |p: &Option<PathBuf>| {
+            p.as_deref()
+                .and_then(|p| workspace::read_confined(p, input.roots))
+                .map(|(_, t)| t)
+        };
+        let (tool_table, var_file) = (read(&input.tool_table), read(&input.var_file));
         let out = runtime::run(&RunInput {
             program: input.program,
             settings: input.settings,
@@ -206,44 +135,57 @@ impl DryRunner for RuntimeRunner {
             resolver: &resolver,
             step_budget: STEP_BUDGET,
             emit_canon: false,
-            tool_table: None,
-            var_file: None,
+            tool_table: tool_table.as_deref(),
+            var_file: var_file.as_deref(),
         });
         if input.cancel.is_cancelled() {
             return None;
         }
-        let segments = out
-            .motions
+        // The same glue as `partscope run`: toolpath sampling, planner segments
+        // and the plan itself come from `runtime::dryrun`.
+        let tp = dryrun::toolpath(&out, CHORD_TOLERANCE);
+        let segments: Vec<Segment> = tp
+            .segments
             .iter()
-            .map(|m| {
-                let (s, e) = (xyz(&m.start), xyz(&m.end));
-                let (kind, (points, length)) = match m.kind {
-                    MotionKind::Rapid => (SegmentKind::Rapid, (vec![s, e], dist(s, e))),
-                    MotionKind::Arc {
-                        center,
-                        normal,
-                        turns,
-                        ..
-                    } => (SegmentKind::Arc, sample_arc(s, e, center, normal, turns)),
-                    // FIXME: exponential and involute moves are drawn as chords until
-                    // the interpolator exposes sampled points.
-                    _ => (SegmentKind::Feed, (vec![s, e], dist(s, e))),
-                };
-                Segment {
-                    kind,
-                    line: m.line,
-                    feed: m.feed,
-                    tool: m.tool,
-                    points,
-                    length,
-                }
+            .zip(&out.motions)
+            .enumerate()
+            .map(|(i, (t, m))| Segment {
+                kind: match t.kind {
+                    "rapid" => SegmentKind::Rapid,
+                    "arc" => SegmentKind::Arc,
+                    _ => SegmentKind::Feed,
+                },
+                line: t.line,
+                feed: t.feed,
+                tool: t.tool,
+                points: t.points.clone(),
+                length: dryrun::segment_of(m, i as u32).length,
             })
             .collect();
+        // A `[machine]` table the planner cannot read leaves the run without times.
+        let plan = dryrun::profile_from_table(input.machine, input.settings.dialect)
+            .ok()
+            .map(|profile| dryrun::plan_run(&out, &profile));
+        let timing = plan.as_ref().map(|p| Timing {
+            rapid_s: p.totals.rapid_s,
+            cutting_s: p.totals.cutting_s,
+            dwell_s: p.totals.dwell_s,
+            tool_change_s: p.totals.tool_change_s,
+            other_s: p.totals.other_s,
+            cycle_time_s: p.totals.cycle_time_s,
+            motion_s: p.totals.motion_s,
+        });
         let tool_changes = out
             .events
             .iter()
-            .filter(|e| e.file == FileId(0) && matches!(e.kind, EventKind::ToolChange { .. }))
-            .map(|e| e.line)
+            .enumerate()
+            .filter(|(_, e)| e.file == FileId(0) && matches!(e.kind, EventKind::ToolChange { .. }))
+            .map(|(i, e)| {
+                (
+                    e.line,
+                    plan.as_ref().and_then(|p| p.event_times.get(i).copied()),
+                )
+            })
             .collect();
         let snapshots = out
             .snapshots
@@ -272,74 +214,11 @@ impl DryRunner for RuntimeRunner {
             .collect();
         Some(RunReport {
             segments,
-            timing: None,
+            timing,
             tool_changes,
             diagnostics,
             snapshots,
         })
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn close(a: [f64; 3], b: [f64; 3]) -> bool {
-        (0..3).all(|k| (a[k] - b[k]).abs() < 1e-9)
-    }
-
-    #[test]
-    fn quarter_circle_ccw_in_xy() {
-        let (pts, len) = sample_arc(
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0; 3],
-            [0.0, 0.0, 1.0],
-            0,
-        );
-        assert!((len - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
-        assert!(close(pts[0], [1.0, 0.0, 0.0]));
-        assert!(close(*pts.last().unwrap(), [0.0, 1.0, 0.0]));
-        // Every sample is on the unit circle, in the first quadrant.
-        for p in &pts {
-            assert!(((p[0] * p[0] + p[1] * p[1]).sqrt() - 1.0).abs() < 1e-9);
-            assert!(p[0] >= -1e-9 && p[1] >= -1e-9);
-        }
-        // Chord error within 0.01 mm on r = 1: 2·acos(0.99) = 0.2838 rad per
-        // step at most, so 90° takes 6 steps (7 points).
-        assert_eq!(pts.len(), 7);
-        for w in pts.windows(2) {
-            let mid = [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0];
-            let sagitta = 1.0 - (mid[0] * mid[0] + mid[1] * mid[1]).sqrt();
-            assert!(sagitta <= CHORD_TOLERANCE, "{sagitta}");
-        }
-    }
-
-    #[test]
-    fn clockwise_is_ccw_about_the_negative_normal_and_helix_rises() {
-        let (pts, len) = sample_arc(
-            [1.0, 0.0, 0.0],
-            [0.0, -1.0, 2.0],
-            [0.0; 3],
-            [0.0, 0.0, -1.0],
-            0,
-        );
-        // A quarter turn rising 2: sqrt((π/2)² + 2²).
-        assert!((len - (std::f64::consts::FRAC_PI_2.powi(2) + 4.0).sqrt()).abs() < 1e-12);
-        let mid = pts[pts.len() / 2];
-        assert!(mid[0] > 0.0 && mid[1] < 0.0, "{mid:?}");
-        assert!((mid[2] - 1.0).abs() < 0.05, "{mid:?}");
-        assert!(close(*pts.last().unwrap(), [0.0, -1.0, 2.0]));
-        // A full circle (start = end) sweeps 2π.
-        let (full, len) = sample_arc(
-            [1.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0; 3],
-            [0.0, 0.0, 1.0],
-            0,
-        );
-        assert!((len - std::f64::consts::TAU).abs() < 1e-12);
-        assert!(full.iter().any(|p| p[0] < -0.99));
     }
 }
 
@@ -360,6 +239,8 @@ mod run_tests {
             machine: &machine,
             doc_path: None,
             config_path: None,
+            tool_table: None,
+            var_file: None,
             roots: &[],
             cancel: &cancel,
         };

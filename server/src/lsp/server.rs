@@ -28,7 +28,7 @@ use tower_lsp_server::{Client, LanguageServer};
 use super::config::ClientOptions;
 use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
-use super::position::{apply_change, position_to_offset, span_to_range};
+use super::position::{apply_change, offset_to_position, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
 use super::{actions, completion, goto, hover, semantic, signature, symbols, workspace};
 
@@ -109,6 +109,32 @@ async fn blocking<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> 
     tokio::task::spawn_blocking(f)
         .await
         .map_err(|e| internal(format!("analysis failed: {e}")))
+}
+
+/// The document's run for lenses and hints: the cached one, or a new one when
+/// the file is small enough to run with every analysis.
+fn planned_run(snap: &Snapshot) -> Option<Arc<dry_run::RunReport>> {
+    snap.cached_run().or_else(|| {
+        if snap.run_eligible {
+            snap.run_report(&CancelFlag::default())
+        } else {
+            None
+        }
+    })
+}
+
+/// `m:ss.s`, or `h:mm:ss` from an hour on.
+pub fn format_duration(s: f64) -> String {
+    if !s.is_finite() || s < 0.0 {
+        return "–".into();
+    }
+    let s = (s * 10.0).round() / 10.0;
+    if s >= 3600.0 {
+        let t = s.round() as u64;
+        return format!("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
+    }
+    let m = (s / 60.0).floor();
+    format!("{}:{:04.1}", m as u64, s - m * 60.0)
 }
 
 fn uri_path(uri: &Uri) -> Option<PathBuf> {
@@ -804,19 +830,77 @@ impl LanguageServer for Backend {
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        // Times at tool changes need the runtime; until it is wired there are none.
+        // The program time at each tool change, from the planned run.
         guarded("inlayHint", async {
-            let _ = params;
-            Ok(Some(Vec::new()))
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let range = params.range;
+            blocking(move || {
+                let Some(report) = planned_run(&snap) else {
+                    return Some(Vec::new());
+                };
+                let hints = report
+                    .tool_changes
+                    .iter()
+                    .filter(|(line, _)| range.start.line <= *line && *line <= range.end.line)
+                    .filter_map(|(line, t)| {
+                        let t = (*t)?;
+                        let line_start = snap.rope.try_line_to_byte(*line as usize).ok()?;
+                        let text = snap.rope.line(*line as usize).to_string();
+                        let content = text.trim_end_matches(['\r', '\n']);
+                        let pos = offset_to_position(&snap.rope, line_start + content.len());
+                        Some(InlayHint {
+                            position: pos,
+                            label: InlayHintLabel::String(format!(
+                                "tool change at {}",
+                                format_duration(t)
+                            )),
+                            kind: None,
+                            text_edits: None,
+                            tooltip: None,
+                            padding_left: Some(true),
+                            padding_right: None,
+                            data: None,
+                        })
+                    })
+                    .collect();
+                Some(hints)
+            })
+            .await
         })
         .await
     }
 
     async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
-        // The cycle-time lens needs the runtime; without it there is no lens.
+        // The cycle time above the first line; clicking it runs the dry run.
         guarded("codeLens", async {
-            let _ = params;
-            Ok(Some(Vec::new()))
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            blocking(move || {
+                let t = planned_run(&snap).and_then(|r| r.timing)?;
+                let title = format!(
+                    "Cycle time {} (cutting {}, rapid {}, tool change {})",
+                    format_duration(t.cycle_time_s),
+                    format_duration(t.cutting_s),
+                    format_duration(t.rapid_s),
+                    format_duration(t.tool_change_s)
+                );
+                Some(vec![CodeLens {
+                    range: Range::new(Position::new(0, 0), Position::new(0, 0)),
+                    command: Some(Command {
+                        title,
+                        command: DRY_RUN_COMMAND.into(),
+                        arguments: Some(vec![
+                            serde_json::to_value(&snap.uri).unwrap_or(Value::Null)
+                        ]),
+                    }),
+                    data: None,
+                }])
+            })
+            .await
+            .map(|l| Some(l.unwrap_or_default()))
         })
         .await
     }
@@ -838,5 +922,19 @@ impl LanguageServer for Backend {
             other => other,
         };
         self.dry_run(arg).await.map(Some)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::format_duration;
+
+    #[test]
+    fn durations_read_like_a_clock() {
+        assert_eq!(format_duration(13.04), "0:13.0");
+        assert_eq!(format_duration(59.96), "1:00.0");
+        assert_eq!(format_duration(754.25), "12:34.3");
+        assert_eq!(format_duration(3725.4), "1:02:05");
+        assert_eq!(format_duration(f64::NAN), "–");
     }
 }

@@ -30,6 +30,7 @@ pub struct Snapshot {
     pub run_eligible: bool,
     /// The interpreter's run of this version, once computed.
     run: OnceLock<Option<Arc<RunReport>>>,
+    run_lock: std::sync::Mutex<()>,
     /// Static and runtime diagnostics together, once the run is done.
     merged: OnceLock<Vec<analyzer::Diagnostic>>,
 }
@@ -92,6 +93,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         roots: inputs.roots,
         runner: inputs.runner,
         run: OnceLock::new(),
+        run_lock: std::sync::Mutex::new(()),
         merged: OnceLock::new(),
     }
 }
@@ -147,12 +149,23 @@ impl Snapshot {
         if self.syntax_only {
             return None;
         }
+        // One run per version: a second caller waits for the first run
+        // instead of repeating it.
+        let _running = self.run_lock.lock().unwrap_or_else(|p| p.into_inner());
+        if let Some(r) = self.run.get() {
+            return r.clone();
+        }
+        if cancel.is_cancelled() {
+            return None;
+        }
         let input = DryRunInput {
             program: self.program(),
             settings: &self.doc.settings,
             machine: &self.doc.machine,
             doc_path: self.path.clone(),
             config_path: self.doc.config_path.clone(),
+            tool_table: self.doc.tool_table.clone(),
+            var_file: self.doc.var_file.clone(),
             roots: &self.roots,
             cancel,
         };

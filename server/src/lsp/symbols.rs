@@ -94,12 +94,11 @@ pub fn regions(program: &Program) -> Vec<Region> {
         let mut m6 = false;
         for item in program.items_of(block) {
             match &item.kind {
-                ItemKind::ProgramHead { name, .. } => {
+                ItemKind::ProgramHead { .. } => {
                     while !b.stack.is_empty() {
                         b.close_top(bi.saturating_sub(1));
                     }
                     let text = program.str_of(item.span).trim().to_string();
-                    let _ = name;
                     b.open(region(
                         RegionKind::Program,
                         text,
