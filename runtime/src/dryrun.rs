@@ -270,10 +270,35 @@ pub fn planner_events(out: &RunOutput) -> Vec<plan::Event> {
     evs
 }
 
+/// Motion time above which the planner uses closed-form profiles instead of servo periods.
+pub const SERVO_SIMULATION_LIMIT_S: f64 = 4.0 * 3600.0;
+
+/// Length over feed (rapids at the path speed cap): a lower bound of the motion time.
+fn naive_seconds(events: &[plan::Event], profile: &MachineProfile) -> f64 {
+    let rapid = profile.traj_max_velocity.max(1e-9);
+    events
+        .iter()
+        .map(|e| match e {
+            plan::Event::Motion(s) if matches!(s.kind, SegmentKind::Rapid) => s.length / rapid,
+            plan::Event::Motion(s) if s.feed > 0.0 => s.length / s.feed.min(rapid),
+            _ => 0.0,
+        })
+        .filter(|t| t.is_finite())
+        .sum()
+}
+
 /// Plans a run.
 pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
     let events = planner_events(out);
     let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
+    // Period-by-period execution costs time in proportion to machine time; beyond
+    // SERVO_SIMULATION_LIMIT_S of (naively estimated) motion the closed-form profiles,
+    // within a few milliseconds of it per move, keep long jobs fast.
+    let mut profile = profile.clone();
+    if profile.servo_simulation && naive_seconds(&events, &profile) > SERVO_SIMULATION_LIMIT_S {
+        profile.servo_simulation = false;
+    }
+    let profile = &profile;
     let mut planner = plan::Planner::new(profile);
     let mut record = |t: SegmentTiming| {
         if let Some(slot) = motion_times.get_mut(t.block as usize) {

@@ -11,8 +11,11 @@ use super::output::{self, FileReport};
 use super::workspace::{self, ConfigCache, LoadedConfig};
 use super::CheckArgs;
 
-/// Blocks the interpreter may execute per checked file before it reports a runaway program.
-const CHECK_STEP_BUDGET: u64 = 20_000_000;
+/// Blocks the interpreter may execute per checked file before it reports a runaway
+/// program: ten executions of every block, and at least a million (macro loops).
+pub fn step_budget(blocks: usize) -> u64 {
+    (blocks as u64).saturating_mul(10).max(1_000_000)
+}
 
 pub fn run(args: CheckArgs) -> ExitCode {
     let explicit = match &args.config {
@@ -126,7 +129,7 @@ fn check_file(
             settings: &settings,
             machine: &loaded.config.machine,
             resolver: &resolver,
-            step_budget: CHECK_STEP_BUDGET,
+            step_budget: step_budget(analysis.program.blocks.len()),
             emit_canon: false,
             tool_table: None,
             var_file: None,

@@ -1,6 +1,6 @@
 //! Command-line interface: `check`, `run`, `rule`, `lsp`.
 
-mod check;
+pub mod check;
 mod output;
 mod run;
 pub mod workspace;

@@ -62,9 +62,10 @@ pub struct RunArgs {
     /// Write a PNG picture of the toolpath.
     #[arg(long)]
     pub png: Option<PathBuf>,
-    /// Step budget: blocks executed before a runaway program is stopped.
-    #[arg(long, default_value_t = 50_000_000)]
-    pub step_budget: u64,
+    /// Step budget: blocks executed before a runaway program is stopped (default: ten
+    /// executions of every block of the file, at least a million).
+    #[arg(long)]
+    pub step_budget: Option<u64>,
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -220,7 +221,9 @@ pub fn run(args: RunArgs) -> ExitCode {
         settings: &settings,
         machine: &machine_table,
         resolver: &resolver,
-        step_budget: args.step_budget,
+        step_budget: args
+            .step_budget
+            .unwrap_or_else(|| super::check::step_budget(analysis.program.blocks.len())),
         emit_canon,
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
