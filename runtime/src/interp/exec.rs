@@ -21,6 +21,9 @@ use super::types::*;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 
+#[path = "checks.rs"]
+mod checks;
+
 const NUM_PARAMS: usize = 20_000;
 
 /// Blocks of the main file that get a [`BlockSnapshot`]; beyond this the
@@ -277,6 +280,8 @@ struct Interp<'a, 'i> {
     limit_reports: u32,
     /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
     block_exact: bool,
+    /// Memory of the state checks (tool words, G40, motion seen).
+    chk: checks::Mem,
     modal_cache: Option<(Modal, Vec<String>)>,
     /// P/Q of the last G5 (the next G5 without I/J mirrors them).
     spline_pq: (f64, f64),
@@ -372,6 +377,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             main_locals: HashMap::new(),
             limit_reports: 0,
             block_exact: false,
+            chk: checks::Mem::default(),
             modal_cache: None,
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
@@ -1628,6 +1634,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         for (k, s) in comments {
             self.exec_comment(p, *k, *s)?;
         }
+        self.state_checks(w, bspan)?;
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
             self.switch_units(w.has_g(200));
@@ -3005,6 +3012,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             382..=385 => {
                 let t = self.target(w);
+                if self.ngc() && dist(&self.st.pos, &t) == 0.0 {
+                    return Err(self.err(codes::PROBE_STATE, bspan, "the probe move starts at its target: a G38 move needs a target away from the current position"));
+                }
                 self.check_feed(bspan)?;
                 self.canon("TURN_PROBE_ON()");
                 let s = self.canon_pos(&t);
@@ -3892,6 +3902,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Stop);
         }
         if w.has_m(20) || w.has_m(300) {
+            let span = Self::m_span(w, if w.has_m(20) { 20 } else { 300 });
+            self.end_checks(span);
             self.program_end(w.has_m(300));
             self.saw_end = true;
             self.st.ended = true;

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error.
     ///
-    /// Implements: NGC303, NGC304, NGC311, NGC313, FAN024
+    /// Implements: NGC303, NGC304, NGC311, NGC313, NGC315, FAN024
     pub static CYCLE_STATE = {
         code: "C003",
         name: "cycle-state",
         summary: "Canned cycle in an impossible state",
-        implements: &["NGC303", "NGC304", "NGC311", "NGC313", "FAN024"],
+        implements: &["NGC303", "NGC304", "NGC311", "NGC313", "NGC315", "FAN024"],
         origin: Runtime,
         default_enabled: true,
     }
