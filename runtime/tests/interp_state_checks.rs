@@ -118,3 +118,144 @@ fn modes_left_on_at_end() {
     let out = run_sw("M3 S500\nG99 G81 X1 Y1 Z-5 R2 F100\nM30\n", "");
     assert_eq!(found(&out, "F008"), vec![Severity::Warning]);
 }
+
+/// The messages of one code, in emission order.
+fn messages<'o>(out: &'o RunOutput, code: &str) -> Vec<&'o str> {
+    out.diagnostics
+        .iter()
+        .filter(|d| d.code == code)
+        .map(|d| d.message.as_str())
+        .collect()
+}
+
+#[test]
+fn cycle_hygiene_vectors() {
+    // FAN075: K3 in G90 drills one hole three times.
+    let out = run_fanuc(
+        "M3 S500\nG90 G0 Z10\nG81 X0 Y0 Z-5 R2 K3 F100\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(found(&out, "C006"), vec![Severity::Warning]);
+    // NGC316: L2 in G90, and NGC319: G98 from Z1 below R2.
+    let out = run_ngc("G0 Z1\nG98 G81 X0 Y0 Z-1 R2 L2 F100\nG80\nM2\n");
+    assert_eq!(
+        messages(&out, "C006"),
+        vec![
+            "L2 repeats the cycle in absolute mode (G90): every repeat drills the same hole; use G91 to step between holes",
+            "G98 has no effect here: the start height 1 is below R 2, so the cycle retracts to R",
+        ]
+    );
+    // SW115: G87 with G99 is an error in ServoWorks, a warning in FANUC (FAN080).
+    let g87 = "M3 S500\nG90 G0 Z10\nG99 G87 X0 Y0 Z-5 R-20 Q1 F100\nG80\nM30\n";
+    assert_eq!(found(&run_sw(g87, ""), "C006"), vec![Severity::Error]);
+    assert_eq!(found(&run_fanuc(g87, ""), "C006"), vec![Severity::Warning]);
+    // SW117: a cycle block with no position; SW118: plane change under a cycle.
+    let out = run_sw(
+        "M3 S500\nG0 Z10\nG81 Z-5 R2 F100\nG81 F100\nG18\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(
+        found(&out, "C006"),
+        vec![Severity::Warning, Severity::Error],
+        "{:?}",
+        out.diagnostics
+    );
+    // FAN079: Z above R.
+    let out = run_fanuc(
+        "M3 S500\nG90 G0 Z10.\nG81 X0 Y0 Z5. R2. F100\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(
+        messages(&out, "C006"),
+        vec!["point Z (5) is above point R (2): R must lie between the initial level and Z"]
+    );
+}
+
+#[test]
+fn tool_offset_vectors() {
+    // NGC504: M6 with no T is an error in the linuxcnc profile.
+    let out = run_ngc("M6\nM2\n");
+    assert_eq!(found(&out, "T003"), vec![Severity::Error]);
+    // NGC505: T2 replaces T1 before any M6; NGC415: H differs from the spindle tool.
+    let out = run_ngc("T1\nT2 M6\nG43 H3\nM2\n");
+    assert_eq!(
+        messages(&out, "T003"),
+        vec!["G43 H3 applies the length of tool 3, but tool 2 is in the spindle"]
+    );
+    let out = run_ngc("T1\nT2\nM6\nM2\n");
+    assert_eq!(found(&out, "T003"), vec![Severity::Info]);
+    // NGC510: M6 under G43 and then Z moves with the old offset.
+    let out = run_ngc("T1 M6\nG43 H1\nT2 M6\nG0 Z1\nM2\n");
+    assert_eq!(found(&out, "T003"), vec![Severity::Info]);
+    let out = run_ngc("T1 M6\nG43 H1\nT2 M6\nG43 H2\nG0 Z1\nM2\n");
+    assert!(found(&out, "T003").is_empty(), "{:?}", out.diagnostics);
+    // SW146: T while G43 is on, without H.
+    let out = run_sw("G43 H1 Z0\nT2\nM30\n", "");
+    assert_eq!(found(&out, "T003"), vec![Severity::Info]);
+}
+
+#[test]
+fn coordinate_mode_vectors() {
+    // rs274ngc.md: `G91 G53 G0 X1` → NGC406; NGC404: G53 with G2.
+    assert_eq!(
+        found(&run_ngc("G91 G53 G0 X1\nM2\n"), "K003"),
+        vec![Severity::Error]
+    );
+    assert_eq!(
+        found(&run_ngc("G53 G2 X1 Y1 R1 F10\nM2\n"), "K003"),
+        vec![Severity::Error]
+    );
+    // ServoWorks: G29 with no G28 (SW072), G52 in G91 (SW107).
+    let out = run_sw("G29 X1\nG91 G52 X1\nG90\nM30\n", "");
+    assert_eq!(
+        found(&out, "K003"),
+        vec![Severity::Warning, Severity::Warning]
+    );
+    // SW103: mirror while scaling; SW081: cutter comp with scaling.
+    let out = run_sw("G51 X0 Y0 P2.0\nG51.1 X0\nG50.1\nG41 D0.5\nG50\nM30\n", "");
+    assert_eq!(
+        found(&out, "K003"),
+        vec![Severity::Error, Severity::Error],
+        "{:?}",
+        out.diagnostics
+    );
+}
+
+#[test]
+fn comp_motion_vectors() {
+    // NGC217: an arc as the first move after G40.
+    let out = run_ngc("G0 X0 Y0\nG41.1 D0.2\nG1 X1 F100\nG40\nG2 X2 Y0 R0.5\nM2\n");
+    assert_eq!(found(&out, "T004"), vec![Severity::Error]);
+    // SW082: the entry move is an arc; SW083: G17 in compensation mode.
+    let out = run_sw(
+        "G0 X0 Y0\nG41 D1.0\nG02 X10 Y0 R5 F100\nG01 X20\nG17\nG40 G01 X30\nM30\n",
+        "",
+    );
+    assert_eq!(
+        messages(&out, "T004"),
+        vec![
+            "the first motion of tool radius compensation cannot be G02: use G00 or G01 to start and end it",
+            "G17 is not allowed in tool radius compensation mode (only G00–G03, G04, M, S, B and F): cancel with G40 first",
+        ]
+    );
+}
+
+#[test]
+fn probe_vectors() {
+    // NGC226: target = current position; NGC227: cutter comp on; NGC229: G95.
+    assert_eq!(
+        found(&run_ngc("G0 X0 Y0 Z0\nG38.2 Z0 F10\nM2\n"), "F011"),
+        vec![Severity::Error]
+    );
+    assert_eq!(
+        found(
+            &run_ngc("G0 X0 Y0\nG41.1 D0.2\nG1 X1 F10\nG38.2 X2 F10\nM2\n"),
+            "F011"
+        ),
+        vec![Severity::Error]
+    );
+    assert_eq!(
+        found(&run_ngc("S100 M3\nG95 G38.2 Z-1 F0.1\nM2\n"), "F011"),
+        vec![Severity::Error]
+    );
+}
