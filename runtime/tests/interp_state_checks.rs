@@ -75,9 +75,8 @@ fn comp_conflict_vectors() {
         ("G92 X0", "G92"),
         ("G55", "G55"),
         ("G18", "plane"),
-        ("G20", "units"),
         ("G42.1 D0.4", "G42"),
-        ("G10 L1 P1 R0.1", "G10"),
+        ("G10 L2 P0 X1", "G10"),
         ("T1 M6", "M6"),
     ] {
         let out = run_ngc(&format!("{pre}{line}\nG40 G1 X2\nM2\n"));
@@ -88,8 +87,16 @@ fn comp_conflict_vectors() {
             out.diagnostics
         );
     }
-    // Codes that leave the active system or the plane alone are fine.
-    for line in ["G17", "G21", "G10 L2 P2 X1"] {
+    // Codes LinuxCNC 2.9's rs274 accepts under compensation (EMC2 refused
+    // G20 and G10 L1), and codes that leave the active system or the plane alone.
+    for line in [
+        "G17",
+        "G21",
+        "G20",
+        "G10 L1 P1 R0.1",
+        "G92.1",
+        "G10 L2 P2 X1",
+    ] {
         let out = run_ngc(&format!("{pre}{line}\nG40 G1 X2\nM2\n"));
         assert!(
             found(&out, "T002").is_empty(),
@@ -173,9 +180,9 @@ fn cycle_hygiene_vectors() {
 
 #[test]
 fn tool_offset_vectors() {
-    // NGC504: M6 with no T is an error in the linuxcnc profile.
+    // NGC504: M6 with no T; LinuxCNC 2.9's rs274 runs it, so a warning.
     let out = run_ngc("M6\nM2\n");
-    assert_eq!(found(&out, "T003"), vec![Severity::Error]);
+    assert_eq!(found(&out, "T003"), vec![Severity::Warning]);
     // NGC505: T2 replaces T1 before any M6; NGC415: H differs from the spindle tool.
     let out = run_ngc("T1\nT2 M6\nG43 H3\nM2\n");
     assert_eq!(
@@ -258,4 +265,71 @@ fn probe_vectors() {
         found(&run_ngc("S100 M3\nG95 G38.2 Z-1 F0.1\nM2\n"), "F011"),
         vec![Severity::Error]
     );
+}
+
+#[test]
+fn arc_word_vectors() {
+    // NGC210: K under G17; NGC205: R-format arc with no in-plane end point.
+    assert_eq!(
+        messages(&run_ngc("G17 G0 X0 Y0\nG2 X1 Y1 K1 F100\nM2\n"), "A008"),
+        vec!["K is the centre offset along the axis normal to the G17 plane: an arc in G17 takes I and J"]
+    );
+    assert_eq!(
+        found(&run_ngc("G0 X0 Y0\nG2 Z1 R1 F100\nM2\n"), "A008"),
+        vec![Severity::Error]
+    );
+    // NGC216: G90.1 with only I.
+    assert_eq!(
+        found(&run_ngc("G90.1 G0 X0 Y0\nG2 X2 Y0 I1 F100\nM2\n"), "A008"),
+        vec![Severity::Error]
+    );
+    // SW034: G17 arc with X and Z but no Y.
+    assert_eq!(
+        found(
+            &run_sw("G17 G00 X0 Y0\nG02 X10 Z5 R10 F100\nM30\n", ""),
+            "A008"
+        ),
+        vec![Severity::Error]
+    );
+}
+
+#[test]
+fn ill_conditioned_arc_vectors() {
+    // Chord 1.99 on R1: sweep 2·asin(0.995) = 168.5°, inside [165°, 195°].
+    let out = run_ngc("G0 X0 Y0\nG2 X1.99 Y0 R1 F100\nM2\n");
+    assert_eq!(
+        messages(&out, "A009"),
+        vec!["this radius-format arc sweeps 168.5°: near 180° a tiny change of the end point moves the centre a lot; program the centre with I/J"]
+    );
+    // R negative on a short chord: 360° − 2·asin(0.1) = 348.5° (NGC213, ≥ 345°).
+    let out = run_ngc("G0 X0 Y0\nG2 X0.2 Y0 R-1 F100\nM2\n");
+    assert_eq!(found(&out, "A009"), vec![Severity::Warning]);
+    // Chord √2 on R1 is a quarter circle: fine.
+    let out = run_ngc("G0 X0 Y0\nG2 X1 Y-1 R1 F100\nM2\n");
+    assert!(found(&out, "A009").is_empty());
+    // FANUC: about 180° warns (FAN034), near 360° does not.
+    let out = run_fanuc("G00 X0 Y0\nG02 X1.99 Y0 R1. F100\nM30\n", "");
+    assert_eq!(found(&out, "A009"), vec![Severity::Warning]);
+}
+
+#[test]
+fn g76_vectors() {
+    let pre = "G18\nS100 M3\nG0 X0 Z0\n";
+    // NGC336: E6 on a 10 mm thread (half = 5); LinuxCNC 2.9 runs it, so a warning.
+    let out = run_ngc(&format!("{pre}G76 P0.1 Z-10 I-0.1 J0.05 K0.2 E6\nM2\n"));
+    assert_eq!(
+        messages(&out, "C003"),
+        vec!["G76 taper length E is longer than half the thread: shorten E"]
+    );
+    assert_eq!(found(&out, "C003"), vec![Severity::Warning]);
+    let out = run_ngc(&format!("{pre}G76 P0.1 Z-10 I-0.1 J0.05 K0.2 E5\nM2\n"));
+    assert!(found(&out, "C003").is_empty(), "{:?}", out.diagnostics);
+    // NGC337: rotary words are refused ("Cannot move rotary axes with G76");
+    // X and a plane other than G18 (NGC330/331) are accepted by LinuxCNC 2.9.
+    let out = run_ngc(&format!("{pre}G76 P0.1 Z-10 A1 I-0.1 J0.05 K0.2\nM2\n"));
+    assert_eq!(found(&out, "C003"), vec![Severity::Error]);
+    let out = run_ngc(&format!("{pre}G76 P0.1 X1 Z-10 I-0.1 J0.05 K0.2\nM2\n"));
+    assert!(found(&out, "C003").is_empty(), "{:?}", out.diagnostics);
+    let out = run_ngc("G17\nS100 M3\nG0 X0 Z0\nG76 P0.1 Z-10 I-0.1 J0.05 K0.2\nM2\n");
+    assert!(found(&out, "C003").is_empty(), "{:?}", out.diagnostics);
 }

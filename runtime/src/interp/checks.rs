@@ -64,6 +64,7 @@ impl Interp<'_, '_> {
         self.coordinate_checks(w)?;
         self.comp_motion_checks(w)?;
         self.probe_checks(w)?;
+        self.arc_checks(w)?;
         Ok(())
     }
 
@@ -106,8 +107,9 @@ impl Interp<'_, '_> {
                 ));
             }
         }
+        // LinuxCNC 2.9 accepts a units change under compensation; the 2007 EMC2 refused it.
         for (code, inch) in [(200u32, true), (210, false)] {
-            if w.has_g(code) && inch != self.st.modal.inch {
+            if emc2 && w.has_g(code) && inch != self.st.modal.inch {
                 return Err(self.err(
                     codes::COMP_CONFLICT,
                     w.g_span(code),
@@ -133,7 +135,8 @@ impl Interp<'_, '_> {
             let l = w.get(b'L').map(|l| l.round() as i64).unwrap_or(-1);
             let p = w.get(b'P').map(|p| p.round() as usize).unwrap_or(0);
             let active = p == 0 || p == self.st.modal.origin;
-            if matches!(l, 1 | 10 | 11) || (matches!(l, 2 | 20) && active) {
+            // LinuxCNC 2.9 refuses only a change of the active system; EMC2 also tool data.
+            if (emc2 && matches!(l, 1 | 10 | 11)) || (matches!(l, 2 | 20) && active) {
                 return Err(self.err(
                     codes::COMP_CONFLICT,
                     w.g_span(100),
@@ -146,9 +149,6 @@ impl Interp<'_, '_> {
             (300, "G30 reference return"),
             (530, "G53 machine-coordinate move"),
             (920, "G92 offset"),
-            (921, "G92.1 offset reset"),
-            (922, "G92.2 offset suspension"),
-            (923, "G92.3 offset restore"),
             (520, "G52 offset"),
         ] {
             if w.has_g(code) {
@@ -502,7 +502,6 @@ impl Interp<'_, '_> {
         if !ngc {
             return Ok(());
         }
-        let emc2 = self.variant == Variant::Emc2;
         if w.has_g(430) {
             if let Some(h) = w.get(b'H') {
                 if h < 0.0 {
@@ -526,21 +525,14 @@ impl Interp<'_, '_> {
         }
         if w.has_m(60) {
             let s = Self::m_span(w, 60);
+            // LinuxCNC 2.9 (its rs274) loads tool 0 without complaint: a warning only.
             if !self.chk.t_seen {
-                if emc2 {
-                    self.diag(
-                        codes::TOOL_OFFSET_STATE,
-                        Severity::Warning,
-                        s,
-                        "M6 with no tool selected: give T before M6",
-                    );
-                } else {
-                    return Err(self.err(
-                        codes::TOOL_OFFSET_STATE,
-                        s,
-                        "M6 with no tool selected: LinuxCNC stops; give T before M6",
-                    ));
-                }
+                self.diag(
+                    codes::TOOL_OFFSET_STATE,
+                    Severity::Warning,
+                    s,
+                    "M6 with no tool selected: the spindle gets tool 0 (no tool); give T before M6",
+                );
             }
             self.chk.t_unused = None;
             if self.st.modal.tlo_mode == 430 && !w.has_g(430) && !w.has_g(490) {
@@ -743,5 +735,109 @@ fn fmt_len(v: f64) -> String {
         "0".into()
     } else {
         s.into()
+    }
+}
+
+impl Interp<'_, '_> {
+    /// Arc words against the active plane, and radius-format arcs whose centre
+    /// is ill-defined (sweep near 180° or 360°).
+    fn arc_checks(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let Some((g, span)) = self.block_motion(w) else {
+            return Ok(());
+        };
+        if !matches!(g, 20 | 30) {
+            return Ok(());
+        }
+        let d = self.dialect;
+        let ngc = d == Dialect::Rs274ngc;
+        // A plane code on the arc's own line applies before the arc.
+        let plane =
+            w.g.iter()
+                .find(|g| matches!(g.0, 170 | 180 | 190))
+                .map(|g| g.0)
+                .unwrap_or(self.st.modal.plane);
+        let (a, b, n) = match plane {
+            180 => (2, 0, 1),
+            190 => (1, 2, 0),
+            _ => (0, 1, 2),
+        };
+        let axes = [b'X', b'Y', b'Z'];
+        let ijk = [b'I', b'J', b'K'];
+        let has_r = w.has(b'R');
+        let has_c = w.has(ijk[a]) || w.has(ijk[b]);
+        let plane = format!("G{}", plane / 10);
+        if d != Dialect::Fanuc && w.has(ijk[n]) && !(ngc && g == 20 && w.has_g(330)) {
+            let msg = format!(
+                "{} is the centre offset along the axis normal to the {plane} plane: an arc in {plane} takes {} and {}",
+                ijk[n] as char, ijk[a] as char, ijk[b] as char
+            );
+            if ngc {
+                return Err(self.err(codes::ARC_WORDS, w.sp(ijk[n]), msg));
+            }
+            self.diag(codes::ARC_WORDS, Severity::Error, w.sp(ijk[n]), msg);
+        }
+        let in_plane_end = w.has(axes[a]) || w.has(axes[b]);
+        if ngc && !in_plane_end {
+            let emc2 = self.variant == Variant::Emc2;
+            if has_r {
+                return Err(self.err(codes::ARC_WORDS, span, format!("a radius-format arc needs an end point in the {plane} plane ({} or {}): without one there is no arc", axes[a] as char, axes[b] as char)));
+            }
+            if emc2 && has_c {
+                return Err(self.err(
+                    codes::ARC_WORDS,
+                    span,
+                    format!(
+                        "a centre-format arc needs an end point in the {plane} plane ({} or {})",
+                        axes[a] as char, axes[b] as char
+                    ),
+                ));
+            }
+        }
+        if ngc && !has_r && self.st.modal.ijk_abs && has_c && !(w.has(ijk[a]) && w.has(ijk[b])) {
+            return Err(self.err(
+                codes::ARC_WORDS,
+                span,
+                format!(
+                    "with absolute arc centres (G90.1) both {} and {} are needed",
+                    ijk[a] as char, ijk[b] as char
+                ),
+            ));
+        }
+        if d == Dialect::Servoworks {
+            if w.has(axes[n]) && (w.has(axes[a]) != w.has(axes[b])) {
+                self.diag(codes::ARC_WORDS, Severity::Error, span, format!("the arc's axis words do not match the {plane} plane: give both {} and {} (or neither) with a helical {}", axes[a] as char, axes[b] as char, axes[n] as char));
+            }
+            let extra = b"XYZABCUVW"
+                .iter()
+                .filter(|c| **c != axes[a] && **c != axes[b] && w.has(**c))
+                .count();
+            if extra > 2 {
+                self.diag(codes::ARC_WORDS, Severity::Error, span, format!("{extra} axes outside the {plane} plane move with this arc: at most two helical axes are allowed"));
+            }
+        }
+        // Radius format: the sweep follows from the chord and |R|.
+        if d == Dialect::Servoworks || !has_r {
+            return Ok(());
+        }
+        let Some(r) = w.get(b'R').map(|v| self.lin(v)) else {
+            return Ok(());
+        };
+        let t = self.target(w);
+        let chord = (t[a] - self.st.pos[a]).hypot(t[b] - self.st.pos[b]);
+        if r == 0.0 || chord == 0.0 || chord > 2.0 * r.abs() {
+            return Ok(());
+        }
+        let half = (chord / (2.0 * r.abs())).min(1.0).asin().to_degrees();
+        let sweep = if r > 0.0 {
+            2.0 * half
+        } else {
+            360.0 - 2.0 * half
+        };
+        let near_half = (165.0..=195.0).contains(&sweep);
+        let near_full = ngc && sweep >= 345.0;
+        if near_half || near_full {
+            self.diag(codes::ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
+        }
+        Ok(())
     }
 }

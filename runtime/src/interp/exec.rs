@@ -3163,9 +3163,42 @@ impl<'a, 'i> Interp<'a, 'i> {
                 "cannot use G76 threading cycle with cutter radius compensation on",
             ));
         }
+        // The 2007 EMC2 limited G76 to G18 without X or Y and E up to half the
+        // thread; LinuxCNC 2.9 runs all of these (checked against its rs274).
+        let emc2 = self.variant == Variant::Emc2;
+        if emc2 && self.st.modal.plane != 180 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "G76 threading works only in the XZ plane: select G18 first",
+            ));
+        }
+        let refused: &[u8] = if emc2 { b"XYABC" } else { b"ABC" };
+        if let Some(c) = refused.iter().copied().find(|c| w.has(*c)) {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                w.sp(c),
+                format!(
+                    "G76 does not accept {}: the thread runs along Z from the current position",
+                    c as char
+                ),
+            ));
+        }
         let i = w.get(b'I').map(|v| self.lin(v)).unwrap_or(0.0);
         let j = w.get(b'J').map(|v| self.lin(v)).unwrap_or(0.0);
         let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+        if let Some(e) = w.get(b'E') {
+            let e = self.lin(e);
+            let zabs = self.target(w)[2];
+            let half = (zabs - self.st.pos[2]).abs() / 2.0;
+            if e > half + 1e-9 {
+                let msg = "G76 taper length E is longer than half the thread: shorten E";
+                if emc2 {
+                    return Err(self.err(codes::CYCLE_STATE, w.sp(b'E'), msg));
+                }
+                self.diag(codes::CYCLE_STATE, Severity::Warning, w.sp(b'E'), msg);
+            }
+        }
         if i == 0.0 {
             return Err(self.err(codes::CYCLE_STATE, span, "in G76, I must not be 0"));
         }

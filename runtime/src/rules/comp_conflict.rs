@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags codes given while cutter radius compensation (G41/G42) is on that the control refuses: in RS274/NGC G41/G42 again, G10 L1/L10/L11 (or L2/L20 on the active system), G28/G30, G53, G92 and G52, G54–G59.3, M6, a units change and a plane change; in FANUC a plane change and G45–G48.
+    /// Flags codes given while cutter radius compensation (G41/G42) is on that the control refuses: in RS274/NGC G41/G42 again, G10 L2/L20 on the active system, G28/G30, G53, G92 and G52, G54–G59.3, M6 and a plane change (the `emc2` profile also G10 L1/L10/L11 and a units change); in FANUC a plane change and G45–G48.
     ///
     /// ## Why is this bad?
     /// The compensated path depends on these settings; LinuxCNC stops with an error (for M6 the 2007 EMC2 only warns that the old radius stays in use), FANUC alarms PS0037/PS0042.

@@ -6,11 +6,13 @@ use analyzer::rules::RuleMeta;
 
 mod after_end;
 mod arc_corrected;
+mod arc_ill_conditioned;
 mod arc_no_center;
 mod arc_polar_ijk;
 mod arc_radius_mismatch;
 mod arc_radius_too_small;
 mod arc_same_end_r;
+mod arc_words;
 mod call_depth;
 mod comp_conflict;
 mod comp_motion;
@@ -70,6 +72,8 @@ pub mod codes {
     pub const UNKNOWN_CODE: &str = "X002";
     pub const INTERP: &str = "X003";
     pub const MACRO_ALARM: &str = "X004";
+    pub const ARC_ILL_CONDITIONED: &str = "A009";
+    pub const ARC_WORDS: &str = "A008";
     pub const PROBE_STATE: &str = "F011";
     pub const COMP_MOTION: &str = "T004";
     pub const COORDINATE_MODE: &str = "K003";
@@ -111,6 +115,8 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &unknown_code::UNKNOWN_CODE,
     &interp::INTERP,
     &macro_alarm::MACRO_ALARM,
+    &arc_ill_conditioned::ARC_ILL_CONDITIONED,
+    &arc_words::ARC_WORDS,
     &probe_state::PROBE_STATE,
     &comp_motion::COMP_MOTION,
     &coordinate_mode::COORDINATE_MODE,

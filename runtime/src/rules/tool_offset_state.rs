@@ -25,7 +25,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC (M6 with no tool: error in `linuxcnc`, warning in `emc2`), ServoWorks. Error, info for the hints.
+    /// RS274/NGC, ServoWorks. Error for G43 H-1 and G43/G44 under TCP; warning for M6 with no tool (LinuxCNC 2.9 runs it); info for the hints.
     ///
     /// Implements: NGC414, NGC415, NGC504, NGC505, NGC510, SW096, SW146
     pub static TOOL_OFFSET_STATE = {
