@@ -333,3 +333,71 @@ fn g76_vectors() {
     let out = run_ngc("G17\nS100 M3\nG0 X0 Z0\nG76 P0.1 Z-10 I-0.1 J0.05 K0.2\nM2\n");
     assert!(found(&out, "C003").is_empty(), "{:?}", out.diagnostics);
 }
+
+#[test]
+fn cycle_modal_data_vectors() {
+    // SW124: Q on a cycle block without a position is not stored.
+    let out = run_sw(
+        "M3 S500\nG0 Z10\nG83 X0 Y0 Z-5 R2 Q1 F100\nQ2\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(
+        messages(&out, "C006"),
+        vec!["Q in a canned-cycle block that makes no hole is not stored as cycle data: give it with the hole position"]
+    );
+    // FAN088: Q stored by G83 (peck depth) reused by G76 as the shift amount.
+    let out = run_fanuc(
+        "M3 S500\nG90 G0 Z10.\nG83 X0 Y0 Z-5. R2. Q1. F100\nG76 X10. Z-5. R2.\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(
+        messages(&out, "C006"),
+        vec!["G76 reuses Q stored by G83: the peck depth becomes the shift amount; give Q on this block"]
+    );
+    // FAN084 / FAN085: G43 and G45 in cycle mode.
+    let out = run_fanuc(
+        "M3 S500\nG90 G0 Z10.\nG81 X0 Y0 Z-5. R2. F100\nG43 H1 X10.\nG45 X20. D1\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(
+        found(&out, "C006"),
+        vec![Severity::Warning, Severity::Warning],
+        "{:?}",
+        out.diagnostics
+    );
+    // SW131: compensation is ignored in a cycle.
+    let out = run_sw(
+        "M3 S500\nG0 X0 Y0 Z10\nG41 D1.0 G01 X5 F100\nG81 X10 Y0 Z-5 R2 F100\nG80\nG40 G01 X0\nM30\n",
+        "",
+    );
+    assert!(
+        messages(&out, "C006")
+            .contains(&"tool radius compensation is ignored inside canned cycles: the holes are drilled at the programmed points"),
+        "{:?}",
+        out.diagnostics
+    );
+}
+
+#[test]
+fn comp_mode_and_g10_vectors() {
+    // NGC421 (rs274: "Cannot change retract mode with cutter radius compensation on").
+    let out = run_ngc("G0 X0 Y0\nG41.1 D0.4\nG1 X1 F100\nG98\nG40 G1 X2\nM2\n");
+    assert_eq!(
+        messages(&out, "T002"),
+        vec!["cannot change the retract mode (G98) while cutter radius compensation is on: LinuxCNC stops; cancel it with G40 first"]
+    );
+    // NGC412: compensation in G19 ("allowed only in XY, XZ planes"); G18 is fine.
+    let out = run_ngc("G19\nG41.1 D0.4\nG1 Z1 F100\nG40\nM2\n");
+    assert_eq!(found(&out, "T004"), vec![Severity::Error]);
+    let out = run_ngc("G18\nG41.1 D0.4\nG1 X1 F100\nG40\nM2\n");
+    assert!(found(&out, "T004").is_empty(), "{:?}", out.diagnostics);
+    // NGC400: G10 L5; NGC821: G10 L0 with tool 1 loaded.
+    assert_eq!(
+        messages(&run_ngc("G10 L5 P1 X1\nM2\n"), "K003"),
+        vec!["G10 needs one of L0, L1, L2, L10, L11, L20: LinuxCNC stops"]
+    );
+    assert_eq!(
+        found(&run_ngc("T1 M6\nG10 L0 P1\nM2\n"), "K003"),
+        vec![Severity::Error]
+    );
+}

@@ -44,11 +44,12 @@ M30;
 fn example_8_1_canned_cycles() {
     let out = run_fanuc(EXAMPLE_8_1, OFFSETS);
     // N011/N019 G00 while a cycle is modal cancels it (FAN023, info); N023 puts
-    // R47 above the initial level Z0 (FAN081); N025 G28 while G85 is modal (no
-    // G80 in the example): PS0044, the cycle is cancelled.
+    // R47 above the initial level Z0 (FAN081); N024 switches to G91 in cycle mode
+    // without R and Z (FAN082); N025 G28 while G85 is modal (no G80 in the
+    // example): PS0044, the cycle is cancelled.
     assert_eq!(
         codes(&out),
-        vec!["C006", "C006", "C006", "C003"],
+        vec!["C006", "C006", "C006", "C006", "C003"],
         "{:?}",
         out.diagnostics
     );

@@ -20,6 +20,8 @@ pub(super) struct Mem {
     after_g40: bool,
     /// An M6 left the tool length offset of the old tool while G43 was in use.
     m6_without_g43: bool,
+    /// The cycle (tenths) whose block last stored Q (FANUC/ServoWorks).
+    q_from: Option<u32>,
 }
 
 impl Interp<'_, '_> {
@@ -128,6 +130,41 @@ impl Interp<'_, '_> {
                     "G{}{} turns cutter radius compensation on when it is already on: LinuxCNC stops; give G40 first",
                     g / 10,
                     if g % 10 == 1 { ".1" } else { "" }
+                ),
+            ));
+        }
+        let modes: [(u32, &str); 13] = [
+            (430, "change the tool length offset (G43)"),
+            (431, "change the tool length offset (G43.1)"),
+            (432, "change the tool length offset (G43.2)"),
+            (490, "change the tool length offset (G49)"),
+            (610, "change the path control mode (G61)"),
+            (611, "change the path control mode (G61.1)"),
+            (640, "change the path control mode (G64)"),
+            (980, "change the retract mode (G98)"),
+            (990, "change the retract mode (G99)"),
+            (281, "set the G28 reference point"),
+            (301, "set the G30 reference point"),
+            (51, "run a spline (G5.1)"),
+            (52, "run a NURBS block (G5.2)"),
+        ];
+        if let Some((code, what)) = modes.iter().find(|(c, _)| w.has_g(*c)) {
+            return Err(self.err(
+                codes::COMP_CONFLICT,
+                w.g_span(*code),
+                format!("cannot {what} {msg_tail}"),
+            ));
+        }
+        if let Some(&(m, s)) =
+            w.m.iter()
+                .find(|m| (480..=530).contains(&m.0) || (620..=680).contains(&m.0))
+        {
+            return Err(self.err(
+                codes::COMP_CONFLICT,
+                s,
+                format!(
+                    "M{} (overrides or motion I/O) cannot be used {msg_tail}",
+                    m / 10
                 ),
             ));
         }
@@ -397,9 +434,67 @@ impl Interp<'_, '_> {
                 }
             }
         }
-        let Some(&(mode, span)) = w.g.iter().find(|g| is_cycle(g.0)) else {
+        if w.has_g(800) {
+            self.chk.q_from = None;
+        }
+        let explicit = w.g.iter().find(|g| is_cycle(g.0)).copied();
+        if modal && !ngc && explicit.is_none() {
+            let fanuc = d == Dialect::Fanuc;
+            let kept: &[u8] = if fanuc { b"QP" } else { b"QR" };
+            if !w.any_axis() {
+                if let Some(c) = kept.iter().copied().find(|c| w.has(*c)) {
+                    self.diag(codes::CYCLE_HYGIENE, Severity::Warning, w.sp(c), format!("{} in a canned-cycle block that makes no hole is not stored as cycle data: give it with the hole position", c as char));
+                }
+            }
+            if fanuc {
+                let inc = self.st.modal.incremental;
+                let changes = (w.has_g(900) && inc) || (w.has_g(910) && !inc);
+                let zl = [b'X', b'Y', b'Z'][self.normal_axis()];
+                if changes && !(w.has(b'R') && w.has(zl)) {
+                    let s = w.g_span(if w.has_g(900) { 900 } else { 910 });
+                    self.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, "G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again");
+                }
+                if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 430 | 440 | 490)) {
+                    self.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, format!("G{} in canned-cycle mode: the new length offset takes effect at the positioning to point R, not at once", g / 10));
+                }
+                if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
+                    self.diag(
+                        codes::CYCLE_HYGIENE,
+                        Severity::Warning,
+                        s,
+                        format!(
+                            "G{} tool position offset is ignored in canned-cycle mode",
+                            g / 10
+                        ),
+                    );
+                }
+            }
+        }
+        if !ngc && (modal || explicit.is_some()) {
+            let mode = explicit.map(|e| e.0).unwrap_or(self.st.modal.motion);
+            let class = |m: u32| match m {
+                730 | 830 => Some("peck depth"),
+                760 | 870 => Some("shift amount"),
+                _ => None,
+            };
+            if w.has(b'Q') {
+                self.chk.q_from = Some(mode);
+            } else if let (Some(from), Some(now)) = (self.chk.q_from, class(mode)) {
+                if let Some(before) = class(from) {
+                    if before != now && (w.any_axis() || explicit.is_some()) {
+                        let s = explicit.map(|e| e.1).unwrap_or_default();
+                        self.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, format!("G{} reuses Q stored by G{}: the {before} becomes the {now}; give Q on this block", mode / 10, from / 10));
+                        self.chk.q_from = Some(mode);
+                    }
+                }
+            }
+        }
+        let Some((mode, span)) = explicit else {
             return Ok(());
         };
+        if d == Dialect::Servoworks && self.st.modal.comp != 400 && !w.has_g(400) {
+            self.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, "tool radius compensation is ignored inside canned cycles: the holes are drilled at the programmed points");
+        }
         let n = self.normal_axis();
         let zl = [b'X', b'Y', b'Z'][n];
         if !ngc && !w.any_axis() && !w.has(b'R') {
@@ -572,6 +667,30 @@ impl Interp<'_, '_> {
                 ));
             }
         }
+        if d == Dialect::Rs274ngc && w.has_g(100) {
+            let s = w.g_span(100);
+            let l = w.get(b'L').map(|l| l.round() as i64);
+            let valid: &[i64] = if self.variant == Variant::Emc2 {
+                &[2]
+            } else {
+                &[0, 1, 2, 10, 11, 20]
+            };
+            if !l.is_some_and(|l| valid.contains(&l)) {
+                let list = valid
+                    .iter()
+                    .map(|v| format!("L{v}"))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                return Err(self.err(
+                    codes::COORDINATE_MODE,
+                    s,
+                    format!("G10 needs one of {list}: LinuxCNC stops"),
+                ));
+            }
+            if l == Some(0) && self.st.tool != 0 {
+                return Err(self.err(codes::COORDINATE_MODE, s, format!("G10 L0 (reload the tool table) is not allowed while tool {} is loaded: unload it with T0 M6 first", self.st.tool)));
+            }
+        }
         if d != Dialect::Servoworks {
             return Ok(());
         }
@@ -648,6 +767,17 @@ impl Interp<'_, '_> {
         let motion = self.block_motion(w);
         let arc = matches!(motion, Some((20 | 30, _)));
         if d == Dialect::Rs274ngc {
+            if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
+                let plane =
+                    w.g.iter()
+                        .find(|g| matches!(g.0, 170 | 180 | 190))
+                        .map(|g| g.0)
+                        .unwrap_or(self.st.modal.plane);
+                let emc2 = self.variant == Variant::Emc2;
+                if (emc2 && plane != 170) || plane == 190 {
+                    return Err(self.err(codes::COMP_MOTION, s, format!("cutter radius compensation (G{}) is not allowed in the G{} plane: LinuxCNC compensates only in {}", g / 10, plane / 10, if emc2 { "G17" } else { "G17 and G18" })));
+                }
+            }
             if cancel {
                 self.chk.after_g40 = true;
             }
