@@ -401,3 +401,19 @@ fn comp_mode_and_g10_vectors() {
         vec![Severity::Error]
     );
 }
+
+#[test]
+fn no_effect_vectors() {
+    // NGC107: G1 is modal, but X belongs to G92 on this line.
+    let out = run_ngc("G1 X1 F100\nG92 X0\nG92.1\nM2\n");
+    assert_eq!(
+        messages(&out, "F012"),
+        vec!["the axis words of this line belong to G92: the modal motion G1 does not run here"]
+    );
+    // SW059: G08 P0 while 3D-DLACC is already off.
+    let out = run_sw("G08 P0\nG01 X1 F100\nM30\n", "");
+    assert_eq!(found(&out, "F012"), vec![Severity::Info]);
+    // FAN062: angle without radius in G16.
+    let out = run_fanuc("G17 G90 G16\nG01 X10. Y30. F100\nY60.\nG15\nM30\n", "");
+    assert_eq!(found(&out, "F012"), vec![Severity::Warning]);
+}

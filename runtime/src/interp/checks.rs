@@ -22,6 +22,8 @@ pub(super) struct Mem {
     m6_without_g43: bool,
     /// The cycle (tenths) whose block last stored Q (FANUC/ServoWorks).
     q_from: Option<u32>,
+    /// FANUC: rigid tapping was cancelled and no S has been given since.
+    rigid_s_cleared: bool,
 }
 
 impl Interp<'_, '_> {
@@ -67,6 +69,7 @@ impl Interp<'_, '_> {
         self.comp_motion_checks(w)?;
         self.probe_checks(w)?;
         self.arc_checks(w)?;
+        self.misc_checks(w);
         Ok(())
     }
 
@@ -969,5 +972,107 @@ impl Interp<'_, '_> {
             self.diag(codes::ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
         }
         Ok(())
+    }
+}
+
+impl Interp<'_, '_> {
+    /// Hints that never stop the run: moves that do nothing, axis words taken
+    /// by a non-modal code, polar-mode subtleties, redundant mode switches.
+    fn misc_checks(&mut self, w: &Words) {
+        let d = self.dialect;
+        let motion = self.block_motion(w);
+        // NGC107: axis words taken by a group-0 code while a motion mode is only modal.
+        if d == Dialect::Rs274ngc && w.any_axis() {
+            let explicit = w.g.iter().any(|g| {
+                matches!(g.0, 0 | 10 | 20 | 30 | 330 | 331 | 760 | 382..=385) || is_cycle(g.0)
+            });
+            if let Some(&(g, s)) =
+                w.g.iter()
+                    .find(|g| matches!(g.0, 100 | 280 | 300 | 520 | 920))
+            {
+                if !explicit && self.st.modal.motion != 800 {
+                    let name = analyzer::dialect::CodeNum(g).display();
+                    self.diag(codes::NO_EFFECT, Severity::Info, s, format!("the axis words of this line belong to G{name}: the modal motion G{} does not run here", analyzer::dialect::CodeNum(self.st.modal.motion).display()));
+                }
+            }
+        }
+        // NGC427: rotary axis motion under cutter compensation.
+        if d == Dialect::Rs274ngc && self.st.modal.comp != 400 && !w.has_g(400) && motion.is_some()
+        {
+            if let Some(c) = b"ABC".iter().copied().find(|c| w.has(*c)) {
+                self.diag(codes::COMP_MOTION, Severity::Info, w.sp(c), format!("{} moves while cutter radius compensation is on: the offset is computed in the plane only, so check the path", c as char));
+            }
+        }
+        // SW084: G41/G42 with no D/H and no radius for the current tool.
+        if d == Dialect::Servoworks {
+            if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420)) {
+                if !w.has(b'D') && !w.has(b'H') && self.tool_diameter(None) == 0.0 {
+                    self.diag(codes::COMP_MOTION, Severity::Warning, s, format!("G{} without D or H and no radius for tool {}: the compensation offset is zero", g / 10, self.st.tool));
+                }
+            }
+            // SW112: G68 centre words outside the plane.
+            if w.has_g(680) {
+                let n = [b'X', b'Y', b'Z'][self.normal_axis()];
+                if w.has(n) {
+                    self.diag(codes::COORDINATE_MODE, Severity::Warning, w.sp(n), format!("{} is not in the G{} plane: the G68 rotation centre takes only the plane's two axes", n as char, self.st.modal.plane / 10));
+                }
+            }
+            // SW059: G05 P10000 / G08 P1 while on, or P0 while off.
+            for code in [50u32, 80] {
+                if w.has_g(code) {
+                    if let Some(p) = w.get(b'P') {
+                        let on = p != 0.0;
+                        if on == self.st.modal.dlacc {
+                            self.diag(
+                                codes::NO_EFFECT,
+                                Severity::Info,
+                                w.g_span(code),
+                                format!(
+                                    "3D-DLACC is already {}: this G{:02} changes nothing",
+                                    if on { "on" } else { "off" },
+                                    code / 10
+                                ),
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        if d != Dialect::Fanuc {
+            return;
+        }
+        // FAN060 / FAN062: polar coordinate mode (G16).
+        if self.st.modal.polar && !w.has_g(150) {
+            if let Some(&(g, s)) =
+                w.g.iter()
+                    .find(|g| matches!(g.0, 40 | 100 | 520 | 920 | 530 | 220 | 680 | 510))
+            {
+                if w.any_axis() {
+                    self.diag(codes::NO_EFFECT, Severity::Info, s, format!("in polar mode (G16) the axis words of G{:02} are Cartesian, not radius and angle", g / 10));
+                }
+            }
+            if let Some((g, s)) = motion {
+                let (a, b) = self.plane_axes();
+                let axes = [b'X', b'Y', b'Z'];
+                if matches!(g, 0 | 10 | 20 | 30) && w.has(axes[b]) && !w.has(axes[a]) {
+                    self.diag(codes::NO_EFFECT, Severity::Warning, s, format!("polar radius ({}) omitted: the current distance from the workpiece origin is used as the radius", axes[a] as char));
+                }
+            }
+        }
+        // FAN107: S is cleared when rigid tapping is cancelled.
+        if w.has(b'S') {
+            self.chk.rigid_s_cleared = false;
+        }
+        if self.chk.rigid_s_cleared {
+            if let Some(&(m, s)) = w.m.iter().find(|m| matches!(m.0, 30 | 40)) {
+                self.chk.rigid_s_cleared = false;
+                self.diag(codes::NO_EFFECT, Severity::Info, s, format!("M{:02} after rigid tapping was cancelled: S was cleared to S0, so give S again", m / 10));
+            }
+        }
+        if self.st.modal.rigid_tap
+            && (w.has_g(800) || w.g.iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30)))
+        {
+            self.chk.rigid_s_cleared = true;
+        }
     }
 }

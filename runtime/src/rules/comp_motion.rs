@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags an arc as the first move after G40 (RS274/NGC), and in ServoWorks an arc as the first or last move of tool radius compensation and any G code other than G00–G03, G04 and G40 while it is on. Also flags G41/G42 in a plane LinuxCNC cannot compensate in (G19; `emc2`: anything but G17).
+    /// Flags an arc as the first move after G40 (RS274/NGC), and in ServoWorks an arc as the first or last move of tool radius compensation and any G code other than G00–G03, G04 and G40 while it is on. Also flags G41/G42 in a plane LinuxCNC cannot compensate in (G19; `emc2`: anything but G17). Hints (info) at rotary-axis motion under RS274/NGC compensation, and warns at ServoWorks G41/G42 with no D/H and no radius for the tool.
     ///
     /// ## Why is this bad?
     /// The control needs a straight move to build up or remove the offset; LinuxCNC stops, ServoWorks alarms.
@@ -32,12 +32,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC, ServoWorks. Error.
     ///
-    /// Implements: NGC217, SW082, SW083, NGC412
+    /// Implements: NGC217, SW082, SW083, NGC412, NGC427, SW084
     pub static COMP_MOTION = {
         code: "T004",
         name: "comp-motion",
         summary: "Cutter compensation started, ended or used where the control refuses",
-        implements: &["NGC217", "SW082", "SW083", "NGC412"],
+        implements: &["NGC217", "SW082", "SW083", "NGC412", "NGC427", "SW084"],
         origin: Runtime,
         default_enabled: true,
     }

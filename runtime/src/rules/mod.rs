@@ -32,6 +32,7 @@ mod inverse_time;
 mod macro_alarm;
 mod missing_end;
 mod mode_left_on;
+mod no_effect;
 mod probe_state;
 mod rigid_tap;
 mod spindle_stopped;
@@ -72,6 +73,7 @@ pub mod codes {
     pub const UNKNOWN_CODE: &str = "X002";
     pub const INTERP: &str = "X003";
     pub const MACRO_ALARM: &str = "X004";
+    pub const NO_EFFECT: &str = "F012";
     pub const ARC_ILL_CONDITIONED: &str = "A009";
     pub const ARC_WORDS: &str = "A008";
     pub const PROBE_STATE: &str = "F011";
@@ -115,6 +117,7 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &unknown_code::UNKNOWN_CODE,
     &interp::INTERP,
     &macro_alarm::MACRO_ALARM,
+    &no_effect::NO_EFFECT,
     &arc_ill_conditioned::ARC_ILL_CONDITIONED,
     &arc_words::ARC_WORDS,
     &probe_state::PROBE_STATE,
