@@ -417,3 +417,47 @@ fn no_effect_vectors() {
     let out = run_fanuc("G17 G90 G16\nG01 X10. Y30. F100\nY60.\nG15\nM30\n", "");
     assert_eq!(found(&out, "F012"), vec![Severity::Warning]);
 }
+
+#[test]
+fn remaining_hint_vectors() {
+    // FAN060: G92 words in G16 are Cartesian.
+    let out = run_fanuc("G17 G90 G16\nG92 X10. Y5.\nG15\nM30\n", "");
+    assert_eq!(
+        messages(&out, "F012"),
+        vec!["in polar mode (G16) the axis words of G92 are Cartesian, not radius and angle"]
+    );
+    // FAN107: M03 after the rigid tap was cancelled, without S.
+    let out = run_fanuc(
+        "S500 M3\nG90 G0 Z10.\nM29 S500\nG84 X0 Y0 Z-5. R2. F500\nG80\nM03\nM30\n",
+        "",
+    );
+    assert_eq!(
+        found(&out, "F012"),
+        vec![Severity::Info],
+        "{:?}",
+        out.diagnostics
+    );
+    // SW084: G41 with no D/H and no tool radius; SW112: Z centre word under G17.
+    let out = run_sw(
+        "G17 G00 X0 Y0\nG41 G01 X10 F100\nG40 G01 X0\nG68 X0 Y0 Z1 R30\nG69\nM30\n",
+        "",
+    );
+    assert_eq!(found(&out, "T004"), vec![Severity::Warning]);
+    assert_eq!(found(&out, "K003"), vec![Severity::Warning]);
+    // NGC427: A moves under compensation (info).
+    let out = run_ngc("G0 X0 Y0\nG41.1 D0.2\nG1 X1 A10 F100\nG40 G1 X2\nM2\n");
+    assert_eq!(found(&out, "T004"), vec![Severity::Info]);
+    // SW058 / SW086 / SW111 / NGC422: each mode left on gives its own warning.
+    let out = run_sw("G05 P10000\nG52 X5\nG01 X10 F100\nM30\n", "");
+    assert_eq!(
+        messages(&out, "F008"),
+        vec![
+            "the program ends with 3D-DLACC look-ahead (cancel with G08) still active: the next program or MDI command starts in that mode",
+            "the program ends with a G52 local coordinate system (cancel with G52 and zero axes) still active: the next program or MDI command starts in that mode",
+        ]
+    );
+    let out = run_sw("G41 D1.0 G01 X10 F100\nM30\n", "");
+    assert_eq!(found(&out, "F008"), vec![Severity::Warning]);
+    let out = run_ngc("G0 X0 Y0\nG41.1 D0.2\nG1 X1 F100\nM2\n");
+    assert_eq!(found(&out, "F008"), vec![Severity::Warning]);
+}
