@@ -461,3 +461,18 @@ fn remaining_hint_vectors() {
     let out = run_ngc("G0 X0 Y0\nG41.1 D0.2\nG1 X1 F100\nM2\n");
     assert_eq!(found(&out, "F008"), vec![Severity::Warning]);
 }
+
+#[test]
+fn vacant_word_vectors() {
+    // FAN141: Y#2 with #2 vacant drops the Y word: the move ends at Y0.
+    let out = run_fanuc("#1 = 5\nG01 X#1 Y#2 F100\nM30\n", "");
+    assert_eq!(
+        messages(&out, "X005"),
+        vec!["the value of Y is vacant (an unset variable): the control omits the whole Y word; set the variable or leave the word out"]
+    );
+    assert_eq!(ends(&out), vec![[5.0, 0.0, 0.0]]);
+    // #0 is always vacant; a plain number never is.
+    let out = run_fanuc("G01 X1. Z#0 F100\nM30\n", "");
+    assert_eq!(found(&out, "X005"), vec![Severity::Warning]);
+    assert!(found(&run_fanuc("G01 X1. F100\nM30\n", ""), "X005").is_empty());
+}

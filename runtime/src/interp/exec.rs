@@ -1030,8 +1030,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     };
                     let point = word.num().is_none_or(|n| n.has_point);
                     let Some(val) = val else {
-                        if self.ngc() && matches!(word.value, WordValue::Expr(_)) {
-                            continue;
+                        // FANUC/ServoWorks: a vacant value drops the word (FAN141).
+                        if !self.ngc() && matches!(word.value, WordValue::Expr(_)) {
+                            let letter = word.letter as char;
+                            self.diag(codes::VACANT_WORD, Severity::Warning, it.span, format!("the value of {letter} is vacant (an unset variable): the control omits the whole {letter} word; set the variable or leave the word out"));
                         }
                         continue;
                     };

@@ -42,6 +42,7 @@ mod tool_offset_state;
 mod travel_limit;
 mod unknown_code;
 mod unknown_tool;
+mod vacant_word;
 mod zero_feed;
 
 /// Diagnostic codes emitted by the interpreter.
@@ -73,6 +74,7 @@ pub mod codes {
     pub const UNKNOWN_CODE: &str = "X002";
     pub const INTERP: &str = "X003";
     pub const MACRO_ALARM: &str = "X004";
+    pub const VACANT_WORD: &str = "X005";
     pub const NO_EFFECT: &str = "F012";
     pub const ARC_ILL_CONDITIONED: &str = "A009";
     pub const ARC_WORDS: &str = "A008";
@@ -117,6 +119,7 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &unknown_code::UNKNOWN_CODE,
     &interp::INTERP,
     &macro_alarm::MACRO_ALARM,
+    &vacant_word::VACANT_WORD,
     &no_effect::NO_EFFECT,
     &arc_ill_conditioned::ARC_ILL_CONDITIONED,
     &arc_words::ARC_WORDS,
