@@ -32,8 +32,8 @@ fn examples(doc: &str) -> Vec<String> {
 fn setup(code: &str) -> (Dialect, &'static str, Option<&'static str>) {
     match code {
         "A003" | "A004" => (Dialect::Servoworks, "circle_error_allowance = 2.5", None),
-        "A007" | "C004" | "X004" | "F005" | "F007" => (Dialect::Fanuc, "", None),
-        "D001" | "D002" | "K001" => (Dialect::Servoworks, "", None),
+        "A007" | "C004" | "C006" | "X004" | "X005" | "F005" | "F007" => (Dialect::Fanuc, "", None),
+        "D001" | "D002" | "K001" | "C005" => (Dialect::Servoworks, "", None),
         "T001" => (Dialect::Rs274ngc, "", Some("T1 P1 D0.125 Z+0.511\n")),
         "K002" => (
             Dialect::Rs274ngc,

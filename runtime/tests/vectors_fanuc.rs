@@ -43,8 +43,26 @@ M30;
 #[test]
 fn example_8_1_canned_cycles() {
     let out = run_fanuc(EXAMPLE_8_1, OFFSETS);
-    // N025 G28 while G85 is modal (no G80 in the example): PS0044, the cycle is cancelled.
-    assert_eq!(codes(&out), vec!["C003"], "{:?}", out.diagnostics);
+    // N011/N019 G00 while a cycle is modal cancels it (FAN023, info); N023 puts
+    // R47 above the initial level Z0 (FAN081); N024 switches to G91 in cycle mode
+    // without R and Z (FAN082); N025 G28 while G85 is modal (no G80 in the
+    // example): PS0044, the cycle is cancelled.
+    assert_eq!(
+        codes(&out),
+        vec!["C006", "C006", "C006", "C006", "C003"],
+        "{:?}",
+        out.diagnostics
+    );
+    let c006: Vec<&str> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "C006")
+        .map(|d| d.message.as_str())
+        .collect();
+    assert_eq!(
+        c006[2],
+        "point R (47) is above the initial level (0): the tool retracts upward to R before drilling"
+    );
     let by_tool = |t: u32| {
         out.motions
             .iter()

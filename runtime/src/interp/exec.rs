@@ -21,6 +21,9 @@ use super::types::*;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 
+#[path = "checks.rs"]
+mod checks;
+
 const NUM_PARAMS: usize = 20_000;
 
 /// Blocks of the main file that get a [`BlockSnapshot`]; beyond this the
@@ -287,6 +290,8 @@ struct Interp<'a, 'i> {
     limit_reports: u32,
     /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
     block_exact: bool,
+    /// Memory of the state checks (tool words, G40, motion seen).
+    chk: checks::Mem,
     modal_cache: Option<(Modal, Vec<String>)>,
     /// P/Q of the last G5 (the next G5 without I/J mirrors them).
     spline_pq: (f64, f64),
@@ -382,6 +387,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             main_locals: HashMap::new(),
             limit_reports: 0,
             block_exact: false,
+            chk: checks::Mem::default(),
             modal_cache: None,
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
@@ -1034,8 +1040,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     };
                     let point = word.num().is_none_or(|n| n.has_point);
                     let Some(val) = val else {
-                        if self.ngc() && matches!(word.value, WordValue::Expr(_)) {
-                            continue;
+                        // FANUC/ServoWorks: a vacant value drops the word (FAN141).
+                        if !self.ngc() && matches!(word.value, WordValue::Expr(_)) {
+                            let letter = word.letter as char;
+                            self.diag(codes::VACANT_WORD, Severity::Warning, it.span, format!("the value of {letter} is vacant (an unset variable): the control omits the whole {letter} word; set the variable or leave the word out"));
                         }
                         continue;
                     };
@@ -1638,6 +1646,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         for (k, s) in comments {
             self.exec_comment(p, *k, *s)?;
         }
+        self.state_checks(w, bspan)?;
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
             self.switch_units(w.has_g(200));
@@ -3015,6 +3024,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             382..=385 => {
                 let t = self.target(w);
+                if self.ngc() && dist(&self.st.pos, &t) == 0.0 {
+                    return Err(self.err(codes::PROBE_STATE, bspan, "the probe move starts at its target: a G38 move needs a target away from the current position"));
+                }
                 self.check_feed(bspan)?;
                 self.canon("TURN_PROBE_ON()");
                 let s = self.canon_pos(&t);
@@ -3163,9 +3175,42 @@ impl<'a, 'i> Interp<'a, 'i> {
                 "cannot use G76 threading cycle with cutter radius compensation on",
             ));
         }
+        // The 2007 EMC2 limited G76 to G18 without X or Y and E up to half the
+        // thread; LinuxCNC 2.9 runs all of these (checked against its rs274).
+        let emc2 = self.variant == Variant::Emc2;
+        if emc2 && self.st.modal.plane != 180 {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                span,
+                "G76 threading works only in the XZ plane: select G18 first",
+            ));
+        }
+        let refused: &[u8] = if emc2 { b"XYABC" } else { b"ABC" };
+        if let Some(c) = refused.iter().copied().find(|c| w.has(*c)) {
+            return Err(self.err(
+                codes::CYCLE_STATE,
+                w.sp(c),
+                format!(
+                    "G76 does not accept {}: the thread runs along Z from the current position",
+                    c as char
+                ),
+            ));
+        }
         let i = w.get(b'I').map(|v| self.lin(v)).unwrap_or(0.0);
         let j = w.get(b'J').map(|v| self.lin(v)).unwrap_or(0.0);
         let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+        if let Some(e) = w.get(b'E') {
+            let e = self.lin(e);
+            let zabs = self.target(w)[2];
+            let half = (zabs - self.st.pos[2]).abs() / 2.0;
+            if e > half + 1e-9 {
+                let msg = "G76 taper length E is longer than half the thread: shorten E";
+                if emc2 {
+                    return Err(self.err(codes::CYCLE_STATE, w.sp(b'E'), msg));
+                }
+                self.diag(codes::CYCLE_STATE, Severity::Warning, w.sp(b'E'), msg);
+            }
+        }
         if i == 0.0 {
             return Err(self.err(codes::CYCLE_STATE, span, "in G76, I must not be 0"));
         }
@@ -3902,6 +3947,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Stop);
         }
         if w.has_m(20) || w.has_m(300) {
+            let span = Self::m_span(w, if w.has_m(20) { 20 } else { 300 });
+            self.end_checks(span);
             self.program_end(w.has_m(300));
             self.saw_end = true;
             self.st.ended = true;

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW031, SW032, NGC203, NGC204
+    /// Implements: SW031, SW032, NGC203, NGC204, NGC209
     pub static ARC_NO_CENTER = {
         code: "A005",
         name: "arc-missing-center",
         summary: "Arc without R or centre words, or with both",
-        implements: &["SW031", "SW032", "NGC203", "NGC204"],
+        implements: &["SW031", "SW032", "NGC203", "NGC204", "NGC209"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error. Reads `arc_radius_tolerance` (FANUC), `circle_error_allowance` and `machine_unit` (ServoWorks).
     ///
-    /// Implements: SW038, NGC211, FAN031
+    /// Implements: SW038, NGC211, NGC212, FAN031
     pub static ARC_RADIUS_MISMATCH = {
         code: "A001",
         name: "arc-radius-mismatch",
         summary: "Arc end point is not on the circle given by the centre",
-        implements: &["SW038", "NGC211", "FAN031"],
+        implements: &["SW038", "NGC211", "NGC212", "FAN031"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW036, NGC207
+    /// Implements: SW036, NGC207, FAN035
     pub static ARC_RADIUS_TOO_SMALL = {
         code: "A002",
         name: "arc-radius-too-small",
         summary: "R-format arc radius shorter than half the chord",
-        implements: &["SW036", "NGC207"],
+        implements: &["SW036", "NGC207", "FAN035"],
         origin: Runtime,
         default_enabled: true,
     }

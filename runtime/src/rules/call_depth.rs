@@ -30,12 +30,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW023, NGC607, FAN139
+    /// Implements: SW023, NGC607, FAN139, FAN138
     pub static CALL_DEPTH = {
         code: "F003",
         name: "call-depth-exceeded",
         summary: "Subprogram nesting deeper than the control allows",
-        implements: &["SW023", "NGC607", "FAN139"],
+        implements: &["SW023", "NGC607", "FAN139", "FAN138"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags a canned cycle with cutter compensation on, L0 repeats, or R below Z.
+    /// Flags a canned cycle with cutter compensation on, L0 repeats, or R below Z; a tapping cycle with the spindle turning the wrong way; and G76 with compensation on, rotary words, bad depths (I = 0, J ≤ 0, K ≤ J) or a taper E longer than half the thread (a warning in LinuxCNC 2.9, which runs it; the `emc2` profile also refuses X/Y words and planes other than G18).
     ///
     /// ## Why is this bad?
     /// LinuxCNC refuses each case.
@@ -26,12 +26,12 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error.
     ///
-    /// Implements: NGC303, NGC304, NGC311, NGC313, FAN024
+    /// Implements: NGC303, NGC304, NGC311, NGC313, NGC315, FAN024, NGC330, NGC331, NGC335, NGC336, NGC337
     pub static CYCLE_STATE = {
         code: "C003",
         name: "cycle-state",
         summary: "Canned cycle in an impossible state",
-        implements: &["NGC303", "NGC304", "NGC311", "NGC313", "FAN024"],
+        implements: &["NGC303", "NGC304", "NGC311", "NGC313", "NGC315", "FAN024", "NGC330", "NGC331", "NGC335", "NGC336", "NGC337"],
         origin: Runtime,
         default_enabled: true,
     }

@@ -6,29 +6,43 @@ use analyzer::rules::RuleMeta;
 
 mod after_end;
 mod arc_corrected;
+mod arc_ill_conditioned;
 mod arc_no_center;
 mod arc_polar_ijk;
 mod arc_radius_mismatch;
 mod arc_radius_too_small;
 mod arc_same_end_r;
+mod arc_words;
 mod call_depth;
+mod comp_conflict;
+mod comp_motion;
 mod coord_during_rotation;
+mod coordinate_mode;
+mod cycle_hygiene;
 mod cycle_missing;
 mod cycle_q;
+mod cycle_spindle;
 mod cycle_state;
 mod dlacc_incompatible;
 mod dlacc_tcp;
 mod expression;
 mod flow;
 mod interp;
+mod inverse_time;
 mod macro_alarm;
 mod missing_end;
+mod mode_left_on;
+mod no_effect;
+mod probe_state;
 mod rigid_tap;
+mod spindle_stopped;
 mod step_budget;
 mod sub_not_found;
+mod tool_offset_state;
 mod travel_limit;
 mod unknown_code;
 mod unknown_tool;
+mod vacant_word;
 mod zero_feed;
 
 /// Diagnostic codes emitted by the interpreter.
@@ -60,6 +74,20 @@ pub mod codes {
     pub const UNKNOWN_CODE: &str = "X002";
     pub const INTERP: &str = "X003";
     pub const MACRO_ALARM: &str = "X004";
+    pub const VACANT_WORD: &str = "X005";
+    pub const NO_EFFECT: &str = "F012";
+    pub const ARC_ILL_CONDITIONED: &str = "A009";
+    pub const ARC_WORDS: &str = "A008";
+    pub const PROBE_STATE: &str = "F011";
+    pub const COMP_MOTION: &str = "T004";
+    pub const COORDINATE_MODE: &str = "K003";
+    pub const TOOL_OFFSET_STATE: &str = "T003";
+    pub const CYCLE_HYGIENE: &str = "C006";
+    pub const COMP_CONFLICT: &str = "T002";
+    pub const CYCLE_SPINDLE: &str = "C005";
+    pub const SPINDLE_STOPPED: &str = "F010";
+    pub const INVERSE_TIME: &str = "F009";
+    pub const MODE_LEFT_ON: &str = "F008";
 }
 
 /// Metadata of every runtime rule, in code order.
@@ -91,6 +119,20 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &unknown_code::UNKNOWN_CODE,
     &interp::INTERP,
     &macro_alarm::MACRO_ALARM,
+    &vacant_word::VACANT_WORD,
+    &no_effect::NO_EFFECT,
+    &arc_ill_conditioned::ARC_ILL_CONDITIONED,
+    &arc_words::ARC_WORDS,
+    &probe_state::PROBE_STATE,
+    &comp_motion::COMP_MOTION,
+    &coordinate_mode::COORDINATE_MODE,
+    &tool_offset_state::TOOL_OFFSET_STATE,
+    &cycle_hygiene::CYCLE_HYGIENE,
+    &comp_conflict::COMP_CONFLICT,
+    &cycle_spindle::CYCLE_SPINDLE,
+    &spindle_stopped::SPINDLE_STOPPED,
+    &inverse_time::INVERSE_TIME,
+    &mode_left_on::MODE_LEFT_ON,
 ];
 
 /// Looks a runtime rule up by code or name.

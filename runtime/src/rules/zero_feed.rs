@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
-    /// Implements: SW047, NGC200, FAN039
+    /// Implements: SW047, NGC200, NGC228, NGC312, FAN039, FAN091, FAN037
     pub static ZERO_FEED = {
         code: "F001",
         name: "zero-feed",
         summary: "Feed move with no feed rate",
-        implements: &["SW047", "NGC200", "FAN039"],
+        implements: &["SW047", "NGC200", "NGC228", "NGC312", "FAN039", "FAN091", "FAN037"],
         origin: Runtime,
         default_enabled: true,
     }
