@@ -24,6 +24,8 @@ pub(super) struct Mem {
     q_from: Option<u32>,
     /// FANUC: rigid tapping was cancelled and no S has been given since.
     rigid_s_cleared: bool,
+    /// The current block's motion, computed once per block.
+    motion: Option<(u32, Span)>,
 }
 
 impl Interp<'_, '_> {
@@ -60,6 +62,7 @@ impl Interp<'_, '_> {
 
     /// Checks run before any word of the block takes effect.
     pub(super) fn state_checks(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
+        self.chk.motion = self.block_motion(w);
         self.comp_conflicts(w)?;
         self.inverse_time_checks(w, bspan)?;
         self.spindle_checks(w)?;
@@ -236,7 +239,7 @@ impl Interp<'_, '_> {
         if !g93 {
             return Ok(());
         }
-        let motion = self.block_motion(w);
+        let motion = self.chk.motion;
         match motion {
             Some((g, s)) if is_cycle(g) => Err(self.err(
                 codes::INVERSE_TIME,
@@ -294,7 +297,7 @@ impl Interp<'_, '_> {
                 }
             }
         }
-        let motion = self.block_motion(w);
+        let motion = self.chk.motion;
         let Some((g, s)) = motion else {
             return Ok(());
         };
@@ -653,7 +656,7 @@ impl Interp<'_, '_> {
         let m = self.st.modal.clone();
         if d == Dialect::Rs274ngc && w.has_g(530) {
             let s = w.g_span(530);
-            if let Some((g, _)) = self.block_motion(w) {
+            if let Some((g, _)) = self.chk.motion {
                 if !matches!(g, 0 | 10) {
                     return Err(self.err(
                         codes::COORDINATE_MODE,
@@ -767,7 +770,7 @@ impl Interp<'_, '_> {
         let d = self.dialect;
         let comp_on = self.st.modal.comp != 400;
         let cancel = comp_on && w.has_g(400);
-        let motion = self.block_motion(w);
+        let motion = self.chk.motion;
         let arc = matches!(motion, Some((20 | 30, _)));
         if d == Dialect::Rs274ngc {
             if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
@@ -826,7 +829,7 @@ impl Interp<'_, '_> {
         if !self.ngc() {
             return Ok(());
         }
-        let Some((g, s)) = self.block_motion(w) else {
+        let Some((g, s)) = self.chk.motion else {
             return Ok(());
         };
         if !(382..=385).contains(&g) {
@@ -875,7 +878,7 @@ impl Interp<'_, '_> {
     /// Arc words against the active plane, and radius-format arcs whose centre
     /// is ill-defined (sweep near 180° or 360°).
     fn arc_checks(&mut self, w: &Words) -> Result<(), Diagnostic> {
-        let Some((g, span)) = self.block_motion(w) else {
+        let Some((g, span)) = self.chk.motion else {
             return Ok(());
         };
         if !matches!(g, 20 | 30) {
@@ -980,7 +983,7 @@ impl Interp<'_, '_> {
     /// by a non-modal code, polar-mode subtleties, redundant mode switches.
     fn misc_checks(&mut self, w: &Words) {
         let d = self.dialect;
-        let motion = self.block_motion(w);
+        let motion = self.chk.motion;
         // NGC107: axis words taken by a group-0 code while a motion mode is only modal.
         if d == Dialect::Rs274ngc && w.any_axis() {
             let explicit = w.g.iter().any(|g| {
