@@ -19,6 +19,11 @@ use std::time::{Duration, Instant};
 
 const BIN: &str = env!("CARGO_BIN_EXE_partscope");
 const LIMIT: Duration = Duration::from_secs(10);
+/// Step budget passed to `check` and `run`. The tests run a debug build, some
+/// 20-50 times slower than release, so the default budgets (tens of millions
+/// of blocks, a few seconds in release) would turn every endless-loop mutant
+/// into a timeout; a smaller budget still makes each loop hit the limit.
+const STEP_BUDGET: &str = "200000";
 /// Mutants per seed file; with the seeds in the repository this gives a few
 /// hundred mutants per run.
 const MUTANTS_PER_SEED: usize = 20;
@@ -475,13 +480,32 @@ fn mutated_programs_never_crash_or_hang() {
                 std::fs::write(&file, text).expect("write mutant");
                 let f = file.to_string_lossy().into_owned();
                 let o = run(
-                    &["check", &f, "--format", "json", "--dialect", dialect.arg()],
+                    &[
+                        "check",
+                        &f,
+                        "--format",
+                        "json",
+                        "--dialect",
+                        dialect.arg(),
+                        "--step-budget",
+                        STEP_BUDGET,
+                    ],
                     &dir,
                 );
                 let mut worst = o.elapsed;
                 let mut problem = judge_check(&o);
                 if problem.is_none() && with_run {
-                    let o = run(&["run", &f, "--dialect", dialect.arg()], &dir);
+                    let o = run(
+                        &[
+                            "run",
+                            &f,
+                            "--dialect",
+                            dialect.arg(),
+                            "--step-budget",
+                            STEP_BUDGET,
+                        ],
+                        &dir,
+                    );
                     worst = worst.max(o.elapsed);
                     problem = judge_run(&o);
                 }

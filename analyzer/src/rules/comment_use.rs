@@ -129,7 +129,8 @@ impl Rule for CommentUse {
                 let raw = text.strip_prefix('(').unwrap_or("").trim_start();
                 let body = raw.to_ascii_lowercase();
                 let kw = KEYWORDS.iter().find(|k| {
-                    let after = &body[k.len().min(body.len())..];
+                    // `get`, not indexing: the cut may fall inside a multi-byte character.
+                    let after = body.get(k.len()..).unwrap_or("");
                     let upper = raw
                         .get(..k.len())
                         .is_some_and(|w| w.bytes().all(|b| b.is_ascii_uppercase()));

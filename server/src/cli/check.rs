@@ -12,7 +12,7 @@ use super::workspace::{self, ConfigCache, LoadedConfig};
 use super::CheckArgs;
 
 /// Blocks the interpreter may execute per checked file before it reports a runaway program.
-const CHECK_STEP_BUDGET: u64 = 20_000_000;
+pub const CHECK_STEP_BUDGET: u64 = 20_000_000;
 
 pub fn run(args: CheckArgs) -> ExitCode {
     let explicit = match &args.config {
@@ -126,7 +126,7 @@ fn check_file(
             settings: &settings,
             machine: &loaded.config.machine,
             resolver: &resolver,
-            step_budget: CHECK_STEP_BUDGET,
+            step_budget: args.step_budget,
             emit_canon: false,
             tool_table: None,
             var_file: None,

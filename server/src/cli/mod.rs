@@ -71,6 +71,9 @@ pub struct CheckArgs {
     /// Only the static checks (no interpreter).
     #[arg(long)]
     pub no_run: bool,
+    /// Blocks the interpreter may execute per file before it reports a runaway program.
+    #[arg(long, default_value_t = check::CHECK_STEP_BUDGET)]
+    pub step_budget: u64,
 }
 
 #[derive(Subcommand)]
