@@ -56,8 +56,16 @@ pub fn parse_and_analyze(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     let mut parser = Parser::new(opts, text.clone());
     while parser.parse_blocks(&mut chunked, 3) > 0 {}
     assert!(parser.is_done());
-    assert_eq!(chunked.tokens.len(), whole.tokens.len(), "chunked parse differs");
-    assert_eq!(chunked.blocks.len(), whole.blocks.len(), "chunked parse differs");
+    assert_eq!(
+        chunked.tokens.len(),
+        whole.tokens.len(),
+        "chunked parse differs"
+    );
+    assert_eq!(
+        chunked.blocks.len(),
+        whole.blocks.len(),
+        "chunked parse differs"
+    );
     assert_eq!(chunked.diagnostics.len(), whole.diagnostics.len());
 
     let mut settings = Settings::new(dialect);
