@@ -56,8 +56,16 @@ pub fn parse_and_analyze(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     let mut parser = Parser::new(opts, text.clone());
     while parser.parse_blocks(&mut chunked, 3) > 0 {}
     assert!(parser.is_done());
-    assert_eq!(chunked.tokens.len(), whole.tokens.len(), "chunked parse differs");
-    assert_eq!(chunked.blocks.len(), whole.blocks.len(), "chunked parse differs");
+    assert_eq!(
+        chunked.tokens.len(),
+        whole.tokens.len(),
+        "chunked parse differs"
+    );
+    assert_eq!(
+        chunked.blocks.len(),
+        whole.blocks.len(),
+        "chunked parse differs"
+    );
     assert_eq!(chunked.diagnostics.len(), whole.diagnostics.len());
 
     let mut settings = Settings::new(dialect);
@@ -76,4 +84,39 @@ pub fn split_dialect(data: &[u8]) -> Option<(Dialect, u8, &[u8])> {
     let (&first, rest) = data.split_first()?;
     let dialect = Dialect::ALL[(first % 3) as usize];
     Some((dialect, first / 3, rest))
+}
+
+/// Executes the program with no subprogram files, a small step budget and
+/// the dialect's default machine, then plans it and samples the toolpath.
+/// Every diagnostic must be located inside its file, and the cycle time must
+/// be a finite, non-negative number whatever the input (1e308 coordinates,
+/// division by zero, zero-length arcs).
+pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
+    let variants = variants_of(dialect);
+    let variant = variants[variant_pick as usize % variants.len()];
+    let mut settings = Settings::new(dialect);
+    settings.variant = variant;
+    let program = parse(ParseOptions { dialect, variant }, Arc::<[u8]>::from(data));
+    let machine = toml::Table::new();
+    let input = runtime::RunInput {
+        program: &program,
+        settings: &settings,
+        machine: &machine,
+        resolver: &runtime::NoResolver,
+        step_budget: 2_000,
+        emit_canon: variant_pick & 1 == 1,
+        tool_table: None,
+        var_file: None,
+    };
+    let out = runtime::run(&input);
+    for d in &out.diagnostics {
+        if d.file == analyzer::FileId(0) {
+            assert!(d.span.start <= d.span.end && d.span.end as usize <= data.len());
+        }
+    }
+    let profile = runtime::machine::MachineProfile::default_for(dialect);
+    let dry = runtime::dryrun::plan_run(&out, &profile);
+    let t = dry.totals.cycle_time_s;
+    assert!(t.is_finite() && t >= 0.0, "cycle time {t}");
+    let _ = runtime::dryrun::toolpath(&out, 0.05);
 }

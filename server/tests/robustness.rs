@@ -18,10 +18,19 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 const BIN: &str = env!("CARGO_BIN_EXE_partscope");
+/// The hang guard is on CPU time (user + system, from `/proc`), because on a
+/// shared, overloaded machine the wall clock of a healthy run can exceed ten
+/// seconds; the wall clock has its own, looser backstop.
 const LIMIT: Duration = Duration::from_secs(10);
+const WALL_BACKSTOP: Duration = Duration::from_secs(120);
+/// Step budget passed to `check` and `run`. The tests run a debug build, some
+/// 20-50 times slower than release, so the default budgets (tens of millions
+/// of blocks, a few seconds in release) would turn every endless-loop mutant
+/// into a timeout; a smaller budget still makes each loop hit the limit.
+const STEP_BUDGET: &str = "200000";
 /// Mutants per seed file; with the seeds in the repository this gives a few
 /// hundred mutants per run.
-const MUTANTS_PER_SEED: usize = 20;
+const MUTANTS_PER_SEED: usize = 16;
 
 /// SplitMix64: deterministic, dependency-free.
 struct Rng(u64);
@@ -353,10 +362,16 @@ fn run(args: &[&str], cwd: &Path) -> Outcome {
         v
     });
     let mut timed_out = false;
+    let mut cpu = Duration::ZERO;
     let status = loop {
         match child.try_wait() {
             Ok(Some(s)) => break Some(s),
-            Ok(None) if start.elapsed() > LIMIT => {
+            Ok(None)
+                if {
+                    cpu = cpu_time(child.id()).unwrap_or(cpu);
+                    cpu > LIMIT || start.elapsed() > WALL_BACKSTOP
+                } =>
+            {
                 timed_out = true;
                 let _ = child.kill();
                 break child.wait().ok();
@@ -365,7 +380,12 @@ fn run(args: &[&str], cwd: &Path) -> Outcome {
             Err(_) => break None,
         }
     };
-    let elapsed = start.elapsed();
+    // Report CPU time where /proc has it (Linux), else the wall clock.
+    let elapsed = if cpu > Duration::ZERO {
+        cpu
+    } else {
+        start.elapsed()
+    };
     Outcome {
         code: status.and_then(|s| s.code()),
         stdout: t_out.join().unwrap_or_default(),
@@ -373,6 +393,17 @@ fn run(args: &[&str], cwd: &Path) -> Outcome {
         elapsed,
         timed_out,
     }
+}
+
+/// User + system CPU time of a running process, from `/proc/<pid>/stat`
+/// (fields 14 and 15, in clock ticks of 1/100 s on Linux).
+fn cpu_time(pid: u32) -> Option<Duration> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    // The command name (field 2) may hold spaces; fields restart after ')'.
+    let rest = &stat[stat.rfind(')')? + 1..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
+    Some(Duration::from_millis(ticks * 10))
 }
 
 fn has_run_subcommand() -> bool {
@@ -385,7 +416,7 @@ fn has_run_subcommand() -> bool {
 /// Checks one `check --format json` result; returns a failure description.
 fn judge_check(o: &Outcome) -> Option<String> {
     if o.timed_out {
-        return Some(format!("check took over {LIMIT:?}"));
+        return Some(format!("check took over {LIMIT:?} of CPU time"));
     }
     if !matches!(o.code, Some(0..=2)) {
         return Some(format!(
@@ -413,7 +444,7 @@ fn judge_check(o: &Outcome) -> Option<String> {
 
 fn judge_run(o: &Outcome) -> Option<String> {
     if o.timed_out {
-        return Some(format!("run took over {LIMIT:?}"));
+        return Some(format!("run took over {LIMIT:?} of CPU time"));
     }
     if !matches!(o.code, Some(0..=2)) {
         return Some(format!(
@@ -475,13 +506,32 @@ fn mutated_programs_never_crash_or_hang() {
                 std::fs::write(&file, text).expect("write mutant");
                 let f = file.to_string_lossy().into_owned();
                 let o = run(
-                    &["check", &f, "--format", "json", "--dialect", dialect.arg()],
+                    &[
+                        "check",
+                        &f,
+                        "--format",
+                        "json",
+                        "--dialect",
+                        dialect.arg(),
+                        "--step-budget",
+                        STEP_BUDGET,
+                    ],
                     &dir,
                 );
                 let mut worst = o.elapsed;
                 let mut problem = judge_check(&o);
                 if problem.is_none() && with_run {
-                    let o = run(&["run", &f, "--dialect", dialect.arg()], &dir);
+                    let o = run(
+                        &[
+                            "run",
+                            &f,
+                            "--dialect",
+                            dialect.arg(),
+                            "--step-budget",
+                            STEP_BUDGET,
+                        ],
+                        &dir,
+                    );
                     worst = worst.max(o.elapsed);
                     problem = judge_run(&o);
                 }
@@ -504,7 +554,7 @@ fn mutated_programs_never_crash_or_hang() {
     });
     let failures = failures.into_inner().unwrap_or_default();
     eprintln!(
-        "robustness: {} mutants, run subcommand: {with_run}, slowest {:?}, failures {}",
+        "robustness: {} mutants, run subcommand: {with_run}, slowest (CPU) {:?}, failures {}",
         jobs.len(),
         slowest.into_inner().unwrap_or_default(),
         failures.len()

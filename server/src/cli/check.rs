@@ -129,7 +129,9 @@ fn check_file(
             settings: &settings,
             machine: &loaded.config.machine,
             resolver: &resolver,
-            step_budget: step_budget(analysis.program.blocks.len()),
+            step_budget: args
+                .step_budget
+                .unwrap_or_else(|| step_budget(analysis.program.blocks.len())),
             emit_canon: false,
             tool_table: None,
             var_file: None,

@@ -71,6 +71,10 @@ pub struct CheckArgs {
     /// Only the static checks (no interpreter).
     #[arg(long)]
     pub no_run: bool,
+    /// Blocks the interpreter may execute per file before it reports a runaway program
+    /// (default: ten executions of every block, at least a million).
+    #[arg(long)]
+    pub step_budget: Option<u64>,
 }
 
 #[derive(Subcommand)]
