@@ -1508,25 +1508,13 @@ impl<'p> Cx<'p> {
             "IF" => {
                 let cond = self.cond();
                 self.ws();
-                let ks = self.pos;
-                let mut j = self.pos;
-                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
-                    j += 1;
-                }
-                let w = Span::new(ks as u32, j as u32)
-                    .slice(self.text)
-                    .to_ascii_uppercase();
-                if w == b"GOTO" {
-                    self.pos = j;
-                    self.token(ks, TokenKind::Keyword);
+                if self.eat_keyword(&["GOTO"]) {
                     self.ws();
                     MacroStmt::IfGoto {
                         cond,
                         target: self.value_expr(),
                     }
-                } else if w == b"THEN" {
-                    self.pos = j;
-                    self.token(ks, TokenKind::Keyword);
+                } else if self.eat_keyword(&["THEN"]) {
                     MacroStmt::IfThen { cond }
                 } else {
                     self.diag(
@@ -1541,17 +1529,7 @@ impl<'p> Cx<'p> {
             "WHILE" => {
                 let cond = self.cond();
                 self.ws();
-                let ks = self.pos;
-                let mut j = self.pos;
-                while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
-                    j += 1;
-                }
-                let w = Span::new(ks as u32, j as u32)
-                    .slice(self.text)
-                    .to_ascii_uppercase();
-                if w == b"DO" {
-                    self.pos = j;
-                    self.token(ks, TokenKind::Keyword);
+                if self.eat_keyword(&["DO"]) {
                     self.ws();
                     MacroStmt::While {
                         cond,
@@ -1583,6 +1561,23 @@ impl<'p> Cx<'p> {
             }
         };
         self.push_item(ItemKind::Macro(stmt), start);
+    }
+
+    /// Consumes the run of letters at the cursor when it is one of `words` (any case),
+    /// as a keyword token; otherwise leaves the cursor where it is.
+    fn eat_keyword(&mut self, words: &[&str]) -> bool {
+        let ks = self.pos;
+        let mut j = self.pos;
+        while self.at(j).is_some_and(|c| c.is_ascii_alphabetic()) {
+            j += 1;
+        }
+        let run = Span::new(ks as u32, j as u32).slice(self.text);
+        if !words.iter().any(|w| run.eq_ignore_ascii_case(w.as_bytes())) {
+            return false;
+        }
+        self.pos = j;
+        self.token(ks, TokenKind::Keyword);
+        true
     }
 
     fn cond(&mut self) -> ExprId {
