@@ -30,6 +30,9 @@ const NUM_PARAMS: usize = 20_000;
 /// snapshots stay `None` so that multi-million-line programs fit in memory.
 pub const SNAPSHOT_LIMIT: usize = 2_000_000;
 
+/// Pecks per hole after which a peck cycle finishes the hole in one move.
+const MAX_PECKS: u32 = 1_000;
+
 /// Runs a program. Never panics; bounded by `step_budget` and the call depth.
 pub fn run(input: &RunInput<'_>) -> RunOutput {
     run_with_snapshots(input, true)
@@ -4349,7 +4352,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.rapid_to(at(self, ret));
             }
             730 | 830 => {
-                let q = cyc.q.unwrap_or(1.0).max(1e-6);
+                // A missing or non-positive Q is reported (C002); the hole is then drilled
+                // in one peck rather than in millions of zero-depth ones.
+                let q = cyc
+                    .q
+                    .filter(|q| *q > 0.0)
+                    .unwrap_or((r - bottom).abs().max(1e-6));
                 let g73 = mode == 730;
                 // LinuxCNC's peck clearance is 0.01 inch in either unit system.
                 let d = if ngc {
@@ -4365,7 +4373,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                 };
                 let mut depth = r - q;
                 let mut guard = 0;
-                while depth > bottom && guard < 100_000 {
+                // More than MAX_PECKS pecks per hole is not a real program: the rest of
+                // the hole is drilled in one move so output stays bounded.
+                while depth > bottom && guard < MAX_PECKS {
                     guard += 1;
                     self.feed_to(at(self, depth), span)?;
                     if g73 {
