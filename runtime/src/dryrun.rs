@@ -11,7 +11,9 @@ use serde::Serialize;
 
 use crate::interp::{Event as IEvent, EventKind, Motion, MotionKind, RunOutput};
 use crate::machine::MachineProfile;
-use crate::plan::{self, PathMode, Segment, SegmentKind, SegmentTiming, Totals};
+use crate::plan::{
+    self, cross3, dist3, dot3, sub3, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
+};
 
 /// Keys of `[machine]` that the interpreter reads and the planner profile does not know.
 const INTERPRETER_KEYS: &[&str] = &[
@@ -128,33 +130,19 @@ pub struct DryRun {
 
 /// The sweep angle (radians, signed: + counter-clockwise about `normal`) of an arc motion.
 fn arc_sweep(m: &Motion, center: [f64; 3], normal: [f64; 3], turns: i32) -> f64 {
-    let s = [
-        m.start[0] - center[0],
-        m.start[1] - center[1],
-        m.start[2] - center[2],
-    ];
-    let e = [
-        m.end[0] - center[0],
-        m.end[1] - center[1],
-        m.end[2] - center[2],
-    ];
     // Project both radius vectors on the arc plane.
     let proj = |v: [f64; 3]| {
-        let d = v[0] * normal[0] + v[1] * normal[1] + v[2] * normal[2];
+        let d = dot3(&v, &normal);
         [
             v[0] - d * normal[0],
             v[1] - d * normal[1],
             v[2] - d * normal[2],
         ]
     };
-    let (s, e) = (proj(s), proj(e));
-    let cross = [
-        s[1] * e[2] - s[2] * e[1],
-        s[2] * e[0] - s[0] * e[2],
-        s[0] * e[1] - s[1] * e[0],
-    ];
-    let sin = cross[0] * normal[0] + cross[1] * normal[1] + cross[2] * normal[2];
-    let cos = s[0] * e[0] + s[1] * e[1] + s[2] * e[2];
+    let s = proj(sub3(&xyz(&m.start), &center));
+    let e = proj(sub3(&xyz(&m.end), &center));
+    let sin = dot3(&cross3(&s, &e), &normal);
+    let cos = dot3(&s, &e);
     let mut angle = sin.atan2(cos);
     if angle <= 1e-12 {
         // Counter-clockwise about the normal: a zero angle is a full circle.
@@ -163,8 +151,13 @@ fn arc_sweep(m: &Motion, center: [f64; 3], normal: [f64; 3], turns: i32) -> f64 
     angle + std::f64::consts::TAU * turns.max(0) as f64
 }
 
-fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+fn xyz(p: &[f64; 6]) -> [f64; 3] {
+    [p[0], p[1], p[2]]
+}
+
+/// Rise of a helix: the end point's offset from the start along the arc normal.
+fn helix_rise(m: &Motion, normal: &[f64; 3]) -> f64 {
+    dot3(&sub3(&xyz(&m.end), &xyz(&m.start)), normal)
 }
 
 /// The planner segment of a motion; `index` is stored as the segment's block so
@@ -179,7 +172,7 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
             tolerance: m.blend_tolerance.unwrap_or(0.0),
         }
     };
-    let straight = dist(&m.start, &m.end);
+    let straight = dist3(&xyz(&m.start), &xyz(&m.end));
     let rot = ((m.end[3] - m.start[3]).powi(2)
         + (m.end[4] - m.start[4]).powi(2)
         + (m.end[5] - m.start[5]).powi(2))
@@ -193,9 +186,7 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
             radius,
         } => {
             let sweep = arc_sweep(m, center, normal, turns);
-            let rise = (m.end[0] - m.start[0]) * normal[0]
-                + (m.end[1] - m.start[1]) * normal[1]
-                + (m.end[2] - m.start[2]) * normal[2];
+            let rise = helix_rise(m, &normal);
             let planar = radius * sweep;
             (
                 SegmentKind::Arc {
@@ -361,25 +352,15 @@ pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
                 std::f64::consts::FRAC_PI_2
             };
             let n = ((sweep / step.max(1e-3)).ceil() as usize).clamp(2, 2048);
-            let s = [
-                m.start[0] - center[0],
-                m.start[1] - center[1],
-                m.start[2] - center[2],
-            ];
-            let along = s[0] * normal[0] + s[1] * normal[1] + s[2] * normal[2];
+            let s = sub3(&xyz(&m.start), &center);
+            let along = dot3(&s, &normal);
             let radial = [
                 s[0] - along * normal[0],
                 s[1] - along * normal[1],
                 s[2] - along * normal[2],
             ];
-            let b = [
-                normal[1] * radial[2] - normal[2] * radial[1],
-                normal[2] * radial[0] - normal[0] * radial[2],
-                normal[0] * radial[1] - normal[1] * radial[0],
-            ];
-            let rise = (m.end[0] - m.start[0]) * normal[0]
-                + (m.end[1] - m.start[1]) * normal[1]
-                + (m.end[2] - m.start[2]) * normal[2];
+            let b = cross3(&normal, &radial);
+            let rise = helix_rise(m, &normal);
             for k in 1..n {
                 let f = k as f64 / n as f64;
                 let (sn, cs) = (sweep * f).sin_cos();
