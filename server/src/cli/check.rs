@@ -143,18 +143,7 @@ fn check_file(
             out.diagnostics,
         ));
         diagnostics.sort_by_key(|d| (d.file, d.span.start));
-        extra_files = out
-            .files
-            .iter()
-            .map(|p| {
-                (
-                    PathBuf::from(p),
-                    std::fs::read(p)
-                        .map(Arc::from)
-                        .unwrap_or_else(|_| Arc::from(&b""[..])),
-                )
-            })
-            .collect();
+        extra_files = output::read_extra_files(&out.files);
     }
     FileReport {
         path: path.to_path_buf(),

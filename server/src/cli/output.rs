@@ -20,6 +20,22 @@ pub struct FileReport {
     pub extra_files: Vec<(PathBuf, Arc<[u8]>)>,
 }
 
+/// Reads the subprogram files a run opened, for showing their diagnostics; a file
+/// that vanished since shows without source text.
+pub fn read_extra_files(files: &[String]) -> Vec<(PathBuf, Arc<[u8]>)> {
+    files
+        .iter()
+        .map(|p| {
+            (
+                PathBuf::from(p),
+                std::fs::read(p)
+                    .map(Arc::from)
+                    .unwrap_or_else(|_| Arc::from(&b""[..])),
+            )
+        })
+        .collect()
+}
+
 /// A diagnostic with resolved 1-based positions.
 pub struct Located<'a> {
     pub path: String,

@@ -245,18 +245,7 @@ pub fn run(args: RunArgs) -> ExitCode {
 
     let dry = dryrun::plan_run(&out, &profile);
     progress.finish();
-    let extra_files: Vec<(PathBuf, Arc<[u8]>)> = out
-        .files
-        .iter()
-        .map(|p| {
-            (
-                PathBuf::from(p),
-                std::fs::read(p)
-                    .map(Arc::from)
-                    .unwrap_or_else(|_| Arc::from(&b""[..])),
-            )
-        })
-        .collect();
+    let extra_files = output::read_extra_files(&out.files);
     let report = FileReport {
         path: args.file.clone(),
         text: text.clone(),
