@@ -223,3 +223,61 @@ fn rule_explains_and_lists() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn run_writes_pictures_and_block_times() {
+    let d = tempdir("run");
+    let f = write(
+        &d,
+        "p.ngc",
+        b"G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\nG1 X10 F1200\nG2 X20 Y0 I5 J0\nG0 Z5\nM2\n",
+    );
+    let (svg, png) = (d.join("p.svg"), d.join("p.png"));
+    let out = bin()
+        .args([
+            "run",
+            f.to_str().unwrap(),
+            "--svg",
+            svg.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s = std::fs::read_to_string(&svg).unwrap();
+    assert!(s.starts_with("<svg"));
+    // Feed moves carry their source line; rapids are dashed.
+    assert!(
+        s.contains(r#"data-line="4""#) && s.contains(r#"data-line="5""#),
+        "{s}"
+    );
+    assert!(s.contains("stroke-dasharray"));
+    assert_eq!(&std::fs::read(&png).unwrap()[..8], b"\x89PNG\r\n\x1a\n");
+    let out = bin()
+        .args(["run", f.to_str().unwrap(), "--emit", "blocks"])
+        .output()
+        .unwrap();
+    let csv = String::from_utf8_lossy(&out.stdout);
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min")
+    );
+    // Line 4 is the 10 mm feed move; line 5 the half circle of radius 5 (5π mm).
+    let row = |n: &str| {
+        csv.lines()
+            .find(|l| l.starts_with(&format!("{n},")))
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(row("4")[4], "10.000000");
+    assert_eq!(row("5")[4], format!("{:.6}", 5.0 * std::f64::consts::PI));
+}
