@@ -28,6 +28,13 @@ const INTERPRETER_KEYS: &[&str] = &[
     "optional_stop",
     "g73_retract",
     "g83_clearance",
+    "tlc_type",
+    "servo_rate_khz",
+    "user_m_codes",
+    "spindles",
+    "max_cutting_feed",
+    "offset_count",
+    "involute_tolerance",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the

@@ -32,8 +32,12 @@ fn examples(doc: &str) -> Vec<String> {
 fn setup(code: &str) -> (Dialect, &'static str, Option<&'static str>) {
     match code {
         "A003" | "A004" => (Dialect::Servoworks, "circle_error_allowance = 2.5", None),
-        "A007" | "C004" | "C006" | "X004" | "X005" | "F005" | "F007" => (Dialect::Fanuc, "", None),
-        "D001" | "D002" | "K001" | "C005" => (Dialect::Servoworks, "", None),
+        "A007" | "C004" | "C006" | "X004" | "X005" | "F005" | "F007" | "A012" | "K004" | "F018"
+        | "C009" | "T007" | "K005" | "X010" => (Dialect::Fanuc, "", None),
+        "D001" | "D002" | "K001" | "C005" | "T005" | "D003" | "F016" | "T006" | "F017" => {
+            (Dialect::Servoworks, "", None)
+        }
+        "T008" => (Dialect::Rs274ngc, "", Some("T1 P1 D0.125\nT2 P1 D0.25\n")),
         "T001" => (Dialect::Rs274ngc, "", Some("T1 P1 D0.125 Z+0.511\n")),
         "K002" => (
             Dialect::Rs274ngc,
@@ -56,14 +60,27 @@ fn documented_examples_behave() {
             meta.code
         );
         let (dialect, machine, tools) = setup(meta.code);
-        let bad = run_with(dialect, &ex[0], machine, &[], tools);
+        // Rules about input files: the invalid run reads a bad file, the valid one a good one.
+        let (files, var): (&[(&str, &str)], _) = match meta.code {
+            "F017" => (
+                &[
+                    ("NoReturn", "%\nONoReturn\nG01 X1. F100.\n%\n"),
+                    ("MoveXY", "%\nOMoveXY\nG01 X1. F100.\nM99\n%\n"),
+                ],
+                None,
+            ),
+            "X011" => (&[], Some("5221 1.0\n5220 1.0\n")),
+            _ => (&[], None),
+        };
+        let bad = run_full(dialect, &ex[0], machine, files, tools, var);
         assert!(
             codes(&bad).contains(&meta.code),
             "{}: invalid example gives {:?}",
             meta.code,
             bad.diagnostics
         );
-        let good = run_with(dialect, &ex[1], machine, &[], tools);
+        let good_tools = if meta.code == "T008" { None } else { tools };
+        let good = run_full(dialect, &ex[1], machine, files, good_tools, None);
         assert!(
             !codes(&good).contains(&meta.code),
             "{}: valid example gives {:?}",

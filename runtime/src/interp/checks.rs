@@ -73,6 +73,7 @@ impl Interp<'_, '_> {
         self.probe_checks(w)?;
         self.arc_checks(w)?;
         self.misc_checks(w);
+        self.spec_checks(w, bspan, self.chk.motion)?;
         Ok(())
     }
 

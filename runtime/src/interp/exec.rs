@@ -23,6 +23,8 @@ use crate::rules::codes;
 
 #[path = "checks.rs"]
 mod checks;
+#[path = "spec_checks.rs"]
+mod spec_checks;
 
 const NUM_PARAMS: usize = 20_000;
 
@@ -300,6 +302,8 @@ struct Interp<'a, 'i> {
     spline_pq: (f64, f64),
     /// Control points of an open G5.2 NURBS block.
     nurbs: Vec<([f64; 6], f64)>,
+    /// Memory of the spec-ledger checks (`spec_checks.rs`).
+    spec: spec_checks::SpecMem,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -394,6 +398,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             modal_cache: None,
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
+            spec: Default::default(),
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -692,6 +697,7 @@ impl<'a, 'i> Interp<'a, 'i> {
     // ----------------------------------------------------------------- main loop
 
     fn run_main(&mut self) {
+        self.spec_input_files();
         let p = self.files[0].prog.clone();
         if self.ngc() {
             if let Some(b) = p
@@ -946,6 +952,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if items.is_empty() {
             return Ok(Flow::Next);
         }
+        self.spec_items(&prog, items);
         // A bare O-word line (program title, M98 target) does nothing, not even its comments.
         if self.ngc()
             && items
@@ -1468,6 +1475,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.file_names.insert(rf.path.clone(), idx);
         self.file_names.remove(&rf.path);
         self.out.files.push(rf.path);
+        self.spec_file_loaded(idx, name);
         Some(idx)
     }
 

@@ -12,10 +12,12 @@ mod arc_polar_ijk;
 mod arc_radius_mismatch;
 mod arc_radius_too_small;
 mod arc_same_end_r;
+mod arc_uvw_plane;
 mod arc_words;
 mod call_depth;
 mod comp_conflict;
 mod comp_motion;
+mod context_restore;
 mod coord_during_rotation;
 mod coordinate_mode;
 mod cycle_hygiene;
@@ -23,26 +25,47 @@ mod cycle_missing;
 mod cycle_q;
 mod cycle_spindle;
 mod cycle_state;
+mod cycle_still_active;
 mod dlacc_incompatible;
 mod dlacc_tcp;
 mod expression;
+mod feed_spindle_off;
 mod flow;
 mod interp;
 mod inverse_time;
+mod involute;
+mod lathe_cycle;
 mod macro_alarm;
 mod missing_end;
 mod mode_left_on;
 mod no_effect;
+mod nurbs_block;
+mod offset_number;
+mod polar_interp;
 mod probe_state;
+mod rapid_no_motion;
 mod rigid_tap;
+mod rigid_tap_feed;
+mod rotary_only_feed;
+mod scaling_magnification;
+mod smoothing_time;
 mod spindle_stopped;
 mod step_budget;
 mod sub_not_found;
+mod subprogram_file;
+mod thread_lead;
+mod tlc_type;
 mod tool_offset_state;
+mod tool_table;
 mod travel_limit;
+mod trc_lookahead;
 mod unknown_code;
 mod unknown_tool;
+mod unknown_user_m;
+mod vacant_read;
 mod vacant_word;
+mod var_file;
+mod word_unused;
 mod zero_feed;
 
 /// Diagnostic codes emitted by the interpreter.
@@ -88,6 +111,29 @@ pub mod codes {
     pub const SPINDLE_STOPPED: &str = "F010";
     pub const INVERSE_TIME: &str = "F009";
     pub const MODE_LEFT_ON: &str = "F008";
+    pub const WORD_UNUSED: &str = "X008";
+    pub const UNKNOWN_USER_M: &str = "X009";
+    pub const CONTEXT_RESTORE: &str = "F013";
+    pub const NURBS_BLOCK: &str = "A010";
+    pub const LATHE_CYCLE: &str = "C007";
+    pub const ARC_UVW_PLANE: &str = "A011";
+    pub const RAPID_NO_MOTION: &str = "F014";
+    pub const FEED_SPINDLE_OFF: &str = "F015";
+    pub const CYCLE_STILL_ACTIVE: &str = "C008";
+    pub const TLC_TYPE: &str = "T005";
+    pub const SMOOTHING_TIME: &str = "D003";
+    pub const ROTARY_ONLY_FEED: &str = "F016";
+    pub const TRC_LOOKAHEAD: &str = "T006";
+    pub const SUBPROGRAM_FILE: &str = "F017";
+    pub const VACANT_READ: &str = "X010";
+    pub const INVOLUTE: &str = "A012";
+    pub const POLAR_INTERP: &str = "K004";
+    pub const THREAD_LEAD: &str = "F018";
+    pub const RIGID_TAP_FEED: &str = "C009";
+    pub const OFFSET_NUMBER: &str = "T007";
+    pub const SCALING_MAGNIFICATION: &str = "K005";
+    pub const TOOL_TABLE: &str = "T008";
+    pub const VAR_FILE: &str = "X011";
 }
 
 /// Metadata of every runtime rule, in code order.
@@ -133,6 +179,29 @@ pub static REGISTRY: &[&RuleMeta] = &[
     &spindle_stopped::SPINDLE_STOPPED,
     &inverse_time::INVERSE_TIME,
     &mode_left_on::MODE_LEFT_ON,
+    &word_unused::WORD_UNUSED,
+    &unknown_user_m::UNKNOWN_USER_M,
+    &context_restore::CONTEXT_RESTORE,
+    &nurbs_block::NURBS_BLOCK,
+    &lathe_cycle::LATHE_CYCLE,
+    &arc_uvw_plane::ARC_UVW_PLANE,
+    &rapid_no_motion::RAPID_NO_MOTION,
+    &feed_spindle_off::FEED_SPINDLE_OFF,
+    &cycle_still_active::CYCLE_STILL_ACTIVE,
+    &tlc_type::TLC_TYPE,
+    &smoothing_time::SMOOTHING_TIME,
+    &rotary_only_feed::ROTARY_ONLY_FEED,
+    &trc_lookahead::TRC_LOOKAHEAD,
+    &subprogram_file::SUBPROGRAM_FILE,
+    &vacant_read::VACANT_READ,
+    &involute::INVOLUTE,
+    &polar_interp::POLAR_INTERP,
+    &thread_lead::THREAD_LEAD,
+    &rigid_tap_feed::RIGID_TAP_FEED,
+    &offset_number::OFFSET_NUMBER,
+    &scaling_magnification::SCALING_MAGNIFICATION,
+    &tool_table::TOOL_TABLE,
+    &var_file::VAR_FILE,
 ];
 
 /// Looks a runtime rule up by code or name.

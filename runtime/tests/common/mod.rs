@@ -26,6 +26,18 @@ pub fn run_with(
     files: &[(&str, &str)],
     tools: Option<&str>,
 ) -> RunOutput {
+    run_full(dialect, text, machine, files, tools, None)
+}
+
+/// `run_with` plus a LinuxCNC `.var` file.
+pub fn run_full(
+    dialect: Dialect,
+    text: &str,
+    machine: &str,
+    files: &[(&str, &str)],
+    tools: Option<&str>,
+    var_file: Option<&str>,
+) -> RunOutput {
     let settings = Settings::new(dialect);
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
     let machine: toml::Table = toml::from_str(machine).expect("machine toml");
@@ -43,7 +55,7 @@ pub fn run_with(
         step_budget: 100_000,
         emit_canon: false,
         tool_table: tools,
-        var_file: None,
+        var_file,
     };
     run(&input)
 }

@@ -1,0 +1,37 @@
+//! Flow-sensitive rule metadata; the check runs in the interpreter.
+
+use analyzer::declare_rule;
+
+declare_rule! {
+    /// ## What it does
+    /// Flags (RS274/NGC) a D, H, I, J, L, P, Q or R word, or a `$` spindle selector, that no code of the line (or the modal motion) uses, and a `$` beyond the configured spindles (`machine.spindles`, default 1).
+    ///
+    /// ## Why is this bad?
+    /// LinuxCNC refuses the line ("P word with no G2 G3 G4 … to use it") and stops the program; the word is usually a typo or belongs to another line.
+    ///
+    /// ## Example
+    /// ```gcode
+    /// G0 X1 P2
+    /// M2
+    /// ```
+    ///
+    /// Use instead:
+    /// ```gcode
+    /// G4 P2
+    /// G0 X1
+    /// M2
+    /// ```
+    ///
+    /// ## Dialects
+    /// RS274/NGC. Error; interpretation stops as in LinuxCNC.
+    ///
+    /// Implements: NGC110, NGC814
+    pub static WORD_UNUSED = {
+        code: "X008",
+        name: "word-unused",
+        summary: "A word that no code of the line uses",
+        implements: &["NGC110", "NGC814"],
+        origin: Runtime,
+        default_enabled: true,
+    }
+}

@@ -1,0 +1,190 @@
+//! The spec-ledger rules of `interp/spec_checks.rs`: exact line, code and
+//! severity on programs taken from the digests' test vectors.
+
+mod common;
+
+use analyzer::{Dialect, Severity};
+use common::*;
+
+/// (code, 1-based line, severity) of every diagnostic whose code is in `only`.
+fn found(
+    out: &runtime::RunOutput,
+    text: &str,
+    only: &[&str],
+) -> Vec<(&'static str, usize, Severity)> {
+    out.diagnostics
+        .iter()
+        .filter(|d| only.contains(&d.code))
+        .map(|d| {
+            let line = text[..d.span.start as usize].matches('\n').count() + 1;
+            (d.code, line, d.severity)
+        })
+        .collect()
+}
+
+#[test]
+fn involute_seed_example_is_clean_and_off_involute_end_is_flagged() {
+    // fanuc.md §8.6: end point 0.0021 mm off the start involute, within the 0.01 mm default.
+    let ok = "G00 X-1. Y0\nG02.2 X1. Y9.425 I1. J0 R1. F100\nM30\n";
+    assert_eq!(found(&run_fanuc(ok, ""), ok, &["A012"]), vec![]);
+    // A tighter parameter 5610 turns the same block into PS0243.
+    let out = run_fanuc(ok, "involute_tolerance = 0.001");
+    assert_eq!(
+        found(&out, ok, &["A012"]),
+        vec![("A012", 2, Severity::Error)]
+    );
+    // Start inside the base circle (radius 2 around (0.5, 0)).
+    let inside = "G00 X0 Y0\nG03.2 X5. Y5. I0.5 J0 R2. F100\nM30\n";
+    assert_eq!(
+        found(&run_fanuc(inside, ""), inside, &["A012"]),
+        vec![("A012", 2, Severity::Error)]
+    );
+    // G40 inside involute mode.
+    let g40 = "G00 X-1. Y0\nG02.2 X1. Y9.425 I1. J0 R1. F100\nG40 X2.\nM30\n";
+    assert_eq!(
+        found(&run_fanuc(g40, ""), g40, &["A012"]),
+        vec![("A012", 3, Severity::Error)]
+    );
+}
+
+#[test]
+fn servoworks_tlc_type_vectors() {
+    // servoworks.md TV-35: G37 without G43 → SW077; with type 2 → SW078.
+    let no_g43 = "G37 Z20.\nM02\n";
+    assert_eq!(
+        found(&run_sw(no_g43, ""), no_g43, &["T005"]),
+        vec![("T005", 1, Severity::Error)]
+    );
+    let typ2 = "G43 A H2\nG37 Z20.\nM02\n";
+    assert_eq!(
+        found(&run_sw(typ2, "tlc_type = 2"), typ2, &["T005"]),
+        vec![("T005", 2, Severity::Error)]
+    );
+    // TV-32: type 0, `G43 X5. H3` → SW092; `G43 Z50.5 H3` is fine.
+    let t0 = "G43 Z50.5 H3\nG49\nG43 X5. H3\nM02\n";
+    assert_eq!(
+        found(&run_sw(t0, ""), t0, &["T005"]),
+        vec![("T005", 3, Severity::Error)]
+    );
+    // TV-33: type 1, `G17 G43 Y0 H1` → SW093 (G18 Y is fine).
+    let t1 = "G18 G43 Y0 H1\nG17 G43 Y0 H1\nM02\n";
+    assert_eq!(
+        found(&run_sw(t1, "tlc_type = 1"), t1, &["T005"]),
+        vec![("T005", 2, Severity::Error)]
+    );
+    // TV-34: type 2, G49 without H0 → SW094.
+    let t2 = "G43 A0 H2\nG49\nG43 A0 H2\nG49 H0\nM02\n";
+    assert_eq!(
+        found(&run_sw(t2, "tlc_type = 2"), t2, &["T005"]),
+        vec![("T005", 2, Severity::Error)]
+    );
+}
+
+#[test]
+fn servoworks_smoothing_time_by_servo_rate() {
+    // servoworks.md TV-30: R1000 is fine at 1 kHz; R3000 at 2 kHz → SW064.
+    let text = "G04\nG10 L108 P1 R1000\nG04\nG10 L108 P1 R3000\nM02\n";
+    assert_eq!(found(&run_sw(text, ""), text, &["D003"]), vec![]);
+    assert_eq!(
+        found(&run_sw(text, "servo_rate_khz = 2"), text, &["D003"]),
+        vec![("D003", 4, Severity::Error)]
+    );
+}
+
+#[test]
+fn fanuc_thread_lead_and_speed() {
+    // fanuc.md: `G33 Z10. F60000` (no decimal point = 600 mm) → FAN055;
+    // Fmax 10000 mm/min, lead 1.5 → S ≤ 6666.7, so S7000 → FAN056.
+    let lead = "S500 M03\nG33 Z10. F60000\nM30\n";
+    assert_eq!(
+        found(&run_fanuc(lead, ""), lead, &["F018"]),
+        vec![("F018", 2, Severity::Error)]
+    );
+    let speed = "S7000 M03\nG33 Z10. F1.5\nS6600\nG33 Z20. F1.5\nM30\n";
+    assert_eq!(
+        found(
+            &run_fanuc(speed, "max_cutting_feed = 10000.0"),
+            speed,
+            &["F018"]
+        ),
+        vec![("F018", 2, Severity::Warning)]
+    );
+}
+
+#[test]
+fn rs274_unused_words_match_the_reference_interpreter() {
+    // Each line is refused by LinuxCNC 2.9's rs274 with "<letter> word with no … to use it".
+    for (text, line) in [
+        ("G0 X1 D2\nM2\n", 1),
+        ("G1 X1 F10 H2\nM2\n", 1),
+        ("G0 X1 P2\nM2\n", 1),
+        ("G0 X1 Q2\nM2\n", 1),
+        ("G0 X1 R2\nM2\n", 1),
+        ("G1 X1 F10 I2\nM2\n", 1),
+        ("G0 X1 L2\nM2\n", 1),
+        ("G0 $1 X1\nM2\n", 1),
+        ("M3 $1 S100\nM2\n", 1),
+    ] {
+        let out = run_ngc(text);
+        assert_eq!(
+            found(&out, text, &["X008"]),
+            vec![("X008", line, Severity::Error)],
+            "{text}"
+        );
+    }
+    // rs274: "Unknown m code used: M101", "missing M70/M73?", "Cannot use G5.3 without G5.2 first",
+    // "G71.0 can only be used in XZ plane (G18)".
+    for (text, code) in [
+        ("M101\nM2\n", "X009"),
+        ("M72\nM2\n", "F013"),
+        ("G5.3\nM2\n", "A010"),
+        ("G71 X1 Z1 D1 Q1\nM2\n", "C007"),
+    ] {
+        let out = run_ngc(text);
+        assert_eq!(
+            found(&out, text, &[code]),
+            vec![(code, 1, Severity::Error)],
+            "{text}"
+        );
+    }
+}
+
+#[test]
+fn file_lints() {
+    let tools = "T1 P1 D0.125 Z+0.511 ;ok\nT2 P1 D0.25\nT3 D0.5\n";
+    let out = run_with(Dialect::Rs274ngc, "M2\n", "", &[], Some(tools));
+    let got: Vec<(Severity, &str)> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "T008")
+        .map(|d| (d.severity, d.message.as_str()))
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            (Severity::Warning, "tool table line 2: pocket P1 is already used on line 1: the last line wins"),
+            (Severity::Error, "tool table line 3: a tool line needs both T (tool number) and P (pocket): `T3 D0.5`"),
+        ]
+    );
+    let out = run_full(
+        Dialect::Rs274ngc,
+        "M2\n",
+        "",
+        &[],
+        None,
+        Some("5220 1.0\n5221 x\n5210 0\n"),
+    );
+    let msgs: Vec<&str> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "X011")
+        .map(|d| d.message.as_str())
+        .collect();
+    assert_eq!(
+        msgs,
+        vec![
+            "parameter file line 2: `5221 x` is not `number value`: LinuxCNC cannot read the parameter file",
+            "parameter file line 3: parameter 5210 is out of order (after 5220): LinuxCNC requires increasing numbers",
+        ]
+    );
+}
