@@ -72,7 +72,9 @@ fn documented_examples_behave() {
             "X011" => (&[], Some("5221 1.0\n5220 1.0\n")),
             _ => (&[], None),
         };
-        let bad = run_full(dialect, &ex[0], machine, files, tools, var);
+        // Rules that are off by default are selected for their examples.
+        let select = (!meta.default_enabled).then_some(meta.code);
+        let bad = run_full_sel(dialect, &ex[0], machine, files, tools, var, select);
         assert!(
             codes(&bad).contains(&meta.code),
             "{}: invalid example gives {:?}",
@@ -80,7 +82,7 @@ fn documented_examples_behave() {
             bad.diagnostics
         );
         let good_tools = if meta.code == "T008" { None } else { tools };
-        let good = run_full(dialect, &ex[1], machine, files, good_tools, None);
+        let good = run_full_sel(dialect, &ex[1], machine, files, good_tools, None, select);
         assert!(
             !codes(&good).contains(&meta.code),
             "{}: valid example gives {:?}",

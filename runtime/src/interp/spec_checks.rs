@@ -242,8 +242,13 @@ impl Interp<'_, '_> {
         let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
         let mm = |codes: &[u32]| codes.iter().any(|c| w.has_m(*c));
         let user_m = w.m.iter().any(|(m, _)| (1000..=1990).contains(m));
-        let mode = motion.map(|m| m.0).unwrap_or(modal);
-        let _ = bspan;
+        // Splines and NURBS are not in the checks' motion list: an explicit code wins.
+        let mode =
+            w.g.iter()
+                .find(|g| matches!(g.0, 50 | 51 | 52))
+                .map(|g| g.0)
+                .or(motion.map(|m| m.0))
+                .unwrap_or(modal);
         let lathe_cycle = gm(&[700, 710, 711, 712, 720, 721, 722]);
         let cycle = is_cycle(mode);
         // Words that no code of the line uses (LinuxCNC's check of other codes).
@@ -370,7 +375,10 @@ impl Interp<'_, '_> {
                 }
             }
             // Feed moves with the spindle off (optional rule).
-            if (matches!(m, 10 | 20 | 30) || is_cycle(m)) && self.st.spindle_dir == 0 {
+            // Off by default, so it is computed only when selected.
+            let wanted = crate::rules::lookup(codes::FEED_SPINDLE_OFF)
+                .is_some_and(|meta| self.input.settings.rule_enabled(meta));
+            if wanted && (matches!(m, 10 | 20 | 30) || is_cycle(m)) && self.st.spindle_dir == 0 {
                 self.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
             }
             // A cycle repeated by a line that moves only the drilling axis.

@@ -38,7 +38,23 @@ pub fn run_full(
     tools: Option<&str>,
     var_file: Option<&str>,
 ) -> RunOutput {
-    let settings = Settings::new(dialect);
+    run_full_sel(dialect, text, machine, files, tools, var_file, None)
+}
+
+/// `run_full` with one extra rule selected (rules that are off by default).
+pub fn run_full_sel(
+    dialect: Dialect,
+    text: &str,
+    machine: &str,
+    files: &[(&str, &str)],
+    tools: Option<&str>,
+    var_file: Option<&str>,
+    select: Option<&str>,
+) -> RunOutput {
+    let mut settings = Settings::new(dialect);
+    if let Some(code) = select {
+        settings.select = vec!["ALL".into(), code.into()];
+    }
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
     let machine: toml::Table = toml::from_str(machine).expect("machine toml");
     let resolver = MapResolver(
