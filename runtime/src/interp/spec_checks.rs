@@ -245,7 +245,7 @@ impl Interp<'_, '_> {
         // Splines and NURBS are not in the checks' motion list: an explicit code wins.
         let mode =
             w.g.iter()
-                .find(|g| matches!(g.0, 50 | 51 | 52))
+                .find(|g| matches!(g.0, 50..=52))
                 .map(|g| g.0)
                 .or(motion.map(|m| m.0))
                 .unwrap_or(modal);
@@ -298,10 +298,8 @@ impl Interp<'_, '_> {
         }
         // M70/M73 save the modal state of this call level; M72 restores it.
         let level = self.frames.len();
-        if w.has_m(700) || w.has_m(730) {
-            if !self.spec.saved_levels.contains(&level) {
-                self.spec.saved_levels.push(level);
-            }
+        if (w.has_m(700) || w.has_m(730)) && !self.spec.saved_levels.contains(&level) {
+            self.spec.saved_levels.push(level);
         }
         if w.has_m(720) && !self.spec.saved_levels.contains(&level) {
             return Err(self.err(codes::CONTEXT_RESTORE, Self::m_span(w, 720), "M72 restores a modal state that no M70 or M73 saved at this call level: LinuxCNC stops (missing M70/M73?)"));
