@@ -420,3 +420,57 @@ fn tv53_reference_return_and_g29() {
         vec![[3.0, 4.0], [0.5, 7.8], [0.0, 0.0], [0.5, 7.8], [7.5, 2.1]]
     );
 }
+
+/// TV-61: G76 feeds to Z, dwells, shifts Q opposite the tool tip at rapid, rapids
+/// out and shifts back; `Q-4` is taken as 4 (SW123). The shift direction is the
+/// machine's `drill_shift` (default +X, the digest's recommendation for the
+/// unstated axis), and `none` models ServoWorks' "No Shift" setting.
+#[test]
+fn tv61_fine_boring_shift() {
+    let prog = "G90 G0 X0 Y0 Z50\nM3 S1000\nG99 G76 X200 Y200 Z-100 R-20 Q4 P100 F200\nG80\nM30\n";
+    let out = run_sw(prog, "");
+    let e = ends(&out);
+    let at_bottom = e
+        .iter()
+        .position(|p| close(p[2], -100.0, 1e-9))
+        .expect("feed to Z-100");
+    assert_pt_xyz(e[at_bottom], [200.0, 200.0, -100.0]);
+    assert_pt_xyz(e[at_bottom + 1], [204.0, 200.0, -100.0]);
+    assert_pt_xyz(e[at_bottom + 2], [204.0, 200.0, -20.0]);
+    assert_pt_xyz(e[at_bottom + 3], [200.0, 200.0, -20.0]);
+    assert!(is_feed(&out.motions[at_bottom]) && is_rapid(&out.motions[at_bottom + 1]));
+
+    let neg = run_sw(&prog.replace("Q4", "Q-4"), "drill_shift = \"-Y\"");
+    let e = ends(&neg);
+    let at_bottom = e.iter().position(|p| close(p[2], -100.0, 1e-9)).unwrap();
+    assert_pt_xyz(e[at_bottom + 1], [200.0, 196.0, -100.0]);
+
+    let none = run_sw(prog, "drill_shift = \"none\"");
+    let e = ends(&none);
+    let at_bottom = e.iter().position(|p| close(p[2], -100.0, 1e-9)).unwrap();
+    assert_pt_xyz(e[at_bottom + 1], [200.0, 200.0, -20.0]);
+}
+
+/// Ambiguity A1: the manual calls G41 "right"; `trc_g41_side = "right"` follows
+/// it, the default `left` follows ISO practice. A 10 mm tool going +X at Y0 runs
+/// at Y5 (left) or Y-5 (right).
+#[test]
+fn trc_g41_side_switch() {
+    let prog = "G90 G17 G0 X0 Y0\nG41 D10.0 G01 X10 F500\nX50\nG40 G01 X60\nM30\n";
+    let left = run_sw(prog, "");
+    let right = run_sw(prog, "trc_g41_side = \"right\"");
+    let y_at_50 = |out: &runtime::RunOutput| {
+        ends(out)
+            .iter()
+            .find(|p| close(p[0], 50.0, 1e-6))
+            .map(|p| p[1])
+    };
+    assert_eq!(y_at_50(&left), Some(5.0));
+    assert_eq!(y_at_50(&right), Some(-5.0));
+}
+
+fn assert_pt_xyz(got: [f64; 3], want: [f64; 3]) {
+    for i in 0..3 {
+        assert!(close(got[i], want[i], 1e-9), "got {got:?}, want {want:?}");
+    }
+}

@@ -639,6 +639,19 @@ impl<'a, 'i> Interp<'a, 'i> {
         q
     }
 
+    /// Whether the tool runs left of the path under G41/G42 (the machine's
+    /// `trc_g41_side` decides which code means left).
+    fn comp_left(&self) -> bool {
+        (self.st.modal.comp == 410) != self.cfg.g41_right
+    }
+
+    /// The G76/G87 shift of `q` as a plane-axis displacement (index, signed amount).
+    fn drill_shift_vec(&self, q: f64) -> Option<(usize, f64)> {
+        let (which, sign) = self.cfg.drill_shift?;
+        let (a, b) = self.plane_axes();
+        Some((if which == 0 { a } else { b }, sign * q.abs()))
+    }
+
     fn plane_axes(&self) -> (usize, usize) {
         match self.st.modal.plane {
             180 => (2, 0),
@@ -2147,11 +2160,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.st.modal.comp = if code == 410 { 420 } else { 410 };
                 }
                 self.st.comp_radius = dia.abs() / 2.0;
-                let side = if self.st.modal.comp == 410 {
-                    "left"
-                } else {
-                    "right"
-                };
+                let side = if self.comp_left() { "left" } else { "right" };
                 self.st.comp_first = true;
                 self.comp_flush();
                 self.canon_comment(&format!(
@@ -3345,7 +3354,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         use std::f64::consts::{FRAC_PI_2, PI};
         let (a, b) = self.plane_axes();
         let r = self.st.comp_radius;
-        let left = self.st.modal.comp == 410;
+        let left = self.comp_left();
         let op = self.st.pos;
         // Directions along the axes come out exact, as the reference output shows.
         let snap = |v: f64| if v.abs() < 1e-15 { 0.0 } else { v };
@@ -3772,7 +3781,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         use std::f64::consts::{FRAC_PI_2, PI};
         let (a, b) = self.plane_axes();
         let rt = self.st.comp_radius;
-        let left = self.st.modal.comp == 410;
+        let left = self.comp_left();
         let inside = left != cw;
         let new_r = if inside { r - rt } else { r + rt };
         if new_r <= 0.0 {
@@ -4501,9 +4510,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 dwell_ev(self);
                 let q = cyc.q.unwrap_or(0.0);
                 let mut p = at(self, bottom);
-                let (a, _) = self.plane_axes();
-                p[a] -= q;
-                self.rapid_to(p);
+                if let Some((a, d)) = self.drill_shift_vec(q) {
+                    p[a] += d;
+                    self.rapid_to(p);
+                }
                 p[self.normal_axis()] = ret;
                 self.rapid_to(p);
                 self.rapid_to(at(self, ret));
@@ -4537,12 +4547,31 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.rapid_to(o3);
                     self.rapid_to(at(self, clear));
                 } else {
-                    // Back boring: the R point is the hole bottom.
+                    // Back boring: the R point is the hole bottom. The tool passes the
+                    // bore shifted away from the wall (oriented spindle), comes back on
+                    // centre to cut upwards, and leaves shifted again.
+                    let init = self.st.cycle.initial.unwrap_or(clear);
+                    let shift = self.drill_shift_vec(cyc.q.unwrap_or(0.0));
+                    let shifted = |s: &Self, level: f64| {
+                        let mut p = at(s, level);
+                        if let Some((a, d)) = shift {
+                            p[a] += d;
+                        }
+                        p
+                    };
+                    if shift.is_some() {
+                        self.rapid_to(shifted(self, init));
+                        self.rapid_to(shifted(self, r));
+                    }
                     self.rapid_to(at(self, r));
                     self.feed_to(at(self, bottom), span)?;
                     dwell_ev(self);
-                    self.rapid_to(at(self, r));
-                    let init = self.st.cycle.initial.unwrap_or(clear);
+                    if shift.is_some() {
+                        self.rapid_to(shifted(self, bottom));
+                        self.rapid_to(shifted(self, init));
+                    } else {
+                        self.rapid_to(at(self, r));
+                    }
                     self.rapid_to(at(self, init));
                 }
             }

@@ -42,6 +42,30 @@ pub struct MachineCfg {
     pub max_depth: usize,
     /// Travel limits per axis index (X Y Z A B C), machine frame.
     pub limits: [Option<(f64, f64)>; 6],
+    /// `trc_g41_side = "right"`: G41 puts the tool right of the path. The ServoWorks
+    /// manual says so (§6.2, §6.3.15) against ISO practice and its own G41.1; the
+    /// digest recommends `left` (ambiguity A1), the default.
+    pub g41_right: bool,
+    /// G76/G87 shift: (plane axis 0 = first, 1 = second, sign), or `None` for no shift
+    /// (ServoWorks "No Shift"). Key `drill_shift = "+X" | "-X" | "+Y" | "-Y" | "none"`,
+    /// default `+X` (ServoWorks digest recommendation; FANUC No. 5101 RD1/RD2 = 0).
+    pub drill_shift: Option<(usize, f64)>,
+}
+
+/// Reads `drill_shift`: the letter names the first (X) or second (Y) axis of the
+/// G17 plane; in G18/G19 the same plane position is used.
+fn drill_shift(v: Option<&toml::Value>) -> Option<(usize, f64)> {
+    let s = match v.and_then(|v| v.as_str()) {
+        Some(s) => s.trim().to_ascii_uppercase(),
+        None => return Some((0, 1.0)),
+    };
+    match s.as_str() {
+        "NONE" | "OFF" | "0" => None,
+        "-X" => Some((0, -1.0)),
+        "+Y" | "Y" => Some((1, 1.0)),
+        "-Y" => Some((1, -1.0)),
+        _ => Some((0, 1.0)),
+    }
 }
 
 fn num(v: &toml::Value) -> Option<f64> {
@@ -144,6 +168,11 @@ impl MachineCfg {
         }
         MachineCfg {
             limits,
+            g41_right: t
+                .get("trc_g41_side")
+                .and_then(|v| v.as_str())
+                .is_some_and(|s| s.eq_ignore_ascii_case("right")),
+            drill_shift: drill_shift(t.get("drill_shift")),
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),
             integer_machine_unit: b("integer_machine_unit", false),
