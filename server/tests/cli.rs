@@ -135,6 +135,46 @@ fn config_is_discovered_upward_and_selects_dialect_and_rules() {
 }
 
 #[test]
+fn check_reads_the_linuxcnc_files_a_config_names() {
+    // rs274 -t t.tbl stops at `T5 M6` with "Requested tool 5 not found in the tool
+    // table"; check must see the same table through `tool_table` or the ini's
+    // TOOL_TABLE, relative to the config file.
+    let d = tempdir("cfgfiles");
+    write(&d, "machine/t.tbl", b"T1 P1 Z0.5 D0.25\n");
+    write(
+        &d,
+        "partscope.toml",
+        b"dialect = \"rs274ngc\"\ntool_table = \"machine/t.tbl\"\n",
+    );
+    let f = write(&d, "p.ngc", b"G21\nT1 M6\nT5 M6\nM2\n");
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        codes(&diags),
+        vec![("T001".to_string(), 3, "error".to_string())]
+    );
+    write(
+        &d,
+        "machine/mill.ini",
+        b"[EMCIO]\nTOOL_TABLE = t.tbl\n[TRAJ]\nLINEAR_UNITS = mm\nMAX_LINEAR_VELOCITY = 60\n",
+    );
+    write(
+        &d,
+        "partscope.toml",
+        b"dialect = \"rs274ngc\"\nini = \"machine/mill.ini\"\n",
+    );
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(
+        codes(&diags),
+        vec![("T001".to_string(), 3, "error".to_string())]
+    );
+    // Without a table every tool number is accepted.
+    write(&d, "partscope.toml", b"dialect = \"rs274ngc\"\n");
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!((code, diags.len()), (0, 0), "{diags:?}");
+}
+
+#[test]
 fn suppression_comments() {
     let d = tempdir("suppress");
     let f = write(

@@ -1729,7 +1729,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(t) = w.get(b'T') {
             let t = t.round().max(0.0) as u32;
             self.st.next_tool = t;
-            self.check_tool(t, w.sp(b'T'));
+            self.check_tool(t, w.sp(b'T'))?;
             self.canon(format!("SELECT_TOOL({t})"));
             if self.dialect == Dialect::Servoworks {
                 // ServoWorks changes the tool with the T word itself.
@@ -2001,9 +2001,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         out
     }
 
-    fn check_tool(&mut self, t: u32, span: Span) {
+    /// LinuxCNC stops at a T or H number its tool table lacks (spec NGC413/NGC503:
+    /// error, in rs274's words); the other controls run on with a zero offset.
+    fn check_tool(&mut self, t: u32, span: Span) -> Result<(), Diagnostic> {
         let have_table = self.input.tool_table.is_some() || !self.cfg.tools.is_empty();
         if have_table && t != 0 && !self.cfg.tools.contains_key(&t) {
+            if self.ngc() {
+                return Err(self.err(
+                    codes::UNKNOWN_TOOL,
+                    span,
+                    format!("Requested tool {t} not found in the tool table"),
+                ));
+            }
             self.diag(
                 codes::UNKNOWN_TOOL,
                 Severity::Warning,
@@ -2011,6 +2020,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 format!("tool T{t} is not in the tool table"),
             );
         }
+        Ok(())
     }
 
     fn exec_m_before(&mut self, w: &Words) {
@@ -2196,7 +2206,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     .map(|v| v.round() as u32)
                     .unwrap_or(self.st.tool);
                 if w.has(b'H') {
-                    self.check_tool(h, w.sp(b'H'));
+                    self.check_tool(h, w.sp(b'H'))?;
                 }
                 let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
                 let sign = if code == 440 { -1.0 } else { 1.0 };

@@ -22,7 +22,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// All, only when a tool table is given. Warning.
+    /// All, only when a tool table is given. RS274/NGC: error, the run stops there (rs274: "Requested tool N not found in the tool table"); ServoWorks and FANUC: warning.
     ///
     /// Implements: NGC413, NGC503
     pub static UNKNOWN_TOOL = {

@@ -124,17 +124,23 @@ fn check_file(
             .as_ref()
             .and_then(|p| p.parent().map(Path::to_path_buf));
         let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
+        let files = loaded.linuxcnc_files();
+        for w in &files.warnings {
+            workspace::warn_once(w);
+        }
+        let machine =
+            workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
         let input = runtime::RunInput {
             program: &analysis.program,
             settings: &settings,
-            machine: &loaded.config.machine,
+            machine: &machine,
             resolver: &resolver,
             step_budget: args
                 .step_budget
                 .unwrap_or_else(|| step_budget(analysis.program.blocks.len())),
             emit_canon: false,
-            tool_table: None,
-            var_file: None,
+            tool_table: files.tool_table.as_deref(),
+            var_file: files.var_file.as_deref(),
         };
         let out = runtime::run_with_snapshots(&input, false);
         diagnostics.extend(analyzer::finish(

@@ -149,19 +149,16 @@ pub fn run(args: RunArgs) -> ExitCode {
             }
         }
     }
-    if tool_table_path.is_none() {
-        tool_table_path = loaded
-            .config
-            .tool_table
-            .as_ref()
-            .map(|t| config_dir.clone().unwrap_or_default().join(t));
+    // The config's own LinuxCNC files (tool_table, var_file, ini) fill what the
+    // command line left open.
+    let cfg_files = loaded.linuxcnc_files();
+    for w in &cfg_files.warnings {
+        workspace::warn_once(w);
     }
-    if var_path.is_none() {
-        var_path = loaded
-            .config
-            .var_file
-            .as_ref()
-            .map(|t| config_dir.clone().unwrap_or_default().join(t));
+    if args.machine.is_none() && cfg_files.ini_profile.is_some() {
+        machine_table =
+            workspace::machine_table_with(&machine_table, cfg_files.ini_profile.as_ref());
+        profile_override = cfg_files.ini_profile.clone();
     }
     let mut profile = match profile_override {
         Some(p) => p,
@@ -196,6 +193,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let explicit_tbl = args.tool_table.is_some();
     let explicit_var = args.var_file.is_some();
     let tool_table = match read_opt(&tool_table_path) {
+        Ok(None) => cfg_files.tool_table.clone(),
         Ok(t) => t,
         Err(e) if explicit_tbl => return fail(e),
         Err(e) => {
@@ -204,6 +202,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let var_file = match read_opt(&var_path) {
+        Ok(None) => cfg_files.var_file.clone(),
         Ok(t) => t,
         Err(e) if explicit_var => return fail(e),
         Err(e) => {

@@ -53,6 +53,98 @@ impl ConfigCache {
     }
 }
 
+/// The LinuxCNC files a config names, read: `tool_table` and `var_file` (paths
+/// relative to the config file), falling back to the `TOOL_TABLE` and
+/// `PARAMETER_FILE` of its `ini`, whose limits also become the machine profile.
+/// Files a config merely names are optional: a missing one is a warning, so a
+/// copied config still checks.
+#[derive(Default)]
+pub struct ConfigFiles {
+    pub tool_table: Option<String>,
+    pub var_file: Option<String>,
+    pub ini_profile: Option<runtime::machine::MachineProfile>,
+    pub warnings: Vec<String>,
+}
+
+impl LoadedConfig {
+    fn dir(&self) -> PathBuf {
+        self.path
+            .as_ref()
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+            .unwrap_or_default()
+    }
+
+    pub fn linuxcnc_files(&self) -> ConfigFiles {
+        let dir = self.dir();
+        let mut out = ConfigFiles::default();
+        let mut tbl = self.config.tool_table.as_ref().map(|t| dir.join(t));
+        let mut var = self.config.var_file.as_ref().map(|t| dir.join(t));
+        if let Some(ini) = &self.config.ini {
+            let ini = dir.join(ini);
+            match std::fs::read_to_string(&ini)
+                .map_err(|e| e.to_string())
+                .and_then(|text| runtime::machine::MachineProfile::from_linuxcnc_ini(&text))
+            {
+                Ok((profile, extras)) => {
+                    let base = ini.parent().map(Path::to_path_buf).unwrap_or_default();
+                    tbl = tbl.or_else(|| extras.tool_table.map(|t| base.join(t)));
+                    var = var.or_else(|| extras.parameter_file.map(|t| base.join(t)));
+                    out.ini_profile = Some(profile);
+                }
+                Err(e) => out.warnings.push(format!("{}: {e}", ini.display())),
+            }
+        }
+        let mut read = |p: Option<PathBuf>, what: &str| {
+            let p = p?;
+            match std::fs::read_to_string(&p) {
+                Ok(t) => Some(t),
+                Err(e) => {
+                    out.warnings
+                        .push(format!("{}: {e}; running without a {what}", p.display()));
+                    None
+                }
+            }
+        };
+        let tool_table = read(tbl, "tool table");
+        let var_file = read(var, "parameter file");
+        out.tool_table = tool_table;
+        out.var_file = var_file;
+        out
+    }
+}
+
+/// Prints a warning on stderr once per process: a directory of programs under one
+/// config would otherwise repeat it for every file.
+pub fn warn_once(msg: &str) {
+    static SEEN: Mutex<Vec<String>> = Mutex::new(Vec::new());
+    if let Ok(mut seen) = SEEN.lock() {
+        if seen.iter().any(|s| s == msg) {
+            return;
+        }
+        seen.push(msg.to_string());
+    }
+    eprintln!("partscope: warning: {msg}");
+}
+
+/// The interpreter's `[machine]` table for a config with a LinuxCNC `ini`: the
+/// ini's axes (travel limits) unless the table lists its own.
+pub fn machine_table_with(
+    table: &toml::Table,
+    ini: Option<&runtime::machine::MachineProfile>,
+) -> toml::Table {
+    let mut t = table.clone();
+    if let Some(p) = ini {
+        if !t.contains_key("axes") {
+            if let Ok(toml::Value::Table(pt)) = toml::Value::try_from(p) {
+                if let Some(axes) = pt.get("axes") {
+                    t.insert("axes".into(), axes.clone());
+                }
+            }
+        }
+    }
+    t
+}
+
 pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let config = Config::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
