@@ -737,6 +737,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
                 Err(d) => {
+                    if self.canon.is_some() && self.out.canon_error.is_none() {
+                        let line = self.line_text(self.cur.0, self.cur.1);
+                        self.out.canon_error =
+                            Some(format!("{}\n{line}", rs274_message(&d.message)));
+                    }
                     self.out.diagnostics.push(d);
                     break;
                 }
@@ -798,6 +803,22 @@ impl<'a, 'i> Interp<'a, 'i> {
                 } else {
                     "file ended with no percent sign or program end (M2/M30)"
                 };
+                if self.canon.is_some() && self.out.canon_error.is_none() {
+                    // rs274 shows the last line it read.
+                    let last = p
+                        .blocks
+                        .iter()
+                        .rev()
+                        .map(|b| p.str_of(b.span).trim().to_string())
+                        .find(|t| !t.is_empty())
+                        .unwrap_or_default();
+                    let text = if self.percent_open {
+                        "File ended with no percent sign"
+                    } else {
+                        "File ended with no percent sign or program end"
+                    };
+                    self.out.canon_error = Some(format!("{text}\n{last}"));
+                }
                 self.out
                     .diagnostics
                     .push(Diagnostic::error(codes::MISSING_END, span, msg));
@@ -840,6 +861,20 @@ impl<'a, 'i> Interp<'a, 'i> {
             spindle: self.st.spindle,
             tool: self.st.tool,
         }
+    }
+
+    /// The source text of a block, trimmed, as rs274 echoes it after an error.
+    fn line_text(&self, fi: usize, bi: u32) -> String {
+        self.files
+            .get(fi)
+            .and_then(|f| {
+                f.prog
+                    .blocks
+                    .get(bi as usize)
+                    .map(|b| f.prog.str_of(b.span))
+            })
+            .map(|t| t.trim().to_string())
+            .unwrap_or_default()
     }
 
     fn block_span(&self, fi: usize, bi: u32) -> Span {
@@ -1146,6 +1181,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 _ => {}
             }
         }
+        // Canonical output reproduces rs274, which refuses the whole line before
+        // running any of it (the static rules report these in every other mode).
+        if self.ngc() && self.canon.is_some() {
+            self.check_ngc_codes(&w)?;
+        }
         // RS274/NGC: parameters are set after the whole line was read.
         for (t, v, s) in assigns {
             self.assign(&prog, t, v, s)?;
@@ -1168,6 +1208,57 @@ impl<'a, 'i> Interp<'a, 'i> {
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
         self.exec_words(fi, bi, &prog, &w, &comments, block.span)
+    }
+
+    /// rs274's checks of a line's G and M codes: unknown codes, two codes of one
+    /// modal group, user M codes (M100-M199) without a program to run.
+    fn check_ngc_codes(&self, w: &Words) -> Result<(), Diagnostic> {
+        use analyzer::dialect::{lookup, CodeNum};
+        let custom = |letter: char, n: u32| {
+            self.input.settings.custom_codes.iter().any(|c| {
+                let c = c.trim();
+                c.len() > 1
+                    && c[..1].eq_ignore_ascii_case(&letter.to_string())
+                    && c[1..]
+                        .parse::<f64>()
+                        .is_ok_and(|v| (v * 10.0).round() as u32 == n)
+            })
+        };
+        let mut seen: Vec<(char, u8, u32)> = Vec::new();
+        for (letter, list) in [('G', &w.g), ('M', &w.m)] {
+            for (n, span) in list.iter().copied() {
+                if custom(letter, n) {
+                    continue;
+                }
+                let info = lookup(Dialect::Rs274ngc, letter, CodeNum(n));
+                let user_m = letter == 'M' && (1000..=1990).contains(&n);
+                let Some(info) = info.filter(|_| !user_m) else {
+                    let msg = if letter == 'G' {
+                        "Unknown g code used".to_string()
+                    } else {
+                        format!("Unknown m code used: M{}", n / 10)
+                    };
+                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                };
+                let Some(group) = info.group else { continue };
+                if let Some(&(_, _, other)) =
+                    seen.iter().find(|(l, g, _)| *l == letter && *g == group)
+                {
+                    // rs274 lets G80 share a line with another motion code.
+                    if letter == 'G' && group == 1 && (other == 800 || n == 800) {
+                        continue;
+                    }
+                    let msg = if letter == 'G' {
+                        "Two g codes used from same modal group"
+                    } else {
+                        "Two m codes used from same modal group"
+                    };
+                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                }
+                seen.push((letter, group, n));
+            }
+        }
+        Ok(())
     }
 
     fn seen_content_before(&self, p: &Program, bi: u32) -> bool {
@@ -3701,6 +3792,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.feed_to(t, bspan)?;
             return Ok(());
         }
+        if has_r && has_c && self.ngc() && self.canon.is_some() {
+            return Err(self.err(
+                codes::ARC_NO_CENTER,
+                w.sp(b'R'),
+                "Mixed radius ijk format for arc",
+            ));
+        }
         if has_r && has_c && self.dialect == Dialect::Servoworks {
             return Err(self.err(
                 codes::ARC_NO_CENTER,
@@ -4777,6 +4875,64 @@ struct CompArc {
     radius: f64,
     center: [f64; 2],
     sweep: f64,
+}
+
+/// rs274's wording of an interpreter error, from our message: known messages map
+/// to its text; otherwise the part before the first explanation, capitalised.
+fn rs274_message(msg: &str) -> String {
+    const KNOWN: &[(&str, &str)] = &[
+        (
+            "cannot feed with zero feed rate",
+            "Cannot do g1 with zero feed rate",
+        ),
+        (
+            "R, I, J and K words all missing",
+            "R i j k words all missing for arc",
+        ),
+        ("SQRT of a negative", "Negative argument to sqrt"),
+        ("argument to sqrt out of range", "Negative argument to sqrt"),
+        (
+            "argument to ln out of range",
+            "Zero or negative argument to ln",
+        ),
+        (
+            "Arc with both a radius R",
+            "Mixed radius ijk format for arc",
+        ),
+        ("bad character '", ""),
+        (
+            "length of cutter compensation entry move",
+            "Length of cutter compensation entry move is not greater than the tool radius",
+        ),
+        (
+            "zero degree inside corner",
+            "Zero degree inside corner is invalid for cutter compensation",
+        ),
+    ];
+    if msg.contains("is the first move after G40") {
+        return "The move just after exiting cutter compensation mode must be straight, not an arc"
+            .to_string();
+    }
+    for (ours, theirs) in KNOWN {
+        if msg.starts_with(ours) {
+            if theirs.is_empty() {
+                break;
+            }
+            return (*theirs).to_string();
+        }
+    }
+    // Our own wording starts in lower case and explains after a colon; messages
+    // already in rs274's words start with a capital and are kept whole.
+    let head = if msg.starts_with(|c: char| c.is_ascii_lowercase()) {
+        msg.split(": ").next().unwrap_or(msg)
+    } else {
+        msg
+    };
+    let mut c = head.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
 }
 
 /// LinuxCNC's `TOOL_INSIDE_ARC`: the tool is on the centre's side of the arc.
