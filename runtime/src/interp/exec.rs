@@ -16,7 +16,7 @@ use super::arc::{self, ArcError, ArcSpec};
 use super::expr::{self, EvalError, Val, VarSource};
 use super::files::{label_key, FileEntry, ProgRef};
 use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
-use super::state::{is_cycle, CycleMem, Modal, State};
+use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
@@ -348,7 +348,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             comp_radius: 0.0,
             comp_first: true,
             comp_tip: [0.0; 6],
-            comp_pending: None,
+            comp_queue: Vec::new(),
+            comp_endpoint: None,
             feed: 0.0,
             spindle: 0.0,
             spindle_dir: 0,
@@ -755,6 +756,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
                 Err(d) => {
+                    if self.canon.is_some() && self.out.canon_error.is_none() {
+                        let line = self.line_text(self.cur.0, self.cur.1);
+                        self.out.canon_error =
+                            Some(format!("{}\n{line}", rs274_message(&d.message)));
+                    }
                     self.out.diagnostics.push(d);
                     break;
                 }
@@ -816,6 +822,22 @@ impl<'a, 'i> Interp<'a, 'i> {
                 } else {
                     "file ended with no percent sign or program end (M2/M30)"
                 };
+                if self.canon.is_some() && self.out.canon_error.is_none() {
+                    // rs274 shows the last line it read.
+                    let last = p
+                        .blocks
+                        .iter()
+                        .rev()
+                        .map(|b| p.str_of(b.span).trim().to_string())
+                        .find(|t| !t.is_empty())
+                        .unwrap_or_default();
+                    let text = if self.percent_open {
+                        "File ended with no percent sign"
+                    } else {
+                        "File ended with no percent sign or program end"
+                    };
+                    self.out.canon_error = Some(format!("{text}\n{last}"));
+                }
                 self.out
                     .diagnostics
                     .push(Diagnostic::error(codes::MISSING_END, span, msg));
@@ -858,6 +880,20 @@ impl<'a, 'i> Interp<'a, 'i> {
             spindle: self.st.spindle,
             tool: self.st.tool,
         }
+    }
+
+    /// The source text of a block, trimmed, as rs274 echoes it after an error.
+    fn line_text(&self, fi: usize, bi: u32) -> String {
+        self.files
+            .get(fi)
+            .and_then(|f| {
+                f.prog
+                    .blocks
+                    .get(bi as usize)
+                    .map(|b| f.prog.str_of(b.span))
+            })
+            .map(|t| t.trim().to_string())
+            .unwrap_or_default()
     }
 
     fn block_span(&self, fi: usize, bi: u32) -> Span {
@@ -1165,6 +1201,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 _ => {}
             }
         }
+        // Canonical output reproduces rs274, which refuses the whole line before
+        // running any of it (the static rules report these in every other mode).
+        if self.ngc() && self.canon.is_some() {
+            self.check_ngc_codes(&w)?;
+        }
         // RS274/NGC: parameters are set after the whole line was read.
         for (t, v, s) in assigns {
             self.assign(&prog, t, v, s)?;
@@ -1187,6 +1228,57 @@ impl<'a, 'i> Interp<'a, 'i> {
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
         self.exec_words(fi, bi, &prog, &w, &comments, block.span)
+    }
+
+    /// rs274's checks of a line's G and M codes: unknown codes, two codes of one
+    /// modal group, user M codes (M100-M199) without a program to run.
+    fn check_ngc_codes(&self, w: &Words) -> Result<(), Diagnostic> {
+        use analyzer::dialect::{lookup, CodeNum};
+        let custom = |letter: char, n: u32| {
+            self.input.settings.custom_codes.iter().any(|c| {
+                let c = c.trim();
+                c.len() > 1
+                    && c[..1].eq_ignore_ascii_case(&letter.to_string())
+                    && c[1..]
+                        .parse::<f64>()
+                        .is_ok_and(|v| (v * 10.0).round() as u32 == n)
+            })
+        };
+        let mut seen: Vec<(char, u8, u32)> = Vec::new();
+        for (letter, list) in [('G', &w.g), ('M', &w.m)] {
+            for (n, span) in list.iter().copied() {
+                if custom(letter, n) {
+                    continue;
+                }
+                let info = lookup(Dialect::Rs274ngc, letter, CodeNum(n));
+                let user_m = letter == 'M' && (1000..=1990).contains(&n);
+                let Some(info) = info.filter(|_| !user_m) else {
+                    let msg = if letter == 'G' {
+                        "Unknown g code used".to_string()
+                    } else {
+                        format!("Unknown m code used: M{}", n / 10)
+                    };
+                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                };
+                let Some(group) = info.group else { continue };
+                if let Some(&(_, _, other)) =
+                    seen.iter().find(|(l, g, _)| *l == letter && *g == group)
+                {
+                    // rs274 lets G80 share a line with another motion code.
+                    if letter == 'G' && group == 1 && (other == 800 || n == 800) {
+                        continue;
+                    }
+                    let msg = if letter == 'G' {
+                        "Two g codes used from same modal group"
+                    } else {
+                        "Two m codes used from same modal group"
+                    };
+                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                }
+                seen.push((letter, group, n));
+            }
+        }
+        Ok(())
     }
 
     fn seen_content_before(&self, p: &Program, bi: u32) -> bool {
@@ -3348,10 +3440,9 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.st.pos = t;
     }
 
-    /// A straight move, offset for cutter radius compensation when it is on.
     /// A straight move, offset for cutter radius compensation when it is on
     /// (LinuxCNC's algorithm: entry move perpendicular to the path, arcs around
-    /// convex corners, pulled-back end points at concave ones).
+    /// convex corners, held-back moves whose end points concave corners pull back).
     fn comp_move(&mut self, t: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
         if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
             if rapid {
@@ -3383,7 +3474,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut end = t;
             end[a] += r * alpha.cos();
             end[b] += r * alpha.sin();
-            self.comp_emit(end, rapid, span)?;
+            self.comp_flush();
+            self.st.comp_endpoint = Some([op[a], op[b]]);
+            // LinuxCNC records the offset direction, not the travel direction, for this move.
+            self.comp_emit(end, rapid, [alpha.cos(), alpha.sin()], span)?;
             self.st.comp_first = false;
             self.st.pos = t;
             self.st.comp_tip = end;
@@ -3394,7 +3488,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut end = t;
             end[a] = c[a];
             end[b] = c[b];
-            self.comp_emit(end, rapid, span)?;
+            self.comp_emit(end, rapid, [0.0, 0.0], span)?;
             self.st.pos = t;
             self.st.comp_tip = end;
             return Ok(());
@@ -3420,66 +3514,130 @@ impl<'a, 'i> Interp<'a, 'i> {
         mid[a] = op[a] + r * ex;
         mid[b] = op[b] + r * ey;
         let small = 0.05;
-        let concave = beta < -small || beta > PI + small;
+        let front = self.st.comp_queue.first().copied();
+        let front_arc = front.filter(|q| q.kind == 2);
+        // An "h" shape (tangent arc into a line with the tool outside the arc) is
+        // treated as concave, as LinuxCNC does.
+        let concave = beta < -small
+            || beta > PI + small
+            || (beta > PI - small
+                && front_arc.is_some_and(|q| (q.turn > 0) != left && q.turn != 0));
         if !concave && beta > small {
-            self.comp_flush();
+            self.comp_move_endpoint([c[a], c[b]], span)?;
             if rapid {
                 self.rapid_to(mid);
             } else {
                 self.comp_corner_arc(c, mid, op, left, span)?;
             }
+            self.st.comp_endpoint = Some([mid[a], mid[b]]);
         } else if concave {
-            let half = (beta + PI) / 2.0;
-            if half.abs() < 1e-12 {
-                return Err(self.err(
-                    codes::INTERP,
-                    span,
-                    "zero degree inside corner is invalid for cutter compensation",
-                ));
+            match front_arc {
+                None => {
+                    let half = (beta + PI) / 2.0;
+                    if half == 0.0 {
+                        return Err(self.err(
+                            codes::INTERP,
+                            span,
+                            "zero degree inside corner is invalid for cutter compensation",
+                        ));
+                    }
+                    let retreat = r / half.tan();
+                    let (rx, ry) = dir(theta + gamma);
+                    let back = [c[a] + retreat * rx, c[b] + retreat * ry];
+                    self.comp_move_endpoint(back, span)?;
+                }
+                Some(prev) => {
+                    // Arc into line: the held-back arc (already compensated) ends where
+                    // it meets the line's offset.
+                    let oldrad = (prev.center[1] - c[b]).hypot(prev.center[0] - c[a]);
+                    let base = (t[b] - op[b]).atan2(t[a] - op[a]);
+                    let th = if prev.turn > 0 {
+                        base + FRAC_PI_2
+                    } else {
+                        base - FRAC_PI_2
+                    };
+                    let phi = (prev.center[1] - op[b]).atan2(prev.center[0] - op[a]);
+                    let inside = tool_inside_arc(left, prev.turn);
+                    let oldrad_uncomp = if inside { oldrad + r } else { oldrad - r };
+                    let d = oldrad_uncomp * (th - phi).cos();
+                    let d2 = if inside { d - r } else { d + r };
+                    let l = d2 / oldrad;
+                    if !(-1.0..=1.0).contains(&l) {
+                        return Err(self.err(
+                            codes::INTERP,
+                            span,
+                            "Arc to straight motion makes a corner the compensated tool can't fit in without gouging",
+                        ));
+                    }
+                    let ang = if inside == (prev.turn > 0) {
+                        -l.acos() + th + PI
+                    } else {
+                        l.acos() + th + PI
+                    };
+                    let back = [
+                        prev.center[0] + oldrad * ang.cos(),
+                        prev.center[1] + oldrad * ang.sin(),
+                    ];
+                    self.comp_move_endpoint(back, span)?;
+                }
             }
-            let retreat = r / half.tan();
-            let (rx, ry) = dir(theta + gamma);
-            let mut back = c;
-            back[a] = c[a] + retreat * rx;
-            back[b] = c[b] + retreat * ry;
-            self.comp_move_pending(back);
+        } else {
+            // Collinear lines or a tangent arc into a line: nothing to adjust.
+            self.comp_flush();
+            self.st.comp_endpoint = Some([c[a], c[b]]);
         }
-        self.comp_flush();
-        self.comp_emit(end, rapid, span)?;
+        self.comp_emit(end, rapid, [t[a] - op[a], t[b] - op[b]], span)?;
         self.st.pos = t;
         self.st.comp_tip = end;
         Ok(())
     }
 
-    /// Emits a compensated straight move and remembers it as pending.
-    fn comp_emit(&mut self, end: [f64; 6], rapid: bool, span: Span) -> Result<(), Diagnostic> {
+    /// Emits a compensated straight move and holds it back (LinuxCNC's enqueue).
+    fn comp_emit(
+        &mut self,
+        end: [f64; 6],
+        rapid: bool,
+        dir: [f64; 2],
+        span: Span,
+    ) -> Result<(), Diagnostic> {
         if rapid {
             self.rapid_to(end);
         } else {
             self.feed_to(end, span)?;
         }
-        let ci = self
+        self.comp_hold(u8::from(rapid), dir, [0.0; 2], 0, 0.0);
+        Ok(())
+    }
+
+    /// Holds back the move just emitted (its canonical line and motion are the last ones).
+    fn comp_hold(&mut self, kind: u8, dir: [f64; 2], center: [f64; 2], turn: i32, sweep: f64) {
+        let canon = self
             .canon
             .as_ref()
             .map(|c| c.lines.len().saturating_sub(1))
             .unwrap_or(0);
-        self.st.comp_pending = Some((
-            ci,
-            self.out.motions.len().saturating_sub(1),
-            u8::from(rapid),
-        ));
-        Ok(())
+        self.st.comp_queue.push(CompQueued {
+            canon,
+            motion: self.out.motions.len().saturating_sub(1),
+            kind,
+            dir,
+            center,
+            turn,
+            sweep,
+        });
     }
 
-    /// Releases the pending compensated move. LinuxCNC queues it (and every
-    /// canonical call after it) until now, so they carry this block's N number.
+    /// Releases the held-back moves. LinuxCNC queues them (and every canonical
+    /// call after them) until now, so they carry this block's N number.
     fn comp_flush(&mut self) {
-        let Some((ci, _, _)) = self.st.comp_pending.take() else {
+        self.st.comp_endpoint = None;
+        let Some(first) = self.st.comp_queue.first().map(|q| q.canon) else {
             return;
         };
+        self.st.comp_queue.clear();
         if let Some(c) = self.canon.as_mut() {
             let prefix = c.current_prefix();
-            for line in c.lines.iter_mut().skip(ci) {
+            for line in c.lines.iter_mut().skip(first) {
                 if line.starts_with(" N") && line.len() >= 8 && line.is_char_boundary(8) {
                     line.replace_range(..8, &prefix);
                 }
@@ -3487,47 +3645,86 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
     }
 
-    /// Moves the end point of the pending compensated move.
-    fn comp_move_pending(&mut self, end: [f64; 6]) {
-        let Some((ci, mi, kind)) = self.st.comp_pending else {
-            return;
-        };
-        self.comp_flush();
+    /// Moves the plane end point of every held-back move to `p`, refusing moves
+    /// that would reverse (the tool would gouge), then releases them.
+    fn comp_move_endpoint(&mut self, p: [f64; 2], span: Span) -> Result<(), Diagnostic> {
+        let queue = std::mem::take(&mut self.st.comp_queue);
+        let endpoint = self.st.comp_endpoint;
         let (a, b) = self.plane_axes();
         let u = self.unit();
-        if let Some(line) = self.canon.as_mut().and_then(|c| c.lines.get_mut(ci)) {
-            if kind == 2 {
-                // ARC_FEED(first_end, second_end, …): only the end point moves.
-                if let Some(p) = line.find("ARC_FEED(") {
-                    let head = line[..p + 9].to_string();
-                    let args: Vec<String> = line[p + 9..].split(", ").map(str::to_string).collect();
-                    if args.len() > 2 {
-                        let rest = args[2..].join(", ");
-                        *line = format!("{head}{}, {}, {rest}", f4(end[a] / u), f4(end[b] / u));
+        for q in queue.iter().copied() {
+            if q.kind == 2 {
+                if let Some(e) = endpoint {
+                    let new_sweep = find_turn(e, q.center, q.turn, p);
+                    let tol = if self.st.modal.inch { 0.001 } else { 0.0254 };
+                    if q.sweep != 0.0 && new_sweep.abs() > q.sweep.abs() + tol {
+                        self.st.comp_queue.clone_from(&queue);
+                        return Err(self.err(
+                            codes::INTERP,
+                            span,
+                            "Arc move in concave corner cannot be reached by the tool without gouging",
+                        ));
                     }
                 }
-            } else {
-                let name = if kind == 1 {
-                    "STRAIGHT_TRAVERSE("
-                } else {
-                    "STRAIGHT_FEED("
-                };
-                if let Some(p) = line.find(name) {
-                    let v = [end[0] / u, end[1] / u, end[2] / u, end[3], end[4], end[5]];
-                    line.truncate(p);
-                    line.push_str(&format!("{name}{})", Canon::six(&v)));
+            } else if let Some(e) = endpoint {
+                let dot = q.dir[0] * (p[0] - e[0]) + q.dir[1] * (p[1] - e[1]);
+                if dot < 0.0 {
+                    self.st.comp_queue.clone_from(&queue);
+                    let what = if q.kind == 1 {
+                        "Straight traverse"
+                    } else {
+                        "Straight feed"
+                    };
+                    return Err(self.err(
+                        codes::INTERP,
+                        span,
+                        format!("{what} in concave corner cannot be reached by the tool without gouging"),
+                    ));
                 }
             }
+            if let Some(line) = self.canon.as_mut().and_then(|c| c.lines.get_mut(q.canon)) {
+                let name = match q.kind {
+                    2 => "ARC_FEED(",
+                    1 => "STRAIGHT_TRAVERSE(",
+                    _ => "STRAIGHT_FEED(",
+                };
+                if let Some(at) = line.find(name) {
+                    let head = line[..at + name.len()].to_string();
+                    let mut args: Vec<String> = line[at + name.len()..]
+                        .trim_end_matches(')')
+                        .split(", ")
+                        .map(str::to_string)
+                        .collect();
+                    let (ia, ib) = if q.kind == 2 { (0, 1) } else { (a, b) };
+                    if args.len() > ia.max(ib) {
+                        args[ia] = f4(p[0] / u);
+                        args[ib] = f4(p[1] / u);
+                        *line = format!("{head}{})", args.join(", "));
+                    }
+                }
+            }
+            let mut tip = self.st.comp_tip;
+            tip[a] = p[0];
+            tip[b] = p[1];
+            let m_end = self.to_machine(tip);
+            if let Some(m) = self.out.motions.get_mut(q.motion) {
+                m.end[a] = m_end[a];
+                m.end[b] = m_end[b];
+            }
         }
-        let m_end = self.to_machine(end);
-        if let Some(m) = self.out.motions.get_mut(mi) {
-            m.end[a] = m_end[a];
-            m.end[b] = m_end[b];
+        self.st.comp_queue = queue;
+        if !self.st.comp_queue.is_empty() {
+            let mut tip = self.st.comp_tip;
+            tip[a] = p[0];
+            tip[b] = p[1];
+            let m_end = self.to_machine(tip);
+            self.st.mpos[a] = m_end[a];
+            self.st.mpos[b] = m_end[b];
+            self.st.comp_tip = tip;
         }
-        self.st.mpos[a] = m_end[a];
-        self.st.mpos[b] = m_end[b];
-        self.st.comp_tip[a] = end[a];
-        self.st.comp_tip[b] = end[b];
+        self.comp_flush();
+        self.st.comp_endpoint = Some(p);
+        Ok(())
     }
 
     /// The arc LinuxCNC inserts around a convex corner (radius = tool radius).
@@ -3622,6 +3819,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.feed_to(t, bspan)?;
             return Ok(());
         }
+        if has_r && has_c && self.ngc() && self.canon.is_some() {
+            return Err(self.err(
+                codes::ARC_NO_CENTER,
+                w.sp(b'R'),
+                "Mixed radius ijk format for arc",
+            ));
+        }
         if has_r && has_c && self.dialect == Dialect::Servoworks {
             return Err(self.err(
                 codes::ARC_NO_CENTER,
@@ -3699,14 +3903,15 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         let rot = if cw { -turns } else { turns };
         let pe = e2;
-        let (e2, t, radius) = self.comp_arc(t, e2, sol.center, sol.radius, cw, span)?;
+        let ca = self.comp_arc(t, e2, sol.center, sol.radius, rot, span)?;
+        let (e2, t, radius, center) = (ca.end, ca.target, ca.radius, ca.center);
         if self.canon.is_some() {
             self.canon(format!(
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
                 f4(e2[0] / u),
                 f4(e2[1] / u),
-                f4(sol.center[0] / u),
-                f4(sol.center[1] / u),
+                f4(center[0] / u),
+                f4(center[1] / u),
                 rot,
                 f4(t[n] / u),
                 f4(t[3]),
@@ -3716,8 +3921,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;
-        c3[a] = sol.center[0];
-        c3[b] = sol.center[1];
+        c3[a] = center[0];
+        c3[b] = center[1];
         let cm = self.to_machine(c3);
         // Counter-clockwise in each plane's (first, second) axes turns about the
         // positive normal axis, including G18's (Z, X).
@@ -3754,12 +3959,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.st.mpos = end;
         if self.st.modal.comp != 400 && self.st.comp_radius > 0.0 {
             // The programmed point stays on the contour; the tool tip is offset.
-            let ci = self
-                .canon
-                .as_ref()
-                .map(|c| c.lines.len().saturating_sub(1))
-                .unwrap_or(0);
-            self.st.comp_pending = Some((ci, self.out.motions.len().saturating_sub(1), 2));
+            self.comp_hold(2, [0.0; 2], center, rot, ca.sweep);
             self.st.comp_tip = t;
             self.st.pos[a] = pe[0];
             self.st.pos[b] = pe[1];
@@ -3774,94 +3974,204 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
-    /// Cutter compensation of an arc: the offset end point (plane), the offset
-    /// target, the offset radius. Handles the corner at the arc's start.
+    /// Cutter compensation of an arc, following LinuxCNC (entry arcs get a new
+    /// centre; concave corners pull the held-back move back to the offset arc;
+    /// convex corners get an arc around the programmed corner).
     fn comp_arc(
         &mut self,
         t: [f64; 6],
         e2: [f64; 2],
         c: [f64; 2],
         r: f64,
-        cw: bool,
+        turn: i32,
         span: Span,
-    ) -> Result<([f64; 2], [f64; 6], f64), Diagnostic> {
+    ) -> Result<CompArc, Diagnostic> {
+        let plain = CompArc {
+            end: e2,
+            target: t,
+            radius: r,
+            center: c,
+            sweep: 0.0,
+        };
         if self.st.modal.comp == 400 || self.st.comp_radius <= 0.0 {
-            return Ok((e2, t, r));
+            return Ok(plain);
         }
         use std::f64::consts::{FRAC_PI_2, PI};
         let (a, b) = self.plane_axes();
         let rt = self.st.comp_radius;
         let left = self.comp_left();
+        let cw = turn < 0;
         let inside = left != cw;
-        let new_r = if inside { r - rt } else { r + rt };
-        if new_r <= 0.0 {
-            return Err(self.err(
+        let op = self.st.pos;
+        let o2 = [op[a], op[b]];
+        let too_big = || {
+            self.err(
                 codes::INTERP,
                 span,
-                "tool radius not less than arc radius with cutter compensation",
-            ));
-        }
-        let unit = |p: [f64; 2]| {
-            let l = (p[0] - c[0]).hypot(p[1] - c[1]);
-            if l > 0.0 {
-                [(p[0] - c[0]) / l, (p[1] - c[1]) / l]
-            } else {
-                [1.0, 0.0]
-            }
+                "Tool radius not less than arc radius with cutter compensation",
+            )
         };
-        let ue = unit(e2);
-        let e_out = [c[0] + ue[0] * new_r, c[1] + ue[1] * new_r];
-        let op = self.st.pos;
         if self.st.comp_first {
-            self.st.comp_first = false;
-        } else {
-            let tip = self.st.comp_tip;
-            let us = unit([op[a], op[b]]);
-            let mid2 = [c[0] + us[0] * new_r, c[1] + us[1] * new_r];
-            let mut theta = (tip[b] - op[b]).atan2(tip[a] - op[a]);
-            let mut alpha = us[1].atan2(us[0]) + if cw { -FRAC_PI_2 } else { FRAC_PI_2 };
-            let (beta, gamma) = if left {
-                while theta < alpha {
-                    theta += 2.0 * PI;
-                }
-                (theta - alpha - FRAC_PI_2, FRAC_PI_2)
-            } else {
-                while alpha < theta {
-                    alpha += 2.0 * PI;
-                }
-                (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
-            };
-            let small = 0.05;
-            let concave = beta < -small || beta > PI + small;
-            let mut mid = tip;
-            mid[a] = mid2[0];
-            mid[b] = mid2[1];
-            if !concave && beta > small {
-                self.comp_flush();
-                self.comp_corner_arc(tip, mid, op, left, span)?;
-            } else if concave {
-                // Pull the previous line back to where it meets the offset circle.
-                let d = [(theta - gamma).cos(), (theta - gamma).sin()];
-                let w0 = [tip[a] - c[0], tip[b] - c[1]];
-                let bq = d[0] * w0[0] + d[1] * w0[1];
-                let cq = w0[0] * w0[0] + w0[1] * w0[1] - new_r * new_r;
-                let disc = bq * bq - cq;
-                if disc >= 0.0 {
-                    let s1 = -bq - disc.sqrt();
-                    let s2 = -bq + disc.sqrt();
-                    let sl = if s1.abs() < s2.abs() { s1 } else { s2 };
-                    let mut back = tip;
-                    back[a] = tip[a] + sl * d[0];
-                    back[b] = tip[b] + sl * d[1];
-                    self.comp_move_pending(back);
-                }
+            // Entry arc: the end point moves off the contour and the arc gets a
+            // new centre so that it still starts at the current point.
+            if (e2[0] - o2[0]).hypot(e2[1] - o2[1]) <= rt {
+                return Err(self.err(
+                    codes::INTERP,
+                    span,
+                    "Radius of cutter compensation entry arc is not greater than the tool radius",
+                ));
             }
+            let gamma = if inside {
+                (c[1] - e2[1]).atan2(c[0] - e2[0])
+            } else {
+                (e2[1] - c[1]).atan2(e2[0] - c[0])
+            };
+            let end = [e2[0] + rt * gamma.cos(), e2[1] + rt * gamma.sin()];
+            let b_len = (o2[1] - end[1]).hypot(o2[0] - end[0]) / 2.0;
+            let ab_ang = (c[1] - end[1]).atan2(c[0] - end[0]);
+            let a_ang = (o2[1] - end[1]).atan2(o2[0] - end[0]) - ab_ang;
+            if a_ang.cos().abs() < 0.0001 {
+                return Err(too_big());
+            }
+            let c_len = b_len / a_ang.cos();
+            let center = [end[0] + c_len * ab_ang.cos(), end[1] + c_len * ab_ang.sin()];
+            self.st.comp_first = false;
+            let mut target = t;
+            target[a] = end[0];
+            target[b] = end[1];
+            return Ok(CompArc {
+                end,
+                target,
+                radius: c_len.abs(),
+                center,
+                sweep: find_turn(o2, center, turn, end),
+            });
         }
-        self.comp_flush();
-        let mut t_out = t;
-        t_out[a] = e_out[0];
-        t_out[b] = e_out[1];
-        Ok((e_out, t_out, new_r))
+        let small = 0.05;
+        let cx = [self.st.comp_tip[a], self.st.comp_tip[b]];
+        let arc_radius = (c[0] - e2[0]).hypot(c[1] - e2[1]);
+        let mut theta = (cx[1] - o2[1]).atan2(cx[0] - o2[0]);
+        theta = if left {
+            theta - FRAC_PI_2
+        } else {
+            theta + FRAC_PI_2
+        };
+        let mut delta = (c[1] - o2[1]).atan2(c[0] - o2[0]);
+        let alpha = if cw {
+            delta + FRAC_PI_2
+        } else {
+            delta - FRAC_PI_2
+        };
+        let mut beta = if left { theta - alpha } else { alpha - theta };
+        if beta > 1.5 * PI {
+            beta -= 2.0 * PI;
+        } else if beta < -FRAC_PI_2 {
+            beta += 2.0 * PI;
+        }
+        let gamma = if inside {
+            if arc_radius <= rt {
+                return Err(too_big());
+            }
+            (c[1] - e2[1]).atan2(c[0] - e2[0])
+        } else {
+            delta += PI;
+            (e2[1] - c[1]).atan2(e2[0] - c[0])
+        };
+        let end = [e2[0] + rt * gamma.cos(), e2[1] + rt * gamma.sin()];
+        let newrad = if inside {
+            arc_radius - rt
+        } else {
+            arc_radius + rt
+        };
+        let gouge = |s: &Self, what: &str| -> Diagnostic {
+            s.err(
+                codes::INTERP,
+                span,
+                format!("{what} makes a corner the compensated tool can't fit in without gouging"),
+            )
+        };
+        if beta < -small || beta > PI + small || ((beta - PI).abs() < small && !inside) {
+            let front_arc = self.st.comp_queue.first().copied().filter(|q| q.kind == 2);
+            let mid = match front_arc {
+                None => {
+                    // Line into arc.
+                    let cyy = arc_radius * (beta - FRAC_PI_2).sin();
+                    let (dist, toward) = if inside {
+                        (arc_radius - rt, cyy + rt)
+                    } else {
+                        (arc_radius + rt, cyy - rt)
+                    };
+                    let l = toward / dist;
+                    if !(-1.0..=1.0).contains(&l) {
+                        return Err(self.err(
+                            codes::INTERP,
+                            span,
+                            "Arc move in concave corner cannot be reached by the tool without gouging",
+                        ));
+                    }
+                    let ang = match (inside, turn > 0) {
+                        (true, true) => theta + l.asin(),
+                        (true, false) => theta - l.asin(),
+                        (false, true) => theta + PI - l.asin(),
+                        (false, false) => theta + PI + l.asin(),
+                    };
+                    [c[0] + dist * ang.cos(), c[1] + dist * ang.sin()]
+                }
+                Some(prev) => {
+                    // Arc into arc: where the two offset circles meet.
+                    let oldrad = (prev.center[1] - cx[1]).hypot(prev.center[0] - cx[0]);
+                    let arc_cc = (prev.center[1] - c[1]).hypot(prev.center[0] - c[0]);
+                    if oldrad == 0.0 || arc_cc == 0.0 {
+                        return Err(self.err(
+                            codes::INTERP,
+                            span,
+                            "Arc to arc motion is invalid because the arcs have the same center",
+                        ));
+                    }
+                    let ca = (oldrad * oldrad + arc_cc * arc_cc - newrad * newrad)
+                        / (2.0 * oldrad * arc_cc);
+                    if !(-1.0..=1.0).contains(&ca) {
+                        return Err(gouge(self, "Arc to arc motion"));
+                    }
+                    let pullback = ca.acos();
+                    let cc_dir = (c[1] - prev.center[1]).atan2(c[0] - prev.center[0]);
+                    let dir = if tool_inside_arc(left, prev.turn) == (turn > 0) {
+                        cc_dir + pullback
+                    } else {
+                        cc_dir - pullback
+                    };
+                    [
+                        prev.center[0] + oldrad * dir.cos(),
+                        prev.center[1] + oldrad * dir.sin(),
+                    ]
+                }
+            };
+            self.comp_move_endpoint(mid, span)?;
+        } else if beta > small {
+            // Convex: an arc around the programmed corner first.
+            self.comp_flush();
+            let tip = self.st.comp_tip;
+            let mut mid = tip;
+            mid[a] = o2[0] + rt * delta.cos();
+            mid[b] = o2[1] + rt * delta.sin();
+            self.comp_corner_arc(tip, mid, op, left, span)?;
+            self.st.comp_tip[a] = mid[a];
+            self.st.comp_tip[b] = mid[b];
+            self.st.comp_endpoint = Some([mid[a], mid[b]]);
+        } else {
+            self.comp_flush();
+            self.st.comp_endpoint = Some(cx);
+        }
+        let mut target = t;
+        target[a] = end[0];
+        target[b] = end[1];
+        Ok(CompArc {
+            end,
+            target,
+            radius: newrad,
+            center: c,
+            sweep: find_turn(o2, c, turn, e2),
+        })
     }
 
     fn arc_error(
@@ -4601,6 +4911,101 @@ fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
         l
     } else {
         ((a[3] - b[3]).powi(2) + (a[4] - b[4]).powi(2) + (a[5] - b[5]).powi(2)).sqrt()
+    }
+}
+
+/// The result of compensating an arc: plane end point, full target, radius,
+/// centre (plane) and the programmed sweep LinuxCNC keeps for its gouge check.
+struct CompArc {
+    end: [f64; 2],
+    target: [f64; 6],
+    radius: f64,
+    center: [f64; 2],
+    sweep: f64,
+}
+
+/// rs274's wording of an interpreter error, from our message: known messages map
+/// to its text; otherwise the part before the first explanation, capitalised.
+fn rs274_message(msg: &str) -> String {
+    const KNOWN: &[(&str, &str)] = &[
+        (
+            "cannot feed with zero feed rate",
+            "Cannot do g1 with zero feed rate",
+        ),
+        (
+            "R, I, J and K words all missing",
+            "R i j k words all missing for arc",
+        ),
+        ("SQRT of a negative", "Negative argument to sqrt"),
+        ("argument to sqrt out of range", "Negative argument to sqrt"),
+        (
+            "argument to ln out of range",
+            "Zero or negative argument to ln",
+        ),
+        (
+            "Arc with both a radius R",
+            "Mixed radius ijk format for arc",
+        ),
+        ("bad character '", ""),
+        (
+            "length of cutter compensation entry move",
+            "Length of cutter compensation entry move is not greater than the tool radius",
+        ),
+        (
+            "zero degree inside corner",
+            "Zero degree inside corner is invalid for cutter compensation",
+        ),
+    ];
+    if msg.contains("is the first move after G40") {
+        return "The move just after exiting cutter compensation mode must be straight, not an arc"
+            .to_string();
+    }
+    for (ours, theirs) in KNOWN {
+        if msg.starts_with(ours) {
+            if theirs.is_empty() {
+                break;
+            }
+            return (*theirs).to_string();
+        }
+    }
+    // Our own wording starts in lower case and explains after a colon; messages
+    // already in rs274's words start with a capital and are kept whole.
+    let head = if msg.starts_with(|c: char| c.is_ascii_lowercase()) {
+        msg.split(": ").next().unwrap_or(msg)
+    } else {
+        msg
+    };
+    let mut c = head.chars();
+    match c.next() {
+        Some(f) => f.to_uppercase().chain(c).collect(),
+        None => String::new(),
+    }
+}
+
+/// LinuxCNC's `TOOL_INSIDE_ARC`: the tool is on the centre's side of the arc.
+fn tool_inside_arc(left: bool, turn: i32) -> bool {
+    (left && turn > 0) || (!left && turn < 0)
+}
+
+/// Signed sweep (radians) of an arc from `s` to `e` about `c` with `turn` turns
+/// (positive counter-clockwise), as LinuxCNC's `find_turn` computes it.
+fn find_turn(s: [f64; 2], c: [f64; 2], turn: i32, e: [f64; 2]) -> f64 {
+    use std::f64::consts::TAU;
+    if turn == 0 {
+        return 0.0;
+    }
+    let mut alpha = (s[1] - c[1]).atan2(s[0] - c[0]);
+    let mut beta = (e[1] - c[1]).atan2(e[0] - c[0]);
+    if turn > 0 {
+        if beta <= alpha {
+            beta += TAU;
+        }
+        beta - alpha + f64::from(turn - 1) * TAU
+    } else {
+        if alpha <= beta {
+            alpha += TAU;
+        }
+        beta - alpha + f64::from(turn + 1) * TAU
     }
 }
 

@@ -70,9 +70,12 @@ pub struct State {
     pub comp_first: bool,
     /// Cutter compensation: the tool tip (program frame), when it differs from `pos`.
     pub comp_tip: [f64; 6],
-    /// Cutter compensation: the last move, whose end point a concave corner may
-    /// still pull back: (canon line index, motion index, kind: 0 feed, 1 rapid, 2 arc).
-    pub comp_pending: Option<(usize, usize, u8)>,
+    /// Cutter compensation: the moves LinuxCNC still holds back (its canon queue),
+    /// whose end points the next corner may move.
+    pub comp_queue: Vec<CompQueued>,
+    /// Cutter compensation: where the first held-back move starts, when known
+    /// (LinuxCNC's `endpoint`; it checks pulled-back moves for reversal against it).
+    pub comp_endpoint: Option<[f64; 2]>,
     /// Programmed feed (mm/min, or mm/rev under G95; inverse-time value under G93).
     pub feed: f64,
     pub spindle: f64,
@@ -191,4 +194,23 @@ impl Modal {
 /// Whether a motion code (tenths) is a canned cycle.
 pub fn is_cycle(m: u32) -> bool {
     matches!(m, 730 | 740 | 760 | 810..=890)
+}
+
+/// One held-back move of cutter compensation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompQueued {
+    /// Index of its canonical line.
+    pub canon: usize,
+    /// Index of its motion.
+    pub motion: usize,
+    /// 0 feed, 1 rapid, 2 arc.
+    pub kind: u8,
+    /// Straight moves: the direction LinuxCNC checks a pulled-back end against.
+    pub dir: [f64; 2],
+    /// Arcs: the (compensated) centre in plane coordinates.
+    pub center: [f64; 2],
+    /// Arcs: signed turn count (positive counter-clockwise).
+    pub turn: i32,
+    /// Arcs: the sweep (radians, signed) of the programmed arc; 0 for inserted corner arcs.
+    pub sweep: f64,
 }

@@ -148,4 +148,7 @@ pub struct RunOutput {
     /// for blocks past `SNAPSHOT_LIMIT` (2 000 000) so that huge files fit in memory).
     pub snapshots: Vec<Option<BlockSnapshot>>,
     pub canon: Vec<String>,
+    /// Canonical output only: the error that stopped the run, as rs274 prints it
+    /// on stderr (its message, a newline, the offending source line).
+    pub canon_error: Option<String>,
 }

@@ -479,6 +479,11 @@ fn emit_canon_output(
         }
     }
     let _ = w.flush();
+    // The interpreter knows the error that stopped it, worded as rs274 words it.
+    if let Some(e) = &out.canon_error {
+        eprintln!("{e}");
+        return ExitCode::from(1);
+    }
     let first_error = diagnostics
         .iter()
         .filter(|d| d.severity == Severity::Error && d.file == analyzer::FileId(0))
