@@ -201,6 +201,15 @@ pub fn run(args: RunArgs) -> ExitCode {
             None
         }
     };
+    // `--emit canon` imitates the standalone rs274, which loads LinuxCNC's sample
+    // tool table when given none; the same tools make compensation radii, tool
+    // length offsets and "tool not found" errors agree.
+    let tool_table = match tool_table {
+        None if args.emit == Some(Emit::Canon) && dialect == analyzer::Dialect::Rs274ngc => {
+            Some(RS274_DEFAULT_TOOL_TABLE.to_string())
+        }
+        t => t,
+    };
     let var_file = match read_opt(&var_path) {
         Ok(None) => cfg_files.var_file.clone(),
         Ok(t) => t,
@@ -484,9 +493,18 @@ fn emit_canon_output(
         eprintln!("{e}");
         return ExitCode::from(1);
     }
+    // rs274 stops reading at M2/M30: what follows is never parsed, so static errors
+    // there do not fail the run.
+    let end_offset = out
+        .events
+        .iter()
+        .find(|e| matches!(e.kind, runtime::EventKind::ProgramEnd) && e.file == analyzer::FileId(0))
+        .and_then(|e| program.blocks.get(e.block as usize))
+        .map_or(usize::MAX, |b| b.span.end as usize);
     let first_error = diagnostics
         .iter()
         .filter(|d| d.severity == Severity::Error && d.file == analyzer::FileId(0))
+        .filter(|d| (d.span.start as usize) < end_offset)
         .min_by_key(|d| d.span.start);
     match first_error {
         Some(d) => {
@@ -501,6 +519,13 @@ fn emit_canon_output(
         None => ExitCode::SUCCESS,
     }
 }
+
+/// The tool table the standalone `rs274` of LinuxCNC 2.9 reads when run without
+/// `-t` (its sample configuration's table; values in inches).
+const RS274_DEFAULT_TOOL_TABLE: &str = "T1 P1 D0.125000 Z+0.511000\n\
+T2 P2 D0.062500 Z+0.100000\n\
+T3 P3 D0.201000 Z+1.273000\n\
+T99999 P123 Z+0.100000\n";
 
 /// A status line on stderr for long runs, shown only when stderr is a terminal and the
 /// program is large (the interpreter and planner report no finer progress).
