@@ -35,6 +35,8 @@ const INTERPRETER_KEYS: &[&str] = &[
     "max_cutting_feed",
     "offset_count",
     "involute_tolerance",
+    "trc_g41_side",
+    "drill_shift",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the

@@ -352,3 +352,22 @@ M30;
         .iter()
         .any(|m| m.end[2] == 0.0 && m.start[2] != 0.0));
 }
+
+/// M1 stops only when the machine's optional-stop switch is on; then it costs
+/// `program_stop_time` like M0. Off (the default), the control runs through it.
+#[test]
+fn optional_stop_switch_decides_whether_m1_costs_time() {
+    let prog = "G90 G0 X10.\nM01\nX20.\nM30\n";
+    let other = |machine: &str| {
+        let out = run_fanuc(prog, machine);
+        let table: toml::Table = toml::from_str(machine).unwrap();
+        let profile =
+            runtime::dryrun::profile_from_table(&table, analyzer::Dialect::Fanuc).unwrap();
+        runtime::dryrun::plan_run(&out, &profile).totals.other_s
+    };
+    assert_eq!(other("program_stop_time = 30.0"), 0.0);
+    assert_eq!(
+        other("program_stop_time = 30.0\noptional_stop = true"),
+        30.0
+    );
+}

@@ -4254,7 +4254,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_m(10) {
             self.canon("OPTIONAL_PROGRAM_STOP()");
-            self.event(EventKind::Stop { optional: true });
+            // With the optional-stop switch off the control runs through M1.
+            if self.cfg.optional_stop {
+                self.event(EventKind::Stop { optional: true });
+            }
         }
         if w.has_m(990) && (!self.ngc() || !self.frames.is_empty()) {
             if self.frames.is_empty() {

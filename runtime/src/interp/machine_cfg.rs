@@ -46,6 +46,8 @@ pub struct MachineCfg {
     /// manual says so (§6.2, §6.3.15) against ISO practice and its own G41.1; the
     /// digest recommends `left` (ambiguity A1), the default.
     pub g41_right: bool,
+    /// Optional stop switch: M1 stops (and costs `program_stop_time`) only when on.
+    pub optional_stop: bool,
     /// G76/G87 shift: (plane axis 0 = first, 1 = second, sign), or `None` for no shift
     /// (ServoWorks "No Shift"). Key `drill_shift = "+X" | "-X" | "+Y" | "-Y" | "none"`,
     /// default `+X` (ServoWorks digest recommendation; FANUC No. 5101 RD1/RD2 = 0).
@@ -173,6 +175,7 @@ impl MachineCfg {
                 .and_then(|v| v.as_str())
                 .is_some_and(|s| s.eq_ignore_ascii_case("right")),
             drill_shift: drill_shift(t.get("drill_shift")),
+            optional_stop: b("optional_stop", false),
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),
             integer_machine_unit: b("integer_machine_unit", false),
