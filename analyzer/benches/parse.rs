@@ -69,10 +69,17 @@ fn surfacing(dialect: Dialect, lines: usize) -> Vec<u8> {
     s.into_bytes()
 }
 
+/// Ten samples of a 20 MB parse take a few seconds; criterion's defaults (100
+/// samples, 5 s) would stretch each benchmark to minutes on a shared machine.
+fn short(group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>) {
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+}
+
 fn bench_parse(c: &mut Criterion) {
     let mut group = c.benchmark_group("parse_1M_lines");
-    group.sample_size(10);
-    group.measurement_time(Duration::from_secs(8));
+    short(&mut group);
     for dialect in Dialect::ALL {
         let text: Arc<[u8]> = surfacing(dialect, LINES).into();
         group.throughput(Throughput::Bytes(text.len() as u64));
@@ -86,8 +93,7 @@ fn bench_parse(c: &mut Criterion) {
     group.finish();
 
     let mut group = c.benchmark_group("analyze_1M_lines");
-    group.sample_size(10);
-    group.measurement_time(Duration::from_secs(8));
+    short(&mut group);
     let dialect = Dialect::Rs274ngc;
     let text: Arc<[u8]> = surfacing(dialect, LINES).into();
     let settings = Settings::new(dialect);

@@ -26,6 +26,28 @@ pub struct Analysis {
 
 /// Parses and checks one file.
 pub fn analyze(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Analysis {
+    let parsed = parse_text(text, settings);
+    let diagnostics = lint(&parsed, settings);
+    Analysis {
+        program: parsed.program,
+        diagnostics,
+    }
+}
+
+/// The first half of [`analyze`]: the syntax tree and the diagnostics found while
+/// reading. Hosts that interpret the program start the interpreter on `program`
+/// while [`lint`] runs the static rules on another thread.
+#[derive(Debug, Clone)]
+pub struct Parsed {
+    pub program: syntax::Program,
+    /// Syntax diagnostics (and `L009`), not yet filtered or sorted.
+    pub diagnostics: Vec<Diagnostic>,
+    /// A binary file: `program` holds the text but no blocks, and only `L009` is reported.
+    pub binary: bool,
+}
+
+/// Reads one file (see [`Parsed`]).
+pub fn parse_text(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parsed {
     let text: Arc<[u8]> = text.into();
     let opts = syntax::ParseOptions {
         dialect: settings.dialect,
@@ -35,9 +57,10 @@ pub fn analyze(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Analysis {
         // A binary file is reported once; parsing it would only produce noise.
         let program = syntax::parse(opts, Arc::<[u8]>::from(&b""[..]));
         let program = syntax::Program { text, ..program };
-        return Analysis {
+        return Parsed {
             program,
             diagnostics: vec![d],
+            binary: true,
         };
     }
     let utf8 = std::str::from_utf8(&text).err();
@@ -51,16 +74,42 @@ pub fn analyze(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Analysis {
             "the file is not valid UTF-8 (saved in a legacy code page?); text around here may show garbled",
         ));
     }
+    Parsed {
+        program,
+        diagnostics,
+        binary: false,
+    }
+}
+
+/// The second half of [`analyze`]: static rules, then [`finish`] (a binary file
+/// keeps its single, unfiltered `L009`).
+pub fn lint(parsed: &Parsed, settings: &Settings) -> Vec<Diagnostic> {
+    let mut diagnostics = parsed.diagnostics.clone();
+    if parsed.binary {
+        return diagnostics;
+    }
     let cx = rules::ProgramCx {
-        program: &program,
+        program: &parsed.program,
         settings,
     };
     rules::check(&cx, &mut diagnostics);
-    let diagnostics = finish(&program, settings, diagnostics);
-    Analysis {
-        program,
-        diagnostics,
+    finish(&parsed.program, settings, diagnostics)
+}
+
+/// Whether [`analyze`] would report `L009` (binary file, or invalid UTF-8 unless
+/// that report is disabled or suppressed), without running the static rules:
+/// hosts skip the interpreter on such files.
+pub fn reports_l009(parsed: &Parsed, settings: &Settings) -> bool {
+    if parsed.binary {
+        return true;
     }
+    let l009: Vec<Diagnostic> = parsed
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "L009")
+        .cloned()
+        .collect();
+    !l009.is_empty() && !finish(&parsed.program, settings, l009).is_empty()
 }
 
 /// Applies rule selection and suppression comments, and sorts. Hosts call this

@@ -233,41 +233,56 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
 /// Interleaves the interpreter's motions and events into planner events.
 pub fn planner_events(out: &RunOutput) -> Vec<plan::Event> {
     let mut evs = Vec::with_capacity(out.motions.len() + out.events.len());
-    let mut e = out.events.iter().peekable();
-    let push_event = |ev: &IEvent, evs: &mut Vec<plan::Event>| {
-        let block = u32::MAX;
-        match &ev.kind {
-            EventKind::Dwell(s) => evs.push(plan::Event::Dwell {
-                seconds: s.max(0.0),
-                block,
-            }),
-            EventKind::ToolChange { tool } => {
-                evs.push(plan::Event::ToolChange { tool: *tool, block })
+    interleave(&out.motions, &out.events, 0, &mut |e| evs.push(e));
+    evs
+}
+
+/// The planner event of an interpreter event, if it takes machine time.
+fn planner_event(ev: &IEvent) -> Option<plan::Event> {
+    let block = u32::MAX;
+    Some(match &ev.kind {
+        EventKind::Dwell(s) => plan::Event::Dwell {
+            seconds: s.max(0.0),
+            block,
+        },
+        EventKind::ToolChange { tool } => plan::Event::ToolChange { tool: *tool, block },
+        EventKind::Spindle { dir, .. } => {
+            if *dir == 0 {
+                plan::Event::SpindleStop { block }
+            } else {
+                plan::Event::SpindleStart { block }
             }
-            EventKind::Spindle { dir, .. } => {
-                if *dir == 0 {
-                    evs.push(plan::Event::SpindleStop { block })
-                } else {
-                    evs.push(plan::Event::SpindleStart { block })
-                }
-            }
-            EventKind::Stop { optional } => evs.push(plan::Event::ProgramStop {
-                optional: *optional,
-                block,
-            }),
-            _ => {}
         }
-    };
-    for (i, m) in out.motions.iter().enumerate() {
+        EventKind::Stop { optional } => plan::Event::ProgramStop {
+            optional: *optional,
+            block,
+        },
+        _ => return None,
+    })
+}
+
+/// Passes motions (as segments numbered from `first_index`) and the events between
+/// them to `emit` in execution order; an event's `motion_index` is relative to `motions`.
+fn interleave(
+    motions: &[Motion],
+    events: &[IEvent],
+    first_index: usize,
+    emit: &mut dyn FnMut(plan::Event),
+) {
+    let mut e = events.iter().peekable();
+    for (i, m) in motions.iter().enumerate() {
         while let Some(ev) = e.next_if(|ev| ev.motion_index <= i) {
-            push_event(ev, &mut evs);
+            if let Some(pe) = planner_event(ev) {
+                emit(pe);
+            }
         }
-        evs.push(plan::Event::Motion(segment_of(m, i as u32)));
+        emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32)));
     }
     for ev in e {
-        push_event(ev, &mut evs);
+        if let Some(pe) = planner_event(ev) {
+            emit(pe);
+        }
     }
-    evs
 }
 
 /// Motion time above which the planner uses closed-form profiles instead of servo periods.
@@ -278,13 +293,94 @@ fn naive_seconds(events: &[plan::Event], profile: &MachineProfile) -> f64 {
     let rapid = profile.traj_max_velocity.max(1e-9);
     events
         .iter()
-        .map(|e| match e {
-            plan::Event::Motion(s) if matches!(s.kind, SegmentKind::Rapid) => s.length / rapid,
-            plan::Event::Motion(s) if s.feed > 0.0 => s.length / s.feed.min(rapid),
-            _ => 0.0,
-        })
+        .map(|e| naive_event_seconds(e, rapid))
         .filter(|t| t.is_finite())
         .sum()
+}
+
+/// One event's share of [`naive_seconds`]; `rapid` is the path speed cap.
+fn naive_event_seconds(e: &plan::Event, rapid: f64) -> f64 {
+    match e {
+        plan::Event::Motion(s) if matches!(s.kind, SegmentKind::Rapid) => s.length / rapid,
+        plan::Event::Motion(s) if s.feed > 0.0 => s.length / s.feed.min(rapid),
+        _ => 0.0,
+    }
+}
+
+/// Plans a run whose motions arrive in chunks ([`crate::interp::run_streaming`]) and
+/// returns only the totals, in memory that does not grow with the program. The
+/// totals equal those of [`plan_run`].
+///
+/// `plan_run` chooses closed-form execution when the whole program's naive motion
+/// time exceeds [`SERVO_SIMULATION_LIMIT_S`], which is known only at the end; so a
+/// profile that simulates servo periods feeds a closed-form planner alongside and
+/// drops the period-by-period one once the naive time passes the limit.
+pub struct StreamPlan {
+    servo: Option<plan::Planner>,
+    closed: Option<plan::Planner>,
+    naive_s: f64,
+    rapid: f64,
+    motions: usize,
+}
+
+impl StreamPlan {
+    pub fn new(profile: &MachineProfile) -> StreamPlan {
+        let (servo, closed) = if profile.servo_simulation {
+            let mut cf = profile.clone();
+            cf.servo_simulation = false;
+            (
+                Some(plan::Planner::new(profile)),
+                Some(plan::Planner::new(&cf)),
+            )
+        } else {
+            (None, Some(plan::Planner::new(profile)))
+        };
+        StreamPlan {
+            servo,
+            closed,
+            naive_s: 0.0,
+            rapid: profile.traj_max_velocity.max(1e-9),
+            motions: 0,
+        }
+    }
+
+    /// Feeds the next chunk of the run (see [`crate::interp::MotionSink`]).
+    pub fn push(&mut self, motions: &[Motion], events: &[IEvent]) {
+        let Self {
+            servo,
+            closed,
+            naive_s,
+            rapid,
+            ..
+        } = self;
+        let mut ignore = |_: SegmentTiming| {};
+        interleave(motions, events, self.motions, &mut |e| {
+            let t = naive_event_seconds(&e, *rapid);
+            if t.is_finite() {
+                *naive_s += t;
+            }
+            if *naive_s > SERVO_SIMULATION_LIMIT_S {
+                *servo = None;
+            }
+            match (servo.as_mut(), closed.as_mut()) {
+                (Some(s), Some(c)) => {
+                    s.push(e, &mut ignore);
+                    c.push(e, &mut ignore);
+                }
+                (Some(p), None) | (None, Some(p)) => p.push(e, &mut ignore),
+                (None, None) => {}
+            }
+        });
+        self.motions += motions.len();
+    }
+
+    pub fn finish(self) -> Totals {
+        let mut ignore = |_: SegmentTiming| {};
+        match (self.servo, self.closed) {
+            (Some(p), _) | (None, Some(p)) => p.finish(&mut ignore),
+            (None, None) => Totals::default(),
+        }
+    }
 }
 
 /// Plans a run.

@@ -8,6 +8,6 @@ pub mod plan;
 pub mod rules;
 
 pub use interp::{
-    run, run_with_snapshots, BlockSnapshot, Event, EventKind, Motion, MotionKind, NoResolver,
-    ResolvedFile, Resolver, RunInput, RunOutput,
+    run, run_streaming, run_with_snapshots, BlockSnapshot, Event, EventKind, Motion, MotionKind,
+    NoResolver, ResolvedFile, Resolver, RunInput, RunOutput,
 };

@@ -705,7 +705,7 @@ impl Interp<'_, '_> {
             self.diag(codes::COORDINATE_MODE, Severity::Warning, w.g_span(290), "G29 without an earlier G28/G30: there is no intermediate point, so the move goes straight to the target");
         }
         for (code, inch) in [(200u32, true), (210, false)] {
-            if w.has_g(code) && inch != m.inch && !self.out.motions.is_empty() {
+            if w.has_g(code) && inch != m.inch && self.any_motion() {
                 self.diag(codes::COORDINATE_MODE, Severity::Info, w.g_span(code), "units change after motion has been programmed: positions, offsets and feeds given earlier are not converted; set G20/G21 once at the top");
             }
         }

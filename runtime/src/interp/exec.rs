@@ -43,13 +43,35 @@ pub fn run(input: &RunInput<'_>) -> RunOutput {
 /// Like [`run`]; with `snapshots` false no per-block state is kept (batch hosts that
 /// only need motions and diagnostics save about 500 bytes per block).
 pub fn run_with_snapshots(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
-    let mut it = Interp::new(input);
-    if !snapshots {
-        it.nblocks_main = 0;
-        it.out.snapshots = Vec::new();
-    }
+    let mut it = Interp::new(input, snapshots);
     it.run_main();
     it.finish()
+}
+
+/// Motions a streaming run hands to its sink at a time: big enough that the sink's
+/// per-call cost vanishes, small enough that memory stays flat.
+const STREAM_CHUNK: usize = 4096;
+
+/// A receiver of a run's motions and events in order, chunk by chunk. An event's
+/// `motion_index` counts from the first motion of the chunk it arrives with, so an
+/// event with index `k` happens before `motions[k]` of that chunk (or after all of
+/// them when `k == motions.len()`).
+pub type MotionSink<'s> = dyn FnMut(&[Motion], &[Event]) + 's;
+
+/// Like [`run_with_snapshots`] without snapshots, but motions and events go to `sink`
+/// while the program runs instead of accumulating in the output: hosts that only
+/// need totals (cycle time) or nothing at all (lint) run in memory that does not grow
+/// with the program. The returned output has empty `motions` and `events`.
+pub fn run_streaming(input: &RunInput<'_>, sink: &mut MotionSink<'_>) -> RunOutput {
+    let mut it = Interp::new(input, false);
+    it.run_main_with(Some(sink));
+    let mut out = it.finish();
+    if !out.motions.is_empty() || !out.events.is_empty() {
+        sink(&out.motions, &out.events);
+    }
+    out.motions = Vec::new();
+    out.events = Vec::new();
+    out
 }
 
 /// Where control goes after a block.
@@ -298,6 +320,8 @@ struct Interp<'a, 'i> {
     /// Memory of the state checks (tool words, G40, motion seen).
     chk: checks::Mem,
     modal_cache: Option<(Modal, Vec<String>)>,
+    /// Motions already handed to a streaming sink.
+    motions_drained: usize,
     /// P/Q of the last G5 (the next G5 without I/J mirrors them).
     spline_pq: (f64, f64),
     /// Control points of an open G5.2 NURBS block.
@@ -311,7 +335,9 @@ fn v6(v: [f64; 6]) -> [f64; 6] {
 }
 
 impl<'a, 'i> Interp<'a, 'i> {
-    fn new(input: &'i RunInput<'a>) -> Interp<'a, 'i> {
+    /// `snapshots` false: no per-block state is kept (and the table of 100-byte slots,
+    /// one per block, is never allocated).
+    fn new(input: &'i RunInput<'a>, snapshots: bool) -> Interp<'a, 'i> {
         let dialect = input.settings.dialect;
         let mut cfg = MachineCfg::read(input.machine, dialect);
         if let Some(t) = input.tool_table {
@@ -381,7 +407,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             frames: Vec::new(),
             repeats: Vec::new(),
             out: RunOutput {
-                snapshots: vec![None; input.program.blocks.len()],
+                snapshots: if snapshots {
+                    vec![None; input.program.blocks.len()]
+                } else {
+                    Vec::new()
+                },
                 ..RunOutput::default()
             },
             canon: if emit { Some(Canon::default()) } else { None },
@@ -390,7 +420,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             cur_line: 0,
             percent_open: false,
             saw_end: false,
-            nblocks_main: input.program.blocks.len(),
+            nblocks_main: if snapshots {
+                input.program.blocks.len()
+            } else {
+                0
+            },
             after_end_reported: false,
             main_locals: HashMap::new(),
             limit_reports: 0,
@@ -400,6 +434,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
             spec: Default::default(),
+            motions_drained: 0,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -711,6 +746,27 @@ impl<'a, 'i> Interp<'a, 'i> {
     // ----------------------------------------------------------------- main loop
 
     fn run_main(&mut self) {
+        self.run_main_with(None);
+    }
+
+    /// Hands the motions and events so far to `sink`, unless a compensated move is
+    /// still pending (it may yet be moved, so it must stay in the buffer).
+    fn drain_to(&mut self, sink: &mut MotionSink<'_>) {
+        if !self.st.comp_queue.is_empty() {
+            return;
+        }
+        sink(&self.out.motions, &self.out.events);
+        self.motions_drained += self.out.motions.len();
+        self.out.motions.clear();
+        self.out.events.clear();
+    }
+
+    /// Whether any motion has been produced (also those already streamed out).
+    fn any_motion(&self) -> bool {
+        self.motions_drained > 0 || !self.out.motions.is_empty()
+    }
+
+    fn run_main_with(&mut self, mut sink: Option<&mut MotionSink<'_>>) {
         self.spec_input_files();
         let p = self.files[0].prog.clone();
         if self.ngc() {
@@ -769,6 +825,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 let snap = self.snapshot();
                 if let Some(s) = self.out.snapshots.get_mut(bi as usize) {
                     *s = Some(snap);
+                }
+            }
+            if self.out.motions.len() >= STREAM_CHUNK {
+                if let Some(sink) = sink.as_deref_mut() {
+                    self.drain_to(sink);
                 }
             }
         }

@@ -105,9 +105,7 @@ fn check_file(
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
     let text: Arc<[u8]> = bytes.into();
-    let analysis = analyzer::analyze(text.clone(), &settings);
-    let mut diagnostics = analysis.diagnostics;
-    let mut extra_files = Vec::new();
+    let parsed = analyzer::parse_text(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of view.
     let is_subprogram = dialect == analyzer::Dialect::Servoworks
         && path
@@ -118,38 +116,49 @@ fn check_file(
             .file_name()
             .and_then(|n| n.to_str())
             .is_some_and(|n| n.starts_with('O'));
-    if !args.no_run && !is_subprogram && !diagnostics.iter().any(|d| d.code == "L009") {
-        let config_dir = loaded
-            .path
-            .as_ref()
-            .and_then(|p| p.parent().map(Path::to_path_buf));
-        let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
-        let files = loaded.linuxcnc_files();
-        for w in &files.warnings {
-            workspace::warn_once(w);
-        }
-        let machine =
-            workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
-        let input = runtime::RunInput {
-            program: &analysis.program,
-            settings: &settings,
-            machine: &machine,
-            resolver: &resolver,
-            step_budget: args
-                .step_budget
-                .unwrap_or_else(|| step_budget(analysis.program.blocks.len())),
-            emit_canon: false,
-            tool_table: files.tool_table.as_deref(),
-            var_file: files.var_file.as_deref(),
-        };
-        let out = runtime::run_with_snapshots(&input, false);
-        diagnostics.extend(analyzer::finish(
-            &analysis.program,
-            &settings,
-            out.diagnostics,
-        ));
+    let interpret = !args.no_run && !is_subprogram && !analyzer::reports_l009(&parsed, &settings);
+    // The static rules and the interpreter only read the syntax tree: they run side by
+    // side, on two cores when the pool has them free.
+    let (mut diagnostics, run) = rayon::join(
+        || analyzer::lint(&parsed, &settings),
+        || {
+            if !interpret {
+                return None;
+            }
+            let config_dir = loaded
+                .path
+                .as_ref()
+                .and_then(|p| p.parent().map(Path::to_path_buf));
+            let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
+            let files = loaded.linuxcnc_files();
+            for w in &files.warnings {
+                workspace::warn_once(w);
+            }
+            let machine =
+                workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
+            let input = runtime::RunInput {
+                program: &parsed.program,
+                settings: &settings,
+                machine: &machine,
+                resolver: &resolver,
+                step_budget: args
+                    .step_budget
+                    .unwrap_or_else(|| step_budget(parsed.program.blocks.len())),
+                emit_canon: false,
+                tool_table: files.tool_table.as_deref(),
+                var_file: files.var_file.as_deref(),
+            };
+            // Lint needs the diagnostics only: motions are dropped as they are produced.
+            let out = runtime::run_streaming(&input, &mut |_, _| {});
+            let diagnostics = analyzer::finish(&parsed.program, &settings, out.diagnostics);
+            Some((diagnostics, out.files))
+        },
+    );
+    let mut extra_files = Vec::new();
+    if let Some((run_diagnostics, files)) = run {
+        diagnostics.extend(run_diagnostics);
         diagnostics.sort_by_key(|d| (d.file, d.span.start));
-        extra_files = output::read_extra_files(&out.files);
+        extra_files = output::read_extra_files(&files);
     }
     FileReport {
         path: path.to_path_buf(),

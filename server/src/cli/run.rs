@@ -221,34 +221,79 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     let text: Arc<[u8]> = bytes.into();
-    let analysis = analyzer::analyze(text.clone(), &settings);
+    let parsed = analyzer::parse_text(text.clone(), &settings);
     let resolver = crate::resolve::FsResolver::new(&args.file, config_dir.as_deref(), dialect);
     let emit_canon = args.emit == Some(Emit::Canon);
     let input = runtime::RunInput {
-        program: &analysis.program,
+        program: &parsed.program,
         settings: &settings,
         machine: &machine_table,
         resolver: &resolver,
         step_budget: args
             .step_budget
-            .unwrap_or_else(|| super::check::step_budget(analysis.program.blocks.len())),
+            .unwrap_or_else(|| super::check::step_budget(parsed.program.blocks.len())),
         emit_canon,
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
     };
     let progress = Progress::start(text.len());
     progress.stage("interpreting");
+    // The JSON summary needs only the totals: the planner then consumes the motions as
+    // the interpreter produces them, and memory stays flat however long the program.
+    if args.format == RunFormat::Json
+        && args.emit.is_none()
+        && args.svg.is_none()
+        && args.png.is_none()
+    {
+        // The static rules run beside the interpreter and planner (both only read the tree).
+        let (mut diagnostics, out, totals) = std::thread::scope(|scope| {
+            let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
+            let mut plan = dryrun::StreamPlan::new(&profile);
+            let out = runtime::run_streaming(&input, &mut |m, e| plan.push(m, e));
+            let totals = plan.finish();
+            // A panic in the rules is passed on as if the rules had run on this thread.
+            let diagnostics = lint.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+            (diagnostics, out, totals)
+        });
+        progress.finish();
+        diagnostics.extend(analyzer::finish(
+            &parsed.program,
+            &settings,
+            out.diagnostics,
+        ));
+        let report = FileReport {
+            path: args.file.clone(),
+            text,
+            diagnostics,
+            io_error: false,
+            extra_files: output::read_extra_files(&out.files),
+        };
+        let dry = DryRun {
+            totals,
+            ..DryRun::default()
+        };
+        let stdout = std::io::stdout();
+        let mut w = std::io::BufWriter::new(stdout.lock());
+        let res = serde_json::to_writer_pretty(&mut w, &summary_json(&dry, &report))
+            .map_err(std::io::Error::other)
+            .and_then(|_| writeln!(w))
+            .and_then(|_| w.flush());
+        if let Err(e) = res {
+            return fail(format_args!("cannot write output: {e}"));
+        }
+        return exit_status(&report);
+    }
     let out = runtime::run_with_snapshots(&input, false);
     progress.stage("planning");
-    let mut diagnostics = analysis.diagnostics.clone();
+    let mut diagnostics = analyzer::lint(&parsed, &settings);
     diagnostics.extend(analyzer::finish(
-        &analysis.program,
+        &parsed.program,
         &settings,
         out.diagnostics.clone(),
     ));
 
     if emit_canon {
-        return emit_canon_output(&out, &analysis.program, &diagnostics);
+        return emit_canon_output(&out, &parsed.program, &diagnostics);
     }
 
     let dry = dryrun::plan_run(&out, &profile);
@@ -329,6 +374,11 @@ pub fn run(args: RunArgs) -> ExitCode {
     if let Err(e) = res.and_then(|_| w.flush()) {
         return fail(format_args!("cannot write output: {e}"));
     }
+    exit_status(&report)
+}
+
+/// 1 when the run reported an error, else success.
+fn exit_status(report: &FileReport) -> ExitCode {
     if report
         .diagnostics
         .iter()

@@ -1,0 +1,117 @@
+//! Streaming runs (`run_streaming` + `StreamPlan`) give the same diagnostics and
+//! cycle-time totals as the buffered path (`run_with_snapshots` + `plan_run`),
+//! across chunk boundaries, with cutter compensation holding moves back, and on
+//! both sides of the servo-simulation limit.
+
+use std::fmt::Write as _;
+use std::sync::Arc;
+
+use analyzer::syntax::{parse, ParseOptions, Program};
+use analyzer::{Dialect, Settings};
+use runtime::dryrun::{self, StreamPlan};
+use runtime::machine::MachineProfile;
+use runtime::plan::Totals;
+
+fn program(dialect: Dialect, text: &str) -> Program {
+    parse(
+        ParseOptions::new(dialect),
+        Arc::<[u8]>::from(text.as_bytes()),
+    )
+}
+
+fn input<'a>(
+    program: &'a Program,
+    settings: &'a Settings,
+    machine: &'a toml::Table,
+) -> runtime::RunInput<'a> {
+    runtime::RunInput {
+        program,
+        settings,
+        machine,
+        resolver: &runtime::NoResolver,
+        step_budget: 10_000_000,
+        emit_canon: false,
+        tool_table: None,
+        var_file: None,
+    }
+}
+
+/// (buffered totals, streamed totals, buffered motions, streamed motions).
+fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
+    let p = program(dialect, text);
+    let settings = Settings::new(dialect);
+    let machine = toml::Table::new();
+    let profile = MachineProfile::default_for(dialect);
+    let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
+    let dry = dryrun::plan_run(&buffered, &profile);
+    let mut plan = StreamPlan::new(&profile);
+    let mut streamed_motions = 0;
+    let streamed = runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| {
+        streamed_motions += m.len();
+        plan.push(m, e)
+    });
+    assert!(streamed.motions.is_empty() && streamed.events.is_empty());
+    assert_eq!(
+        format!("{:?}", buffered.diagnostics),
+        format!("{:?}", streamed.diagnostics)
+    );
+    (
+        dry.totals,
+        plan.finish(),
+        buffered.motions.len(),
+        streamed_motions,
+    )
+}
+
+/// A profile of zig-zag passes with tool changes, dwells, spindle stops and a
+/// cutter-compensated contour every few hundred lines; `passes` sets the length.
+fn job(passes: usize, feed: f64) -> String {
+    let mut s =
+        String::from("G21 G17 G90 G94 G40 G49 G80 G64 P0.01\nT1 M6\nS8000 M3\nG0 X0 Y0 Z5\n");
+    for p in 0..passes {
+        let _ = writeln!(s, "G1 Z-1 F{feed}");
+        for k in 0..40 {
+            let x = if k % 2 == 0 { 30.0 } else { 0.0 };
+            let _ = writeln!(s, "X{x} Y{:.3}", p as f64 * 2.0 + k as f64 * 0.05);
+        }
+        if p % 25 == 7 {
+            // Compensated square with an arc: the interpreter holds the last move back.
+            s.push_str("G41 D0 G1 X5 Y5\nX20\nG3 X25 Y10 R5\nG1 Y20\nG40 X30 Y30\n");
+        }
+        if p % 50 == 13 {
+            s.push_str("G4 P0.5\nM5\nT2 M6\nS9000 M3\n");
+        }
+        s.push_str("G0 Z5\n");
+    }
+    s.push_str("G0 Z50\nM5\nM30\n");
+    s
+}
+
+#[test]
+fn streamed_totals_equal_buffered_across_chunks() {
+    // About 12 000 motions: three chunk boundaries, some inside compensated contours.
+    let (buffered, streamed, nb, ns) = both(Dialect::Rs274ngc, &job(300, 1500.0));
+    assert!(nb > 3 * 4096, "{nb} motions");
+    assert_eq!(nb, ns);
+    assert_eq!(buffered, streamed);
+    // Six `G4 P0.5` dwells reach the planner through the event stream.
+    assert_eq!(buffered.dwell_s, 3.0, "{buffered:?}");
+}
+
+#[test]
+fn streamed_totals_equal_buffered_beyond_servo_limit() {
+    // At 1 mm/min the naive motion time passes the four-hour servo-simulation limit
+    // part-way through: the streamed planner must switch to closed form like plan_run.
+    let (buffered, streamed, nb, ns) = both(Dialect::Rs274ngc, &job(3, 1.0));
+    assert_eq!(nb, ns);
+    assert!(buffered.cutting_s > dryrun::SERVO_SIMULATION_LIMIT_S);
+    assert_eq!(buffered, streamed);
+}
+
+#[test]
+fn streamed_totals_equal_buffered_fanuc() {
+    let text = format!("%\nO1000\n{}%\n", job(120, 2000.0).replace("G64 P0.01", ""));
+    let (buffered, streamed, nb, ns) = both(Dialect::Fanuc, &text);
+    assert_eq!(nb, ns);
+    assert_eq!(buffered, streamed);
+}
