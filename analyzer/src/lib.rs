@@ -3,6 +3,7 @@
 
 pub mod diagnostic;
 pub mod dialect;
+pub mod incremental;
 pub mod rules;
 pub mod settings;
 pub mod span;
@@ -63,17 +64,10 @@ pub fn parse_text(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parsed {
             binary: true,
         };
     }
-    let utf8 = std::str::from_utf8(&text).err();
+    let utf8 = utf8_check(&text);
     let program = syntax::parse(opts, text);
     let mut diagnostics = program.diagnostics.clone();
-    if let Some(e) = utf8 {
-        let at = e.valid_up_to() as u32;
-        diagnostics.push(Diagnostic::warning(
-            "L009",
-            Span::new(at, at + e.error_len().unwrap_or(1) as u32),
-            "the file is not valid UTF-8 (saved in a legacy code page?); text around here may show garbled",
-        ));
-    }
+    diagnostics.extend(utf8);
     Parsed {
         program,
         diagnostics,
@@ -134,8 +128,19 @@ pub fn finish(
     diagnostics
 }
 
+/// The warning for text that is not valid UTF-8, at its first bad byte.
+pub(crate) fn utf8_check(text: &[u8]) -> Option<Diagnostic> {
+    let e = std::str::from_utf8(text).err()?;
+    let at = e.valid_up_to() as u32;
+    Some(Diagnostic::warning(
+        "L009",
+        Span::new(at, at + e.error_len().unwrap_or(1) as u32),
+        "the file is not valid UTF-8 (saved in a legacy code page?); text around here may show garbled",
+    ))
+}
+
 /// A file is binary when its first 8 KiB hold a NUL byte or mostly non-text bytes.
-fn binary_check(text: &[u8]) -> Option<Diagnostic> {
+pub(crate) fn binary_check(text: &[u8]) -> Option<Diagnostic> {
     let head = &text[..text.len().min(8192)];
     if head.is_empty() {
         return None;

@@ -154,44 +154,86 @@ macro_rules! declare_rule {
 pub const MAX_ITEMS_PER_BLOCK: usize = 512;
 
 pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
-    let rules = registry::STATIC_RULES;
-    let enabled: Vec<&&dyn Rule> = rules
-        .iter()
-        .filter(|r| cx.settings.rule_enabled(r.meta()))
-        .collect();
+    let enabled = enabled_rules(cx.settings);
     if enabled.is_empty() {
         return;
     }
     let mut codes = Vec::new();
-    // Lines LinuxCNC never reads are only reported as unreachable (P006).
-    let dead = util::dead_blocks(cx.program);
-    let unreadable = util::unreadable_blocks(cx.program);
-    for (i, block) in cx.program.blocks.iter().enumerate() {
-        // A block the parser could not read is reported by the parser alone: rules
-        // would only describe the debris of the syntax error.
-        if dead.get(i).copied().unwrap_or(false) || unreadable.get(i).copied().unwrap_or(false) {
-            continue;
-        }
-        codes.clear();
-        context::collect_codes(cx.program, block, &mut codes);
-        let bcx = BlockCx {
-            program: cx.program,
-            block,
-            index: i,
-            settings: cx.settings,
-            codes: &codes,
-        };
-        // Some block rules compare words pairwise; a pathological block (thousands of
-        // words on one line) gets only the block-length rule, so analysis stays linear.
-        let huge = (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK;
-        for r in &enabled {
-            if huge && r.meta().code != "W011" {
-                continue;
-            }
-            r.check_block(&bcx, out);
+    let skipped = skipped_blocks(cx.program);
+    for i in 0..cx.program.blocks.len() {
+        if !skipped.get(i).copied().unwrap_or(false) {
+            check_block_at(cx, &enabled, i, &mut codes, out);
         }
     }
-    for r in &enabled {
+    check_whole_program(cx, &enabled, out);
+}
+
+/// The static rules the settings enable, in registry order.
+pub fn enabled_rules(settings: &crate::Settings) -> Vec<&'static dyn Rule> {
+    registry::STATIC_RULES
+        .iter()
+        .copied()
+        .filter(|r| settings.rule_enabled(r.meta()))
+        .collect()
+}
+
+/// Blocks the block rules pass over: lines LinuxCNC never reads are only
+/// reported as unreachable (P006), and a block the parser could not read is
+/// reported by the parser alone (rules would only describe the debris of the
+/// syntax error).
+pub fn skipped_blocks(program: &crate::syntax::Program) -> Vec<bool> {
+    let mut skipped = util::dead_blocks(program);
+    for (s, u) in skipped.iter_mut().zip(util::unreadable_blocks(program)) {
+        *s |= u;
+    }
+    skipped
+}
+
+/// Runs the block rules on block `i` (`codes` is scratch space).
+pub fn check_block_at(
+    cx: &ProgramCx<'_>,
+    enabled: &[&'static dyn Rule],
+    i: usize,
+    codes: &mut Vec<BlockCode>,
+    out: &mut Vec<Diagnostic>,
+) {
+    let Some(block) = cx.program.blocks.get(i) else {
+        return;
+    };
+    codes.clear();
+    context::collect_codes(cx.program, block, codes);
+    let bcx = BlockCx {
+        program: cx.program,
+        block,
+        index: i,
+        settings: cx.settings,
+        codes,
+    };
+    // Some block rules compare words pairwise; a pathological block (thousands of
+    // words on one line) gets only the block-length rule, so analysis stays linear.
+    let huge = (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK;
+    for r in enabled {
+        if huge && r.meta().code != "W011" {
+            continue;
+        }
+        r.check_block(&bcx, out);
+    }
+}
+
+/// Whether the block rules' verdict on this block may depend on earlier
+/// blocks (a G10 looks back for the last motion and dwell), so an edit
+/// anywhere before it calls for a new check.
+pub fn block_looks_back(program: &crate::syntax::Program, block: &crate::syntax::Block) -> bool {
+    util::block_g_codes(program, block).contains(&100)
+}
+
+/// Runs the whole-file rules.
+pub fn check_whole_program(
+    cx: &ProgramCx<'_>,
+    enabled: &[&'static dyn Rule],
+    out: &mut Vec<Diagnostic>,
+) {
+    for r in enabled {
         r.check_program(cx, out);
     }
 }

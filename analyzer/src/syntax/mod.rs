@@ -11,4 +11,4 @@ mod ast;
 mod parser;
 
 pub use ast::*;
-pub use parser::{parse, ParseOptions, Parser};
+pub use parser::{parse, ParseOptions, Parser, ParserState};

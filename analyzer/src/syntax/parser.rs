@@ -81,6 +81,14 @@ pub struct Parser {
     seen_content: bool,
 }
 
+/// The state a [`Parser`] carries across block boundaries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ParserState {
+    pub percent_seen: bool,
+    pub after_end: bool,
+    pub seen_content: bool,
+}
+
 /// Per-block working state.
 struct Cx<'p> {
     p: &'p mut Program,
@@ -117,6 +125,44 @@ impl Parser {
 
     pub fn is_done(&self) -> bool {
         self.pos >= self.text.len()
+    }
+
+    /// Byte offset and 0-based line where the next block starts.
+    pub fn position(&self) -> (usize, u32) {
+        (self.pos, self.line)
+    }
+
+    /// What the parser carries from one block to the next besides its position.
+    /// Two parsers at the same position with equal states parse the rest of
+    /// the text identically, which is what lets incremental hosts stop early.
+    pub fn state(&self) -> ParserState {
+        ParserState {
+            percent_seen: self.percent_seen,
+            after_end: self.after_end,
+            seen_content: self.seen_content,
+        }
+    }
+
+    /// A parser that continues at a block boundary recorded earlier (`pos`,
+    /// `line` and `state` as [`Parser::position`] and [`Parser::state`] gave
+    /// them before that block), so that a host can re-parse from the middle
+    /// of a file.
+    pub fn resume(
+        opts: ParseOptions,
+        text: Arc<[u8]>,
+        pos: usize,
+        line: u32,
+        state: ParserState,
+    ) -> Parser {
+        Parser {
+            opts,
+            pos: pos.min(text.len()),
+            text,
+            line,
+            percent_seen: state.percent_seen,
+            after_end: state.after_end,
+            seen_content: state.seen_content,
+        }
     }
 
     /// Parses up to `max_blocks` blocks into `program`, appending. Returns the

@@ -1,8 +1,8 @@
 //! One analysed version of one document: the text (as a rope, for position
 //! conversion), the settings it was analysed with and the analysis.
 
-use analyzer::syntax::{parse, ParseOptions};
-use analyzer::{Analysis, Severity};
+use analyzer::incremental::Incremental;
+use analyzer::Severity;
 use ropey::Rope;
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
@@ -21,7 +21,8 @@ pub struct Snapshot {
     pub rope: Rope,
     pub path: Option<PathBuf>,
     pub doc: DocSettings,
-    pub analysis: Analysis,
+    /// The analysis, kept in the form the next version's analysis updates.
+    inc: Incremental,
     /// The file is above the size limit: parsed, but no rules ran.
     pub syntax_only: bool,
     pub roots: Vec<PathBuf>,
@@ -44,6 +45,9 @@ pub struct Inputs {
     pub roots: Vec<PathBuf>,
     pub client: ClientOptions,
     pub runner: Arc<dyn DryRunner>,
+    /// The previous analysis of the document, which an edit updates instead
+    /// of analysing the whole text again.
+    pub previous: Option<Arc<Snapshot>>,
 }
 
 /// Resolves settings and analyses one document version. Blocking: call it on
@@ -55,20 +59,14 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     let doc = config::resolve(inputs.path.as_deref(), &text, &inputs.roots, &inputs.client);
     let t1 = std::time::Instant::now();
     let syntax_only = text.len() > doc.max_file_size;
-    let analysis = if syntax_only {
-        let opts = ParseOptions {
-            dialect: doc.settings.dialect,
-            variant: doc.settings.variant,
-        };
-        let program = parse(opts, text.clone());
-        let diagnostics = analyzer::finish(&program, &doc.settings, program.diagnostics.clone());
-        Analysis {
-            program,
-            diagnostics,
-        }
-    } else {
-        analyzer::analyze(text.clone(), &doc.settings)
+    // `PARTSCOPE_LSP_BASELINE` turns incremental analysis off, so that the
+    // latency benchmark can measure both in one session with one binary.
+    let previous = inputs.previous.as_ref().filter(|_| !baseline_mode());
+    let inc = match previous {
+        Some(prev) => prev.inc.update(text.clone(), &doc.settings, syntax_only),
+        None => Incremental::new(text.clone(), &doc.settings, syntax_only),
     };
+    let analysis = &inc.analysis;
     if timing {
         eprintln!(
             "partscope lsp: v{} {} bytes: copy+config {:?}, analyze {:?}",
@@ -87,7 +85,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         rope: inputs.rope,
         path: inputs.path,
         doc,
-        analysis,
+        inc,
         syntax_only,
         run_eligible,
         roots: inputs.roots,
@@ -96,6 +94,14 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         run_lock: std::sync::Mutex::new(()),
         merged: OnceLock::new(),
     }
+}
+
+/// Whether the server runs as before incremental analysis (full analysis of
+/// every version, 50 ms debounce, 150 ms wait for the interpreter): the
+/// baseline of the latency benchmark.
+pub fn baseline_mode() -> bool {
+    static BASELINE: OnceLock<bool> = OnceLock::new();
+    *BASELINE.get_or_init(|| std::env::var_os("PARTSCOPE_LSP_BASELINE").is_some())
 }
 
 /// A subprogram file, which only its callers can run meaningfully: an
@@ -137,7 +143,7 @@ fn severity(s: Severity) -> DiagnosticSeverity {
 
 impl Snapshot {
     pub fn program(&self) -> &analyzer::syntax::Program {
-        &self.analysis.program
+        &self.inc.analysis.program
     }
 
     /// The interpreter's run of this version (computed on first use; `None`
@@ -184,12 +190,12 @@ impl Snapshot {
             return m;
         }
         let Some(report) = self.cached_run() else {
-            return &self.analysis.diagnostics;
+            return &self.inc.analysis.diagnostics;
         };
         self.merged.get_or_init(|| {
-            let mut all = self.analysis.diagnostics.clone();
+            let mut all = self.inc.analysis.diagnostics.clone();
             all.extend(report.diagnostics.iter().cloned());
-            analyzer::finish(&self.analysis.program, &self.doc.settings, all)
+            analyzer::finish(self.program(), &self.doc.settings, all)
         })
     }
 
