@@ -503,3 +503,131 @@ fn feed_per_revolution_becomes_mm_per_minute() {
     let out = run_ngc("G21 G95 S1000 M3\nG1 X10 F0.1\nM2\n");
     assert!(close(out.motions[0].feed, 100.0, 1e-9));
 }
+
+#[test]
+fn tv_l1_blanks_inside_numbers() {
+    let out = run_ngc("G21\ng0x +0. 12 34y 7\nM2\n");
+    assert_eq!(ends(&out), vec![[0.1234, 7.0, 0.0]]);
+}
+
+#[test]
+fn tv_l3_l4_code_numbers_within_tolerance() {
+    let out = run_ngc("G21\nM3.00005 S1\nG1.0001 X1 F1\nM2\n");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0]]);
+    assert!(is_feed(&out.motions[0]));
+}
+
+#[test]
+fn tv_l5_l6_message_is_the_last_comment() {
+    let messages = |text: &str| -> Vec<String> {
+        run_ngc(text)
+            .events
+            .iter()
+            .filter_map(|e| match &e.kind {
+                runtime::EventKind::Message(m) => Some(m.clone()),
+                _ => None,
+            })
+            .collect()
+    };
+    assert_eq!(
+        messages("G0 X1 (first) (MSG,second)\nM2\n"),
+        vec!["second".to_string()]
+    );
+    assert!(messages("(MSG,first) (second)\nM2\n").is_empty());
+}
+
+#[test]
+fn tv_l8_call_arguments() {
+    let prog = "G21\no100 sub\nG0 X#1 Y#2 Z#3\no100 endsub\no100 call [1] [2] [3]\nM2\n";
+    assert_eq!(ends(&run_ngc(prog)), vec![[1.0, 2.0, 3.0]]);
+}
+
+#[test]
+fn tv_a8_half_circle_radius_arc() {
+    let out = run_ngc("G21\nG2 X10 Y0 R5 F1\nM2\n");
+    assert_eq!(codes(&out), vec!["A009"]);
+    let (c, _) = arc(&out, 0);
+    assert_pt([c[0], c[1], 0.0, 0.0, 0.0, 0.0], &[5.0, 0.0], 1e-12);
+}
+
+#[test]
+fn tv_a11_k_word_in_xy_plane() {
+    let out = run_ngc("G21\nG17 G2 X1 Y0 K1 F1\nM2\n");
+    assert_eq!(codes(&out), vec!["A008"]);
+    assert!(out.motions.is_empty());
+}
+
+#[test]
+fn tv_m2_g80_dropped_g1_runs() {
+    let out = run_ngc("G21\nG1 G80 X1 F1\nM2\n");
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0]]);
+    assert!(is_feed(&out.motions[0]));
+}
+
+#[test]
+fn tv_m5_axis_words_go_to_g92() {
+    let out = run_ngc("G21\nG1 X0 F1\nG92 X5\nG92.1\nM2\n");
+    assert_eq!(codes(&out), vec!["F012"]);
+    assert_eq!(ends(&out), vec![[0.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn tv_m10_motion_is_modal() {
+    let out = run_ngc("G21\nG0 X1\nY2\nM2\n");
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0], [1.0, 2.0, 0.0]]);
+    assert!(out.motions.iter().all(is_rapid));
+}
+
+#[test]
+fn tv_m11_bare_g0_is_accepted() {
+    // rs274 (LinuxCNC 2.9) emits a zero-length STRAIGHT_TRAVERSE(0, 0, 0) here.
+    let out = run_ngc("G21\nG0\nM2\n");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(ends(&out), vec![[0.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn tv_e2_dwell_before_motion() {
+    let out = run_ngc("G21\nG4 P10 G1 X1 F10\nM2\n");
+    let dwell = out
+        .events
+        .iter()
+        .find(|e| matches!(e.kind, runtime::EventKind::Dwell(_)))
+        .expect("dwell");
+    assert_eq!(dwell.kind, runtime::EventKind::Dwell(10.0));
+    assert_eq!(dwell.motion_index, 0, "before the move");
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0]]);
+}
+
+#[test]
+fn tv_e3_units_change_before_motion() {
+    let out = run_ngc("G21\nG20 G0 X1\nM2\n");
+    assert_eq!(ends(&out), vec![[25.4, 0.0, 0.0]]);
+}
+
+#[test]
+fn tv_e5_motion_then_program_end() {
+    let out = run_ngc("G21\nM2 G1 X5 F10\n");
+    assert_eq!(ends(&out), vec![[5.0, 0.0, 0.0]]);
+    let end = out
+        .events
+        .iter()
+        .find(|e| e.kind == runtime::EventKind::ProgramEnd)
+        .expect("program end");
+    assert_eq!(end.motion_index, 1, "after the move");
+}
+
+#[test]
+fn tv_f2_inch_feed() {
+    let out = run_ngc("G20 G94 F10 G1 X1\nM2\n");
+    let m = &out.motions[0];
+    assert!(close(length(m) / m.feed * 60.0, 6.0, 1e-12));
+}
+
+#[test]
+fn tv_f4_g94_resets_feed_linuxcnc() {
+    let out = run_ngc("G21\nG94 F100\nG94\nG1 X1\nM2\n");
+    assert_eq!(codes(&out), vec!["F001"]);
+    assert!(out.motions.is_empty());
+}

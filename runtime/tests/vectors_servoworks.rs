@@ -474,3 +474,191 @@ fn assert_pt_xyz(got: [f64; 3], want: [f64; 3]) {
         assert!(close(got[i], want[i], 1e-9), "got {got:?}, want {want:?}");
     }
 }
+
+#[test]
+fn tv06_percent_after_column_one_is_ignored() {
+    let out = run_sw(
+        "% This is a line of block delete code\nG01 X5 % Y7 F100\nM30\n",
+        "",
+    );
+    assert_eq!(ends(&out), vec![[5.0, 7.0, 0.0]]);
+    assert!(is_feed(&out.motions[0]));
+}
+
+#[test]
+fn tv07_comment_is_ignored() {
+    let out = run_sw(
+        "N01 G00 X3 Z2\nN02 G00 X0 Z0 (This is a comment)\nM30\n",
+        "",
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(ends(&out), vec![[3.0, 0.0, 2.0], [0.0, 0.0, 0.0]]);
+    assert!(is_rapid(&out.motions[1]));
+}
+
+#[test]
+fn tv09_lower_case_word_is_not_executed() {
+    let out = run_sw("G01 x10. Y5. F100\nM30\n", "");
+    assert_eq!(ends(&out), vec![[0.0, 5.0, 0.0]]);
+}
+
+#[test]
+fn tv12_g3_is_g03() {
+    let out = run_sw("X10 Y10\nG17 G3 Y30 I5 J10 F100\nM30\n", "");
+    let MotionKind::Arc { normal, .. } = out.motions[1].kind else {
+        panic!("not an arc")
+    };
+    assert_eq!(normal[2], 1.0, "counter-clockwise");
+    assert_pt(out.motions[1].end, &[10.0, 30.0], 1e-12);
+}
+
+#[test]
+fn tv14_m98_by_name_with_repeats_nesting_and_m99_in_main() {
+    let out = run_with(
+        Dialect::Servoworks,
+        "M98 PTest_1 R3\nM30\n",
+        "",
+        &[("Test_1", "OTest_1\nG91 G00 X1.\nM99\n")],
+        None,
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(
+        ends(&out),
+        vec![[1.0, 0.0, 0.0], [2.0, 0.0, 0.0], [3.0, 0.0, 0.0]]
+    );
+    assert_eq!(out.files, vec!["Test_1.dat".to_string()]);
+    // Nine nested calls (S1 calls S2 … S9) exceed the 8 levels: SW023.
+    let subs: Vec<(String, String)> = (1..=9)
+        .map(|k| {
+            let body = if k < 9 {
+                format!("OS{k}\nM98 PS{}\nM99\n", k + 1)
+            } else {
+                "OS9\nG00 X1.\nM99\n".to_string()
+            };
+            (format!("S{k}"), body)
+        })
+        .collect();
+    let files: Vec<(&str, &str)> = subs.iter().map(|(n, b)| (n.as_str(), b.as_str())).collect();
+    let deep = run_with(Dialect::Servoworks, "M98 PS1\nM30\n", "", &files, None);
+    assert_eq!(codes(&deep), vec!["F003"]);
+    assert!(deep.motions.is_empty());
+    let eight = run_with(Dialect::Servoworks, "M98 PS2\nM30\n", "", &files, None);
+    assert!(eight.diagnostics.is_empty(), "{:?}", eight.diagnostics);
+    assert_eq!(ends(&eight), vec![[1.0, 0.0, 0.0]]);
+    assert_eq!(codes(&run_sw("G00 X1.\nM99\n", "")), vec!["X003"]);
+}
+
+#[test]
+fn tv15_g65_macro_in_the_same_file_runs_once() {
+    let prog = "G65 P100 Z20.0 R2.5 F500\nM30\nO100\nG91 G00 X1. Z#26\nM99\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 20.0]]);
+    // The macro only in another file: SW028.
+    let missing = run_with(
+        Dialect::Servoworks,
+        "G65 P200\nM30\n",
+        "",
+        &[("200", "G00 X1.\nM99\n")],
+        None,
+    );
+    assert_eq!(codes(&missing), vec!["F017"]);
+}
+
+#[test]
+fn tv21_k_word_in_g17_arc_sw033() {
+    let out = run_sw("G17 G02 X10. Y0 K5. F10\nM30\n", "");
+    // K is refused (SW033), which leaves the arc with no centre words (A005).
+    assert_eq!(codes(&out), vec!["A008", "A005"], "{:?}", out.diagnostics);
+}
+
+#[test]
+fn tv43_g311_feed_is_along_the_linear_axes() {
+    let out = run_sw("G311\nG91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n", "");
+    let m = &out.motions[0];
+    assert_pt(m.end, &[30.0, 40.0, 0.0, 50.0], 1e-12);
+    // 50 mm of XY at 3000 mm/min: 1.0000 s; axis speeds X 1800, Y 2400, A 3000.
+    let secs = length(m) / m.feed * 60.0;
+    assert!(close(secs, 1.0, 1e-12), "{secs}");
+    assert!(close(m.feed * 30.0 / length(m), 1800.0, 1e-9));
+    assert!(close(m.feed * 40.0 / length(m), 2400.0, 1e-9));
+    assert!(close(m.feed * 50.0 / length(m), 3000.0, 1e-9));
+}
+
+#[test]
+fn tv54_g31_without_skip_signal_reaches_the_end() {
+    let out = run_sw("N10 G91 G31 X20.0 Z10.0 F100;\nN11 Z10.0;\nM30\n", "");
+    assert_eq!(ends(&out), vec![[20.0, 0.0, 10.0], [20.0, 0.0, 20.0]]);
+}
+
+#[test]
+fn tv62_g87_needs_g98_and_r_below_z() {
+    let head = "G90 G0 Z50\nM3 S100\n";
+    let g99 = run_sw(
+        &format!("{head}G99 G87 X200 Y200 Z-100 R-20 Q4 P100 F200\nG80\nM30\n"),
+        "",
+    );
+    let sev: Vec<(&str, &str)> = g99
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.severity.as_str()))
+        .collect();
+    assert_eq!(sev, vec![("C006", "error"), ("C006", "warning")]);
+    let manual = run_sw(
+        &format!("{head}G90 G87 X200 Y200 Z-100 R-20 Q4 P100 F200\nG80\nM30\n"),
+        "",
+    );
+    let sev: Vec<(&str, &str)> = manual
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.severity.as_str()))
+        .collect();
+    assert_eq!(sev, vec![("C006", "warning")]);
+}
+
+#[test]
+fn tv63_cycle_blocks_that_make_no_hole() {
+    let head = "G90 G0 Z50\nM3 S100\n";
+    // After G80, `G81 F100` has no position: no hole (SW117), and no missing-level error.
+    let bare = run_sw(
+        &format!("{head}G81 X10. Y10. Z-5. R1. F100\nG80\nG81 F100\nG80\nM30\n"),
+        "",
+    );
+    assert_eq!(codes(&bare), vec!["C006"]);
+    assert_eq!(bare.motions.iter().filter(|m| is_feed(m)).count(), 1);
+    // G80 cleared R and Z: SW126.
+    let cleared = run_sw(
+        &format!("{head}G81 X10. Y10. Z-5. R1. F100\nG80\nG81 X10. Y10.\nM30\n"),
+        "",
+    );
+    assert_eq!(codes(&cleared), vec!["C001"]);
+}
+
+#[test]
+fn tv64_negative_q_keeps_the_modal_q() {
+    let head = "G90 G0 Z50\nM3 S100\n";
+    let out = run_sw(
+        &format!("{head}G99 G73 X1 Y1 Z-25. R0. Q10 F100\nG73 X2 Y2 Q-5\nG80\nM30\n"),
+        "",
+    );
+    // Each hole pecks 10, 10, 5 mm: three feeds ending at −10, −20, −25.
+    let bottoms: Vec<f64> = out
+        .motions
+        .iter()
+        .filter(|m| is_feed(m) && m.end[0] == 2.0)
+        .map(|m| m.end[2])
+        .collect();
+    assert_eq!(bottoms.last(), Some(&-25.0));
+    assert_eq!(bottoms.len(), 3, "{bottoms:?}");
+}
+
+/// SW116: a group-01 code in a canned-cycle block means the block is not executed.
+#[test]
+#[ignore = "the interpreter runs the block as G01 (FANUC's FAN022 reading); ServoWorks skips it"]
+fn tv63_group01_code_in_cycle_block_is_not_executed() {
+    let g01 = run_sw(
+        "G90 G0 Z50\nM3 S100\nG81 G01 X10. Y10. Z-5. R1. F100\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(ends(&g01), vec![[0.0, 0.0, 50.0]]);
+}

@@ -1179,6 +1179,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                             }
                         },
                         b'M' => {
+                            // LinuxCNC reads M as an integer within 0.0001 of a whole
+                            // number (read_integer_value), so `M3.00005` is M3.
+                            let val = if self.ngc() && (val - val.round()).abs() < 1e-4 {
+                                val.round()
+                            } else {
+                                val
+                            };
                             if val < 0.0 || val.fract().abs() > 1e-6 {
                                 return Err(self.err(
                                     codes::UNKNOWN_CODE,
@@ -1819,7 +1826,13 @@ impl<'a, 'i> Interp<'a, 'i> {
     ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
         self.block_exact = !ngc && w.has_g(90);
-        // Comments and messages.
+        // Comments and messages. LinuxCNC keeps only the last comment of a line
+        // (rs274ngc.md TV-L6: `(MSG,first) (second)` shows no message).
+        let comments = if ngc && comments.len() > 1 {
+            &comments[comments.len() - 1..]
+        } else {
+            comments
+        };
         for (k, s) in comments {
             self.exec_comment(p, *k, *s)?;
         }
@@ -3114,6 +3127,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 810..=890
             ) || (self.ngc() && matches!(g, 50..=53))
             {
+                // LinuxCNC drops a G80 written with another group-1 code (NGC113).
+                if self.ngc() && motion.is_some() && *g == 800 {
+                    continue;
+                }
                 motion = Some(*g);
             }
         }
@@ -4476,6 +4493,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 "cannot use canned cycles with cutter compensation on",
             ));
         }
+        // FANUC/ServoWorks: a cycle block without a position or R makes no hole
+        // (SW117, reported by the hygiene check), so missing R/Z levels are not
+        // an error yet (servoworks.md TV-63).
+        if !ngc && !w.any_axis() && !w.has(b'R') {
+            return Ok(());
+        }
         let mut cyc = self.st.cycle.clone();
         if let Some(r) = w.get(b'R') {
             cyc.r = Some(self.lin(r));
@@ -4517,7 +4540,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
                 self.diag(codes::CYCLE_Q, Severity::Warning, w.sp(b'Q'), msg);
             }
-            cyc.q = Some(q.abs());
+            // ServoWorks ignores a negative G73/G83 Q and keeps the modal one
+            // (SW122; servoworks.md TV-64 recommends it).
+            let ignored = self.dialect == Dialect::Servoworks
+                && matches!(mode, 730 | 830)
+                && q <= 0.0
+                && cyc.q.is_some();
+            if !ignored {
+                cyc.q = Some(q.abs());
+            }
         }
         for (c, slot) in [(b'I', 0), (b'J', 1), (b'K', 2)] {
             if let Some(v) = w.get(c) {
