@@ -270,7 +270,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// ServoWorks: warning. FANUC: info. RS274/NGC is case-insensitive.
+    /// ServoWorks and FANUC: warning. RS274/NGC is case-insensitive.
     ///
     /// Implements: SW004, FAN015
     pub static LOWERCASE = {

@@ -34,7 +34,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// All, warning. FANUC blocks whose sequence number is a `GOTO` target are reachable.
+    /// ServoWorks and FANUC: warning; RS274/NGC: info (LinuxCNC never reads past M2, harmlessly). FANUC blocks whose sequence number is a `GOTO` target are reachable.
     ///
     /// Implements: SW018, NGC026, FAN013
     pub static UNREACHABLE_AFTER_END = {
@@ -84,7 +84,7 @@ impl Rule for UnreachableAfterEnd {
                         end = e;
                     }
                     if let Some((span, n)) = run.take() {
-                        out.push(unreachable(span, n, end));
+                        out.push(unreachable(span, n, end).with_severity_info());
                     }
                     continue;
                 }
@@ -96,7 +96,7 @@ impl Rule for UnreachableAfterEnd {
                 }
             }
             if let Some((span, n)) = run {
-                out.push(unreachable(span, n, end));
+                out.push(unreachable(span, n, end).with_severity_info());
             }
             return;
         }
@@ -176,6 +176,18 @@ impl Rule for UnreachableAfterEnd {
         if let Some(end) = ended {
             flush(&mut run, end, out);
         }
+    }
+}
+
+/// Spec NGC026 is info: LinuxCNC never reads past M2, so nothing there can go wrong.
+trait NgcInfo {
+    fn with_severity_info(self) -> Self;
+}
+
+impl NgcInfo for Diagnostic {
+    fn with_severity_info(mut self) -> Self {
+        self.severity = crate::Severity::Info;
+        self
     }
 }
 

@@ -1192,9 +1192,10 @@ impl<'p> Cx<'p> {
             return;
         }
         if lower && self.dialect == Dialect::Fanuc {
+            // Spec FAN015 (warning): a 30i reads lower case only with a setting.
             self.diag(
                 codes::LOWERCASE,
-                Severity::Info,
+                Severity::Warning,
                 Span::new(start as u32, start as u32 + 1),
                 "lower-case address letter; FANUC programs are upper case (accepted here as upper case)",
             );
