@@ -76,6 +76,11 @@ impl Client {
         }
     }
 
+    /// The server's process id (the soak test reads its memory use).
+    pub fn pid(&self) -> u32 {
+        self.child.id()
+    }
+
     pub fn send_raw(&mut self, body: &[u8]) {
         write!(self.stdin, "Content-Length: {}\r\n\r\n", body.len()).unwrap();
         self.stdin.write_all(body).unwrap();
