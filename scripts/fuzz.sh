@@ -62,7 +62,16 @@ for t in "${targets[@]}"; do
     # -rss_limit_mb and -timeout turn memory blow-ups and hangs into failures;
     # -max_len 1024 keeps inputs a few blocks long, long-line cases come from the
     # robustness test.
-    if cargo "${toolchain[@]}" fuzz run -s "${FUZZ_SANITIZER:-none}" "${trace[@]}" "$t" "fuzz/corpus/$t" -- \
+    # FUZZ_NO_BUILD=1 runs the binary already built in fuzz/target (a
+    # coverage-instrumented rebuild of lsp_messages takes over 20 minutes on
+    # the loaded machine, and `cargo fuzz run` rebuilds after any source edit).
+    if [ "${FUZZ_NO_BUILD:-0}" = 1 ]; then
+        mkdir -p "fuzz/artifacts/$t"
+        runner=("fuzz/target/x86_64-unknown-linux-gnu/release/$t" -artifact_prefix="fuzz/artifacts/$t/" "fuzz/corpus/$t")
+    else
+        runner=(cargo "${toolchain[@]}" fuzz run -s "${FUZZ_SANITIZER:-none}" "${trace[@]}" "$t" "fuzz/corpus/$t" --)
+    fi
+    if "${runner[@]}" \
         -runs="$runs" -max_len="${FUZZ_MAX_LEN:-1024}" -timeout="${FUZZ_TIMEOUT:-10}" -rss_limit_mb=2048 \
         -dict=fuzz/gcode.dict -print_final_stats=1 >"$log" 2>&1; then
         execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo '?')

@@ -13,7 +13,7 @@ mod harness;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use harness::Client;
 use serde_json::{json, Value};
@@ -135,10 +135,38 @@ fn edit(c: &mut Client, rng: &mut Rng, doc: &mut Doc) {
 /// severity (LSP numbering).
 type Key = (String, u64, u64, u64);
 
-fn published(c: &mut Client, doc: &Doc) -> Vec<Key> {
-    let p = c.wait_for("textDocument/publishDiagnostics", |p| {
-        p["uri"] == doc.uri.as_str() && p["version"] == doc.version
-    });
+/// User + system CPU time of a process in clock ticks, from /proc.
+fn cpu_ticks(pid: u32) -> Option<u64> {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).ok()?;
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    Some(f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?)
+}
+
+fn published(c: &mut Client, doc: &Doc, done: usize) -> Vec<Key> {
+    let cpu_before = cpu_ticks(c.pid());
+    let p = c
+        .wait_within(
+            "textDocument/publishDiagnostics",
+            &|p| p["uri"] == doc.uri.as_str() && p["version"] == doc.version,
+            Duration::from_secs(60),
+        )
+        .unwrap_or_else(|| {
+            let last = c.pending.iter().rev().find(|m| {
+                m["method"] == "textDocument/publishDiagnostics" && m["params"]["uri"] == doc.uri.as_str()
+            });
+            // Whether the server was busy (a slow or endless analysis) or idle
+            // (a lost publish) while we waited tells the two failures apart.
+            panic!(
+                "after {done} edits: no diagnostics for {} v{} within 60 s; last publish for it: {}; \
+                 server CPU ticks during the wait: {:?}; text:\n{}",
+                doc.uri,
+                doc.version,
+                last.map_or("none".to_string(), |m| m["params"]["version"].to_string()),
+                cpu_ticks(c.pid()).zip(cpu_before).map(|(a, b)| a - b),
+                doc.text
+            )
+        });
     let mut keys: Vec<Key> = p["diagnostics"]
         .as_array()
         .expect("diagnostics array")
@@ -256,7 +284,7 @@ fn soak(edits: usize, batch: usize, seed: u64) {
             done += 1;
         }
         for d in &docs {
-            let got = published(&mut c, d);
+            let got = published(&mut c, d, done);
             let want = checked(d);
             assert_eq!(
                 got, want,
@@ -267,6 +295,15 @@ fn soak(edits: usize, batch: usize, seed: u64) {
         }
         if let Some(kb) = rss_kb(c.pid()) {
             rss.push(kb);
+        }
+        // The long run reports progress so a slow machine is told apart from
+        // a hang.
+        if rss.len() % 50 == 0 {
+            eprintln!(
+                "soak: {done} edits, {:.0} s, server RSS {:?} kB",
+                start.elapsed().as_secs_f64(),
+                rss.last()
+            );
         }
     }
     eprintln!(

@@ -66,7 +66,7 @@ pub struct RunArgs {
     /// executions of every block of the file, at least a million).
     #[arg(long)]
     pub step_budget: Option<u64>,
-    /// Largest program to read, in MB (default 256); larger files are refused
+    /// Largest program to read, in MB (default 128); larger files are refused
     /// with an error instead of exhausting memory.
     #[arg(long)]
     pub max_file_size: Option<u64>,

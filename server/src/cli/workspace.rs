@@ -12,10 +12,10 @@ pub const EXTENSIONS: &[&str] = &[
 ];
 
 /// Default `--max-file-size` in MB. The whole program is held in memory with
-/// its syntax tree and interpreter output: measured about 27 bytes of memory
-/// per byte of program for `check` (BENCHMARKS.md), so 256 MB keeps a
-/// single file under ~7 GB instead of letting a multi-GB file exhaust memory.
-pub const DEFAULT_MAX_FILE_MB: u64 = 256;
+/// its syntax tree and interpreter output: `check` of a 100 MB program peaked
+/// at 5.8 GB RSS (about 56 bytes per byte, fuzz/RESULTS.md), so 128 MB keeps
+/// one file near 7 GB instead of letting a multi-GB file exhaust memory.
+pub const DEFAULT_MAX_FILE_MB: u64 = 128;
 
 /// Reads a program, refusing files above `max_mb` megabytes: by their size
 /// before reading, and by reading at most one byte more than the limit, so a
