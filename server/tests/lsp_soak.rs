@@ -153,18 +153,24 @@ fn published(c: &mut Client, doc: &Doc, done: usize) -> Vec<Key> {
         )
         .unwrap_or_else(|| {
             let last = c.pending.iter().rev().find(|m| {
-                m["method"] == "textDocument/publishDiagnostics" && m["params"]["uri"] == doc.uri.as_str()
+                m["method"] == "textDocument/publishDiagnostics"
+                    && m["params"]["uri"] == doc.uri.as_str()
             });
+            let last = last.map_or("none".to_string(), |m| m["params"]["version"].to_string());
             // Whether the server was busy (a slow or endless analysis) or idle
-            // (a lost publish) while we waited tells the two failures apart.
+            // (a lost publish) while we waited, and whether it still answers a
+            // request (not a deadlock), tell the failures apart.
+            let cpu = cpu_ticks(c.pid()).zip(cpu_before).map(|(a, b)| a - b);
+            let id = c.send_request(
+                "textDocument/documentSymbol",
+                json!({"textDocument": {"uri": doc.uri}}),
+            );
+            let answer: String = c.response(id).to_string().chars().take(200).collect();
             panic!(
-                "after {done} edits: no diagnostics for {} v{} within 60 s; last publish for it: {}; \
-                 server CPU ticks during the wait: {:?}; text:\n{}",
-                doc.uri,
-                doc.version,
-                last.map_or("none".to_string(), |m| m["params"]["version"].to_string()),
-                cpu_ticks(c.pid()).zip(cpu_before).map(|(a, b)| a - b),
-                doc.text
+                "after {done} edits: no diagnostics for {} v{} within 60 s; last publish for it: \
+                 {last}; server CPU ticks during the wait: {cpu:?}; documentSymbol answered: \
+                 {answer}; text:\n{}",
+                doc.uri, doc.version, doc.text
             )
         });
     let mut keys: Vec<Key> = p["diagnostics"]
