@@ -726,3 +726,36 @@ fn numeric_limits_print_readable_cycle_times() {
     assert_eq!(codes, vec![("A001", 3)]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Every crash fixture through the real `check` and `run` as it is (the
+/// mutation test only mutates them): exit 0, 1 or 2, never a panic's 101.
+/// `interp-g54.1-huge-p.fnc` panicked with an add overflow in `run`.
+#[test]
+fn crash_fixtures_check_and_run_without_panicking() {
+    let dir = repo_root().join("tests/robustness/crashes");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).expect("crashes dir").flatten() {
+        let f = e.path().to_string_lossy().into_owned();
+        for args in [
+            vec![
+                "check",
+                f.as_str(),
+                "--format",
+                "json",
+                "--step-budget",
+                STEP_BUDGET,
+            ],
+            vec!["run", f.as_str(), "--step-budget", STEP_BUDGET],
+        ] {
+            let o = run(&args, &dir);
+            assert!(
+                matches!(o.code, Some(0..=2)),
+                "{args:?}: exit {:?}: {}",
+                o.code,
+                String::from_utf8_lossy(&o.stderr)
+            );
+        }
+        n += 1;
+    }
+    assert!(n >= 3, "only {n} crash fixtures");
+}
