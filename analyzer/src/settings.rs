@@ -287,7 +287,8 @@ pub fn sniff_dialect(path_ext: Option<&str>, text: &[u8]) -> Option<Dialect> {
     }
     match path_ext.map(|e| e.to_ascii_lowercase()).as_deref() {
         Some("ngc") => return Some(Dialect::Rs274ngc),
-        Some("dat") => return Some(Dialect::Servoworks),
+        Some("dat" | "sw") => return Some(Dialect::Servoworks),
+        Some("fnc") => return Some(Dialect::Fanuc),
         _ => {}
     }
     let head = &text[..text.len().min(64 * 1024)];
@@ -315,6 +316,24 @@ pub fn fail_level(config: &Config) -> Severity {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The CLI and the language server both sniff through this function, so
+    /// a file's dialect cannot depend on the host (the LSP soak test found a
+    /// `.fnc` file checked as FANUC by `check` and as RS274/NGC by the server).
+    #[test]
+    fn extensions_pick_the_dialect_after_the_directive() {
+        assert_eq!(sniff_dialect(Some("fnc"), b"G0 X1\n"), Some(Dialect::Fanuc));
+        assert_eq!(sniff_dialect(Some("FNC"), b"G0 X1\n"), Some(Dialect::Fanuc));
+        assert_eq!(
+            sniff_dialect(Some("sw"), b"G0 X1\n"),
+            Some(Dialect::Servoworks)
+        );
+        assert_eq!(sniff_dialect(Some("nc"), b"G0 X1\n"), None);
+        assert_eq!(
+            sniff_dialect(Some("fnc"), b"(partscope: dialect=rs274ngc)\nG0 X1\n"),
+            Some(Dialect::Rs274ngc)
+        );
+    }
 
     #[test]
     fn directives_are_parsed() {

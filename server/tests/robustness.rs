@@ -5,7 +5,8 @@
 //! truncations, duplicated lines, inserted brackets and `#`, huge numbers,
 //! endless macro loops, runaway recursion, binary junk and very long lines.
 //! Each mutant goes through `partscope check --format json` (and
-//! `partscope run` when the binary has that subcommand). The contract: the
+//! `partscope run`, both with `--dialect` set: mostly the file's own dialect, a
+//! quarter of the time another one of the three). The contract: the
 //! process exits with 0, 1 or 2 (never a signal or a panic's 101), stdout of
 //! `check` is a JSON array of located diagnostics, and no run takes more than
 //! ten seconds (a guard against hangs, not a benchmark).
@@ -463,7 +464,13 @@ fn mutated_programs_never_crash_or_hang() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("robustness");
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).expect("temp dir");
+    // Every mutant goes through `run` too; a build without the subcommand
+    // must fail here rather than silently test only `check`.
     let with_run = has_run_subcommand();
+    assert!(
+        with_run,
+        "`partscope run` is missing from `partscope --help`"
+    );
 
     // Build the whole job list first so the order and content are fixed.
     let mut jobs: Vec<(String, Dialect, &'static str, Vec<u8>)> = Vec::new();
@@ -605,4 +612,150 @@ fn crash_fixtures_stay_fixed() {
             }
         }
     }
+}
+
+/// Files above `--max-file-size` are refused before they are read: `check`
+/// reports one located L000 error and exits 2, `run` exits 2 with a message,
+/// instead of holding the program, its tree and its run in memory (about 27
+/// bytes per byte of program: a multi-GB file would exhaust memory).
+#[test]
+fn files_above_the_size_limit_are_refused_with_a_located_error() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("size-limit");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let file = dir.join("big.ngc");
+    // 1.5 MB of valid blocks and a program end: above a 1 MB limit.
+    let block = "G1 X1.000 Y2.000 F100\n";
+    let text = block.repeat(1536 * 1024 / block.len() + 1) + "M2\n";
+    std::fs::write(&file, &text).expect("write program");
+    let f = file.to_string_lossy().into_owned();
+
+    let o = run(
+        &["check", &f, "--format", "json", "--max-file-size", "1"],
+        &dir,
+    );
+    assert_eq!(o.code, Some(2), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let arr = v.as_array().expect("array");
+    assert_eq!(arr.len(), 1, "{v}");
+    assert_eq!(arr[0]["code"], "L000");
+    assert_eq!(arr[0]["line"], 1);
+    assert_eq!(arr[0]["column"], 1);
+    assert_eq!(
+        arr[0]["message"],
+        "cannot read file: too large to analyse: 2 MB, above the limit of 1 MB \
+         (raise it with --max-file-size, or split the program)"
+    );
+
+    let o = run(&["run", &f, "--max-file-size", "1"], &dir);
+    assert_eq!(o.code, Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("too large to analyse: 2 MB"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+
+    // Under the limit the same file is checked normally (exit 0, no diagnostics).
+    let o = run(
+        &[
+            "check",
+            &f,
+            "--format",
+            "json",
+            "--max-file-size",
+            "2",
+            "--no-run",
+        ],
+        &dir,
+    );
+    assert_eq!(o.code, Some(0), "{}", String::from_utf8_lossy(&o.stdout));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Numeric limits through `partscope run`: a 1e300 s dwell and a move to
+/// ±1e308 (whose length overflows to infinity) print readable cycle times,
+/// and a full circle of radius 0 is the located arc error A001.
+#[test]
+fn numeric_limits_print_readable_cycle_times() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("numeric-limits");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let cases = [
+        (
+            "dwell.ngc",
+            "G21 G17 G90 G94\nG4 P[10 ** 300]\nM2\n",
+            Some(0),
+            "  cycle time    2.778e296 h  (1.000e300 s)",
+        ),
+        (
+            "far.ngc",
+            "G21 G17 G90 G94\n#4 = [10 ** 308]\nG1 X#4 Y[-#4] F100\nM2\n",
+            Some(0),
+            "  cycle time            inf  (inf s)",
+        ),
+    ];
+    for (name, text, code, line) in cases {
+        let file = dir.join(name);
+        std::fs::write(&file, text).expect("write program");
+        let o = run(&["run", &file.to_string_lossy()], &dir);
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.code, code, "{name}: {out}");
+        assert_eq!(out.lines().nth(1), Some(line), "{name}: {out}");
+    }
+    let file = dir.join("zero_arc.ngc");
+    std::fs::write(
+        &file,
+        "G21 G17 G90 G94\nG1 X0 Y0 F100\nG2 X0 Y0 I0 J0\nM2\n",
+    )
+    .expect("write");
+    let o = run(
+        &["check", &file.to_string_lossy(), "--format", "json"],
+        &dir,
+    );
+    assert_eq!(o.code, Some(1));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    let codes: Vec<(&str, u64)> = v
+        .as_array()
+        .expect("array")
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap_or(""),
+                d["line"].as_u64().unwrap_or(0),
+            )
+        })
+        .collect();
+    assert_eq!(codes, vec![("A001", 3)]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Every crash fixture through the real `check` and `run` as it is (the
+/// mutation test only mutates them): exit 0, 1 or 2, never a panic's 101.
+/// `interp-g54.1-huge-p.fnc` panicked with an add overflow in `run`.
+#[test]
+fn crash_fixtures_check_and_run_without_panicking() {
+    let dir = repo_root().join("tests/robustness/crashes");
+    let mut n = 0;
+    for e in std::fs::read_dir(&dir).expect("crashes dir").flatten() {
+        let f = e.path().to_string_lossy().into_owned();
+        for args in [
+            vec![
+                "check",
+                f.as_str(),
+                "--format",
+                "json",
+                "--step-budget",
+                STEP_BUDGET,
+            ],
+            vec!["run", f.as_str(), "--step-budget", STEP_BUDGET],
+        ] {
+            let o = run(&args, &dir);
+            assert!(
+                matches!(o.code, Some(0..=2)),
+                "{args:?}: exit {:?}: {}",
+                o.code,
+                String::from_utf8_lossy(&o.stderr)
+            );
+        }
+        n += 1;
+    }
+    assert!(n >= 3, "only {n} crash fixtures");
 }

@@ -21,7 +21,7 @@ pub struct Client {
     rx: Receiver<Value>,
     next_id: i64,
     /// Notifications received while waiting for something else.
-    pending: Vec<Value>,
+    pub pending: Vec<Value>,
     /// The answer to `workspace/configuration` (one value per item).
     pub configuration: Value,
 }
@@ -74,6 +74,11 @@ impl Client {
             pending: Vec::new(),
             configuration: json!([null]),
         }
+    }
+
+    /// The server's process id (the soak test reads its memory use).
+    pub fn pid(&self) -> u32 {
+        self.child.id()
     }
 
     pub fn send_raw(&mut self, body: &[u8]) {
@@ -167,13 +172,30 @@ impl Client {
         {
             return self.pending.remove(i)["params"].clone();
         }
-        let deadline = Instant::now() + TIMEOUT;
+        self.wait_within(method, &pred, TIMEOUT)
+            .unwrap_or_else(|| panic!("no {method} notification"))
+    }
+
+    /// Like [`Client::wait_for`], but `None` after `timeout` (for a caller
+    /// that reports its own context, such as the soak test).
+    pub fn wait_within(
+        &mut self,
+        method: &str,
+        pred: &dyn Fn(&Value) -> bool,
+        timeout: Duration,
+    ) -> Option<Value> {
+        if let Some(i) = self
+            .pending
+            .iter()
+            .position(|m| m["method"] == method && pred(&m["params"]))
+        {
+            return Some(self.pending.remove(i)["params"].clone());
+        }
+        let deadline = Instant::now() + timeout;
         loop {
-            let msg = self
-                .recv(deadline)
-                .unwrap_or_else(|| panic!("no {method} notification"));
+            let msg = self.recv(deadline)?;
             if msg["method"] == method && pred(&msg["params"]) {
-                return msg["params"].clone();
+                return Some(msg["params"].clone());
             }
             self.pending.push(msg);
         }

@@ -2416,7 +2416,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if w.has_g(541) {
-            let p = w.get(b'P').unwrap_or(1.0).round().max(1.0) as usize;
+            // FANUC has at most 300 extended work offsets; clamping keeps the
+            // parameter arithmetic (`100 + p`, `20 * (origin - 101)`) from
+            // overflowing on `P1e30` (fuzz: interpret, add overflow).
+            let p = w.get(b'P').unwrap_or(1.0).round().clamp(1.0, 300.0) as usize;
             origin = Some(100 + p);
         }
         let Some(o) = origin else { return Ok(()) };

@@ -71,9 +71,10 @@ fn check_file(
     explicit: Option<&LoadedConfig>,
     cache: &ConfigCache,
 ) -> FileReport {
-    let bytes = match std::fs::read(path) {
+    let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
+    let bytes = match workspace::read_program(path, max_mb) {
         Ok(b) => b,
-        Err(e) => return FileReport::io_error(path.to_path_buf(), e.to_string()),
+        Err(e) => return FileReport::io_error(path.to_path_buf(), e),
     };
     let dir = path
         .parent()

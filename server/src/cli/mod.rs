@@ -75,6 +75,10 @@ pub struct CheckArgs {
     /// (default: ten executions of every block, at least a million).
     #[arg(long)]
     pub step_budget: Option<u64>,
+    /// Largest program to read, in MB (default 128); a larger file gets one
+    /// located error (L000) and exit status 2 instead of exhausting memory.
+    #[arg(long)]
+    pub max_file_size: Option<u64>,
 }
 
 #[derive(Subcommand)]

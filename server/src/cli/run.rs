@@ -66,6 +66,10 @@ pub struct RunArgs {
     /// executions of every block of the file, at least a million).
     #[arg(long)]
     pub step_budget: Option<u64>,
+    /// Largest program to read, in MB (default 128); larger files are refused
+    /// with an error instead of exhausting memory.
+    #[arg(long)]
+    pub max_file_size: Option<u64>,
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -74,7 +78,8 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
-    let bytes = match std::fs::read(&args.file) {
+    let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
+    let bytes = match workspace::read_program(&args.file, max_mb) {
         Ok(b) => b,
         Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
     };
@@ -424,8 +429,27 @@ fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
     })
 }
 
+/// Seconds with three decimals, in scientific notation from 1e9 s on (a
+/// 1e300 s dwell would otherwise print three hundred digits).
+fn seconds(s: f64) -> String {
+    if s.is_finite() && s.abs() >= 1e9 {
+        format!("{s:.3e}")
+    } else {
+        format!("{s:.3}")
+    }
+}
+
 fn hms(s: f64) -> String {
+    // A program that moves to 1e308 or dwells 1e300 s has a cycle time that
+    // overflows to infinity or does not fit an hour count: say so plainly
+    // instead of printing a saturated integer.
+    if s.is_infinite() && s > 0.0 {
+        return "inf".into();
+    }
     let s = s.max(0.0);
+    if s >= 3600.0 * 1e9 {
+        return format!("{:.3e} h", s / 3600.0);
+    }
     let h = (s / 3600.0).floor();
     let m = ((s - h * 3600.0) / 60.0).floor();
     let sec = s - h * 3600.0 - m * 60.0;
@@ -447,9 +471,9 @@ fn human(
     writeln!(w, "{}", file.display())?;
     writeln!(
         w,
-        "  cycle time   {:>12}  ({:.3} s)",
+        "  cycle time   {:>12}  ({} s)",
         hms(t.cycle_time_s),
-        t.cycle_time_s
+        seconds(t.cycle_time_s)
     )?;
     writeln!(w, "  cutting      {:>12}", hms(t.cutting_s))?;
     writeln!(w, "  rapid        {:>12}", hms(t.rapid_s))?;

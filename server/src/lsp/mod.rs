@@ -71,7 +71,19 @@ mod workspace;
 
 use std::process::ExitCode;
 
-use tower_lsp_server::{LspService, Server};
+use tower_lsp_server::{ClientSocket, LspService, Server};
+
+pub use server::Backend;
+
+/// Builds the protocol service `run` serves over stdio. It is public so an
+/// in-process driver (the `lsp_messages` fuzz target, which compiles this
+/// module from its source) exercises the same handlers without a process
+/// and pipes around them.
+pub fn service() -> (LspService<Backend>, ClientSocket) {
+    LspService::build(Backend::new)
+        .custom_method("partscope/dryRun", Backend::dry_run)
+        .finish()
+}
 
 /// Runs the language server on stdin/stdout until the client exits.
 pub fn run() -> ExitCode {
@@ -87,9 +99,7 @@ pub fn run() -> ExitCode {
         }
     };
     rt.block_on(async {
-        let (service, socket) = LspService::build(server::Backend::new)
-            .custom_method("partscope/dryRun", server::Backend::dry_run)
-            .finish();
+        let (service, socket) = service();
         Server::new(stdio::filtered_stdin(), tokio::io::stdout(), socket)
             .serve(service)
             .await;
