@@ -253,6 +253,8 @@ fn predefined(st: &State, name: &str) -> Option<f64> {
     Some(match name {
         "_metric" => f64::from(u8::from(!st.modal.inch)),
         "_imperial" => f64::from(u8::from(st.modal.inch)),
+        "_lathe_diameter_mode" => f64::from(u8::from(st.modal.diameter)),
+        "_lathe_radius_mode" => f64::from(u8::from(!st.modal.diameter)),
         "_absolute" => f64::from(u8::from(!st.modal.incremental)),
         "_incremental" => f64::from(u8::from(st.modal.incremental)),
         "_feed" => st.feed / u,
@@ -304,6 +306,11 @@ struct Interp<'a, 'i> {
     nurbs: Vec<([f64; 6], f64)>,
     /// Memory of the spec-ledger checks (`spec_checks.rs`).
     spec: spec_checks::SpecMem,
+    /// RS274/NGC canon: how far tool-length-offset changes have moved the programmed
+    /// point since the last move.  rs274's standalone canon tracks the last commanded
+    /// point without tool offsets, and a tool change (M6, M61) makes the interpreter
+    /// re-read its position from there, undoing these shifts.
+    tlo_drift: [f64; 6],
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -400,6 +407,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
             spec: Default::default(),
+            tlo_drift: [0.0; 6],
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -756,6 +764,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
                 Err(d) => {
+                    // rs274 never prints the calls cutter compensation still holds back
+                    // when it stops at an error.
+                    let held = self.st.comp_queue.first().map(|q| q.canon);
+                    if let (Some(first), Some(c)) = (held, self.canon.as_mut()) {
+                        c.lines.truncate(first);
+                    }
                     if self.canon.is_some() && self.out.canon_error.is_none() {
                         let line = self.line_text(self.cur.0, self.cur.1);
                         self.out.canon_error =
@@ -1227,7 +1241,36 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
-        self.exec_words(fi, bi, &prog, &w, &comments, block.span)
+        let before = (self.out.motions.len(), self.st.tlo);
+        let flow = self.exec_words(fi, bi, &prog, &w, &comments, block.span)?;
+        self.refresh_after_tool_change(&w, before);
+        Ok(flow)
+    }
+
+    /// rs274 re-reads the current point after a block with a tool change (M6, M61)
+    /// from its canon, which never saw the tool length offsets given since the last
+    /// move (`T4 M6 G43 H4` then a canned cycle starts from the old height).  Only
+    /// the canon output follows this: a real LinuxCNC re-reads the machine position
+    /// with the new offset, which is what the simulation keeps.
+    fn refresh_after_tool_change(&mut self, w: &Words, before: (usize, [f64; 6])) {
+        if !self.ngc() || self.canon.is_none() {
+            return;
+        }
+        if self.out.motions.len() != before.0 {
+            // Offsets apply before the block's move, which ends at the point the
+            // interpreter holds.
+            self.tlo_drift = [0.0; 6];
+        } else {
+            for i in 0..6 {
+                self.tlo_drift[i] += before.1[i] - self.st.tlo[i];
+            }
+        }
+        if w.has_m(60) || w.has_m(610) {
+            for i in 0..6 {
+                self.st.pos[i] -= self.tlo_drift[i];
+            }
+            self.tlo_drift = [0.0; 6];
+        }
     }
 
     /// rs274's checks of a line's G and M codes: unknown codes, two codes of one
@@ -1311,6 +1354,21 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if w.v[i].is_some() && !w.point[i] {
                         w.v[i] = w.v[i].map(|v| v * mu);
                     }
+                }
+            }
+            Dialect::Rs274ngc => {
+                // G7: rs274 halves X words as it reads them (G7/G8 in the block
+                // itself take effect for its own X word).
+                let diameter = if w.has_g(70) {
+                    true
+                } else if w.has_g(80) {
+                    false
+                } else {
+                    self.st.modal.diameter
+                };
+                let i = (b'X' - b'A') as usize;
+                if diameter {
+                    w.v[i] = w.v[i].map(|v| v / 2.0);
                 }
             }
             _ => {}
@@ -1864,6 +1922,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             } else {
                 "USE_LENGTH_UNITS(CANON_UNITS_MM)"
             });
+        }
+        if ngc {
+            for (code, on) in [(70u32, true), (80, false)] {
+                if w.has_g(code) && self.st.modal.diameter != on {
+                    self.st.modal.diameter = on;
+                    self.canon_comment(if on {
+                        "interpreter: Lathe diameter mode changed to diameter"
+                    } else {
+                        "interpreter: Lathe diameter mode changed to radius"
+                    });
+                }
+            }
         }
         self.exec_comp(w)?;
         self.exec_tlo(w)?;
