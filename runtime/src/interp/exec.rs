@@ -137,8 +137,8 @@ struct Vars<'s> {
     st: &'s State,
     locals: Option<&'s HashMap<String, f64>>,
     dialect: Dialect,
-    /// Tool-table offsets (X Y Z) of the tool in the spindle, program units.
-    tool: [f64; 3],
+    /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, program units.
+    tool: [f64; 4],
 }
 
 impl VarSource for Vars<'_> {
@@ -157,6 +157,9 @@ impl VarSource for Vars<'_> {
         }
         if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
             return Ok(Some(self.tool[(n - 5401) as usize]));
+        }
+        if self.dialect == Dialect::Rs274ngc && n == 5410 {
+            return Ok(Some(self.tool[3]));
         }
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
@@ -943,7 +946,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             st: &self.st,
             locals,
             dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
         };
         expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
     }
@@ -961,7 +964,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             st: &self.st,
             locals: None,
             dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
         };
         vars.get_num(n, Span::default())
             .ok()
@@ -1477,8 +1480,35 @@ impl<'a, 'i> Interp<'a, 'i> {
                 )
             })
         };
+        if self.ngc()
+            && ctrl.partner.is_none()
+            && matches!(
+                kw,
+                OKeyword::Endwhile
+                    | OKeyword::Endrepeat
+                    | OKeyword::Endif
+                    | OKeyword::Else
+                    | OKeyword::Elseif
+            )
+        {
+            // rs274 finds no open block of that label when it reaches the closer.
+            return Err(self.err(
+                codes::FLOW,
+                span,
+                format!(
+                    "{}: undefined O-word label: '{}'",
+                    self.cur_line + 1,
+                    self.line_text(fi, bi)
+                ),
+            ));
+        }
         match kw {
             OKeyword::Sub => {
+                if self.ngc() && fi == 0 && ctrl.partner.is_none() {
+                    // rs274 skips the definition looking for its endsub and runs off
+                    // the end of the file.
+                    return Ok(Flow::Goto(fi, p.blocks.len() as u32));
+                }
                 // A definition met in flow is skipped.
                 Ok(Flow::Goto(fi, after(ctrl.partner)?))
             }
@@ -2755,11 +2785,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                             .position(|x| *x == t)
                             .map(|i| i + 1)
                             .unwrap_or(0);
+                        // rs274 reports the entry in the tool table's units, not the program's.
                         let entry = format!(
                             "{} {} {} 0.0000 0.0000 0.0000 0.0000 0.0000 0.0000, 0.0000, 0.0000, 0",
-                            f4(tool.x_offset * f),
-                            f4(tool.y_offset * f),
-                            f4(tool.length * f)
+                            f4(tool.x_offset),
+                            f4(tool.y_offset),
+                            f4(tool.length)
                         );
                         self.canon(format!("SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})"));
                         if t == self.st.tool || self.st.tool == 0 {
@@ -3112,6 +3143,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 22
                     | 32
                     | 330
+                    | 331
                     | 382
                     | 383
                     | 384
@@ -3123,7 +3155,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 810..=890
             ) || (self.ngc() && matches!(g, 50..=53))
             {
-                motion = Some(*g);
+                // rs274 lets any other group-1 code in the block win over G80
+                // (`G0 G40 G49 G80` is a rapid with no axis words).
+                if !(self.ngc() && *g == 800 && motion.is_some()) {
+                    motion = Some(*g);
+                }
             }
         }
         if let Some(m) = motion {
@@ -3213,6 +3249,31 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.out.motions.push(m);
                 self.st.mpos = end;
                 self.st.pos = t;
+            }
+            331 if self.ngc() => {
+                self.st.modal.motion = 331;
+                if self.st.spindle_dir == 0 {
+                    return Err(self.err(codes::INTERP, bspan, "Spindle not turning in G33.1"));
+                }
+                let t = self.target(w);
+                let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+                let u = self.unit();
+                self.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", k / u));
+                self.canon(format!(
+                    "RIGID_TAP({}, {}, {})",
+                    f4(t[0] / u),
+                    f4(t[1] / u),
+                    f4(t[2] / u)
+                ));
+                self.canon("STOP_SPEED_FEED_SYNCH()");
+                // The tap feeds in and reverses out: rs274 leaves the current point
+                // where the block started.
+                let start = self.st.mpos;
+                let end = self.to_machine(t);
+                let m = self.motion_base(MotionKind::Thread, start, end, k);
+                self.out.motions.push(m);
+                let m = self.motion_base(MotionKind::Thread, end, start, k);
+                self.out.motions.push(m);
             }
             382..=385 => {
                 let t = self.target(w);
@@ -4078,7 +4139,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.err(
                 codes::INTERP,
                 span,
-                "Tool radius not less than arc radius with cutter compensation",
+                "Tool radius not less than arc radius with comp",
             )
         };
         if self.st.comp_first {
