@@ -997,6 +997,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.canon("FINISH()");
                     return Ok(Flow::Stop);
                 }
+                if self.ngc()
+                    && fi == 0
+                    && !self.percent_open
+                    && self.seen_content_before(&prog, bi)
+                {
+                    // Only a file that opens with `%` may close with one; elsewhere
+                    // rs274 reads `%` as a bad character.
+                    return Err(self.err(codes::INTERP, block.span, "Bad character '%' used"));
+                }
                 if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
                 {
                     self.saw_end = true;
@@ -1702,6 +1711,22 @@ impl<'a, 'i> Interp<'a, 'i> {
                 None => (f, u32::MAX),
             }
         } else {
+            if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
+                // rs274 reads on to the end of the file looking for the definition
+                // and shows the last line it read.
+                let last = self.files[0]
+                    .prog
+                    .blocks
+                    .iter()
+                    .rev()
+                    .map(|b| self.files[0].prog.str_of(b.span).trim().to_string())
+                    .find(|t| !t.is_empty())
+                    .unwrap_or_default();
+                self.out.canon_error = Some(format!(
+                    "EOF in file:{CANON_FILE_NAME} seeking o-word: o<{key}> from line: {}\n{last}",
+                    self.cur_line + 1
+                ));
+            }
             return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
@@ -4596,15 +4621,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
         }
-        if matches!(mode, 730 | 830) && cyc.q.is_none() {
+        // rs274 checks the cycle's own words only after climbing to R and
+        // switching to exact path; the others stop before any output.
+        let missing_q = matches!(mode, 730 | 830) && cyc.q.is_none();
+        let missing_p = matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none();
+        if missing_q && !ngc {
             return Err(self.err(codes::CYCLE_Q, span, "Q word missing with G73/G83"));
-        }
-        if matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none() {
-            return Err(self.err(
-                codes::CYCLE_MISSING,
-                span,
-                format!("dwell time P word missing with G{}", mode / 10),
-            ));
         }
         // Rigid tapping (FANUC M29) checks.
         if self.dialect == Dialect::Fanuc
@@ -4712,6 +4734,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if ngc && save_path != 610 {
             self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+        }
+        if missing_q {
+            return Err(self.err(
+                codes::CYCLE_Q,
+                span,
+                format!("Q word missing with g{}", mode / 10),
+            ));
+        }
+        if missing_p {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("dwell time P word missing with G{}", mode / 10),
+            ));
         }
         let mut pa = self.st.pos[a];
         let mut pb = self.st.pos[b];
