@@ -314,6 +314,9 @@ struct Interp<'a, 'i> {
     /// point without tool offsets, and a tool change (M6, M61) makes the interpreter
     /// re-read its position from there, undoing these shifts.
     tlo_drift: [f64; 6],
+    /// RS274/NGC: the feed override is switched off (M49, M50 P0); the program end
+    /// switches it back on.
+    feed_override_off: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -411,6 +414,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             nurbs: Vec::new(),
             spec: Default::default(),
             tlo_drift: [0.0; 6],
+            feed_override_off: false,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -2306,6 +2310,35 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.event(EventKind::Coolant { mist, flood });
         }
         if ngc {
+            // Override switches: M48/M49 both overrides, M50-M53 one each, on
+            // unless P is 0.
+            if w.has_m(480) {
+                self.feed_override_off = false;
+                self.canon("ENABLE_FEED_OVERRIDE()");
+                self.canon("ENABLE_SPEED_OVERRIDE(0)");
+            }
+            if w.has_m(490) {
+                self.feed_override_off = true;
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                self.canon("DISABLE_SPEED_OVERRIDE(0)");
+            }
+            let on = w.get(b'P').is_none_or(|p| p != 0.0);
+            if w.has_m(500) {
+                self.feed_override_off = !on;
+            }
+            for (m, what) in [
+                (500u32, "FEED_OVERRIDE()"),
+                (510, "SPEED_OVERRIDE(0)"),
+                (520, "ADAPTIVE_FEED()"),
+                (530, "FEED_HOLD()"),
+            ] {
+                if w.has_m(m) {
+                    let verb = if on { "ENABLE" } else { "DISABLE" };
+                    self.canon(format!("{verb}_{what}"));
+                }
+            }
+        }
+        if ngc {
             for (m, text) in [
                 (620u32, "SET_MOTION_OUTPUT_BIT"),
                 (630, "CLEAR_MOTION_OUTPUT_BIT"),
@@ -2438,6 +2471,25 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(432) {
             self.st.modal.tlo_mode = 432;
+            if self.ngc() {
+                // LinuxCNC G43.2 adds a tool's offset (H) to the one in force.
+                let add;
+                if let Some(h) = w.get(b'H').map(|v| v.round().max(0.0) as u32) {
+                    self.check_tool(h, w.sp(b'H'))?;
+                    let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
+                    let f = self.pfac();
+                    add = [t.x_offset * f, t.y_offset * f, t.length * f];
+                } else {
+                    // LinuxCNC 2.9 looks up tool -1 for G43.2 without H and stops.
+                    return Err(self.err(
+                        codes::UNKNOWN_TOOL,
+                        w.g_span(432),
+                        "Requested tool -1 not found in the tool table",
+                    ));
+                }
+                let cur = self.st.tlo;
+                set(self, cur[2] + add[2], cur[0] + add[0], cur[1] + add[1]);
+            }
         }
         if w.has_g(431) && self.ngc() {
             // Dynamic tool length offset from the block's axis words.
@@ -4404,6 +4456,9 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn exec_stops(&mut self, w: &Words, fi: usize) -> Result<Flow, Diagnostic> {
+        if w.has_m(600) && self.ngc() {
+            self.canon("PALLET_SHUTTLE()");
+        }
         if w.has_m(0) || w.has_m(600) {
             self.canon("PROGRAM_STOP()");
             self.event(EventKind::Stop { optional: false });
@@ -4513,6 +4568,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.feed_mode = 940;
             self.canon("SET_FEED_MODE(0, 0)");
             self.canon("SET_FEED_RATE(0.0000)");
+            if self.feed_override_off && self.ngc() {
+                self.feed_override_off = false;
+                self.canon("ENABLE_FEED_OVERRIDE()");
+            }
             self.st.modal.comp = 400;
             self.canon("STOP_SPINDLE_TURNING(0)");
             self.canon("SET_SPINDLE_MODE(0 0.0000)");
@@ -5021,18 +5080,33 @@ impl<'a, 'i> Interp<'a, 'i> {
                     } else {
                         k
                     };
+                    // The tool passes the bore with the spindle stopped and oriented
+                    // (rs274's direction codes: 2 clockwise, 3 counterclockwise).
+                    let ccw = self.st.spindle_dir < 0;
+                    let orient = format!("ORIENT_SPINDLE(0, 0.0000, {})", if ccw { 3 } else { 2 });
+                    let start = if ccw {
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                    } else {
+                        "START_SPINDLE_CLOCKWISE(0)"
+                    };
                     self.rapid_to(off);
+                    self.canon("STOP_SPINDLE_TURNING(0)");
+                    self.canon(&orient);
                     let mut o2 = off;
                     o2[self.normal_axis()] = bottom;
                     self.rapid_to(o2);
                     self.rapid_to(at(self, bottom));
+                    self.canon(start);
                     self.feed_to(at(self, middle), span)?;
                     self.feed_to(at(self, bottom), span)?;
+                    self.canon("STOP_SPINDLE_TURNING(0)");
+                    self.canon(&orient);
                     self.rapid_to(o2);
                     let mut o3 = o2;
                     o3[self.normal_axis()] = clear;
                     self.rapid_to(o3);
                     self.rapid_to(at(self, clear));
+                    self.canon(start);
                 } else {
                     // Back boring: the R point is the hole bottom. The tool passes the
                     // bore shifted away from the wall (oriented spindle), comes back on
