@@ -710,7 +710,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
     }
 
-    fn canon_comment(&mut self, s: &str) {
+    pub(super) fn canon_comment(&mut self, s: &str) {
         if let Some(c) = self.canon.as_mut() {
             c.comment(s);
         }
@@ -3837,7 +3837,7 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Releases the held-back moves. LinuxCNC queues them (and every canonical
     /// call after them) until now, so they carry this block's N number.
-    fn comp_flush(&mut self) {
+    pub(super) fn comp_flush(&mut self) {
         self.st.comp_endpoint = None;
         let Some(first) = self.st.comp_queue.first().map(|q| q.canon) else {
             return;
@@ -4451,7 +4451,29 @@ impl<'a, 'i> Interp<'a, 'i> {
                 };
                 self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
             }
-            ArcError::ZeroRadius => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+            ArcError::ZeroRadius => match (d, spec) {
+                (Dialect::Rs274ngc, ArcSpec::Center(c)) => {
+                    let u = self.unit();
+                    let (a, b) = match self.st.modal.plane {
+                        180 => ('Z', 'X'),
+                        190 => ('Y', 'Z'),
+                        _ => ('X', 'Y'),
+                    };
+                    let r1 = (s[0] - c[0]).hypot(s[1] - c[1]) / u;
+                    let r2 = (en[0] - c[0]).hypot(en[1] - c[1]) / u;
+                    let msg = format!(
+                        "Zero-radius arc: start=({a}{:.4},{b}{:.4}) center=({a}{:.4},{b}{:.4}) end=({a}{:.4},{b}{:.4}) r1={r1:.4} r2={r2:.4}",
+                        s[0] / u,
+                        s[1] / u,
+                        c[0] / u,
+                        c[1] / u,
+                        en[0] / u,
+                        en[1] / u,
+                    );
+                    self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
+                }
+                _ => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+            },
         }
     }
 
@@ -4639,7 +4661,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 codes::CYCLE_MISSING,
                 span,
                 if ngc {
-                    "R clearance plane unspecified in canned cycle"
+                    "R clearance plane unspecified in cycle"
                 } else {
                     "canned cycle without R (point R level)"
                 },
@@ -4770,7 +4792,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Err(self.err(
                 codes::CYCLE_STATE,
                 span,
-                "R value less than Z value in canned cycle",
+                match self.st.modal.plane {
+                    180 => "R less than y in cycle in xz plane",
+                    190 => "R less than x in cycle in yz plane",
+                    _ => "R less than z in cycle in xy plane",
+                },
             ));
         }
         if repeats == 0 {
