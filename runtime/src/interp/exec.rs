@@ -337,6 +337,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                 *p = Some(0.0);
             }
             params[5220] = Some(1.0);
+            // (DEBUG,) output is on until a program clears #5599.
+            params[5599] = Some(1.0);
         }
         if let Some(v) = input.var_file {
             for (n, val) in parse_var_file(v) {
@@ -1875,8 +1877,22 @@ impl<'a, 'i> Interp<'a, 'i> {
     ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
         self.block_exact = !ngc && w.has_g(90);
-        // Comments and messages.
+        // Comments and messages.  rs274 keeps only the last parenthesised comment
+        // of a line.
+        let skip = if ngc {
+            let paren = |(_, s): &&(CommentKind, Span)| !p.str_of(*s).starts_with(';');
+            comments.iter().filter(paren).count().saturating_sub(1)
+        } else {
+            0
+        };
+        let mut seen = 0;
         for (k, s) in comments {
+            if ngc && !p.str_of(*s).starts_with(';') {
+                seen += 1;
+                if seen <= skip {
+                    continue;
+                }
+            }
             self.exec_comment(p, *k, *s)?;
         }
         self.state_checks(w, bspan)?;
@@ -2123,7 +2139,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if let Some(c) = self.canon.as_mut() {
                         c.raw(m);
                     }
-                } else {
+                } else if !self.ngc() || self.read_param(5599) > 0.0 {
+                    // #5599 = 0 silences (DEBUG,) in LinuxCNC.
                     self.canon(format!("MESSAGE(\"{m}\")"));
                 }
             }
@@ -2141,16 +2158,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         let b = text.as_bytes();
         let mut out = String::new();
         let mut i = 0;
-        // LinuxCNC's `%d`, `%f` (4 decimals), `%.Nf` / `%lf` set the format of the
-        // parameters that follow; the default is 6 decimals.
+        // LinuxCNC's `%d`, `%f` (4 decimals) and `%.Nf` set the format of the
+        // parameters that follow (a bare `%lf` stays as text); the default is 6 decimals.
         let mut decimals = 6usize;
         while i < b.len() {
             if b[i] == b'%' {
                 let rest = &text[i + 1..];
                 let (spec_len, d) = if rest.starts_with('d') {
                     (1, Some(0))
-                } else if rest.starts_with("lf") {
-                    (2, Some(4))
                 } else if rest.starts_with('f') {
                     (1, Some(4))
                 } else if let Some(r) = rest.strip_prefix('.') {
@@ -3152,7 +3167,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.check_feed(span)?;
         if self.st.modal.feed_mode == 930 {
             let len = dist(&self.st.pos, &t);
-            let rate = len * self.st.feed / self.unit();
+            // LinuxCNC gives a zero-length move a nominal rate of 0.1 (its issue 2410).
+            let rate = if len == 0.0 {
+                0.1
+            } else {
+                len * self.st.feed / self.unit()
+            };
             self.canon(format!("SET_FEED_RATE({})", f4(rate)));
         }
         if self.canon.is_some() {
