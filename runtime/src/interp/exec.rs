@@ -2819,7 +2819,40 @@ impl<'a, 'i> Interp<'a, 'i> {
                         self.set_param(5210 + 20 * origin, Some(r));
                     }
                     let cur_machine = self.st.mpos;
+                    let rot = self.read_param((5210 + 20 * origin) as i64);
+                    let rotated_l20 = l == 20
+                        && rot != 0.0
+                        && (axis(self, 0).is_some() || axis(self, 1).is_some());
+                    if rotated_l20 {
+                        // The point is given in the rotated system: both X and Y of the
+                        // origin move (LinuxCNC's convert_setup).
+                        let f = self.pfac();
+                        let abs: Vec<f64> = (0..2)
+                            .map(|i| {
+                                cur_machine[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i]
+                            })
+                            .collect();
+                        let off = [
+                            self.read_param(base as i64) * f,
+                            self.read_param(base as i64 + 1) * f,
+                        ];
+                        let (sn, cs) = rot.to_radians().sin_cos();
+                        let (dx, dy) = (abs[0] - off[0], abs[1] - off[1]);
+                        let cur = [dx * cs + dy * sn, -dx * sn + dy * cs];
+                        let want = [
+                            axis(self, 0).unwrap_or(cur[0]),
+                            axis(self, 1).unwrap_or(cur[1]),
+                        ];
+                        let rw = [want[0] * cs - want[1] * sn, want[0] * sn + want[1] * cs];
+                        // Round-off from the rotation would print as -0.0000.
+                        let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
+                        self.set_param(base, Some(snap((abs[0] - rw[0]) / f)));
+                        self.set_param(base + 1, Some(snap((abs[1] - rw[1]) / f)));
+                    }
                     for i in 0..6 {
+                        if rotated_l20 && i < 2 {
+                            continue;
+                        }
                         let Some(v) = axis(self, i) else { continue };
                         let scale = if i < 3 { self.pfac() } else { 1.0 };
                         let new = if l == 2 {
