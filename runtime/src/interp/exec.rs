@@ -317,6 +317,9 @@ struct Interp<'a, 'i> {
     /// RS274/NGC: the feed override is switched off (M49, M50 P0); the program end
     /// switches it back on.
     feed_override_off: bool,
+    /// The block's inverse-time rate is already out: rs274 sets it once per
+    /// compensated move, from the programmed path, before any corner arc.
+    inv_rate_set: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -417,6 +420,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             spec: Default::default(),
             tlo_drift: [0.0; 6],
             feed_override_off: false,
+            inv_rate_set: false,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -1259,6 +1263,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
+        self.inv_rate_set = false;
         let before = (self.out.motions.len(), self.st.tlo);
         let flow = self.exec_words(fi, bi, &prog, &w, &comments, block.span)?;
         self.refresh_after_tool_change(&w, before);
@@ -3198,7 +3203,7 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn feed_to(&mut self, t: [f64; 6], span: Span) -> Result<(), Diagnostic> {
         self.check_feed(span)?;
-        if self.st.modal.feed_mode == 930 {
+        if self.st.modal.feed_mode == 930 && !std::mem::take(&mut self.inv_rate_set) {
             let len = dist(&self.st.pos, &t);
             // LinuxCNC gives a zero-length move a nominal rate of 0.1 (its issue 2410).
             let rate = if len == 0.0 {
@@ -3712,6 +3717,17 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.feed_to(t, span)?;
             }
             return Ok(());
+        }
+        if self.st.modal.feed_mode == 930 && !rapid {
+            self.check_feed(span)?;
+            let len = dist(&self.st.pos, &t);
+            let rate = if len == 0.0 {
+                0.1
+            } else {
+                len * self.st.feed / self.unit()
+            };
+            self.canon(format!("SET_FEED_RATE({})", f4(rate)));
+            self.inv_rate_set = true;
         }
         use std::f64::consts::{FRAC_PI_2, PI};
         let (a, b) = self.plane_axes();
