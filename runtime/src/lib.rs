@@ -9,5 +9,5 @@ pub mod rules;
 
 pub use interp::{
     run, run_streaming, run_with_snapshots, BlockSnapshot, Event, EventKind, Motion, MotionKind,
-    NoResolver, ResolvedFile, Resolver, RunInput, RunOutput,
+    NoResolver, ResolvedFile, Resolver, RunInput, RunOutput, CANON_FILE_NAME,
 };

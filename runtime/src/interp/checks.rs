@@ -250,7 +250,12 @@ impl Interp<'_, '_> {
             Some((g, s)) if is_feed_motion(g) && !w.has(b'F') => Err(self.err(
                 codes::INVERSE_TIME,
                 s,
-                "in inverse-time mode (G93) every G1/G2/G3 move needs its own F word: LinuxCNC stops",
+                // LinuxCNC's own words: each move in G93 carries its own F.
+                if g == 10 {
+                    "F word missing with inverse time g1 move"
+                } else {
+                    "F word missing with inverse time arc move"
+                },
             )),
             Some((g, _)) if is_feed_motion(g) => Ok(()),
             _ => {
@@ -792,6 +797,12 @@ impl Interp<'_, '_> {
                 if let Some((g, s)) = motion {
                     self.chk.after_g40 = false;
                     if arc {
+                        if cancel && self.ngc() {
+                            // rs274 turns compensation off (releasing the held-back
+                            // moves) before it rejects the arc.
+                            self.comp_flush();
+                            self.canon_comment("interpreter: cutter radius compensation off");
+                        }
                         return Err(self.err(codes::COMP_MOTION, s, format!("G{} is the first move after G40: LinuxCNC needs a straight move to leave cutter compensation", g / 10)));
                     }
                 }

@@ -159,8 +159,8 @@ struct Vars<'s> {
     st: &'s State,
     locals: Option<&'s HashMap<String, f64>>,
     dialect: Dialect,
-    /// Tool-table offsets (X Y Z) of the tool in the spindle, program units.
-    tool: [f64; 3],
+    /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, program units.
+    tool: [f64; 4],
 }
 
 impl VarSource for Vars<'_> {
@@ -179,6 +179,9 @@ impl VarSource for Vars<'_> {
         }
         if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
             return Ok(Some(self.tool[(n - 5401) as usize]));
+        }
+        if self.dialect == Dialect::Rs274ngc && n == 5410 {
+            return Ok(Some(self.tool[3]));
         }
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
@@ -275,6 +278,8 @@ fn predefined(st: &State, name: &str) -> Option<f64> {
     Some(match name {
         "_metric" => f64::from(u8::from(!st.modal.inch)),
         "_imperial" => f64::from(u8::from(st.modal.inch)),
+        "_lathe_diameter_mode" => f64::from(u8::from(st.modal.diameter)),
+        "_lathe_radius_mode" => f64::from(u8::from(!st.modal.diameter)),
         "_absolute" => f64::from(u8::from(!st.modal.incremental)),
         "_incremental" => f64::from(u8::from(st.modal.incremental)),
         "_feed" => st.feed / u,
@@ -328,6 +333,17 @@ struct Interp<'a, 'i> {
     nurbs: Vec<([f64; 6], f64)>,
     /// Memory of the spec-ledger checks (`spec_checks.rs`).
     spec: spec_checks::SpecMem,
+    /// RS274/NGC canon: how far tool-length-offset changes have moved the programmed
+    /// point since the last move.  rs274's standalone canon tracks the last commanded
+    /// point without tool offsets, and a tool change (M6, M61) makes the interpreter
+    /// re-read its position from there, undoing these shifts.
+    tlo_drift: [f64; 6],
+    /// RS274/NGC: the feed override is switched off (M49, M50 P0); the program end
+    /// switches it back on.
+    feed_override_off: bool,
+    /// The block's inverse-time rate is already out: rs274 sets it once per
+    /// compensated move, from the programmed path, before any corner arc.
+    inv_rate_set: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -350,6 +366,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                 *p = Some(0.0);
             }
             params[5220] = Some(1.0);
+            // (DEBUG,) output is on until a program clears #5599.
+            params[5599] = Some(1.0);
         }
         if let Some(v) = input.var_file {
             for (n, val) in parse_var_file(v) {
@@ -435,6 +453,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             nurbs: Vec::new(),
             spec: Default::default(),
             motions_drained: 0,
+            tlo_drift: [0.0; 6],
+            feed_override_off: false,
+            inv_rate_set: false,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -730,7 +751,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
     }
 
-    fn canon_comment(&mut self, s: &str) {
+    pub(super) fn canon_comment(&mut self, s: &str) {
         if let Some(c) = self.canon.as_mut() {
             c.comment(s);
         }
@@ -812,6 +833,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
                 Err(d) => {
+                    // rs274 never prints the calls cutter compensation still holds back
+                    // when it stops at an error.
+                    let held = self.st.comp_queue.first().map(|q| q.canon);
+                    if let (Some(first), Some(c)) = (held, self.canon.as_mut()) {
+                        c.lines.truncate(first);
+                    }
                     if self.canon.is_some() && self.out.canon_error.is_none() {
                         let line = self.line_text(self.cur.0, self.cur.1);
                         self.out.canon_error =
@@ -990,7 +1017,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             st: &self.st,
             locals,
             dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
         };
         expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
     }
@@ -1008,7 +1035,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             st: &self.st,
             locals: None,
             dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f],
+            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
         };
         vars.get_num(n, Span::default())
             .ok()
@@ -1040,6 +1067,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.saw_end = true;
                     self.canon("FINISH()");
                     return Ok(Flow::Stop);
+                }
+                if self.ngc()
+                    && fi == 0
+                    && !self.percent_open
+                    && self.seen_content_before(&prog, bi)
+                {
+                    // Only a file that opens with `%` may close with one; elsewhere
+                    // rs274 reads `%` as a bad character.
+                    return Err(self.err(codes::INTERP, block.span, "Bad character '%' used"));
                 }
                 if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
                 {
@@ -1295,7 +1331,37 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
-        self.exec_words(fi, bi, &prog, &w, &comments, block.span)
+        self.inv_rate_set = false;
+        let before = (self.out.motions.len(), self.st.tlo);
+        let flow = self.exec_words(fi, bi, &prog, &w, &comments, block.span)?;
+        self.refresh_after_tool_change(&w, before);
+        Ok(flow)
+    }
+
+    /// rs274 re-reads the current point after a block with a tool change (M6, M61)
+    /// from its canon, which never saw the tool length offsets given since the last
+    /// move (`T4 M6 G43 H4` then a canned cycle starts from the old height).  Only
+    /// the canon output follows this: a real LinuxCNC re-reads the machine position
+    /// with the new offset, which is what the simulation keeps.
+    fn refresh_after_tool_change(&mut self, w: &Words, before: (usize, [f64; 6])) {
+        if !self.ngc() || self.canon.is_none() {
+            return;
+        }
+        if self.out.motions.len() != before.0 {
+            // Offsets apply before the block's move, which ends at the point the
+            // interpreter holds.
+            self.tlo_drift = [0.0; 6];
+        } else {
+            for i in 0..6 {
+                self.tlo_drift[i] += before.1[i] - self.st.tlo[i];
+            }
+        }
+        if w.has_m(60) || w.has_m(610) {
+            for i in 0..6 {
+                self.st.pos[i] -= self.tlo_drift[i];
+            }
+            self.tlo_drift = [0.0; 6];
+        }
     }
 
     /// rs274's checks of a line's G and M codes: unknown codes, two codes of one
@@ -1379,6 +1445,21 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if w.v[i].is_some() && !w.point[i] {
                         w.v[i] = w.v[i].map(|v| v * mu);
                     }
+                }
+            }
+            Dialect::Rs274ngc => {
+                // G7: rs274 halves X words as it reads them (G7/G8 in the block
+                // itself take effect for its own X word).
+                let diameter = if w.has_g(70) {
+                    true
+                } else if w.has_g(80) {
+                    false
+                } else {
+                    self.st.modal.diameter
+                };
+                let i = (b'X' - b'A') as usize;
+                if diameter {
+                    w.v[i] = w.v[i].map(|v| v / 2.0);
                 }
             }
             _ => {}
@@ -1487,8 +1568,35 @@ impl<'a, 'i> Interp<'a, 'i> {
                 )
             })
         };
+        if self.ngc()
+            && ctrl.partner.is_none()
+            && matches!(
+                kw,
+                OKeyword::Endwhile
+                    | OKeyword::Endrepeat
+                    | OKeyword::Endif
+                    | OKeyword::Else
+                    | OKeyword::Elseif
+            )
+        {
+            // rs274 finds no open block of that label when it reaches the closer.
+            return Err(self.err(
+                codes::FLOW,
+                span,
+                format!(
+                    "{}: undefined O-word label: '{}'",
+                    self.cur_line + 1,
+                    self.line_text(fi, bi)
+                ),
+            ));
+        }
         match kw {
             OKeyword::Sub => {
+                if self.ngc() && fi == 0 && ctrl.partner.is_none() {
+                    // rs274 skips the definition looking for its endsub and runs off
+                    // the end of the file.
+                    return Ok(Flow::Goto(fi, p.blocks.len() as u32));
+                }
                 // A definition met in flow is skipped.
                 Ok(Flow::Goto(fi, after(ctrl.partner)?))
             }
@@ -1682,6 +1790,22 @@ impl<'a, 'i> Interp<'a, 'i> {
                 None => (f, u32::MAX),
             }
         } else {
+            if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
+                // rs274 reads on to the end of the file looking for the definition
+                // and shows the last line it read.
+                let last = self.files[0]
+                    .prog
+                    .blocks
+                    .iter()
+                    .rev()
+                    .map(|b| self.files[0].prog.str_of(b.span).trim().to_string())
+                    .find(|t| !t.is_empty())
+                    .unwrap_or_default();
+                self.out.canon_error = Some(format!(
+                    "EOF in file:{CANON_FILE_NAME} seeking o-word: o<{key}> from line: {}\n{last}",
+                    self.cur_line + 1
+                ));
+            }
             return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
@@ -1826,14 +1950,22 @@ impl<'a, 'i> Interp<'a, 'i> {
     ) -> Result<Flow, Diagnostic> {
         let ngc = self.ngc();
         self.block_exact = !ngc && w.has_g(90);
-        // Comments and messages. LinuxCNC keeps only the last comment of a line
-        // (rs274ngc.md TV-L6: `(MSG,first) (second)` shows no message).
-        let comments = if ngc && comments.len() > 1 {
-            &comments[comments.len() - 1..]
+        // Comments and messages.  rs274 keeps only the last parenthesised comment
+        // of a line.
+        let skip = if ngc {
+            let paren = |(_, s): &&(CommentKind, Span)| !p.str_of(*s).starts_with(';');
+            comments.iter().filter(paren).count().saturating_sub(1)
         } else {
-            comments
+            0
         };
+        let mut seen = 0;
         for (k, s) in comments {
+            if ngc && !p.str_of(*s).starts_with(';') {
+                seen += 1;
+                if seen <= skip {
+                    continue;
+                }
+            }
             self.exec_comment(p, *k, *s)?;
         }
         self.state_checks(w, bspan)?;
@@ -1938,6 +2070,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             } else {
                 "USE_LENGTH_UNITS(CANON_UNITS_MM)"
             });
+        }
+        if ngc {
+            for (code, on) in [(70u32, true), (80, false)] {
+                if w.has_g(code) && self.st.modal.diameter != on {
+                    self.st.modal.diameter = on;
+                    self.canon_comment(if on {
+                        "interpreter: Lathe diameter mode changed to diameter"
+                    } else {
+                        "interpreter: Lathe diameter mode changed to radius"
+                    });
+                }
+            }
         }
         self.exec_comp(w)?;
         self.exec_tlo(w)?;
@@ -2068,7 +2212,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if let Some(c) = self.canon.as_mut() {
                         c.raw(m);
                     }
-                } else {
+                } else if !self.ngc() || self.read_param(5599) > 0.0 {
+                    // #5599 = 0 silences (DEBUG,) in LinuxCNC.
                     self.canon(format!("MESSAGE(\"{m}\")"));
                 }
             }
@@ -2086,16 +2231,14 @@ impl<'a, 'i> Interp<'a, 'i> {
         let b = text.as_bytes();
         let mut out = String::new();
         let mut i = 0;
-        // LinuxCNC's `%d`, `%f` (4 decimals), `%.Nf` / `%lf` set the format of the
-        // parameters that follow; the default is 6 decimals.
+        // LinuxCNC's `%d`, `%f` (4 decimals) and `%.Nf` set the format of the
+        // parameters that follow (a bare `%lf` stays as text); the default is 6 decimals.
         let mut decimals = 6usize;
         while i < b.len() {
             if b[i] == b'%' {
                 let rest = &text[i + 1..];
                 let (spec_len, d) = if rest.starts_with('d') {
                     (1, Some(0))
-                } else if rest.starts_with("lf") {
-                    (2, Some(4))
                 } else if rest.starts_with('f') {
                     (1, Some(4))
                 } else if let Some(r) = rest.strip_prefix('.') {
@@ -2255,6 +2398,35 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.event(EventKind::Coolant { mist, flood });
         }
         if ngc {
+            // Override switches: M48/M49 both overrides, M50-M53 one each, on
+            // unless P is 0.
+            if w.has_m(480) {
+                self.feed_override_off = false;
+                self.canon("ENABLE_FEED_OVERRIDE()");
+                self.canon("ENABLE_SPEED_OVERRIDE(0)");
+            }
+            if w.has_m(490) {
+                self.feed_override_off = true;
+                self.canon("DISABLE_FEED_OVERRIDE()");
+                self.canon("DISABLE_SPEED_OVERRIDE(0)");
+            }
+            let on = w.get(b'P').is_none_or(|p| p != 0.0);
+            if w.has_m(500) {
+                self.feed_override_off = !on;
+            }
+            for (m, what) in [
+                (500u32, "FEED_OVERRIDE()"),
+                (510, "SPEED_OVERRIDE(0)"),
+                (520, "ADAPTIVE_FEED()"),
+                (530, "FEED_HOLD()"),
+            ] {
+                if w.has_m(m) {
+                    let verb = if on { "ENABLE" } else { "DISABLE" };
+                    self.canon(format!("{verb}_{what}"));
+                }
+            }
+        }
+        if ngc {
             for (m, text) in [
                 (620u32, "SET_MOTION_OUTPUT_BIT"),
                 (630, "CLEAR_MOTION_OUTPUT_BIT"),
@@ -2387,6 +2559,25 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(432) {
             self.st.modal.tlo_mode = 432;
+            if self.ngc() {
+                // LinuxCNC G43.2 adds a tool's offset (H) to the one in force.
+                let add;
+                if let Some(h) = w.get(b'H').map(|v| v.round().max(0.0) as u32) {
+                    self.check_tool(h, w.sp(b'H'))?;
+                    let t = self.cfg.tools.get(&h).copied().unwrap_or_default();
+                    let f = self.pfac();
+                    add = [t.x_offset * f, t.y_offset * f, t.length * f];
+                } else {
+                    // LinuxCNC 2.9 looks up tool -1 for G43.2 without H and stops.
+                    return Err(self.err(
+                        codes::UNKNOWN_TOOL,
+                        w.g_span(432),
+                        "Requested tool -1 not found in the tool table",
+                    ));
+                }
+                let cur = self.st.tlo;
+                set(self, cur[2] + add[2], cur[0] + add[0], cur[1] + add[1]);
+            }
         }
         if w.has_g(431) && self.ngc() {
             // Dynamic tool length offset from the block's axis words.
@@ -2704,7 +2895,40 @@ impl<'a, 'i> Interp<'a, 'i> {
                         self.set_param(5210 + 20 * origin, Some(r));
                     }
                     let cur_machine = self.st.mpos;
+                    let rot = self.read_param((5210 + 20 * origin) as i64);
+                    let rotated_l20 = l == 20
+                        && rot != 0.0
+                        && (axis(self, 0).is_some() || axis(self, 1).is_some());
+                    if rotated_l20 {
+                        // The point is given in the rotated system: both X and Y of the
+                        // origin move (LinuxCNC's convert_setup).
+                        let f = self.pfac();
+                        let abs: Vec<f64> = (0..2)
+                            .map(|i| {
+                                cur_machine[i] - self.st.g92[i] - self.st.g52[i] - self.st.tlo[i]
+                            })
+                            .collect();
+                        let off = [
+                            self.read_param(base as i64) * f,
+                            self.read_param(base as i64 + 1) * f,
+                        ];
+                        let (sn, cs) = rot.to_radians().sin_cos();
+                        let (dx, dy) = (abs[0] - off[0], abs[1] - off[1]);
+                        let cur = [dx * cs + dy * sn, -dx * sn + dy * cs];
+                        let want = [
+                            axis(self, 0).unwrap_or(cur[0]),
+                            axis(self, 1).unwrap_or(cur[1]),
+                        ];
+                        let rw = [want[0] * cs - want[1] * sn, want[0] * sn + want[1] * cs];
+                        // Round-off from the rotation would print as -0.0000.
+                        let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
+                        self.set_param(base, Some(snap((abs[0] - rw[0]) / f)));
+                        self.set_param(base + 1, Some(snap((abs[1] - rw[1]) / f)));
+                    }
                     for i in 0..6 {
+                        if rotated_l20 && i < 2 {
+                            continue;
+                        }
                         let Some(v) = axis(self, i) else { continue };
                         let scale = if i < 3 { self.pfac() } else { 1.0 };
                         let new = if l == 2 {
@@ -2762,11 +2986,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                             .position(|x| *x == t)
                             .map(|i| i + 1)
                             .unwrap_or(0);
+                        // rs274 reports the entry in the tool table's units, not the program's.
                         let entry = format!(
                             "{} {} {} 0.0000 0.0000 0.0000 0.0000 0.0000 0.0000, 0.0000, 0.0000, 0",
-                            f4(tool.x_offset * f),
-                            f4(tool.y_offset * f),
-                            f4(tool.length * f)
+                            f4(tool.x_offset),
+                            f4(tool.y_offset),
+                            f4(tool.length)
                         );
                         self.canon(format!("SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})"));
                         if t == self.st.tool || self.st.tool == 0 {
@@ -3049,9 +3274,14 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn feed_to(&mut self, t: [f64; 6], span: Span) -> Result<(), Diagnostic> {
         self.check_feed(span)?;
-        if self.st.modal.feed_mode == 930 {
+        if self.st.modal.feed_mode == 930 && !std::mem::take(&mut self.inv_rate_set) {
             let len = dist(&self.st.pos, &t);
-            let rate = len * self.st.feed / self.unit();
+            // LinuxCNC gives a zero-length move a nominal rate of 0.1 (its issue 2410).
+            let rate = if len == 0.0 {
+                0.1
+            } else {
+                len * self.st.feed / self.unit()
+            };
             self.canon(format!("SET_FEED_RATE({})", f4(rate)));
         }
         if self.canon.is_some() {
@@ -3119,6 +3349,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 22
                     | 32
                     | 330
+                    | 331
                     | 382
                     | 383
                     | 384
@@ -3130,11 +3361,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 810..=890
             ) || (self.ngc() && matches!(g, 50..=53))
             {
-                // LinuxCNC drops a G80 written with another group-1 code (NGC113).
-                if self.ngc() && motion.is_some() && *g == 800 {
-                    continue;
+                // rs274 lets any other group-1 code in the block win over G80
+                // (`G0 G40 G49 G80` is a rapid with no axis words).
+                if !(self.ngc() && *g == 800 && motion.is_some()) {
+                    motion = Some(*g);
                 }
-                motion = Some(*g);
             }
         }
         if let Some(m) = motion {
@@ -3224,6 +3455,31 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.out.motions.push(m);
                 self.st.mpos = end;
                 self.st.pos = t;
+            }
+            331 if self.ngc() => {
+                self.st.modal.motion = 331;
+                if self.st.spindle_dir == 0 {
+                    return Err(self.err(codes::INTERP, bspan, "Spindle not turning in G33.1"));
+                }
+                let t = self.target(w);
+                let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
+                let u = self.unit();
+                self.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", k / u));
+                self.canon(format!(
+                    "RIGID_TAP({}, {}, {})",
+                    f4(t[0] / u),
+                    f4(t[1] / u),
+                    f4(t[2] / u)
+                ));
+                self.canon("STOP_SPEED_FEED_SYNCH()");
+                // The tap feeds in and reverses out: rs274 leaves the current point
+                // where the block started.
+                let start = self.st.mpos;
+                let end = self.to_machine(t);
+                let m = self.motion_base(MotionKind::Thread, start, end, k);
+                self.out.motions.push(m);
+                let m = self.motion_base(MotionKind::Thread, end, start, k);
+                self.out.motions.push(m);
             }
             382..=385 => {
                 let t = self.target(w);
@@ -3533,6 +3789,17 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             return Ok(());
         }
+        if self.st.modal.feed_mode == 930 && !rapid {
+            self.check_feed(span)?;
+            let len = dist(&self.st.pos, &t);
+            let rate = if len == 0.0 {
+                0.1
+            } else {
+                len * self.st.feed / self.unit()
+            };
+            self.canon(format!("SET_FEED_RATE({})", f4(rate)));
+            self.inv_rate_set = true;
+        }
         use std::f64::consts::{FRAC_PI_2, PI};
         let (a, b) = self.plane_axes();
         let r = self.st.comp_radius;
@@ -3710,7 +3977,7 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Releases the held-back moves. LinuxCNC queues them (and every canonical
     /// call after them) until now, so they carry this block's N number.
-    fn comp_flush(&mut self) {
+    pub(super) fn comp_flush(&mut self) {
         self.st.comp_endpoint = None;
         let Some(first) = self.st.comp_queue.first().map(|q| q.canon) else {
             return;
@@ -4089,7 +4356,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.err(
                 codes::INTERP,
                 span,
-                "Tool radius not less than arc radius with cutter compensation",
+                "Tool radius not less than arc radius with comp",
             )
         };
         if self.st.comp_first {
@@ -4324,11 +4591,36 @@ impl<'a, 'i> Interp<'a, 'i> {
                 };
                 self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
             }
-            ArcError::ZeroRadius => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+            ArcError::ZeroRadius => match (d, spec) {
+                (Dialect::Rs274ngc, ArcSpec::Center(c)) => {
+                    let u = self.unit();
+                    let (a, b) = match self.st.modal.plane {
+                        180 => ('Z', 'X'),
+                        190 => ('Y', 'Z'),
+                        _ => ('X', 'Y'),
+                    };
+                    let r1 = (s[0] - c[0]).hypot(s[1] - c[1]) / u;
+                    let r2 = (en[0] - c[0]).hypot(en[1] - c[1]) / u;
+                    let msg = format!(
+                        "Zero-radius arc: start=({a}{:.4},{b}{:.4}) center=({a}{:.4},{b}{:.4}) end=({a}{:.4},{b}{:.4}) r1={r1:.4} r2={r2:.4}",
+                        s[0] / u,
+                        s[1] / u,
+                        c[0] / u,
+                        c[1] / u,
+                        en[0] / u,
+                        en[1] / u,
+                    );
+                    self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
+                }
+                _ => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+            },
         }
     }
 
     fn exec_stops(&mut self, w: &Words, fi: usize) -> Result<Flow, Diagnostic> {
+        if w.has_m(600) && self.ngc() {
+            self.canon("PALLET_SHUTTLE()");
+        }
         if w.has_m(0) || w.has_m(600) {
             self.canon("PROGRAM_STOP()");
             self.event(EventKind::Stop { optional: false });
@@ -4441,6 +4733,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.feed_mode = 940;
             self.canon("SET_FEED_MODE(0, 0)");
             self.canon("SET_FEED_RATE(0.0000)");
+            if self.feed_override_off && self.ngc() {
+                self.feed_override_off = false;
+                self.canon("ENABLE_FEED_OVERRIDE()");
+            }
             self.st.modal.comp = 400;
             self.canon("STOP_SPINDLE_TURNING(0)");
             self.canon("SET_SPINDLE_MODE(0 0.0000)");
@@ -4514,7 +4810,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 codes::CYCLE_MISSING,
                 span,
                 if ngc {
-                    "R clearance plane unspecified in canned cycle"
+                    "R clearance plane unspecified in cycle"
                 } else {
                     "canned cycle without R (point R level)"
                 },
@@ -4563,15 +4859,12 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
         }
-        if matches!(mode, 730 | 830) && cyc.q.is_none() {
+        // rs274 checks the cycle's own words only after climbing to R and
+        // switching to exact path; the others stop before any output.
+        let missing_q = matches!(mode, 730 | 830) && cyc.q.is_none();
+        let missing_p = matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none();
+        if missing_q && !ngc {
             return Err(self.err(codes::CYCLE_Q, span, "Q word missing with G73/G83"));
-        }
-        if matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none() {
-            return Err(self.err(
-                codes::CYCLE_MISSING,
-                span,
-                format!("dwell time P word missing with G{}", mode / 10),
-            ));
         }
         // Rigid tapping (FANUC M29) checks.
         if self.dialect == Dialect::Fanuc
@@ -4656,7 +4949,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Err(self.err(
                 codes::CYCLE_STATE,
                 span,
-                "R value less than Z value in canned cycle",
+                match self.st.modal.plane {
+                    180 => "R less than y in cycle in xz plane",
+                    190 => "R less than x in cycle in yz plane",
+                    _ => "R less than z in cycle in xy plane",
+                },
             ));
         }
         if repeats == 0 {
@@ -4679,6 +4976,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if ngc && save_path != 610 {
             self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)");
+        }
+        if missing_q {
+            return Err(self.err(
+                codes::CYCLE_Q,
+                span,
+                format!("Q word missing with g{}", mode / 10),
+            ));
+        }
+        if missing_p {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                format!("dwell time P word missing with G{}", mode / 10),
+            ));
         }
         let mut pa = self.st.pos[a];
         let mut pb = self.st.pos[b];
@@ -4952,18 +5263,33 @@ impl<'a, 'i> Interp<'a, 'i> {
                     } else {
                         k
                     };
+                    // The tool passes the bore with the spindle stopped and oriented
+                    // (rs274's direction codes: 2 clockwise, 3 counterclockwise).
+                    let ccw = self.st.spindle_dir < 0;
+                    let orient = format!("ORIENT_SPINDLE(0, 0.0000, {})", if ccw { 3 } else { 2 });
+                    let start = if ccw {
+                        "START_SPINDLE_COUNTERCLOCKWISE(0)"
+                    } else {
+                        "START_SPINDLE_CLOCKWISE(0)"
+                    };
                     self.rapid_to(off);
+                    self.canon("STOP_SPINDLE_TURNING(0)");
+                    self.canon(&orient);
                     let mut o2 = off;
                     o2[self.normal_axis()] = bottom;
                     self.rapid_to(o2);
                     self.rapid_to(at(self, bottom));
+                    self.canon(start);
                     self.feed_to(at(self, middle), span)?;
                     self.feed_to(at(self, bottom), span)?;
+                    self.canon("STOP_SPINDLE_TURNING(0)");
+                    self.canon(&orient);
                     self.rapid_to(o2);
                     let mut o3 = o2;
                     o3[self.normal_axis()] = clear;
                     self.rapid_to(o3);
                     self.rapid_to(at(self, clear));
+                    self.canon(start);
                 } else {
                     // Back boring: the R point is the hole bottom. The tool passes the
                     // bore shifted away from the wall (oriented spindle), comes back on

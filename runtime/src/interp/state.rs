@@ -35,6 +35,8 @@ pub struct Modal {
     pub rigid_tap: bool,
     /// G90.1: arc centres are absolute.
     pub ijk_abs: bool,
+    /// RS274/NGC G7: X words are diameters.
+    pub diameter: bool,
 }
 
 /// Memory of a canned cycle's modal data (program frame, mm).
@@ -126,6 +128,7 @@ impl Modal {
             css: false,
             rigid_tap: false,
             ijk_abs: false,
+            diameter: false,
         }
     }
 

@@ -149,6 +149,11 @@ pub struct RunOutput {
     pub snapshots: Vec<Option<BlockSnapshot>>,
     pub canon: Vec<String>,
     /// Canonical output only: the error that stopped the run, as rs274 prints it
-    /// on stderr (its message, a newline, the offending source line).
+    /// on stderr (its message, a newline, the offending source line).  rs274 names
+    /// the program file in some messages; the interpreter does not know its path and
+    /// writes [`CANON_FILE_NAME`] there for the caller to replace.
     pub canon_error: Option<String>,
 }
+
+/// Stands for the program's path in [`RunOutput::canon_error`].
+pub const CANON_FILE_NAME: &str = "\u{1}file\u{1}";

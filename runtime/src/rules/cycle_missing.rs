@@ -7,7 +7,7 @@ declare_rule! {
     /// Flags a canned cycle started without its R plane, its depth Z, or (G82/G86/G88/G89 in RS274/NGC) its dwell P.
     ///
     /// ## Why is this bad?
-    /// The control alarms (`R clearance plane unspecified in canned cycle`).
+    /// The control alarms (`R clearance plane unspecified in cycle`).
     ///
     /// ## Example
     /// ```gcode

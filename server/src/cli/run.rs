@@ -298,7 +298,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     ));
 
     if emit_canon {
-        return emit_canon_output(&out, &parsed.program, &diagnostics);
+        return emit_canon_output(&out, &parsed.program, &diagnostics, &args.file);
     }
 
     let dry = dryrun::plan_run(&out, &profile);
@@ -553,6 +553,7 @@ fn emit_canon_output(
     out: &runtime::RunOutput,
     program: &analyzer::syntax::Program,
     diagnostics: &[Diagnostic],
+    file: &std::path::Path,
 ) -> ExitCode {
     let stdout = std::io::stdout();
     let mut w = std::io::BufWriter::new(stdout.lock());
@@ -564,6 +565,7 @@ fn emit_canon_output(
     let _ = w.flush();
     // The interpreter knows the error that stopped it, worded as rs274 words it.
     if let Some(e) = &out.canon_error {
+        let e = e.replace(runtime::CANON_FILE_NAME, &file.display().to_string());
         eprintln!("{e}");
         return ExitCode::from(1);
     }
