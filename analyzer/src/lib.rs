@@ -114,6 +114,22 @@ pub fn finish(
     mut diagnostics: Vec<Diagnostic>,
 ) -> Vec<Diagnostic> {
     let sup = Suppressions::collect(program);
+    // LinuxCNC stops reading at a top-level M2/M30: syntax errors in the text after it
+    // can never stop the program (spec NGC026; P006 reports the dead text as info).
+    let dead_syntax = |d: &Diagnostic| {
+        d.file == FileId(0) && d.code.starts_with('L') && d.code != "L009" && d.code != "L000"
+    };
+    if program.dialect == Dialect::Rs274ngc && diagnostics.iter().any(dead_syntax) {
+        let dead = rules::util::dead_blocks(program);
+        if dead.iter().any(|&x| x) {
+            diagnostics.retain(|d| {
+                !(dead_syntax(d)
+                    && program
+                        .block_at(d.span.start)
+                        .is_some_and(|b| dead.get(b).copied().unwrap_or(false)))
+            });
+        }
+    }
     diagnostics.retain(|d| {
         let enabled = match rules::registry::lookup(d.code) {
             Some(meta) => settings.rule_enabled(meta),

@@ -217,7 +217,9 @@ pub fn dead_blocks(program: &Program) -> Vec<bool> {
             .map(|o| program.str_of(o.label_span).to_ascii_lowercase())
             .unwrap_or_default();
         match ow.map(|o| o.keyword) {
-            Some(None) => ended = false,
+            // A Fanuc-style `O1000` program header starts a new program; an `o` with
+            // no label is only a stray letter in text nobody reads.
+            Some(None) if !label.is_empty() => ended = false,
             Some(Some(K::Sub)) => {
                 ended = false;
                 open.push((false, label.clone()));
