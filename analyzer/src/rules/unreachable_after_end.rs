@@ -1,7 +1,7 @@
 //! P006: blocks after the program end that never run.
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 use crate::syntax::{BlockKind, ItemKind, MacroStmt, OKeyword};
 
@@ -84,7 +84,7 @@ impl Rule for UnreachableAfterEnd {
                         end = e;
                     }
                     if let Some((span, n)) = run.take() {
-                        out.push(unreachable(span, n, end).with_severity_info());
+                        out.push(unreachable(span, n, end, Severity::Info));
                     }
                     continue;
                 }
@@ -96,29 +96,19 @@ impl Rule for UnreachableAfterEnd {
                 }
             }
             if let Some((span, n)) = run {
-                out.push(unreachable(span, n, end).with_severity_info());
+                out.push(unreachable(span, n, end, Severity::Info));
             }
             return;
         }
         let mut ended: Option<&'static str> = None;
         let mut sub_depth = 0i32;
         let mut run: Option<(crate::span::Span, usize)> = None;
-        let flush = |run: &mut Option<(crate::span::Span, usize)>,
-                     end: &str,
-                     out: &mut Vec<Diagnostic>| {
-            if let Some((span, n)) = run.take() {
-                let what = if n == 1 {
-                    "This block is never executed: it follows".to_string()
-                } else {
-                    format!("These {n} blocks are never executed: they follow")
-                };
-                out.push(Diagnostic::warning(
-                    "P006",
-                    span,
-                    format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
-                ));
-            }
-        };
+        let flush =
+            |run: &mut Option<(crate::span::Span, usize)>, end: &str, out: &mut Vec<Diagnostic>| {
+                if let Some((span, n)) = run.take() {
+                    out.push(unreachable(span, n, end, Severity::Warning));
+                }
+            };
         for b in &p.blocks {
             if b.kind != BlockKind::Normal || !has_code_items(p, b) {
                 continue;
@@ -179,26 +169,18 @@ impl Rule for UnreachableAfterEnd {
     }
 }
 
-/// Spec NGC026 is info: LinuxCNC never reads past M2, so nothing there can go wrong.
-trait NgcInfo {
-    fn with_severity_info(self) -> Self;
-}
-
-impl NgcInfo for Diagnostic {
-    fn with_severity_info(mut self) -> Self {
-        self.severity = crate::Severity::Info;
-        self
-    }
-}
-
-fn unreachable(span: crate::span::Span, n: usize, end: &str) -> Diagnostic {
+/// The P006 report for `n` dead blocks after `end`. RS274/NGC gives it as info
+/// (spec NGC026: LinuxCNC never reads past M2, so nothing there can go wrong);
+/// ServoWorks and FANUC as a warning (SW018, FAN013).
+fn unreachable(span: crate::span::Span, n: usize, end: &str, severity: Severity) -> Diagnostic {
     let what = if n == 1 {
         "This block is never executed: it follows".to_string()
     } else {
         format!("These {n} blocks are never executed: they follow")
     };
-    Diagnostic::warning(
+    Diagnostic::new(
         "P006",
+        severity,
         span,
         format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
     )
