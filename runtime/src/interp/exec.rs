@@ -1006,6 +1006,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             .last()
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
+        let vars = self.vars(locals);
+        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+    }
+
+    /// What expressions read: the state, the named locals in scope and the
+    /// current tool's offsets in parameter units.
+    fn vars<'s>(&'s self, locals: Option<&'s HashMap<String, f64>>) -> Vars<'s> {
         let f = self.pfac();
         let t = self
             .cfg
@@ -1013,31 +1020,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             .get(&self.st.tool)
             .copied()
             .unwrap_or_default();
-        let vars = Vars {
+        Vars {
             st: &self.st,
             locals,
             dialect: self.dialect,
             tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
-        };
-        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+        }
     }
 
     /// A numbered parameter as an expression would read it (system values included).
     fn read_param(&self, n: i64) -> f64 {
-        let f = self.pfac();
-        let t = self
-            .cfg
-            .tools
-            .get(&self.st.tool)
-            .copied()
-            .unwrap_or_default();
-        let vars = Vars {
-            st: &self.st,
-            locals: None,
-            dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
-        };
-        vars.get_num(n, Span::default())
+        self.vars(None)
+            .get_num(n, Span::default())
             .ok()
             .flatten()
             .unwrap_or(0.0)
