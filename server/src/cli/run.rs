@@ -156,7 +156,14 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
     // The config's own LinuxCNC files (tool_table, var_file, ini) fill what the
     // command line left open.
-    let cfg_files = loaded.linuxcnc_files();
+    // Read only when the command line left one of them open, so that a config's
+    // missing file is not reported for a run that names its own.
+    let no_files = workspace::ConfigFiles::default();
+    let cfg_files = if args.machine.is_none() || tool_table_path.is_none() || var_path.is_none() {
+        loaded.linuxcnc_files()
+    } else {
+        &no_files
+    };
     for w in &cfg_files.warnings {
         workspace::warn_once(w);
     }

@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use analyzer::{Config, Dialect, Settings};
 
@@ -52,6 +52,9 @@ pub struct LoadedConfig {
     /// Where the config was found (for messages and relative paths).
     #[allow(dead_code)]
     pub path: Option<PathBuf>,
+    /// The LinuxCNC files the config names, read on first use and shared by the
+    /// clones the [`ConfigCache`] hands out: every program under one config reuses them.
+    files: Arc<OnceLock<ConfigFiles>>,
 }
 
 /// Caches `partscope.toml` lookups per directory.
@@ -77,6 +80,7 @@ impl ConfigCache {
                 _ => Ok(LoadedConfig {
                     config: Config::default(),
                     path: None,
+                    files: Arc::default(),
                 }),
             }
         };
@@ -92,7 +96,7 @@ impl ConfigCache {
 /// `PARAMETER_FILE` of its `ini`, whose limits also become the machine profile.
 /// Files a config merely names are optional: a missing one is a warning, so a
 /// copied config still checks.
-#[derive(Default)]
+#[derive(Debug, Default)]
 pub struct ConfigFiles {
     pub tool_table: Option<String>,
     pub var_file: Option<String>,
@@ -108,7 +112,11 @@ impl LoadedConfig {
             .unwrap_or_default()
     }
 
-    pub fn linuxcnc_files(&self) -> ConfigFiles {
+    pub fn linuxcnc_files(&self) -> &ConfigFiles {
+        self.files.get_or_init(|| self.read_linuxcnc_files())
+    }
+
+    fn read_linuxcnc_files(&self) -> ConfigFiles {
         let dir = self.dir();
         let mut out = ConfigFiles::default();
         let mut tbl = self.config.tool_table.as_ref().map(|t| dir.join(t));
@@ -185,6 +193,7 @@ pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
     Ok(LoadedConfig {
         config,
         path: Some(path.to_path_buf()),
+        files: Arc::default(),
     })
 }
 
