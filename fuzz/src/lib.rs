@@ -114,9 +114,20 @@ pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
             assert!(d.span.start <= d.span.end && d.span.end as usize <= data.len());
         }
     }
-    let profile = runtime::machine::MachineProfile::default_for(dialect);
+    // The closed-form planner first: its cost does not grow with the motion
+    // time. The servo-period simulation steps once per millisecond of motion,
+    // so a fuzzed 1e6 mm move at F1 would spend seconds there; it runs only
+    // when the program moves for under a minute, which covers its code paths
+    // at a few thousand periods per input.
+    let mut profile = runtime::machine::MachineProfile::default_for(dialect);
+    profile.servo_simulation = false;
     let dry = runtime::dryrun::plan_run(&out, &profile);
     let t = dry.totals.cycle_time_s;
     assert!(t.is_finite() && t >= 0.0, "cycle time {t}");
+    if t < 60.0 {
+        profile.servo_simulation = true;
+        let servo = runtime::dryrun::plan_run(&out, &profile).totals.cycle_time_s;
+        assert!(servo.is_finite() && servo >= 0.0, "servo cycle time {servo}");
+    }
     let _ = runtime::dryrun::toolpath(&out, 0.05);
 }

@@ -17,7 +17,13 @@ use super::nav::{self, Sym};
 use super::workspace;
 
 /// Upper bound on executed blocks per run (loops and calls included).
+#[cfg(not(fuzzing))]
 pub const STEP_BUDGET: u64 = 5_000_000;
+/// The fuzz target compiles this module with coverage instrumentation, where
+/// a runaway loop at the real budget costs over ten seconds per input; a small
+/// budget reaches the same code (the budget diagnostic included) cheaply.
+#[cfg(fuzzing)]
+pub const STEP_BUDGET: u64 = 20_000;
 /// Chord tolerance for sampling arcs in the preview, mm.
 const CHORD_TOLERANCE: f64 = 0.01;
 
