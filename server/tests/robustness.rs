@@ -609,6 +609,30 @@ fn crash_fixtures_stay_fixed() {
                         path.display()
                     );
                 }
+                // The interpreter and planner as the `interpret` fuzz target
+                // drives them: this test runs in a debug build, so an integer
+                // overflow panics here as it did under the fuzzer.
+                let machine = toml::Table::new();
+                let out = runtime::run(&runtime::RunInput {
+                    program: &program,
+                    settings: &settings,
+                    machine: &machine,
+                    resolver: &runtime::NoResolver,
+                    step_budget: 20_000,
+                    emit_canon: dialect == D::Rs274ngc,
+                    tool_table: None,
+                    var_file: None,
+                });
+                let mut profile = runtime::machine::MachineProfile::default_for(dialect);
+                profile.servo_simulation = false;
+                let t = runtime::dryrun::plan_run(&out, &profile)
+                    .totals
+                    .cycle_time_s;
+                assert!(
+                    t.is_finite() && t >= 0.0,
+                    "{}: cycle time {t}",
+                    path.display()
+                );
             }
         }
     }

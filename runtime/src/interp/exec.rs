@@ -563,7 +563,7 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn g5x_of(&self, origin: usize) -> [f64; 6] {
         let base = if origin >= 100 {
-            7001 + 20 * (origin - 101)
+            7001 + 20 * origin.saturating_sub(101)
         } else {
             5201 + 20 * origin
         };
@@ -2604,7 +2604,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             // FANUC has at most 300 extended work offsets; clamping keeps the
             // parameter arithmetic (`100 + p`, `20 * (origin - 101)`) from
             // overflowing on `P1e30` (fuzz: interpret, add overflow).
-            let p = w.get(b'P').unwrap_or(1.0).round().clamp(1.0, 300.0) as usize;
+            // A NaN P (from a macro expression) would cast to 0 and select
+            // the nonexistent origin 100 (fuzz: interpret, subtract overflow).
+            let p = w
+                .get(b'P')
+                .filter(|v| v.is_finite())
+                .unwrap_or(1.0)
+                .round()
+                .clamp(1.0, 300.0) as usize;
             origin = Some(100 + p);
         }
         let Some(o) = origin else { return Ok(()) };
