@@ -260,9 +260,8 @@ pub fn run(args: RunArgs) -> ExitCode {
         // The static rules run beside the interpreter and planner (both only read the tree).
         let (mut diagnostics, out, totals) = std::thread::scope(|scope| {
             let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
-            let mut plan = dryrun::StreamPlan::new(&profile);
-            let out = runtime::run_streaming(&input, &mut |m, e| plan.push(m, e));
-            let totals = plan.finish();
+            let (out, totals) =
+                dryrun::stream_totals(&profile, |sink| runtime::run_streaming(&input, sink));
             // A panic in the rules is passed on as if the rules had run on this thread.
             let diagnostics = lint.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
             (diagnostics, out, totals)
