@@ -312,75 +312,105 @@ fn naive_event_seconds(e: &plan::Event, rapid: f64) -> f64 {
 /// totals equal those of [`plan_run`].
 ///
 /// `plan_run` chooses closed-form execution when the whole program's naive motion
-/// time exceeds [`SERVO_SIMULATION_LIMIT_S`], which is known only at the end; so a
-/// profile that simulates servo periods feeds a closed-form planner alongside and
-/// drops the period-by-period one once the naive time passes the limit.
+/// time exceeds [`SERVO_SIMULATION_LIMIT_S`], which is known only at the end. One
+/// planner runs, as the profile asks; when a profile that simulates servo periods
+/// passes the limit, the planner is dropped and [`StreamPlan::finish`] returns
+/// `None`: the run must be streamed again into [`StreamPlan::closed_form`]
+/// ([`stream_totals`] does both). Running a closed-form planner alongside instead
+/// would double the planning cost of every program to save a second interpreter
+/// pass for the few that run longer than four hours.
 pub struct StreamPlan {
-    servo: Option<plan::Planner>,
-    closed: Option<plan::Planner>,
+    planner: Option<plan::Planner>,
+    /// The planner simulates servo periods, so the limit applies.
+    servo: bool,
     naive_s: f64,
     rapid: f64,
     motions: usize,
 }
 
 impl StreamPlan {
+    /// Plans with `profile` as given.
     pub fn new(profile: &MachineProfile) -> StreamPlan {
-        let (servo, closed) = if profile.servo_simulation {
-            let mut cf = profile.clone();
-            cf.servo_simulation = false;
-            (
-                Some(plan::Planner::new(profile)),
-                Some(plan::Planner::new(&cf)),
-            )
-        } else {
-            (None, Some(plan::Planner::new(profile)))
-        };
         StreamPlan {
-            servo,
-            closed,
+            planner: Some(plan::Planner::new(profile)),
+            servo: profile.servo_simulation,
             naive_s: 0.0,
             rapid: profile.traj_max_velocity.max(1e-9),
             motions: 0,
         }
     }
 
+    /// Plans with closed-form profiles whatever `profile` says, as [`plan_run`] does
+    /// beyond the servo-simulation limit.
+    pub fn closed_form(profile: &MachineProfile) -> StreamPlan {
+        let mut cf = profile.clone();
+        cf.servo_simulation = false;
+        StreamPlan::new(&cf)
+    }
+
     /// Feeds the next chunk of the run (see [`crate::interp::MotionSink`]).
     pub fn push(&mut self, motions: &[Motion], events: &[IEvent]) {
+        let first = self.motions;
+        self.motions += motions.len();
         let Self {
+            planner,
             servo,
-            closed,
             naive_s,
             rapid,
             ..
         } = self;
+        let Some(p) = planner.as_mut() else {
+            return;
+        };
         let mut ignore = |_: SegmentTiming| {};
-        interleave(motions, events, self.motions, &mut |e| {
-            let t = naive_event_seconds(&e, *rapid);
-            if t.is_finite() {
-                *naive_s += t;
+        let mut over = false;
+        interleave(motions, events, first, &mut |e| {
+            if over {
+                return;
             }
-            if *naive_s > SERVO_SIMULATION_LIMIT_S {
-                *servo = None;
-            }
-            match (servo.as_mut(), closed.as_mut()) {
-                (Some(s), Some(c)) => {
-                    s.push(e, &mut ignore);
-                    c.push(e, &mut ignore);
+            if *servo {
+                let t = naive_event_seconds(&e, *rapid);
+                if t.is_finite() {
+                    *naive_s += t;
                 }
-                (Some(p), None) | (None, Some(p)) => p.push(e, &mut ignore),
-                (None, None) => {}
+                if *naive_s > SERVO_SIMULATION_LIMIT_S {
+                    over = true;
+                    return;
+                }
             }
+            p.push(e, &mut ignore);
         });
-        self.motions += motions.len();
-    }
-
-    pub fn finish(self) -> Totals {
-        let mut ignore = |_: SegmentTiming| {};
-        match (self.servo, self.closed) {
-            (Some(p), _) | (None, Some(p)) => p.finish(&mut ignore),
-            (None, None) => Totals::default(),
+        if over {
+            *planner = None;
         }
     }
+
+    /// The totals, or `None` when the run passed the servo-simulation limit and must
+    /// be planned again with [`StreamPlan::closed_form`].
+    pub fn finish(self) -> Option<Totals> {
+        let mut ignore = |_: SegmentTiming| {};
+        self.planner.map(|p| p.finish(&mut ignore))
+    }
+}
+
+/// Streams a run through [`StreamPlan`]: `run` executes the program, handing its
+/// motions to the sink it is given, and is called a second time only when the run
+/// passes the servo-simulation limit. Returns the output of the last run and the
+/// totals, equal to those of [`plan_run`].
+pub fn stream_totals<R>(
+    profile: &MachineProfile,
+    mut run: impl FnMut(&mut crate::interp::MotionSink<'_>) -> R,
+) -> (R, Totals) {
+    let mut plan = StreamPlan::new(profile);
+    let out = run(&mut |m, e| plan.push(m, e));
+    if let Some(totals) = plan.finish() {
+        return (out, totals);
+    }
+    let mut plan = StreamPlan::closed_form(profile);
+    let out = run(&mut |m, e| plan.push(m, e));
+    // A closed-form planner has no limit to pass.
+    let totals = plan.finish().unwrap_or_default();
+    (out, totals)
 }
 
 /// Plans a run.

@@ -44,23 +44,45 @@ fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
     let profile = MachineProfile::default_for(dialect);
     let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
     let dry = dryrun::plan_run(&buffered, &profile);
-    let mut plan = StreamPlan::new(&profile);
     let mut streamed_motions = 0;
-    let streamed = runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| {
-        streamed_motions += m.len();
-        plan.push(m, e)
+    let (streamed, totals) = dryrun::stream_totals(&profile, |sink| {
+        // Counts the motions of the last pass only (a run beyond the servo limit
+        // is streamed twice).
+        streamed_motions = 0;
+        runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| {
+            streamed_motions += m.len();
+            sink(m, e)
+        })
     });
     assert!(streamed.motions.is_empty() && streamed.events.is_empty());
     assert_eq!(
         format!("{:?}", buffered.diagnostics),
         format!("{:?}", streamed.diagnostics)
     );
-    (
-        dry.totals,
-        plan.finish(),
-        buffered.motions.len(),
-        streamed_motions,
-    )
+    (dry.totals, totals, buffered.motions.len(), streamed_motions)
+}
+
+/// The plain `StreamPlan` says when a servo-simulated run needs a closed-form pass.
+#[test]
+fn stream_plan_asks_for_closed_form_beyond_servo_limit() {
+    let dialect = Dialect::Rs274ngc;
+    let settings = Settings::new(dialect);
+    let machine = toml::Table::new();
+    let profile = MachineProfile::default_for(dialect);
+    assert!(profile.servo_simulation);
+    let run = |text: &str| {
+        let p = program(dialect, text);
+        let mut plan = StreamPlan::new(&profile);
+        runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| plan.push(m, e));
+        plan.finish()
+    };
+    // Three passes at 1 mm/min take more than four hours of naive motion time.
+    assert_eq!(run(&job(3, 1.0)), None);
+    let short = run(&job(3, 1500.0));
+    assert!(
+        short.as_ref().is_some_and(|t| t.cutting_s > 0.0),
+        "{short:?}"
+    );
 }
 
 /// A profile of zig-zag passes with tool changes, dwells, spindle stops and a

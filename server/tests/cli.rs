@@ -321,3 +321,42 @@ fn run_writes_pictures_and_block_times() {
     assert_eq!(row("4")[4], "10.000000");
     assert_eq!(row("5")[4], format!("{:.6}", 5.0 * std::f64::consts::PI));
 }
+
+/// `run --format json` plans on a second thread as the interpreter streams; with
+/// `--svg` it keeps every motion and plans afterwards. Both print the same summary,
+/// also when the program passes the four-hour servo-simulation limit part-way and
+/// the streamed run is planned again in closed form.
+#[test]
+fn streamed_run_summary_equals_buffered_summary() {
+    let dir = tempdir("streamed");
+    let svg = dir.join("p.svg");
+    for (name, feed, over_limit) in [("fast", 1500.0, false), ("slow", 1.0, true)] {
+        let mut text = String::from("G21 G17 G90 G94 G64 P0.01\nT1 M6\nS8000 M3\nG0 X0 Y0 Z5\n");
+        for p in 0..3 {
+            text += &format!("G1 Z-1 F{feed}\n");
+            for k in 0..40 {
+                let x = if k % 2 == 0 { 30 } else { 0 };
+                text += &format!("X{x} Y{:.3}\n", p as f64 * 2.0 + k as f64 * 0.05);
+            }
+            text += "G4 P0.5\nG0 Z5\n";
+        }
+        text += "M5\nM30\n";
+        let file = write(&dir, &format!("{name}.ngc"), text.as_bytes());
+        let run = |extra: &[&std::ffi::OsStr]| -> Value {
+            let out = bin()
+                .args(["run", "--format", "json"])
+                .args(extra)
+                .arg(&file)
+                .output()
+                .unwrap();
+            assert_eq!(out.status.code(), Some(0), "{name}");
+            serde_json::from_slice(&out.stdout).unwrap()
+        };
+        let streamed = run(&[]);
+        let buffered = run(&["--svg".as_ref(), svg.as_os_str()]);
+        assert_eq!(streamed, buffered, "{name}");
+        let cutting = streamed["cutting_s"].as_f64().unwrap_or(0.0);
+        assert_eq!(cutting > 4.0 * 3600.0, over_limit, "{name}: {cutting}");
+        assert_eq!(streamed["dwell_s"].as_f64(), Some(1.5), "{name}");
+    }
+}

@@ -23,6 +23,8 @@ use crate::rules::codes;
 
 #[path = "checks.rs"]
 mod checks;
+#[path = "fast.rs"]
+mod fast;
 #[path = "spec_checks.rs"]
 mod spec_checks;
 
@@ -44,6 +46,16 @@ pub fn run(input: &RunInput<'_>) -> RunOutput {
 /// only need motions and diagnostics save about 500 bytes per block).
 pub fn run_with_snapshots(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
     let mut it = Interp::new(input, snapshots);
+    it.run_main();
+    it.finish()
+}
+
+/// Like [`run_with_snapshots`] with every block on the general path: the reference
+/// the fast path for plain motion blocks is tested against.
+#[doc(hidden)]
+pub fn run_without_fast_path(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
+    let mut it = Interp::new(input, snapshots);
+    it.fast_path = false;
     it.run_main();
     it.finish()
 }
@@ -344,6 +356,8 @@ struct Interp<'a, 'i> {
     /// The block's inverse-time rate is already out: rs274 sets it once per
     /// compensated move, from the programmed path, before any corner arc.
     inv_rate_set: bool,
+    /// Plain motion blocks take `fast::fast_motion_block` (off only to test it).
+    fast_path: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -456,6 +470,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             tlo_drift: [0.0; 6],
             feed_override_off: false,
             inv_rate_set: false,
+            fast_path: true,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -1093,6 +1108,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Next);
         }
         self.spec_items(&prog, items);
+        if let Some(r) = self.fast_motion_block(items, block.span) {
+            return r;
+        }
         // A bare O-word line (program title, M98 target) does nothing, not even its comments.
         if self.ngc()
             && items

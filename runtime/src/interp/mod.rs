@@ -14,6 +14,8 @@ mod machine_cfg;
 mod state;
 mod types;
 
-pub use exec::{run, run_streaming, run_with_snapshots, MotionSink, SNAPSHOT_LIMIT};
+pub use exec::{
+    run, run_streaming, run_with_snapshots, run_without_fast_path, MotionSink, SNAPSHOT_LIMIT,
+};
 pub use state::{Modal, State};
 pub use types::*;

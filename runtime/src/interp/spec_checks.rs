@@ -27,6 +27,9 @@ pub(super) struct SpecMem {
     /// `$` words of the current block (value, span), and bare axis letters.
     dollar: Vec<(f64, Span)>,
     bare_axes: Vec<(u8, Span)>,
+    /// Whether the optional rule F015 is selected, looked up once: the registry
+    /// search costs more than the rest of a motion block's checks.
+    feed_spindle_off: Option<bool>,
 }
 
 const AXES: &[u8; 6] = b"XYZABC";
@@ -374,8 +377,15 @@ impl Interp<'_, '_> {
             }
             // Feed moves with the spindle off (optional rule).
             // Off by default, so it is computed only when selected.
-            let wanted = crate::rules::lookup(codes::FEED_SPINDLE_OFF)
-                .is_some_and(|meta| self.input.settings.rule_enabled(meta));
+            let wanted = match self.spec.feed_spindle_off {
+                Some(w) => w,
+                None => {
+                    let w = crate::rules::lookup(codes::FEED_SPINDLE_OFF)
+                        .is_some_and(|meta| self.input.settings.rule_enabled(meta));
+                    self.spec.feed_spindle_off = Some(w);
+                    w
+                }
+            };
             if wanted && (matches!(m, 10 | 20 | 30) || is_cycle(m)) && self.st.spindle_dir == 0 {
                 self.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
             }

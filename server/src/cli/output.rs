@@ -81,6 +81,10 @@ impl Columns {
 pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
     let mut out = Vec::new();
     for r in reports {
+        // A clean file needs no line index (a pass over every byte of it).
+        if r.diagnostics.is_empty() {
+            continue;
+        }
         let mut indexes: Vec<(String, &[u8], LineIndex)> =
             Vec::with_capacity(1 + r.extra_files.len());
         indexes.push((

@@ -260,9 +260,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         // The static rules run beside the interpreter and planner (both only read the tree).
         let (mut diagnostics, out, totals) = std::thread::scope(|scope| {
             let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
-            let mut plan = dryrun::StreamPlan::new(&profile);
-            let out = runtime::run_streaming(&input, &mut |m, e| plan.push(m, e));
-            let totals = plan.finish();
+            let (out, totals) = plan_beside(&input, &profile);
             // A panic in the rules is passed on as if the rules had run on this thread.
             let diagnostics = lint.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
             (diagnostics, out, totals)
@@ -387,6 +385,57 @@ pub fn run(args: RunArgs) -> ExitCode {
         return fail(format_args!("cannot write output: {e}"));
     }
     exit_status(&report)
+}
+
+/// Chunks of motions in flight between the interpreter and the planner thread: enough
+/// that neither waits on the other's jitter, few enough that memory stays flat.
+const PLAN_QUEUE: usize = 4;
+
+/// Interprets on this thread and plans on another, chunk by chunk: the totals of
+/// [`dryrun::stream_totals`], with the planner's work taken off the interpreter's
+/// thread. Like `stream_totals`, a run past the servo-simulation limit is streamed
+/// a second time into a closed-form planner.
+fn plan_beside(
+    input: &runtime::RunInput<'_>,
+    profile: &MachineProfile,
+) -> (runtime::RunOutput, runtime::plan::Totals) {
+    let pass = |plan: dryrun::StreamPlan| {
+        std::thread::scope(|scope| {
+            type Chunk = (Vec<runtime::Motion>, Vec<runtime::Event>);
+            let (tx, rx) = std::sync::mpsc::sync_channel::<Chunk>(PLAN_QUEUE);
+            // Emptied buffers go back to the interpreter, so the chunks reuse memory.
+            let (back_tx, back_rx) = std::sync::mpsc::channel::<Chunk>();
+            let planner = scope.spawn(move || {
+                let mut plan = plan;
+                for (mut m, mut e) in rx {
+                    plan.push(&m, &e);
+                    m.clear();
+                    e.clear();
+                    let _ = back_tx.send((m, e));
+                }
+                plan.finish()
+            });
+            let out = runtime::run_streaming(input, &mut |m, e| {
+                let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
+                mb.extend_from_slice(m);
+                eb.extend_from_slice(e);
+                // The planner only stops early by panicking, which the join passes on.
+                let _ = tx.send((mb, eb));
+            });
+            drop(tx);
+            let totals = planner
+                .join()
+                .unwrap_or_else(|e| std::panic::resume_unwind(e));
+            (out, totals)
+        })
+    };
+    match pass(dryrun::StreamPlan::new(profile)) {
+        (out, Some(totals)) => (out, totals),
+        (_, None) => {
+            let (out, totals) = pass(dryrun::StreamPlan::closed_form(profile));
+            (out, totals.unwrap_or_default())
+        }
+    }
 }
 
 /// 1 when the run reported an error, else success.
