@@ -721,6 +721,11 @@ impl<'p> Cx<'p> {
                 let s = n.span.start as usize;
                 self.push_expr(Expr::Num(n), s)
             }
+            // LinuxCNC reads the number after `#` as any value, so a function call
+            // such as `#atan[1]/[1]` (parameter 45) is a parameter too.
+            Some(c) if c.is_ascii_alphabetic() && self.dialect == Dialect::Rs274ngc => {
+                self.value_expr()
+            }
             _ => {
                 let span = Span::new(start as u32, self.pos as u32);
                 self.diag(

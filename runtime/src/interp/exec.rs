@@ -18,6 +18,8 @@ use super::files::{label_key, FileEntry, ProgRef};
 use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
 use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
+
+mod context;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 
@@ -112,6 +114,8 @@ struct Frame {
     call_span: Span,
     /// Called by a G66 modal call (no nested modal calls inside it).
     modal_call: bool,
+    /// RS274/NGC: the state saved by M70/M73 at this call level.
+    context: Option<context::SavedContext>,
 }
 
 /// The evaluated words of one block.
@@ -171,7 +175,8 @@ struct Vars<'s> {
     st: &'s State,
     locals: Option<&'s HashMap<String, f64>>,
     dialect: Dialect,
-    /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, program units.
+    /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, in the tool
+    /// table's units.
     tool: [f64; 4],
 }
 
@@ -358,6 +363,13 @@ struct Interp<'a, 'i> {
     inv_rate_set: bool,
     /// Plain motion blocks take `fast::fast_motion_block` (off only to test it).
     fast_path: bool,
+    /// RS274/NGC: the state saved by M70 outside any subroutine.
+    top_context: Option<context::SavedContext>,
+    /// G64 Q (naive CAM tolerance) as written; M70 saves it.
+    naive_tol: f64,
+    /// LinuxCNC's `doing_break`: set by a break out of a while or repeat loop and
+    /// consumed by the next `do` loop's closing `while`.
+    pending_break: bool,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -471,6 +483,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             feed_override_off: false,
             inv_rate_set: false,
             fast_path: true,
+            top_context: None,
+            naive_tol: 0.0,
+            pending_break: false,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -1028,18 +1043,19 @@ impl<'a, 'i> Interp<'a, 'i> {
     /// What expressions read: the state, the named locals in scope and the
     /// current tool's offsets in parameter units.
     fn vars<'s>(&'s self, locals: Option<&'s HashMap<String, f64>>) -> Vars<'s> {
-        let f = self.pfac();
         let t = self
             .cfg
             .tools
             .get(&self.st.tool)
             .copied()
             .unwrap_or_default();
+        // LinuxCNC reads #5401-#5410 straight from its tool table, in the machine's
+        // units whatever G20/G21 says.
         Vars {
             st: &self.st,
             locals,
             dialect: self.dialect,
-            tool: [t.x_offset * f, t.y_offset * f, t.length * f, t.diameter * f],
+            tool: [t.x_offset, t.y_offset, t.length, t.diameter],
         }
     }
 
@@ -1372,6 +1388,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             for i in 0..6 {
                 self.st.pos[i] -= self.tlo_drift[i];
             }
+            // The machine point follows, so that a later G43/G49 (which re-reads the
+            // programmed point from it) starts where rs274 believes the tool is.
+            if self.tlo_drift.iter().any(|d| *d != 0.0) {
+                self.st.mpos = self.to_machine(self.st.pos);
+            }
             self.tlo_drift = [0.0; 6];
         }
     }
@@ -1604,6 +1625,21 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         match kw {
             OKeyword::Sub => {
+                // rs274 refuses a definition inside a definition while it skips over
+                // the outer one, and names the inner `sub` line.
+                let stop = ctrl.partner.unwrap_or(p.blocks.len() as u32);
+                let nested = (bi + 1..stop).find(|b| {
+                    p.blocks.get(*b as usize).is_some_and(|blk| {
+                        p.items_of(blk).iter().any(|it| {
+                            matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub))
+                        })
+                    })
+                });
+                if let (true, Some(b)) = (self.ngc(), nested) {
+                    self.cur = (fi, b);
+                    let at = p.blocks.get(b as usize).map(|x| x.span).unwrap_or(span);
+                    return Err(self.err(codes::FLOW, at, "Nested subroutine definition"));
+                }
                 if self.ngc() && fi == 0 && ctrl.partner.is_none() {
                     // rs274 skips the definition looking for its endsub and runs off
                     // the end of the file.
@@ -1629,7 +1665,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                     "_value_returned".into(),
                     if v.is_some() { 1.0 } else { 0.0 },
                 );
+                let saved = self.frames.last_mut().and_then(|f| f.context.take());
                 self.ret_from_sub(None);
+                self.auto_restore(saved)?;
                 Ok(Flow::Goto(self.cur.0, self.cur.1))
             }
             OKeyword::Call => {
@@ -1649,6 +1687,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             OKeyword::While => {
                 if ctrl.closes_do {
                     let head = ctrl.partner.unwrap_or(bi);
+                    if std::mem::take(&mut self.pending_break) {
+                        return Ok(Flow::Next);
+                    }
                     return Ok(if cond(self)? {
                         Flow::Goto(fi, head + 1)
                     } else {
@@ -1726,14 +1767,36 @@ impl<'a, 'i> Interp<'a, 'i> {
                 };
                 let hc = self.files[fi].ctrl.get(&head).cloned().unwrap_or_default();
                 let end = hc.partner.unwrap_or(head);
-                if kw == OKeyword::Break {
+                let head_kw = |k: OKeyword| {
+                    p.blocks.get(head as usize).is_some_and(|b| {
+                        p.items_of(b)
+                            .iter()
+                            .any(|it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(k)))
+                    })
+                };
+                let is_do = head_kw(OKeyword::Do);
+                // LinuxCNC leaves a loop by skipping forward to its end, and a `break`
+                // of the same loop met while skipping still runs (even inside a false
+                // `if`).  Its flag is cleared only where a `do` loop closes, so a
+                // break out of a while or repeat loop also ends the next do-while
+                // after one pass.
+                let breaks_ahead = (bi + 1..end).any(|b| {
+                    self.files[fi].ctrl.get(&b).is_some_and(|c| c.partner == Some(head))
+                        && p.blocks.get(b as usize).is_some_and(|blk| {
+                            p.items_of(blk).iter().any(|it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Break)))
+                        })
+                });
+                if kw == OKeyword::Break || (is_do && breaks_ahead) {
                     self.repeats.retain(|r| !(r.0 == fi && r.1 == head));
+                    if !is_do {
+                        self.pending_break = true;
+                    }
                     Ok(Flow::Goto(fi, end + 1))
                 } else {
-                    let hb = p.blocks.get(head as usize).copied();
-                    let is_repeat_or_do = hb.is_some_and(|b| {
-                        p.items_of(&b).iter().any(|it| matches!(it.kind, ItemKind::OWord(o) if matches!(o.keyword, Some(OKeyword::Repeat) | Some(OKeyword::Do))))
-                    });
+                    if breaks_ahead {
+                        self.pending_break = true;
+                    }
+                    let is_repeat_or_do = is_do || head_kw(OKeyword::Repeat);
                     Ok(Flow::Goto(fi, if is_repeat_or_do { end } else { head }))
                 }
             }
@@ -1836,6 +1899,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             named_locals: HashMap::new(),
             call_span: span,
             modal_call: false,
+            context: None,
         });
         let start = if tb == u32::MAX { 0 } else { tb + 1 };
         Ok(Flow::Goto(tf, start))
@@ -1941,6 +2005,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             named_locals: HashMap::new(),
             call_span: span,
             modal_call: false,
+            context: None,
         });
         Ok(Flow::Goto(tf, tb))
     }
@@ -2050,7 +2115,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         // Subprogram calls (FANUC/ServoWorks) are handled at the end of the block.
         let sw_m_after = self.dialect == Dialect::Servoworks;
         if !sw_m_after {
-            self.exec_m_before(w);
+            self.exec_m_before(w)?;
         }
         // Modal G codes.
         if w.has_g(40) {
@@ -2114,6 +2179,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.st.modal.path_tol = pt;
             let tol = pt.unwrap_or(0.0) / self.unit();
             let q = w.get(b'Q').unwrap_or(tol);
+            self.naive_tol = q;
             self.canon(format!(
                 "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
             ));
@@ -2189,7 +2255,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if sw_m_after {
-            self.exec_m_before(w);
+            self.exec_m_before(w)?;
         }
         // Stops and ends.
         self.exec_stops(w, fi)
@@ -2307,9 +2373,15 @@ impl<'a, 'i> Interp<'a, 'i> {
                         j += 1;
                     }
                     if j > i + 1 {
-                        let n: usize = text[i + 1..j].parse().unwrap_or(0);
-                        let v = self.read_param(n as i64);
-                        out.push_str(&format!("{v:.decimals$}"));
+                        // LinuxCNC has 5602 numbered parameters and prints those
+                        // beyond as hashes.
+                        match text[i + 1..j].parse::<usize>() {
+                            Ok(n) if !self.ngc() || n < 5602 => {
+                                let v = self.read_param(n as i64);
+                                out.push_str(&format!("{v:.decimals$}"));
+                            }
+                            _ => out.push_str("######"),
+                        }
                         i = j;
                         continue;
                     }
@@ -2344,7 +2416,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         Ok(())
     }
 
-    fn exec_m_before(&mut self, w: &Words) {
+    fn exec_m_before(&mut self, w: &Words) -> Result<(), Diagnostic> {
         let ngc = self.ngc();
         if w.has_m(60) && !(self.dialect == Dialect::Servoworks) {
             let t = self.st.next_tool;
@@ -2367,7 +2439,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_m(610) {
             let t = w.get(b'Q').unwrap_or(0.0) as u32;
-            self.st.tool = t;
+            // The standalone rs274 announces the new number but keeps reading the old
+            // tool's data (#5400-#5410, G43 without H); `--emit canon` copies it, the
+            // dry run loads the tool as a real LinuxCNC does.
+            if self.canon.is_none() || !ngc {
+                self.st.tool = t;
+            }
             self.canon(format!("CHANGE_TOOL_NUMBER({t})"));
         }
         for (m, dir) in [(30u32, 1i8), (40, -1), (50, 0)] {
@@ -2386,6 +2463,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             let r = w.get(b'R').unwrap_or(0.0);
             let q = w.get(b'P').unwrap_or(0.0) as i32;
             self.canon(format!("ORIENT_SPINDLE(0, {}, {q})", f4(r)));
+        }
+        if ngc {
+            self.exec_context_codes(w)?;
         }
         let mut coolant = false;
         if w.has_m(70) {
@@ -2451,6 +2531,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
         }
+        Ok(())
     }
 
     fn exec_dwell(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -2853,6 +2934,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 "M98 shares its block with axis words: the motion in this block is ignored",
             );
         }
+        // LinuxCNC runs `M98 P.. L0` zero times.
+        if self.ngc() && repeat < 1.0 {
+            return Ok(Flow::Next);
+        }
         self.call_program(fi, bi, &name, repeat.max(1.0) as u32, None, span)
     }
 
@@ -2972,23 +3057,80 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
                 1 | 10 | 11 => {
                     let t = p.max(0) as u32;
+                    if self.ngc() {
+                        self.check_tool(t, w.sp(b'P'))?;
+                    }
                     let mut tool = self.cfg.tools.get(&t).copied().unwrap_or_default();
                     let f = self.pfac();
-                    // L1 sets the offsets; L10/L11 make the current point read the given value.
-                    let cur = [
-                        self.st.pos[0] + self.st.tlo[0],
-                        self.st.pos[1] + self.st.tlo[1],
-                        self.st.pos[2] + self.st.tlo[2],
-                    ];
-                    let val = |i: usize, v: f64| if l == 1 { v } else { cur[i] - v };
-                    if let Some(x) = axis(self, 0) {
-                        tool.x_offset = val(0, x) / f;
-                    }
-                    if let Some(y) = axis(self, 1) {
-                        tool.y_offset = val(1, y) / f;
-                    }
-                    if let Some(z) = axis(self, 2) {
-                        tool.length = val(2, z) / f;
+                    if l == 1 {
+                        for (i, slot) in [&mut tool.x_offset, &mut tool.y_offset, &mut tool.length]
+                            .into_iter()
+                            .enumerate()
+                        {
+                            if let Some(v) = axis(self, i) {
+                                *slot = v / f;
+                            }
+                        }
+                    } else {
+                        // L10/L11 make the current point read the given value in the
+                        // current system (L10) or in G59.3, the touch-off fixture (L11),
+                        // as LinuxCNC's convert_setup_tool: the spindle point in that
+                        // system without tool offset, unrotated; G92/G52 count for L10
+                        // only, so that they do not move the fixture.
+                        let dest = if l == 11 { 9 } else { self.st.modal.origin };
+                        let g5 = self.g5x_of(dest);
+                        let rot = if dest < 100 {
+                            self.read_param((5210 + 20 * dest) as i64)
+                        } else {
+                            0.0
+                        };
+                        let mut t = [0.0; 3];
+                        for (i, v) in t.iter_mut().enumerate() {
+                            *v = self.st.mpos[i] - g5[i];
+                        }
+                        let rotate = |x: f64, y: f64, deg: f64| {
+                            let (sn, cs) = deg.to_radians().sin_cos();
+                            (x * cs - y * sn, x * sn + y * cs)
+                        };
+                        (t[0], t[1]) = rotate(t[0], t[1], -rot);
+                        if l == 10 {
+                            for (i, v) in t.iter_mut().enumerate() {
+                                *v -= self.st.g92[i] + self.st.g52[i];
+                            }
+                        }
+                        let (x, y) = (axis(self, 0), axis(self, 1));
+                        if x.is_some() || y.is_some() {
+                            // The component of the old offset along the axis not given
+                            // is kept (in the possibly rotated system).
+                            let (mut ox, mut oy) =
+                                rotate(tool.x_offset * f, tool.y_offset * f, -rot);
+                            let (mut tx, mut ty) = (t[0], t[1]);
+                            match (x, y) {
+                                (Some(xv), Some(yv)) => {
+                                    (ox, oy) = (0.0, 0.0);
+                                    tx -= xv;
+                                    ty -= yv;
+                                }
+                                (Some(xv), None) => {
+                                    ox = 0.0;
+                                    tx -= xv;
+                                    ty = 0.0;
+                                }
+                                (None, Some(yv)) => {
+                                    oy = 0.0;
+                                    ty -= yv;
+                                    tx = 0.0;
+                                }
+                                (None, None) => {}
+                            }
+                            let (ox, oy) = rotate(ox, oy, rot);
+                            let (tx, ty) = rotate(tx, ty, rot);
+                            tool.x_offset = (tx + ox) / f;
+                            tool.y_offset = (ty + oy) / f;
+                        }
+                        if let Some(z) = axis(self, 2) {
+                            tool.length = (t[2] - z) / f;
+                        }
                     }
                     if let Some(r) = w.get(b'R') {
                         tool.diameter = 2.0 * self.lin(r) / f;
@@ -3501,6 +3643,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.out.motions.push(m);
             }
             382..=385 => {
+                if self.ngc() && !w.any_axis() {
+                    return Err(self.err(
+                        codes::PROBE_STATE,
+                        bspan,
+                        "All axes missing with motion code",
+                    ));
+                }
                 let t = self.target(w);
                 if self.ngc() && dist(&self.st.pos, &t) == 0.0 {
                     return Err(self.err(codes::PROBE_STATE, bspan, "the probe move starts at its target: a G38 move needs a target away from the current position"));
@@ -4796,6 +4945,22 @@ impl<'a, 'i> Interp<'a, 'i> {
                 .find(|(g, _)| is_cycle(*g))
                 .map(|x| x.1)
                 .unwrap_or(bspan);
+        // LinuxCNC's canned cycles move only X, Y and Z.
+        if ngc && mode != 800 {
+            for c in [b'A', b'B', b'C'] {
+                if w.has(c) {
+                    return Err(self.err(
+                        codes::INTERP,
+                        w.sp(c),
+                        format!(
+                            "Cannot put a{} {} in canned cycle",
+                            if c == b'A' { "n" } else { "" },
+                            char::from(c.to_ascii_lowercase())
+                        ),
+                    ));
+                }
+            }
+        }
         let same = self.st.modal.motion == mode;
         let (a, b) = self.plane_axes();
         let n = self.normal_axis();
@@ -5399,6 +5564,12 @@ fn rs274_message(msg: &str) -> String {
             "Zero degree inside corner is invalid for cutter compensation",
         ),
     ];
+    if msg.starts_with("parameter number #") && msg.contains("out of range") {
+        return "Parameter number out of range".to_string();
+    }
+    if msg.starts_with("M72 restores a modal state that no M70") {
+        return "Cannot restore context from invalid stack frame - missing M70/M73?".to_string();
+    }
     if msg.contains("is the first move after G40") {
         return "The move just after exiting cutter compensation mode must be straight, not an arc"
             .to_string();

@@ -74,17 +74,7 @@ pub fn eval(
         Expr::Error => Err(err(span, "X006", "expression could not be parsed")),
         Expr::Call { func, arg, arg2 } => {
             if func == Func::Exists {
-                let node = p.expr(arg);
-                let inner = match node.expr {
-                    Expr::Group { inner } => p.expr(inner),
-                    _ => node,
-                };
-                return Ok(Some(match inner.expr {
-                    Expr::Named { name } => {
-                        f64::from(u8::from(vars.named_exists(&named_key(&p.str_of(name)))))
-                    }
-                    _ => 0.0,
-                }));
+                return exists(p, arg, dialect, vars, depth);
             }
             let a = num(eval(p, arg, dialect, vars, depth + 1)?);
             let b = match arg2 {
@@ -97,6 +87,57 @@ pub fn eval(
             let a = eval(p, lhs, dialect, vars, depth + 1)?;
             let b = eval(p, rhs, dialect, vars, depth + 1)?;
             binary(op, a, b, dialect, span)
+        }
+    }
+}
+
+/// LinuxCNC's number of numbered parameters (`RS274NGC_MAX_PARAMETERS`): `EXISTS[#n]`
+/// is true exactly for `1 <= n < 5602`.
+const NGC_MAX_PARAMETERS: f64 = 5602.0;
+
+/// `EXISTS[#<name>]` / `EXISTS[#n]`.  LinuxCNC reads exactly one parameter between the
+/// brackets: its number is evaluated as usual (so `EXISTS[##2]` reads #2 and can fail),
+/// but the parameter itself is only tested, never read.  Anything else between the
+/// brackets is an error worded as rs274 words it.
+fn exists(
+    p: &Program,
+    arg: ExprId,
+    dialect: Dialect,
+    vars: &dyn VarSource,
+    depth: u32,
+) -> Result<Val, EvalError> {
+    let node = p.expr(arg);
+    let inner = match node.expr {
+        Expr::Group { inner } => p.expr(inner),
+        _ => node,
+    };
+    match inner.expr {
+        Expr::Named { name } => Ok(Some(f64::from(u8::from(
+            vars.named_exists(&named_key(&p.str_of(name))),
+        )))),
+        Expr::Var { index } => {
+            let i = eval(p, index, dialect, vars, depth + 1)?.unwrap_or(0.0);
+            let r = i.round();
+            if (i - r).abs() > 1e-4 {
+                return Err(err(
+                    inner.span,
+                    "X006",
+                    format!("parameter number {i} is not an integer"),
+                ));
+            }
+            Ok(Some(f64::from(u8::from(
+                (1.0..NGC_MAX_PARAMETERS).contains(&r),
+            ))))
+        }
+        _ => {
+            // rs274 reads a `#` first and then one parameter: `EXISTS[#1+#2]` fails at the
+            // `+`, `EXISTS[1]` at the `1`.
+            let message = if p.str_of(inner.span).trim_start().starts_with('#') {
+                "Expected ] reading bracketed parameter"
+            } else {
+                "Expected # reading parameter"
+            };
+            Err(err(inner.span, "X006", message))
         }
     }
 }
