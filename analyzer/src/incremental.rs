@@ -4,13 +4,19 @@
 //! block to the next ([`ParserState`]), so after an edit only the blocks from
 //! just before the change up to the first block boundary where the new parse
 //! meets the old one again (same position after the shift, same parser state)
-//! are parsed anew; the blocks after it are copied from the previous parse
-//! with their offsets, lines and indices shifted. Block-local static rules run
-//! again only on the re-parsed blocks, on blocks whose "skipped" status
-//! changed, and on the few blocks whose verdict looks at earlier blocks (G10);
-//! whole-file rules run in full (they are linear scans). The result is equal
-//! to [`crate::analyze`] on the new text; `tests/incremental.rs` checks that
-//! over random edit sequences in all dialects.
+//! are parsed anew, into a scratch program that is spliced into the previous
+//! program's vectors in place; the blocks after it keep their place in memory
+//! and get their offsets, lines and indices shifted there
+//! ([`Incremental::update_owned`]; [`Incremental::update`] does the same on a
+//! copy). Block-local static rules run again only on the re-parsed blocks, on
+//! blocks whose "skipped" status changed, and on the few blocks whose verdict
+//! looks at earlier blocks (G10). Whole-file rules run in full, but over
+//! stretches of blocks: a run of plain blocks (literal words only, the bulk
+//! of CAM output; the flag is kept per block and re-derived only for
+//! re-parsed blocks) is visited once. The result is equal to
+//! [`crate::analyze`] on the new text; `tests/incremental.rs` checks that over
+//! random edit sequences in all dialects, and that visiting plain runs once
+//! gives the whole-file rules' results of visiting every block.
 
 use std::sync::Arc;
 
