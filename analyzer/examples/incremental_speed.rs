@@ -25,7 +25,7 @@ fn main() {
         let at = at + text[at..].iter().position(|b| *b == b'\n').unwrap_or(0) + 4;
         edited.insert_str_at(at, if k % 2 == 0 { "A " } else { "" });
         let t = Instant::now();
-        inc = inc.update(Arc::from(&edited[..]), &settings, syntax_only);
+        inc = inc.update_owned(Arc::from(&edited[..]), &settings, syntax_only);
         times.push(t.elapsed());
     }
     println!("updates: {times:?}");

@@ -4,20 +4,26 @@
 //! block to the next ([`ParserState`]), so after an edit only the blocks from
 //! just before the change up to the first block boundary where the new parse
 //! meets the old one again (same position after the shift, same parser state)
-//! are parsed anew; the blocks after it are copied from the previous parse
-//! with their offsets, lines and indices shifted. Block-local static rules run
-//! again only on the re-parsed blocks, on blocks whose "skipped" status
-//! changed, and on the few blocks whose verdict looks at earlier blocks (G10);
-//! whole-file rules run in full (they are linear scans). The result is equal
-//! to [`crate::analyze`] on the new text; `tests/incremental.rs` checks that
-//! over random edit sequences in all dialects.
+//! are parsed anew, into a scratch program that is spliced into the previous
+//! program's vectors in place; the blocks after it keep their place in memory
+//! and get their offsets, lines and indices shifted there
+//! ([`Incremental::update_owned`]; [`Incremental::update`] does the same on a
+//! copy). Block-local static rules run again only on the re-parsed blocks, on
+//! blocks whose "skipped" status changed, and on the few blocks whose verdict
+//! looks at earlier blocks (G10). Whole-file rules run in full, but over
+//! stretches of blocks: a run of plain blocks (literal words only, the bulk
+//! of CAM output; the flag is kept per block and re-derived only for
+//! re-parsed blocks) is visited once. The result is equal to
+//! [`crate::analyze`] on the new text; `tests/incremental.rs` checks that over
+//! random edit sequences in all dialects, and that visiting plain runs once
+//! gives the whole-file rules' results of visiting every block.
 
 use std::sync::Arc;
 
 use crate::rules::{self, ProgramCx};
 use crate::syntax::{
     Block, Expr, ExprId, ExprNode, Item, ItemKind, MacroStmt, OLabel, ParseOptions, Parser,
-    ParserState, Program, Token, WordValue,
+    ParserState, Program, WordValue,
 };
 use crate::{Analysis, Diagnostic, Settings, Span};
 
@@ -92,6 +98,11 @@ struct RuleState {
     skipped: Vec<bool>,
     /// Blocks whose block-rule verdict depends on earlier blocks.
     looks_back: Vec<u32>,
+    /// Which blocks are plain ([`rules::util::is_plain`]): the per-block fact
+    /// the whole-file rules group blocks by. Re-derived only for re-parsed
+    /// blocks, so the whole-file pass visits runs of plain blocks once
+    /// without looking at their items.
+    plain: Vec<bool>,
 }
 
 /// An analysis that can be updated after an edit.
@@ -171,11 +182,13 @@ impl Incremental {
             let enabled = rules::enabled_rules(settings);
             let mut rs = RuleState::default();
             if !enabled.is_empty() {
-                let cx = ProgramCx {
-                    program: &program,
-                    settings,
-                };
-                rs.skipped = rules::skipped_blocks(&program);
+                rs.plain = program
+                    .blocks
+                    .iter()
+                    .map(|b| rules::util::is_plain(&program, b))
+                    .collect();
+                let cx = ProgramCx::with_plain(&program, settings, &rs.plain);
+                rs.skipped = rules::skipped_blocks_in(&program, cx.segments());
                 let mut codes = Vec::new();
                 let mut out = Vec::new();
                 for i in 0..program.blocks.len() {
@@ -198,186 +211,243 @@ impl Incremental {
     }
 
     /// The analysis of `text`, reusing this one where the edit left it valid.
+    /// Works on a copy: [`Incremental::update_owned`] avoids it when the
+    /// caller can give up this analysis.
     pub fn update(&self, text: Arc<[u8]>, settings: &Settings, syntax_only: bool) -> Incremental {
-        let full = || Incremental::new(text.clone(), settings, syntax_only);
-        let Some((index, rs)) = &self.index else {
-            return full();
-        };
-        if self.syntax_only != syntax_only || self.settings_key != settings_key(settings) {
-            return full();
+        if !self.reusable(&text, settings, syntax_only) {
+            return Incremental::new(text, settings, syntax_only);
         }
-        if !syntax_only && crate::binary_check(&text).is_some() {
-            return full();
-        }
-        let old = &self.analysis.program;
-        let Some(edit) = diff(&old.text, &text) else {
-            return Incremental {
-                analysis: Analysis {
-                    program: Program {
-                        text,
-                        ..old.clone()
-                    },
-                    diagnostics: self.analysis.diagnostics.clone(),
-                },
-                ..self.clone()
-            };
-        };
-        if old.blocks.is_empty() || index.states.len() != old.blocks.len() {
-            return full();
-        }
-        self.splice(index, rs, edit, text, settings)
+        self.clone().update_owned(text, settings, syntax_only)
     }
 
-    fn splice(
-        &self,
-        index: &Index,
-        rs: &RuleState,
-        edit: Edit,
+    /// Whether an update can start from this analysis (else: a full one).
+    fn reusable(&self, text: &[u8], settings: &Settings, syntax_only: bool) -> bool {
+        let Some((index, _)) = &self.index else {
+            return false;
+        };
+        self.syntax_only == syntax_only
+            && self.settings_key == settings_key(settings)
+            && (syntax_only || crate::binary_check(text).is_none())
+            && !self.analysis.program.blocks.is_empty()
+            && index.states.len() == self.analysis.program.blocks.len()
+    }
+
+    /// [`Incremental::update`] on this analysis itself: the program's vectors
+    /// are edited in place (the changed blocks replaced, the blocks after
+    /// them shifted), so an edit of a large file neither allocates nor
+    /// copies a second program.
+    pub fn update_owned(
+        self,
         text: Arc<[u8]>,
         settings: &Settings,
+        syntax_only: bool,
     ) -> Incremental {
-        let old = &self.analysis.program;
-        let nb = old.blocks.len();
-        // The block before the edited one too: its terminator may look ahead
-        // (FANUC `;` + blanks + newline, `\r` + `\n`).
-        let first = old
-            .block_at(edit.start as u32)
-            .unwrap_or(0)
-            .saturating_sub(1)
-            .min(nb - 1);
-        let start_pos = old.blocks[first].span.start as usize;
-        let tok_cut = old
-            .tokens
-            .partition_point(|t| (t.start as usize) < start_pos);
-        let mut p = empty_program(settings, text.clone(), Some(old));
-        p.tokens.extend_from_slice(&old.tokens[..tok_cut]);
-        p.blocks.extend_from_slice(&old.blocks[..first]);
-        p.items
-            .extend_from_slice(&old.items[..old.blocks[first].items.0 as usize]);
-        p.exprs
-            .extend_from_slice(&old.exprs[..index.exprs[first] as usize]);
-        p.expr_lists
-            .extend_from_slice(&old.expr_lists[..index.lists[first] as usize]);
-        p.diagnostics
-            .extend_from_slice(&old.diagnostics[..index.diags[first] as usize]);
-        let mut ix = Index {
-            states: index.states[..first].to_vec(),
-            exprs: index.exprs[..first].to_vec(),
-            lists: index.lists[..first].to_vec(),
-            diags: index.diags[..first].to_vec(),
+        if !self.reusable(&text, settings, syntax_only) {
+            return Incremental::new(text, settings, syntax_only);
+        }
+        let Some(edit) = diff(&self.analysis.program.text, &text) else {
+            let mut same = self;
+            same.analysis.program.text = text;
+            return same;
         };
-        let delta = edit.new_end as i64 - edit.old_end as i64;
-        let mut parser = Parser::resume(
-            opts(settings),
-            text.clone(),
-            start_pos,
-            old.blocks[first].line,
-            index.states[first],
-        );
-        // The old block where the new parse meets the old one again.
-        let mut tail: Option<usize> = None;
-        while !parser.is_done() {
-            let (pos, _) = parser.position();
-            if pos >= edit.new_end {
-                let old_pos = (pos as i64 - delta) as usize;
-                let j = old
-                    .blocks
-                    .partition_point(|b| (b.span.start as usize) < old_pos);
-                if j < nb
-                    && old.blocks[j].span.start as usize == old_pos
-                    && index.states[j] == parser.state()
-                {
-                    tail = Some(j);
-                    break;
-                }
-            }
-            ix.record(&parser, &p);
-            parser.parse_blocks(&mut p, 1);
-        }
-        let parsed_end = p.blocks.len();
-        let mut block_delta = 0i64;
-        if let Some(j) = tail {
-            let (_, line) = parser.position();
-            let old_pos = old.blocks[j].span.start;
-            let sh = Shift {
-                bytes: delta,
-                items: p.items.len() as i64 - old.blocks[j].items.0 as i64,
-                exprs: p.exprs.len() as i64 - index.exprs[j] as i64,
-                lists: p.expr_lists.len() as i64 - index.lists[j] as i64,
-            };
-            let lines = line as i64 - old.blocks[j].line as i64;
-            let diags = p.diagnostics.len() as i64 - index.diags[j] as i64;
-            block_delta = parsed_end as i64 - j as i64;
-            let tok_j = old.tokens.partition_point(|t| t.start < old_pos);
-            p.tokens.extend(old.tokens[tok_j..].iter().map(|t| Token {
-                start: add(t.start, delta),
-                kind: t.kind,
-            }));
-            p.blocks.extend(old.blocks[j..].iter().map(|b| Block {
-                span: sh.span(b.span),
-                end: sh.span(b.end),
-                line: add(b.line, lines),
-                kind: b.kind,
-                skip: b.skip.map(|(s, n)| (sh.span(s), n)),
-                items: (add(b.items.0, sh.items), add(b.items.1, sh.items)),
-            }));
-            p.items.extend(
-                old.items[old.blocks[j].items.0 as usize..]
-                    .iter()
-                    .map(|it| sh.item(it)),
-            );
-            p.exprs.extend(
-                old.exprs[index.exprs[j] as usize..]
-                    .iter()
-                    .map(|e| sh.expr(e)),
-            );
-            p.expr_lists.extend(
-                old.expr_lists[index.lists[j] as usize..]
-                    .iter()
-                    .map(|e| sh.id(*e)),
-            );
-            p.diagnostics.extend(
-                old.diagnostics[index.diags[j] as usize..]
-                    .iter()
-                    .map(|d| shift_diag(d, delta)),
-            );
-            ix.states.extend_from_slice(&index.states[j..]);
-            ix.exprs
-                .extend(index.exprs[j..].iter().map(|v| add(*v, sh.exprs)));
-            ix.lists
-                .extend(index.lists[j..].iter().map(|v| add(*v, sh.lists)));
-            ix.diags
-                .extend(index.diags[j..].iter().map(|v| add(*v, diags)));
-        }
-        let (analysis, rule_state) = if self.syntax_only {
+        let Incremental {
+            analysis,
+            syntax_only,
+            settings_key,
+            index,
+        } = self;
+        let Some((mut ix, rs)) = index else {
+            return Incremental::new(text, settings, syntax_only);
+        };
+        let mut p = analysis.program;
+        let reuse = splice_in_place(&mut p, &mut ix, edit, text, settings);
+        let (analysis, rule_state) = if syntax_only {
             (finish_syntax_only(p, settings), RuleState::default())
         } else {
             let enabled = rules::enabled_rules(settings);
             let rs = if enabled.is_empty() {
                 RuleState::default()
             } else {
-                recheck(
-                    &p,
-                    settings,
-                    &enabled,
-                    rs,
-                    Reuse {
-                        first,
-                        parsed_end,
-                        tail,
-                        block_delta,
-                        bytes: delta,
-                    },
-                )
+                recheck(&p, settings, &enabled, &rs, reuse)
             };
             (finish_full(p, settings, &enabled, &rs), rs)
         };
         Incremental {
             analysis,
-            syntax_only: self.syntax_only,
-            settings_key: self.settings_key.clone(),
+            syntax_only,
+            settings_key,
             index: Some((ix, rule_state)),
         }
+    }
+}
+
+/// Re-parses the blocks an edit touched and splices them into `p` (whose
+/// text becomes `text`) and its index, shifting the blocks after them.
+/// `p` must be non-empty and `ix` must describe it.
+fn splice_in_place(
+    p: &mut Program,
+    ix: &mut Index,
+    edit: Edit,
+    text: Arc<[u8]>,
+    settings: &Settings,
+) -> Reuse {
+    let nb = p.blocks.len();
+    // The block before the edited one too: its terminator may look ahead
+    // (FANUC `;` + blanks + newline, `\r` + `\n`).
+    let first = p
+        .block_at(edit.start as u32)
+        .unwrap_or(0)
+        .saturating_sub(1)
+        .min(nb - 1);
+    let start_pos = p.blocks[first].span.start as usize;
+    let tok_cut = p.tokens.partition_point(|t| (t.start as usize) < start_pos);
+    let base = Shift {
+        bytes: 0,
+        items: p.blocks[first].items.0 as i64,
+        exprs: ix.exprs[first] as i64,
+        lists: ix.lists[first] as i64,
+    };
+    let diags_first = ix.diags[first] as usize;
+    // The changed blocks are parsed into a scratch program (item and
+    // expression ids from 0, moved by `base` when spliced in). Its first
+    // token is the token before the cut, so that a run of blanks merges
+    // across the cut as it does in a full parse.
+    let mut s = Program {
+        dialect: p.dialect,
+        tokens: p.tokens[..tok_cut].last().copied().into_iter().collect(),
+        blocks: Vec::new(),
+        items: Vec::new(),
+        exprs: Vec::new(),
+        expr_lists: Vec::new(),
+        diagnostics: Vec::new(),
+        text: text.clone(),
+    };
+    let seeded = s.tokens.len();
+    let mut sx = Index::default();
+    let delta = edit.new_end as i64 - edit.old_end as i64;
+    let mut parser = Parser::resume(
+        opts(settings),
+        text.clone(),
+        start_pos,
+        p.blocks[first].line,
+        ix.states[first],
+    );
+    // The old block where the new parse meets the old one again.
+    let mut tail: Option<usize> = None;
+    while !parser.is_done() {
+        let (pos, _) = parser.position();
+        if pos >= edit.new_end {
+            let old_pos = (pos as i64 - delta) as usize;
+            let j = p
+                .blocks
+                .partition_point(|b| (b.span.start as usize) < old_pos);
+            if j < nb
+                && p.blocks[j].span.start as usize == old_pos
+                && ix.states[j] == parser.state()
+            {
+                tail = Some(j);
+                break;
+            }
+        }
+        sx.states.push(parser.state());
+        sx.exprs.push(s.exprs.len() as u32);
+        sx.lists.push(s.expr_lists.len() as u32);
+        sx.diags.push(s.diagnostics.len() as u32);
+        parser.parse_blocks(&mut s, 1);
+    }
+    let (_, line) = parser.position();
+    let parsed = s.blocks.len();
+    // Where the replaced stretch of each old vector ends (the old tail's start).
+    let j = tail.unwrap_or(nb);
+    let tok_j = match tail {
+        Some(j) => {
+            let at = p.blocks[j].span.start;
+            p.tokens.partition_point(|t| t.start < at)
+        }
+        None => p.tokens.len(),
+    };
+    let items_j = tail.map_or(p.items.len(), |j| p.blocks[j].items.0 as usize);
+    let exprs_j = tail.map_or(p.exprs.len(), |j| ix.exprs[j] as usize);
+    let lists_j = tail.map_or(p.expr_lists.len(), |j| ix.lists[j] as usize);
+    let diags_j = tail.map_or(p.diagnostics.len(), |j| ix.diags[j] as usize);
+    let sh = Shift {
+        bytes: delta,
+        items: base.items + s.items.len() as i64 - items_j as i64,
+        exprs: base.exprs + s.exprs.len() as i64 - exprs_j as i64,
+        lists: base.lists + s.expr_lists.len() as i64 - lists_j as i64,
+    };
+    let lines = tail.map_or(0, |j| line as i64 - p.blocks[j].line as i64);
+    let diags_shift = diags_first as i64 + s.diagnostics.len() as i64 - diags_j as i64;
+
+    // Splice each vector: the scratch part moved by `base`, the tail by `sh`.
+    let new_tokens = s.tokens.len() - seeded;
+    p.tokens.splice(tok_cut..tok_j, s.tokens.drain(seeded..));
+    for t in &mut p.tokens[tok_cut + new_tokens..] {
+        t.start = add(t.start, delta);
+    }
+    p.blocks
+        .splice(first..j, s.blocks.iter().map(|b| base.block(b, 0)));
+    for b in &mut p.blocks[first + parsed..] {
+        *b = sh.block(b, lines);
+    }
+    let items_first = base.items as usize;
+    let new_items = s.items.len();
+    p.items
+        .splice(items_first..items_j, s.items.iter().map(|it| base.item(it)));
+    for it in &mut p.items[items_first + new_items..] {
+        *it = sh.item(it);
+    }
+    let exprs_first = base.exprs as usize;
+    let new_exprs = s.exprs.len();
+    p.exprs
+        .splice(exprs_first..exprs_j, s.exprs.iter().map(|e| base.expr(e)));
+    for e in &mut p.exprs[exprs_first + new_exprs..] {
+        *e = sh.expr(e);
+    }
+    let lists_first = base.lists as usize;
+    let new_lists = s.expr_lists.len();
+    p.expr_lists.splice(
+        lists_first..lists_j,
+        s.expr_lists.iter().map(|e| base.id(*e)),
+    );
+    for e in &mut p.expr_lists[lists_first + new_lists..] {
+        *e = sh.id(*e);
+    }
+    let new_diags = s.diagnostics.len();
+    p.diagnostics
+        .splice(diags_first..diags_j, s.diagnostics.drain(..));
+    for d in &mut p.diagnostics[diags_first + new_diags..] {
+        shift_diag_in_place(d, delta);
+    }
+    p.text = text;
+
+    // The index: the re-parsed blocks' entries (moved by `base`), then the
+    // tail's (moved like the tail).
+    ix.states.splice(first..j, sx.states);
+    ix.exprs
+        .splice(first..j, sx.exprs.iter().map(|v| add(*v, base.exprs)));
+    ix.lists
+        .splice(first..j, sx.lists.iter().map(|v| add(*v, base.lists)));
+    ix.diags.splice(
+        first..j,
+        sx.diags.iter().map(|v| add(*v, diags_first as i64)),
+    );
+    let tail_ix = first + parsed;
+    for v in &mut ix.exprs[tail_ix..] {
+        *v = add(*v, sh.exprs);
+    }
+    for v in &mut ix.lists[tail_ix..] {
+        *v = add(*v, sh.lists);
+    }
+    for v in &mut ix.diags[tail_ix..] {
+        *v = add(*v, diags_shift);
+    }
+    Reuse {
+        first,
+        parsed_end: first + parsed,
+        tail,
+        block_delta: (first + parsed) as i64 - j as i64,
+        bytes: delta,
     }
 }
 
@@ -422,7 +492,29 @@ fn recheck(
     old: &RuleState,
     r: Reuse,
 ) -> RuleState {
-    let skipped = rules::skipped_blocks(p);
+    // Plain flags: the old ones outside the re-parsed blocks.
+    let mut plain: Vec<bool> = Vec::with_capacity(p.blocks.len());
+    plain.extend(old.plain.iter().take(r.first));
+    plain.extend(
+        p.blocks
+            .get(r.first..r.parsed_end)
+            .unwrap_or_default()
+            .iter()
+            .map(|b| rules::util::is_plain(p, b)),
+    );
+    if let Some(j) = r.tail {
+        plain.extend(old.plain.iter().skip(j));
+    }
+    if plain.len() != p.blocks.len() {
+        // Cannot happen when the old state matched the old program; stay exact anyway.
+        plain = p
+            .blocks
+            .iter()
+            .map(|b| rules::util::is_plain(p, b))
+            .collect();
+    }
+    let segs = rules::context::segments_of(plain.iter().copied());
+    let skipped = rules::skipped_blocks_in(p, &segs);
     let mut again: Vec<u32> = (r.first..r.parsed_end).map(|b| b as u32).collect();
     // Blocks that became skipped or live.
     for (b, s) in skipped.iter().enumerate() {
@@ -467,10 +559,7 @@ fn recheck(
             }
         }
     }
-    let cx = ProgramCx {
-        program: p,
-        settings,
-    };
+    let cx = ProgramCx::new(p, settings);
     let mut fresh: Vec<(u32, Diagnostic)> = Vec::new();
     let mut codes = Vec::new();
     let mut out = Vec::new();
@@ -498,6 +587,7 @@ fn recheck(
         diags,
         skipped,
         looks_back,
+        plain,
     }
 }
 
@@ -524,10 +614,7 @@ fn finish_full(
     }
     if !enabled.is_empty() {
         diagnostics.extend(rs.diags.iter().map(|(_, d)| d.clone()));
-        let cx = ProgramCx {
-            program: &program,
-            settings,
-        };
+        let cx = ProgramCx::with_plain(&program, settings, &rs.plain);
         rules::check_whole_program(&cx, enabled, &mut diagnostics);
     }
     let diagnostics = crate::finish(&program, settings, diagnostics);
@@ -552,6 +639,17 @@ struct Shift {
 impl Shift {
     fn span(&self, s: Span) -> Span {
         shift_span(s, self.bytes)
+    }
+
+    fn block(&self, b: &Block, lines: i64) -> Block {
+        Block {
+            span: self.span(b.span),
+            end: self.span(b.end),
+            line: add(b.line, lines),
+            kind: b.kind,
+            skip: b.skip.map(|(s, n)| (self.span(s), n)),
+            items: (add(b.items.0, self.items), add(b.items.1, self.items)),
+        }
     }
 
     fn id(&self, e: ExprId) -> ExprId {
@@ -669,6 +767,14 @@ fn shift_span(s: Span, d: i64) -> Span {
 
 fn shift_diag(d: &Diagnostic, by: i64) -> Diagnostic {
     let mut d = d.clone();
+    shift_diag_in_place(&mut d, by);
+    d
+}
+
+fn shift_diag_in_place(d: &mut Diagnostic, by: i64) {
+    if by == 0 {
+        return;
+    }
     d.span = shift_span(d.span, by);
     for r in &mut d.related {
         r.span = shift_span(r.span, by);
@@ -678,5 +784,4 @@ fn shift_diag(d: &Diagnostic, by: i64) -> Diagnostic {
             e.span = shift_span(e.span, by);
         }
     }
-    d
 }

@@ -82,10 +82,7 @@ pub fn lint(parsed: &Parsed, settings: &Settings) -> Vec<Diagnostic> {
     if parsed.binary {
         return diagnostics;
     }
-    let cx = rules::ProgramCx {
-        program: &parsed.program,
-        settings,
-    };
+    let cx = rules::ProgramCx::new(&parsed.program, settings);
     rules::check(&cx, &mut diagnostics);
     finish(&parsed.program, settings, diagnostics)
 }

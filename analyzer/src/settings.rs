@@ -184,11 +184,21 @@ pub struct Suppressions {
 impl Suppressions {
     pub fn collect(program: &Program) -> Suppressions {
         let mut s = Suppressions::default();
-        for (bi, block) in program.blocks.iter().enumerate() {
-            for item in program.items_of(block) {
-                if item.kind != ItemKind::Comment(CommentKind::Partscope) {
-                    continue;
-                }
+        // Directive comments are rare: scan the flat item list and look up
+        // the block owning each one found (by item index).
+        for (k, item) in program.items.iter().enumerate() {
+            if !matches!(item.kind, ItemKind::Comment(CommentKind::Partscope)) {
+                continue;
+            }
+            let k = k as u32;
+            let bi = program.blocks.partition_point(|b| b.items.0 <= k);
+            let Some(bi) = bi
+                .checked_sub(1)
+                .filter(|&bi| program.blocks.get(bi).is_some_and(|b| k < b.items.1))
+            else {
+                continue;
+            };
+            {
                 let text = program.str_of(item.span).into_owned();
                 for directive in parse_directives(&text) {
                     match directive {

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use analyzer::incremental::{diff, reference, Edit, Incremental};
+use analyzer::rules::{self, ProgramCx};
 use analyzer::{Dialect, Settings};
 use proptest::prelude::*;
 
@@ -68,6 +69,13 @@ const FRAGMENTS: &[&str] = &[
     "T1 M6\n",
     "Ä",
     "\u{0}",
+    // Runs of plain blocks (the whole-file rules visit a run once), one
+    // just over the 80-byte bound of a plain block and lines over the
+    // ServoWorks and LinuxCNC length limits.
+    "G1 X1 Y2 F300\nG1 X2 Y3\nG0 Z5\n",
+    "M2\nG1 X1\nG1 Y1\n",
+    "G1 X1.000000000000000000000000000000000000000000000000000000000000000000000000 Y2\n",
+    "G1 X1.0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000 Y2\n",
 ];
 
 #[derive(Debug, Clone)]
@@ -140,6 +148,34 @@ fn check_equal(inc: &Incremental, text: &[u8], settings: &Settings, syntax_only:
     same(&a.expr_lists, &b.expr_lists, "expr lists");
     same(&a.diagnostics, &b.diagnostics, "syntax diagnostics");
     same(&inc.analysis.diagnostics, &full.diagnostics, "diagnostics");
+    if !syntax_only {
+        plain_runs_change_nothing(&full.program, settings);
+    }
+}
+
+/// The whole-file rules give the same diagnostics when they visit each run
+/// of plain blocks once as when they visit every block (no block plain).
+fn plain_runs_change_nothing(p: &analyzer::syntax::Program, settings: &Settings) {
+    let enabled = rules::enabled_rules(settings);
+    let mut grouped = Vec::new();
+    rules::check_whole_program(&ProgramCx::new(p, settings), &enabled, &mut grouped);
+    let none = vec![false; p.blocks.len()];
+    let mut each = Vec::new();
+    rules::check_whole_program(
+        &ProgramCx::with_plain(p, settings, &none),
+        &enabled,
+        &mut each,
+    );
+    same(
+        &grouped,
+        &each,
+        "whole-file diagnostics (plain runs vs every block)",
+    );
+    assert_eq!(
+        rules::skipped_blocks(p),
+        rules::skipped_blocks_in(p, ProgramCx::with_plain(p, settings, &none).segments()),
+        "skipped blocks (plain runs vs every block)"
+    );
 }
 
 fn run_sequence(dialect: Dialect, ext: &str, ops: &[Op], syntax_only: bool) {
@@ -151,7 +187,7 @@ fn run_sequence(dialect: Dialect, ext: &str, ops: &[Op], syntax_only: bool) {
     check_equal(&inc, &text, &settings, syntax_only);
     for op in ops {
         text = apply(&text, op);
-        inc = inc.update(Arc::from(&text[..]), &settings, syntax_only);
+        inc = inc.update_owned(Arc::from(&text[..]), &settings, syntax_only);
         check_equal(&inc, &text, &settings, syntax_only);
     }
 }

@@ -718,3 +718,40 @@ fn tool_table_named_by_the_config_reaches_the_interpreter() {
     assert_eq!(c.diagnostics(&uri, 1), vec![("T001".to_string(), 1)]);
     assert!(c.shutdown().success());
 }
+
+/// Above 256 KB a version's static diagnostics are published at once and the
+/// interpreter's follow in a second publish, once edits have paused.
+#[test]
+fn large_files_publish_static_diagnostics_first_then_the_run() {
+    // Line 1 moves without a feed rate (F001, found by the interpreter).
+    let mut text = String::from("G21 G90\nG1 X1\n");
+    while text.len() <= 300 * 1024 {
+        text.push_str("G1 X2 Y3 F100\n");
+    }
+    text.push_str("M2\n");
+    let uri = "file:///large/part.ngc";
+    let mut c = Client::spawn();
+    c.request(
+        "initialize",
+        json!({"processId": null, "rootUri": null, "capabilities": {}}),
+    );
+    c.notify("initialized", json!({}));
+    c.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": uri, "languageId": "ngc", "version": 1, "text": text}}),
+    );
+    assert_eq!(c.diagnostics(uri, 1), vec![]);
+    assert_eq!(c.diagnostics(uri, 1), vec![("F001".to_string(), 1)]);
+    // An `A` without a value on line 5 (L003): static first, then both.
+    c.notify(
+        "textDocument/didChange",
+        json!({"textDocument": {"uri": uri, "version": 2}, "contentChanges": [
+            {"range": {"start": {"line": 5, "character": 3}, "end": {"line": 5, "character": 3}}, "text": "A "}]}),
+    );
+    assert_eq!(c.diagnostics(uri, 2), vec![("L003".to_string(), 5)]);
+    assert_eq!(
+        c.diagnostics(uri, 2),
+        vec![("F001".to_string(), 1), ("L003".to_string(), 5)]
+    );
+    assert!(c.shutdown().success());
+}

@@ -80,6 +80,12 @@ struct Doc {
     path: PathBuf,
     text: String,
     version: i64,
+    /// The diagnostics received for `version`, once received. The server
+    /// publishes each version once: a document that no edit of a batch
+    /// touched (it happens: seed 2026 leaves part.ngc alone for the 25 edits
+    /// up to edit 7925) has nothing new to wait for, and waiting for a second
+    /// publish of the same version would time out.
+    received: Option<(i64, Vec<Key>)>,
 }
 
 /// The LSP position (line, UTF-16 column) of byte offset `at`.
@@ -143,7 +149,12 @@ fn cpu_ticks(pid: u32) -> Option<u64> {
     Some(f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?)
 }
 
-fn published(c: &mut Client, doc: &Doc, done: usize) -> Vec<Key> {
+fn published(c: &mut Client, doc: &mut Doc, done: usize) -> Vec<Key> {
+    if let Some((v, keys)) = &doc.received {
+        if *v == doc.version {
+            return keys.clone();
+        }
+    }
     let cpu_before = cpu_ticks(c.pid());
     let p = c
         .wait_within(
@@ -187,6 +198,16 @@ fn published(c: &mut Client, doc: &Doc, done: usize) -> Vec<Key> {
         })
         .collect();
     keys.sort();
+    // Publishes of this document's earlier versions can no longer be asked
+    // for; dropping them keeps the client's backlog from growing.
+    c.pending.retain(|m| {
+        !(m["method"] == "textDocument/publishDiagnostics"
+            && m["params"]["uri"] == doc.uri.as_str()
+            && m["params"]["version"]
+                .as_i64()
+                .is_some_and(|v| v <= doc.version))
+    });
+    doc.received = Some((doc.version, keys.clone()));
     keys
 }
 
@@ -269,6 +290,7 @@ fn soak(edits: usize, batch: usize, seed: u64) {
         path: dir.join("check").join(name),
         text: format!("(partscope: dialect={dialect})\n{text}"),
         version: 1,
+        received: None,
     })
     .collect();
     for d in &docs {
@@ -289,7 +311,7 @@ fn soak(edits: usize, batch: usize, seed: u64) {
             edit(&mut c, &mut rng, &mut docs[i]);
             done += 1;
         }
-        for d in &docs {
+        for d in &mut docs {
             let got = published(&mut c, d, done);
             let want = checked(d);
             assert_eq!(
@@ -338,6 +360,14 @@ fn soak(edits: usize, batch: usize, seed: u64) {
 #[test]
 fn random_edits_keep_diagnostics_exact_and_memory_flat() {
     soak(600, 20, 7);
+}
+
+/// One edit per batch: the two documents it leaves alone are compared again
+/// without a new publish (the case that made the 10 000-edit run wait for a
+/// publish the server had already sent, at edit 7925).
+#[test]
+fn documents_left_alone_by_a_batch_keep_their_diagnostics() {
+    soak(45, 1, 11);
 }
 
 #[test]

@@ -66,6 +66,90 @@ impl<'a> BlockCx<'a> {
 pub struct ProgramCx<'a> {
     pub program: &'a Program,
     pub settings: &'a Settings,
+    /// Which blocks are plain ([`super::util::is_plain`]), when the host
+    /// keeps that per block (an incremental update re-derives it only for
+    /// the blocks it re-parsed); computed on first use otherwise.
+    pub plain: Option<&'a [bool]>,
+    segments: std::sync::OnceLock<Vec<Seg>>,
+}
+
+/// A stretch of blocks as the whole-file rules walk it: one block that is
+/// not plain, or a maximal run of plain blocks (`len` ≥ 1), which every
+/// whole-file rule treats like its first block, so one visit stands for all.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Seg {
+    pub first: usize,
+    pub len: usize,
+    pub plain: bool,
+}
+
+impl Seg {
+    /// The last block of the stretch.
+    pub fn last(&self) -> usize {
+        self.first + self.len - 1
+    }
+}
+
+impl<'a> ProgramCx<'a> {
+    pub fn new(program: &'a Program, settings: &'a Settings) -> ProgramCx<'a> {
+        ProgramCx {
+            program,
+            settings,
+            plain: None,
+            segments: std::sync::OnceLock::new(),
+        }
+    }
+
+    /// A context whose plain-block flags are already known (one per block).
+    pub fn with_plain(
+        program: &'a Program,
+        settings: &'a Settings,
+        plain: &'a [bool],
+    ) -> ProgramCx<'a> {
+        ProgramCx {
+            plain: (plain.len() == program.blocks.len()).then_some(plain),
+            ..ProgramCx::new(program, settings)
+        }
+    }
+
+    /// The blocks that are not plain, in order: all a rule that ignores
+    /// plain blocks needs to visit.
+    pub fn non_plain_blocks(&self) -> impl Iterator<Item = &'a Block> + '_ {
+        let blocks = &self.program.blocks;
+        self.segments()
+            .iter()
+            .filter(|s| !s.plain)
+            .filter_map(move |s| blocks.get(s.first))
+    }
+
+    /// The program's blocks as stretches, in order; computed once per context.
+    pub fn segments(&self) -> &[Seg] {
+        self.segments.get_or_init(|| match self.plain {
+            Some(flags) => segments_of(flags.iter().copied()),
+            None => segments_of(
+                self.program
+                    .blocks
+                    .iter()
+                    .map(|b| super::util::is_plain(self.program, b)),
+            ),
+        })
+    }
+}
+
+/// Groups per-block plain flags into stretches.
+pub fn segments_of(flags: impl Iterator<Item = bool>) -> Vec<Seg> {
+    let mut out: Vec<Seg> = Vec::new();
+    for (i, plain) in flags.enumerate() {
+        match out.last_mut() {
+            Some(s) if plain && s.plain => s.len += 1,
+            _ => out.push(Seg {
+                first: i,
+                len: 1,
+                plain,
+            }),
+        }
+    }
+    out
 }
 
 /// Collects the literal G and M codes of a block.

@@ -105,7 +105,8 @@ impl Rule for EndlessLoop {
             Dialect::Rs274ngc => {
                 // (label, span, constant-true, saw break)
                 let mut open: Vec<(u32, crate::span::Span, bool, bool, bool)> = Vec::new();
-                for b in &p.blocks {
+                // Plain blocks hold no O-word.
+                for b in cx.non_plain_blocks() {
                     for item in p.items_of(b) {
                         let ItemKind::OWord(o) = item.kind else {
                             continue;

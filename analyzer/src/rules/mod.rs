@@ -65,7 +65,7 @@ mod unreachable_after_end;
 pub(crate) mod util;
 mod word_value_range;
 
-pub use context::{BlockCode, BlockCx, ProgramCx};
+pub use context::{BlockCode, BlockCx, ProgramCx, Seg};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
 mod word_without_user;
@@ -182,7 +182,13 @@ pub fn enabled_rules(settings: &crate::Settings) -> Vec<&'static dyn Rule> {
 /// reported by the parser alone (rules would only describe the debris of the
 /// syntax error).
 pub fn skipped_blocks(program: &crate::syntax::Program) -> Vec<bool> {
-    let mut skipped = util::dead_blocks(program);
+    let segs = context::segments_of(program.blocks.iter().map(|b| util::is_plain(program, b)));
+    skipped_blocks_in(program, &segs)
+}
+
+/// [`skipped_blocks`] over known stretches of the program.
+pub fn skipped_blocks_in(program: &crate::syntax::Program, segs: &[Seg]) -> Vec<bool> {
+    let mut skipped = util::dead_blocks_in(program, segs);
     for (s, u) in skipped.iter_mut().zip(util::unreadable_blocks(program)) {
         *s |= u;
     }

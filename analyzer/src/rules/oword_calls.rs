@@ -99,7 +99,9 @@ impl Rule for OwordCalls {
         let mut reads: Vec<(String, u32, Span)> = Vec::new();
         // Per call: (label, number of arguments).
         let mut arg_counts: Vec<(String, usize)> = Vec::new();
-        for b in &p.blocks {
+        // Plain blocks start with a letter and hold no O-word, M99, expression
+        // or assignment: nothing here looks at them.
+        for b in cx.non_plain_blocks() {
             if b.kind == BlockKind::Normal {
                 let text = p.str_of(b.span);
                 let t = text.trim_start().trim_start_matches('/').trim_start();

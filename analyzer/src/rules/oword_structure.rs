@@ -122,7 +122,8 @@ impl Rule for OwordStructure {
             return;
         }
         let mut stack: Vec<Frame> = Vec::new();
-        for block in &p.blocks {
+        // Plain blocks hold no O-word.
+        for block in cx.non_plain_blocks() {
             let items = p.items_of(block);
             let Some(pos) = items
                 .iter()

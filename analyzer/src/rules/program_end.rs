@@ -78,25 +78,25 @@ impl Rule for ProgramEnd {
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
-        let code_blocks: Vec<_> = p
-            .blocks
-            .iter()
+        // A run of plain blocks counts once: they are all code blocks at the
+        // same O-word depth, and none holds an M code or is a `%` line.
+        let firsts = || cx.segments().iter().filter_map(|s| p.blocks.get(s.first));
+        let code_blocks: Vec<_> = firsts()
             .filter(|b| b.kind == BlockKind::Normal && has_code_items(p, b))
             .collect();
         if code_blocks.is_empty() {
             return;
         }
-        let ends = |ms: &[f64]| p.blocks.iter().any(|b| has_m(p, b, ms));
+        let ends = |ms: &[f64]| cx.non_plain_blocks().any(|b| has_m(p, b, ms));
         match p.dialect {
             Dialect::Rs274ngc => {
-                let first = p.blocks.iter().find(|b| {
+                let first = firsts().find(|b| {
                     b.kind != BlockKind::Normal || has_code_items(p, b) || !p.items_of(b).is_empty()
                 });
                 let opens_with_percent = first.is_some_and(|b| b.kind == BlockKind::Percent);
                 if opens_with_percent {
-                    let percents = p
-                        .blocks
-                        .iter()
+                    let percents = cx
+                        .non_plain_blocks()
                         .filter(|b| b.kind == BlockKind::Percent)
                         .count();
                     // Reading stops at M2/M30 too, so the closing `%` is not needed after one.

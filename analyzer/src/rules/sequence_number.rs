@@ -73,7 +73,8 @@ impl Rule for SequenceNumber {
             std::collections::HashMap::new();
         // RS274/NGC line numbers with more than five digits: reported once per file.
         let mut long: Vec<(crate::span::Span, String)> = Vec::new();
-        for b in &p.blocks {
+        // Plain blocks hold no N word and no program head.
+        for b in cx.non_plain_blocks() {
             let items = p.items_of(b);
             if items
                 .iter()

@@ -71,11 +71,31 @@ impl Rule for UnreachableAfterEnd {
         if d == Dialect::Rs274ngc {
             // LinuxCNC stops reading at an unconditional top-level end; `dead_blocks`
             // knows which lines that leaves out (the same set the block rules skip).
-            let dead = super::util::dead_blocks(p);
+            let dead = super::util::dead_blocks_in(p, cx.segments());
             let mut run: Option<(crate::span::Span, usize)> = None;
             let mut end = "M2";
-            for (i, b) in p.blocks.iter().enumerate() {
-                if !dead[i] {
+            for seg in cx.segments() {
+                let i = seg.first;
+                let (Some(b), Some(last)) = (p.blocks.get(i), p.blocks.get(seg.last())) else {
+                    break;
+                };
+                if seg.plain {
+                    // A run of plain blocks is all dead or all live, holds
+                    // code and no M word.
+                    if !dead.get(i).copied().unwrap_or(false) {
+                        if let Some((span, n)) = run.take() {
+                            out.push(unreachable(span, n, end, Severity::Info));
+                        }
+                        continue;
+                    }
+                    let span = b.span.cover(last.span);
+                    run = Some(match run {
+                        Some((s, n)) => (s.cover(span), n + seg.len),
+                        None => (span, seg.len),
+                    });
+                    continue;
+                }
+                if !dead.get(i).copied().unwrap_or(false) {
                     if let Some(e) = p.words(b).find_map(|(_, w)| match lit(w) {
                         Some(v) if w.letter == b'M' && v == 30.0 => Some("M30"),
                         Some(v) if w.letter == b'M' && v == 2.0 => Some("M2"),

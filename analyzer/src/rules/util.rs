@@ -193,12 +193,48 @@ pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::
     out
 }
 
+/// A plain block: one line of literal words such as `G1 X1.5 Y2 F300`, the
+/// bulk of CAM output. No whole-file rule distinguishes two plain blocks in
+/// a row: they hold no O-word, N, M or program head, no comment, expression
+/// or assignment, are not `%` or block-delete lines, and (with their line
+/// break) are at most 80 bytes, below every line-length limit. The
+/// whole-file rules visit a run of them once ([`super::ProgramCx::segments`]).
+pub fn is_plain(program: &Program, b: &Block) -> bool {
+    if b.kind != crate::syntax::BlockKind::Normal
+        || b.skip.is_some()
+        || b.end.end.saturating_sub(b.span.start) > 80
+        // Ends its line, so no line holds two blocks.
+        || b.end.end == 0
+        || program.text.get(b.end.end as usize - 1) != Some(&b'\n')
+    {
+        return false;
+    }
+    let items = program.items_of(b);
+    !items.is_empty()
+        && items.iter().all(|it| match &it.kind {
+            ItemKind::Word(w) => {
+                !w.comma
+                    && matches!(w.value, WordValue::Num(_))
+                    && w.letter.is_ascii_uppercase()
+                    && !matches!(w.letter, b'N' | b'M' | b'O')
+            }
+            _ => false,
+        })
+}
+
 /// RS274/NGC blocks the interpreter never reads: top-level lines after an
 /// `M2`/`M30` that is itself outside every O-word block (an `M30` inside an `if`
 /// may not run). Subroutine definitions further down stay reachable, because a
 /// call searches the file for them, and so do Fanuc-style `O…` programs.
 /// Other dialects: none.
 pub fn dead_blocks(program: &Program) -> Vec<bool> {
+    let segs = super::context::segments_of(program.blocks.iter().map(|b| is_plain(program, b)));
+    dead_blocks_in(program, &segs)
+}
+
+/// [`dead_blocks`] over known stretches: a run of plain blocks is all dead or
+/// all live, since only O-words and M codes change the state.
+pub fn dead_blocks_in(program: &Program, segs: &[super::Seg]) -> Vec<bool> {
     use crate::dialect::Dialect;
     use crate::syntax::OKeyword as K;
     let mut dead = vec![false; program.blocks.len()];
@@ -208,7 +244,19 @@ pub fn dead_blocks(program: &Program) -> Vec<bool> {
     let mut ended = false;
     // Open O-word blocks: (is a `do`, label text).
     let mut open: Vec<(bool, String)> = Vec::new();
-    for (i, b) in program.blocks.iter().enumerate() {
+    for seg in segs {
+        let i = seg.first;
+        let Some(b) = program.blocks.get(i) else {
+            break;
+        };
+        if seg.plain {
+            if ended && open.is_empty() {
+                if let Some(run) = dead.get_mut(i..i + seg.len) {
+                    run.fill(true);
+                }
+            }
+            continue;
+        }
         let ow = program.items_of(b).iter().find_map(|it| match it.kind {
             ItemKind::OWord(o) => Some(o),
             _ => None,

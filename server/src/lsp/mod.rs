@@ -6,13 +6,17 @@
 //!
 //! Shape:
 //! - Documents are ropes. `didChange` edits are applied before the handler's
-//!   first `.await`; each change schedules a debounced (10 ms) analysis on a
-//!   blocking thread, tagged with the document version; a result for an older
-//!   version is dropped. Requests wait for that analysis instead of starting
-//!   their own. The analysis is incremental (`analyzer::incremental`): it
-//!   updates the previous version's parse and static-rule results where the
-//!   text changed (found by comparing the two texts), which keeps an edit of a
-//!   million-line file in the tens of milliseconds.
+//!   first `.await`; each change schedules an analysis on a blocking thread
+//!   (no debounce), tagged with the document version; analyses of one
+//!   document run one at a time, one superseded while waiting is skipped,
+//!   and a result for an older version is not published (but kept as the
+//!   base of the next update). Requests wait for that analysis instead of
+//!   starting their own. The analysis is incremental
+//!   (`analyzer::incremental`): it updates the previous version's parse and
+//!   static-rule results where the text changed (found by comparing the two
+//!   texts). The scheduled analysis takes the previous one over and, when
+//!   nothing else holds it (no run, no request), edits it in place
+//!   (`Incremental::update_owned`); otherwise it updates a copy.
 //! - The interpreter and planner ([`runtime_runner`], behind the
 //!   [`dry_run::DryRunner`] trait, through `runtime::dryrun`, the glue
 //!   `partscope run` uses too) run with the analysis for files up to
@@ -23,8 +27,9 @@
 //!   `partscope/dryRun` returns toolpath and times. The config's
 //!   `tool_table`/`var_file` are passed to the interpreter. One run at a
 //!   time; a run for a superseded version is skipped. Files above 256 KB
-//!   publish the static diagnostics at once and the full set when the run
-//!   ends (the run is not incremental yet). Subprogram
+//!   publish the static diagnostics at once; the interpreter (not
+//!   incremental) runs once edits have paused for 300 ms, and the full set
+//!   is published again when it ends. Subprogram
 //!   files (NGC `o<name> sub` libraries, FANUC/ServoWorks files ending in M99)
 //!   are not run on their own.
 //! - Above `maxFileSize` (20 MB) a document is only parsed: syntax

@@ -32,21 +32,19 @@ use super::position::{apply_change, offset_to_position, position_to_offset, span
 use super::snapshot::{self, Inputs, Snapshot};
 use super::{actions, completion, goto, hover, semantic, signature, symbols, workspace};
 
-/// How long edits must pause before diagnostics are recomputed. Short: an
-/// edit costs an incremental update (milliseconds), and a burst of typing
-/// coalesces anyway because a superseded analysis is dropped.
-const DEBOUNCE: Duration = Duration::from_millis(10);
+/// How long edits must pause before diagnostics are recomputed: not at all.
+/// An edit costs an incremental update (milliseconds), analyses of one
+/// document run one at a time, and one whose version was superseded while
+/// it waited for its turn is skipped, so a burst of typing coalesces anyway.
+const DEBOUNCE: Duration = Duration::ZERO;
 /// The debounce before incremental analysis (the benchmark's baseline mode).
 const BASELINE_DEBOUNCE: Duration = Duration::from_millis(50);
 /// How long a request waits for the scheduled analysis before doing its own.
 const WAIT_FOR_ANALYSIS: Duration = Duration::from_secs(30);
-/// How long diagnostics of a large file wait for the interpreter before the
-/// static ones are published on their own: not at all, since the static
-/// analysis of an edit is incremental and the run of a large file is not
-/// (the full set follows when the run ends).
-const RUN_WAIT: Duration = Duration::ZERO;
 /// The wait before incremental analysis (the benchmark's baseline mode).
 const BASELINE_RUN_WAIT: Duration = Duration::from_millis(150);
+/// How long edits of a large file must pause before the interpreter runs.
+const RUN_IDLE: Duration = Duration::from_millis(300);
 /// Files up to this size wait [`SMALL_RUN_WAIT`] for the run.
 const SMALL_FILE: usize = 256 * 1024;
 const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
@@ -61,7 +59,12 @@ struct Doc {
     path: Option<PathBuf>,
     /// Bumped by every change; a debounced analysis runs only if it is still current.
     generation: u64,
+    /// The newest analysis (possibly of an older version than `version`:
+    /// the next analysis updates it).
     snapshot: Option<Arc<Snapshot>>,
+    /// Held while the document is analysed: one analysis at a time, so each
+    /// starts from the result of the one before.
+    analysing: Arc<tokio::sync::Mutex<()>>,
 }
 
 #[derive(Default)]
@@ -207,10 +210,15 @@ impl Backend {
         let this = self.clone();
         tokio::spawn(async move {
             tokio::time::sleep(delay).await;
+            let gate = match this.lock().docs.get(&uri) {
+                Some(doc) if doc.generation == generation => doc.analysing.clone(),
+                _ => return,
+            };
+            let analysing = gate.lock_owned().await;
             let inputs = {
-                let st = this.lock();
+                let mut st = this.lock();
                 match st.docs.get(&uri) {
-                    Some(doc) if doc.generation == generation => this.inputs(&st, &uri),
+                    Some(doc) if doc.generation == generation => this.take_inputs(&mut st, &uri),
                     _ => None,
                 }
             };
@@ -219,11 +227,17 @@ impl Backend {
                 return;
             };
             let snap = Arc::new(snap);
-            if !this.store(&snap) {
+            let current = this.store(&snap);
+            drop(analysing);
+            if !current {
                 return;
             }
             if !snap.run_eligible || !this.is_current(&snap.uri, generation) {
                 this.publish(&snap).await;
+                return;
+            }
+            if snap.rope.len_bytes() > SMALL_FILE && !snapshot::baseline_mode() {
+                this.publish_then_run(snap, generation).await;
                 return;
             }
             // The interpreter adds flow-sensitive diagnostics. When it is quick,
@@ -249,10 +263,8 @@ impl Backend {
             // Small files wait longer, so they normally get one publish per version.
             let wait = if snap.rope.len_bytes() <= SMALL_FILE {
                 SMALL_RUN_WAIT
-            } else if snapshot::baseline_mode() {
-                BASELINE_RUN_WAIT
             } else {
-                RUN_WAIT
+                BASELINE_RUN_WAIT
             };
             let (done, published) = match tokio::time::timeout(wait, &mut run).await {
                 Ok(r) => (r.ok().flatten().is_some(), false),
@@ -270,6 +282,39 @@ impl Backend {
         });
     }
 
+    /// A large file: its static diagnostics go out at once; the interpreter
+    /// (not incremental, hundreds of milliseconds) runs only once edits have
+    /// paused for [`RUN_IDLE`], and its diagnostics follow in a second
+    /// publish. Until the run starts only the document holds the snapshot, so
+    /// the next edit's analysis can take it over and update it in place.
+    async fn publish_then_run(&self, snap: Arc<Snapshot>, generation: u64) {
+        self.publish(&snap).await;
+        let uri = snap.uri.clone();
+        let weak = Arc::downgrade(&snap);
+        drop(snap);
+        tokio::time::sleep(RUN_IDLE).await;
+        if !self.is_current(&uri, generation) {
+            return;
+        }
+        let Ok(permit) = self.run_gate.clone().acquire_owned().await else {
+            return;
+        };
+        if !self.is_current(&uri, generation) {
+            return;
+        }
+        let Some(snap) = weak.upgrade() else { return };
+        let s = snap.clone();
+        let done = blocking(move || {
+            let _permit = permit;
+            s.run_report(&CancelFlag::default()).is_some()
+        })
+        .await
+        .unwrap_or(false);
+        if done && self.is_current(&uri, generation) {
+            self.publish(&snap).await;
+        }
+    }
+
     /// Whether no change arrived since the analysis of `generation` was scheduled.
     fn is_current(&self, uri: &Uri, generation: u64) -> bool {
         self.lock()
@@ -278,17 +323,41 @@ impl Backend {
             .is_some_and(|d| d.generation == generation)
     }
 
-    /// Stores a snapshot if it is for the document's current version.
+    /// Keeps a snapshot as the document's newest analysis; whether it is
+    /// for the document's current version. A superseded one is kept too (when
+    /// no newer one is stored): the next analysis updates it instead of
+    /// starting over.
     fn store(&self, snap: &Arc<Snapshot>) -> bool {
         let mut st = self.lock();
-        match st.docs.get_mut(&snap.uri) {
-            Some(doc) if doc.version == snap.version => {
-                doc.snapshot = Some(snap.clone());
-                self.stored.notify_waiters();
-                true
-            }
-            _ => false,
+        let Some(doc) = st.docs.get_mut(&snap.uri) else {
+            return false;
+        };
+        if doc
+            .snapshot
+            .as_ref()
+            .is_none_or(|s| s.version <= snap.version)
+        {
+            doc.snapshot = Some(snap.clone());
         }
+        self.stored.notify_waiters();
+        doc.version == snap.version
+    }
+
+    /// Like [`Backend::inputs`] for the scheduled analysis, which takes the
+    /// stored analysis over when it is of an older version (no request can
+    /// use it any more): if nothing else holds it either, the update edits
+    /// it in place instead of copying it.
+    fn take_inputs(&self, state: &mut State, uri: &Uri) -> Option<Inputs> {
+        let mut inputs = self.inputs(state, uri)?;
+        let doc = state.docs.get_mut(uri)?;
+        if doc
+            .snapshot
+            .as_ref()
+            .is_some_and(|s| s.version != doc.version)
+        {
+            inputs.previous = doc.snapshot.take();
+        }
+        Some(inputs)
     }
 
     async fn publish(&self, snap: &Arc<Snapshot>) {
@@ -583,6 +652,7 @@ impl LanguageServer for Backend {
                         path: uri_path(&doc.uri),
                         generation: 0,
                         snapshot: None,
+                        analysing: Arc::default(),
                     },
                 );
             }

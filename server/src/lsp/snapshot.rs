@@ -61,19 +61,29 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     let syntax_only = text.len() > doc.max_file_size;
     // `PARTSCOPE_LSP_BASELINE` turns incremental analysis off, so that the
     // latency benchmark can measure both in one session with one binary.
-    let previous = inputs.previous.as_ref().filter(|_| !baseline_mode());
-    let inc = match previous {
-        Some(prev) => prev.inc.update(text.clone(), &doc.settings, syntax_only),
+    let previous = inputs.previous.filter(|_| !baseline_mode());
+    // The previous analysis is edited in place when this is its only holder
+    // (the server hands it over once a newer version exists); otherwise,
+    // while a run or a request still reads it, it is copied first.
+    let mut in_place = false;
+    let inc = match previous.map(Arc::try_unwrap) {
+        Some(Ok(prev)) => {
+            in_place = true;
+            prev.inc
+                .update_owned(text.clone(), &doc.settings, syntax_only)
+        }
+        Some(Err(shared)) => shared.inc.update(text.clone(), &doc.settings, syntax_only),
         None => Incremental::new(text.clone(), &doc.settings, syntax_only),
     };
     let analysis = &inc.analysis;
     if timing {
         eprintln!(
-            "partscope lsp: v{} {} bytes: copy+config {:?}, analyze {:?}",
+            "partscope lsp: v{} {} bytes: copy+config {:?}, analyze {:?}{}",
             inputs.version,
             text.len(),
             t1 - t0,
-            t1.elapsed()
+            t1.elapsed(),
+            if in_place { " (in place)" } else { "" }
         );
     }
     let run_eligible = !syntax_only
