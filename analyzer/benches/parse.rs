@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_serial, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, ParseOptions};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
@@ -92,15 +92,15 @@ fn bench_parse(c: &mut Criterion) {
     }
     group.finish();
 
-    // The one-thread parse, which `parse` uses below `PARALLEL_MIN_LEN`.
-    let mut group = c.benchmark_group("parse_serial_1M_lines");
+    // The opt-in two-thread parse.
+    let mut group = c.benchmark_group("parse_in_two_1M_lines");
     short(&mut group);
     for dialect in Dialect::ALL {
         let text: Arc<[u8]> = surfacing(dialect, LINES).into();
         group.throughput(Throughput::Bytes(text.len() as u64));
         group.bench_function(dialect.as_str(), |b| {
             b.iter(|| {
-                let program = parse_serial(ParseOptions::new(dialect), text.clone());
+                let program = parse_in_two(ParseOptions::new(dialect), text.clone());
                 black_box(program.blocks.len())
             })
         });
