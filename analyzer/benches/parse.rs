@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, ParseOptions};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
@@ -92,15 +92,32 @@ fn bench_parse(c: &mut Criterion) {
     }
     group.finish();
 
+    // The opt-in two-thread parse.
+    let mut group = c.benchmark_group("parse_in_two_1M_lines");
+    short(&mut group);
+    for dialect in Dialect::ALL {
+        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_function(dialect.as_str(), |b| {
+            b.iter(|| {
+                let program = parse_in_two(ParseOptions::new(dialect), text.clone());
+                black_box(program.blocks.len())
+            })
+        });
+    }
+    group.finish();
+
+    // Parse and static rules, as `analyze` runs them.
     let mut group = c.benchmark_group("analyze_1M_lines");
     short(&mut group);
-    let dialect = Dialect::Rs274ngc;
-    let text: Arc<[u8]> = surfacing(dialect, LINES).into();
-    let settings = Settings::new(dialect);
-    group.throughput(Throughput::Bytes(text.len() as u64));
-    group.bench_function(dialect.as_str(), |b| {
-        b.iter(|| black_box(analyzer::analyze(text.clone(), &settings).diagnostics.len()))
-    });
+    for dialect in Dialect::ALL {
+        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
+        let settings = Settings::new(dialect);
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_function(dialect.as_str(), |b| {
+            b.iter(|| black_box(analyzer::analyze(text.clone(), &settings).diagnostics.len()))
+        });
+    }
     group.finish();
 }
 

@@ -1,21 +1,27 @@
-//! Measures parse throughput on a file: `cargo run --release -p analyzer --example parse_speed FILE [dialect]`.
+//! Measures parse and static-lint throughput on a file:
+//! `cargo run --release -p analyzer --example parse_speed FILE [dialect] [runs]`.
 //! (The criterion benchmark is the reference; this is a quick check on real files.)
+//!
+//! Prints the best of `runs` (default 5) for the parse alone, for the static rules
+//! alone (on an already parsed program) and for both, as `analyze` runs them.
 
 use std::time::Instant;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, ParseOptions};
+use analyzer::Settings;
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let Some(path) = args.next() else {
-        eprintln!("usage: parse_speed FILE [servoworks|rs274ngc|fanuc]");
+        eprintln!("usage: parse_speed FILE [servoworks|rs274ngc|fanuc] [runs]");
         std::process::exit(2);
     };
     let dialect = args
         .next()
         .and_then(|d| Dialect::parse(&d))
         .unwrap_or(Dialect::Rs274ngc);
+    let runs: usize = args.next().and_then(|r| r.parse().ok()).unwrap_or(5);
     let bytes = match std::fs::read(&path) {
         Ok(b) => b,
         Err(e) => {
@@ -24,18 +30,56 @@ fn main() {
         }
     };
     let text: std::sync::Arc<[u8]> = bytes.into();
-    let mut best = f64::INFINITY;
+    let settings = Settings::new(dialect);
+    let mb = text.len() as f64 / 1e6;
+
+    let mut best_parse = f64::INFINITY;
     let mut blocks = 0;
-    for _ in 0..5 {
+    for _ in 0..runs {
         let t = Instant::now();
         let p = parse(ParseOptions::new(dialect), text.clone());
-        best = best.min(t.elapsed().as_secs_f64());
+        best_parse = best_parse.min(t.elapsed().as_secs_f64());
         blocks = p.blocks.len();
     }
-    let mb = text.len() as f64 / 1e6;
+
+    // The same parse in two halves on two threads.
+    let mut best_two = f64::INFINITY;
+    for _ in 0..runs {
+        let t = Instant::now();
+        let p = parse_in_two(ParseOptions::new(dialect), text.clone());
+        best_two = best_two.min(t.elapsed().as_secs_f64());
+        drop(p);
+    }
+
+    // The static rules alone, on one parsed program.
+    let parsed = analyzer::parse_text(text.clone(), &settings);
+    let mut best_lint = f64::INFINITY;
+    let mut diags = 0;
+    for _ in 0..runs {
+        let t = Instant::now();
+        let d = analyzer::lint(&parsed, &settings);
+        best_lint = best_lint.min(t.elapsed().as_secs_f64());
+        diags = d.len();
+    }
+    drop(parsed);
+
+    let mut best_both = f64::INFINITY;
+    for _ in 0..runs {
+        let t = Instant::now();
+        let a = analyzer::analyze(text.clone(), &settings);
+        best_both = best_both.min(t.elapsed().as_secs_f64());
+        diags = a.diagnostics.len();
+    }
     println!(
-        "{blocks} blocks, {mb:.1} MB, best {:.1} ms, {:.0} MB/s",
-        best * 1e3,
-        mb / best
+        "{} {blocks} blocks, {mb:.1} MB, {diags} diagnostics, best of {runs}: parse {:.1} ms {:.0} MB/s | two-thread parse {:.1} ms {:.0} MB/s | lint {:.1} ms {:.0} MB/s | parse+lint {:.1} ms {:.0} MB/s",
+        dialect.as_str(),
+        best_parse * 1e3,
+        mb / best_parse,
+        best_two * 1e3,
+        mb / best_two,
+        best_lint * 1e3,
+        mb / best_lint,
+        best_both * 1e3,
+        mb / best_both
     );
 }

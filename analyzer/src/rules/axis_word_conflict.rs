@@ -56,6 +56,11 @@ impl Rule for AxisWordConflict {
         &AXIS_WORD_CONFLICT
     }
 
+    /// Every report needs a G code that takes the axis words or a motion code.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let consumers: &[u32] = match d {

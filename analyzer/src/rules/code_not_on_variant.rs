@@ -52,6 +52,11 @@ impl Rule for CodeNotOnVariant {
         &CODE_NOT_ON_VARIANT
     }
 
+    /// It only looks at G and M codes.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let v = cx.settings.variant;

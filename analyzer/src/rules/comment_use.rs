@@ -98,6 +98,11 @@ impl Rule for CommentUse {
         &COMMENT_USE
     }
 
+    /// It only looks at comments.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Rs274ngc {

@@ -64,6 +64,11 @@ impl Rule for ConflictingWords {
         &CONFLICTING_WORDS
     }
 
+    /// Every conflict it knows involves a G code.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         if let Some(arc) = first_g(cx, &[20, 30]) {

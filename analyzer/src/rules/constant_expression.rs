@@ -150,6 +150,11 @@ impl Rule for ConstantExpression {
         &CONSTANT_EXPRESSION
     }
 
+    /// It only looks at expressions.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let mut e = Eval {
             p: cx.program,

@@ -176,3 +176,25 @@ pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>)
         });
     }
 }
+
+/// The letters of an axis/feed block: axes, arc centre and radius, feed.
+const AXIS_FEED_LETTERS: &[u8] = b"XYZABCUVWIJKRF";
+
+/// Whether every item of the block is a plain axis/feed word with a literal value
+/// (`X1.5 Z-0.2`, `I3 J0 F200`): no G or M code, no expression, comment, statement
+/// or other letter. Such blocks make up most of a CAM program, and the block rules
+/// that answer `false` to [`super::Rule::reports_on_axis_feed_blocks`] skip them.
+/// A block-skip `/` or an empty block does not count.
+pub fn is_axis_feed_block(program: &Program, block: &Block) -> bool {
+    let items = program.items_of(block);
+    !items.is_empty()
+        && block.skip.is_none()
+        && items.iter().all(|it| match &it.kind {
+            ItemKind::Word(w) => {
+                !w.comma
+                    && matches!(w.value, WordValue::Num(_))
+                    && AXIS_FEED_LETTERS.contains(&w.letter)
+            }
+            _ => false,
+        })
+}

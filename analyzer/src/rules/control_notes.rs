@@ -60,6 +60,11 @@ impl Rule for ControlNotes {
         &CONTROL_NOTES
     }
 
+    /// Every note is about a G or M code.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let note = |out: &mut Vec<Diagnostic>, span, msg: &str| {
             out.push(Diagnostic::info("W023", span, msg.to_string()))

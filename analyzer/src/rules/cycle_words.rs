@@ -57,6 +57,11 @@ impl Rule for CycleWords {
         &CYCLE_WORDS
     }
 
+    /// It needs a canned-cycle code.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let Some(cycle) = cx

@@ -50,6 +50,11 @@ impl Rule for DlaccForm {
         &DLACC_FORM
     }
 
+    /// It needs G5 or G8.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Servoworks {
             return;

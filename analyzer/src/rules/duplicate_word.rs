@@ -57,6 +57,17 @@ impl Rule for DuplicateWord {
         let d = cx.program.dialect;
         let macro_call =
             d == Dialect::Fanuc && (has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661));
+        // Most blocks repeat no letter: one pass over bit sets proves it without allocating.
+        let (mut seen, mut seen_comma, mut repeat) = (0u128, 0u128, false);
+        for (_, w) in cx.words() {
+            let bit = 1u128 << (w.letter & 127);
+            let set = if w.comma { &mut seen_comma } else { &mut seen };
+            repeat |= *set & bit != 0;
+            *set |= bit;
+        }
+        if !repeat {
+            return;
+        }
         let words: Vec<_> = cx.words().collect();
         for (j, (item, w)) in words.iter().enumerate() {
             if w.letter == b'G' || (w.letter == b'M' && d != Dialect::Servoworks) {

@@ -56,6 +56,11 @@ impl Rule for EqNonInteger {
         &EQ_NON_INTEGER
     }
 
+    /// It only looks at expressions.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Fanuc {

@@ -52,6 +52,11 @@ impl Rule for ExpressionForm {
         &EXPRESSION_FORM
     }
 
+    /// It only looks at expressions.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Rs274ngc {

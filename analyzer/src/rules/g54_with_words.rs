@@ -49,6 +49,11 @@ impl Rule for G54WithWords {
         &G54_WITH_WORDS
     }
 
+    /// It needs a work offset code.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Servoworks {
             return;

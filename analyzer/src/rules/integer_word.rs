@@ -56,6 +56,11 @@ impl Rule for IntegerWord {
         &INTEGER_WORD
     }
 
+    /// Axis, arc and feed letters are never integer-only without a code (dwell, cycle, M98) that makes them so.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let cycle = cx

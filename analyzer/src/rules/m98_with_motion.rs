@@ -49,6 +49,11 @@ impl Rule for M98WithMotion {
         &M98_WITH_MOTION
     }
 
+    /// It needs M98.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Servoworks {
             return;

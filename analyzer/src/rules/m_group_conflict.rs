@@ -50,6 +50,11 @@ impl Rule for MGroupConflict {
         &M_GROUP_CONFLICT
     }
 
+    /// It only compares M codes.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Rs274ngc {
             return;

@@ -54,6 +54,11 @@ impl Rule for MacroCallArguments {
         &MACRO_CALL_ARGUMENTS
     }
 
+    /// It needs G65 or G66.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let Some(call) = cx

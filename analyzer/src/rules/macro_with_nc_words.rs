@@ -57,6 +57,11 @@ impl Rule for MacroWithNcWords {
         &MACRO_WITH_NC_WORDS
     }
 
+    /// It needs a macro statement or assignment.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Fanuc {
             return;

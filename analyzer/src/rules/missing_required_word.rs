@@ -79,6 +79,11 @@ impl Rule for MissingRequiredWord {
         &MISSING_REQUIRED_WORD
     }
 
+    /// Words are only required by G and M codes.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let ngc = d == Dialect::Rs274ngc;

@@ -105,6 +105,15 @@ pub trait Rule: Sync {
     fn check_block(&self, _cx: &BlockCx<'_>, _out: &mut Vec<Diagnostic>) {}
 
     fn check_program(&self, _cx: &ProgramCx<'_>, _out: &mut Vec<Diagnostic>) {}
+
+    /// Whether `check_block` can report anything on an axis/feed block (see
+    /// [`context::is_axis_feed_block`]): only literal X/Y/Z/A/B/C/U/V/W, I/J/K, R
+    /// and F words. Most of a CAM program is such blocks, so rules that need a
+    /// G/M code, an expression, a comment or another letter say `false` and are
+    /// not called on them. The default is the safe answer.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        true
+    }
 }
 
 /// Declares a rule's metadata from its doc comment.
@@ -160,8 +169,21 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
     }
     let mut codes = Vec::new();
     let skipped = skipped_blocks(cx.program);
-    for i in 0..cx.program.blocks.len() {
-        if !skipped.get(i).copied().unwrap_or(false) {
+    // The rules that can report on an axis/feed block, chosen once for the whole file.
+    let axis_feed: Vec<&'static dyn Rule> = enabled
+        .iter()
+        .copied()
+        .filter(|r| r.reports_on_axis_feed_blocks())
+        .collect();
+    for (i, block) in cx.program.blocks.iter().enumerate() {
+        if skipped.get(i).copied().unwrap_or(false) {
+            continue;
+        }
+        if context::is_axis_feed_block(cx.program, block) {
+            // No G or M word, so the block has no codes to collect.
+            codes.clear();
+            run_block_rules(cx, &axis_feed, i, block, &codes, out);
+        } else {
             check_block_at(cx, &enabled, i, &mut codes, out);
         }
     }
@@ -207,7 +229,26 @@ pub fn check_block_at(
         return;
     };
     codes.clear();
+    if context::is_axis_feed_block(cx.program, block) {
+        // Same verdict as a full check: the skipped rules cannot report on this block.
+        for r in enabled.iter().filter(|r| r.reports_on_axis_feed_blocks()) {
+            run_block_rules(cx, std::slice::from_ref(r), i, block, codes, out);
+        }
+        return;
+    }
     context::collect_codes(cx.program, block, codes);
+    run_block_rules(cx, enabled, i, block, codes, out);
+}
+
+/// Calls the block rules `rules` on block `i` whose codes are `codes`.
+fn run_block_rules(
+    cx: &ProgramCx<'_>,
+    rules: &[&'static dyn Rule],
+    i: usize,
+    block: &crate::syntax::Block,
+    codes: &[BlockCode],
+    out: &mut Vec<Diagnostic>,
+) {
     let bcx = BlockCx {
         program: cx.program,
         block,
@@ -218,7 +259,7 @@ pub fn check_block_at(
     // Some block rules compare words pairwise; a pathological block (thousands of
     // words on one line) gets only the block-length rule, so analysis stays linear.
     let huge = (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK;
-    for r in enabled {
+    for r in rules {
         if huge && r.meta().code != "W011" {
             continue;
         }

@@ -60,6 +60,11 @@ impl Rule for ModalGroupConflict {
         &MODAL_GROUP_CONFLICT
     }
 
+    /// It only compares G codes.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let g: Vec<_> = cx

@@ -67,6 +67,11 @@ impl Rule for ParameterNumber {
         &PARAMETER_NUMBER
     }
 
+    /// It only looks at parameter references.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         let d = p.dialect;

@@ -65,6 +65,11 @@ impl Rule for ParameterSameLine {
         &PARAMETER_SAME_LINE
     }
 
+    /// It only looks at assignments.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Rs274ngc {

@@ -51,6 +51,11 @@ impl Rule for LowercaseO {
         &LOWERCASE_O
     }
 
+    /// It only looks at O-words.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Rs274ngc {
             return;

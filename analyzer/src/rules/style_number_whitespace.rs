@@ -53,6 +53,15 @@ impl Rule for NumberWhitespace {
         }
         for (_, w) in cx.words() {
             let Some(n) = w.num() else { continue };
+            // Decoding the text is only worth it when the number holds a blank at all.
+            if !cx
+                .program
+                .slice(n.span)
+                .iter()
+                .any(|b| matches!(b, b' ' | b'\t'))
+            {
+                continue;
+            }
             let text = cx.program.str_of(n.span);
             let trimmed = text.trim_end_matches([' ', '\t']);
             if trimmed.contains([' ', '\t']) {

@@ -59,6 +59,11 @@ impl Rule for OrderOfExecution {
         &ORDER_OF_EXECUTION
     }
 
+    /// It needs a G, M, T or S word besides the motion.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Rs274ngc {
             return;

@@ -49,6 +49,11 @@ impl Rule for RadiusArc {
         &RADIUS_ARC
     }
 
+    /// It needs G2 or G3.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Rs274ngc || first_g(cx, &[20, 30]).is_none() {
             return;

@@ -50,6 +50,11 @@ impl Rule for SubprogramNameGlued {
         &SUBPROGRAM_NAME_GLUED
     }
 
+    /// It needs M98.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Servoworks || !cx.has_code('M', 980) {
             return;

@@ -52,6 +52,11 @@ impl Rule for TooManyMWords {
         &TOO_MANY_M_WORDS
     }
 
+    /// It only counts M words.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let m: Vec<_> = cx
             .words()

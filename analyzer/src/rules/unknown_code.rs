@@ -55,6 +55,11 @@ impl Rule for UnknownCode {
         &UNKNOWN_CODE
     }
 
+    /// It only looks at G and M codes.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         for c in cx.codes {

@@ -51,6 +51,11 @@ impl Rule for WordWithoutUser {
         &WORD_WITHOUT_USER
     }
 
+    /// It only looks at E, @ and ^ words.
+    fn reports_on_axis_feed_blocks(&self) -> bool {
+        false
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect != Dialect::Rs274ngc || is_emc2(cx.settings) {
             return;

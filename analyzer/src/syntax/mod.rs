@@ -11,4 +11,4 @@ mod ast;
 mod parser;
 
 pub use ast::*;
-pub use parser::{parse, ParseOptions, Parser, ParserState};
+pub use parser::{parse, parse_in_two, parse_serial, ParseOptions, Parser, ParserState};

@@ -49,22 +49,177 @@ impl ParseOptions {
 /// hostile input cannot overflow the stack.
 const MAX_EXPR_DEPTH: u32 = 64;
 
-/// Parses a whole file.
+/// Parses a whole file on the calling thread (see [`parse_in_two`] for large files
+/// on a machine with a spare core).
 pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
-    let text: Arc<[u8]> = text.into();
-    let mut program = Program {
-        dialect: opts.dialect,
-        text: text.clone(),
-        tokens: Vec::with_capacity(text.len() / 2 + 1),
-        blocks: Vec::with_capacity(text.len() / 16 + 1),
-        items: Vec::with_capacity(text.len() / 5 + 1),
+    parse_serial(opts, text)
+}
+
+/// An empty program with room for the tree of `len` bytes of typical text, so the
+/// vectors do not grow (and copy) while a large file is read.
+fn with_capacity(dialect: Dialect, text: Arc<[u8]>, len: usize) -> Program {
+    Program {
+        dialect,
+        text,
+        tokens: Vec::with_capacity(len / 2 + 1),
+        blocks: Vec::with_capacity(len / 16 + 1),
+        items: Vec::with_capacity(len / 5 + 1),
         exprs: Vec::new(),
         expr_lists: Vec::new(),
         diagnostics: Vec::new(),
-    };
+    }
+}
+
+/// Parses a whole file on the calling thread.
+pub fn parse_serial(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
+    let text: Arc<[u8]> = text.into();
+    let mut program = with_capacity(opts.dialect, text.clone(), text.len());
     let mut parser = Parser::new(opts, text);
     parser.parse_blocks(&mut program, usize::MAX);
     program
+}
+
+/// Parses the two halves of the text (split after a line break near the middle)
+/// on two threads and joins them; the result equals [`parse_serial`]'s.
+///
+/// Not the default: on the shared 2-core machine of BENCHMARKS.md it gave no
+/// steady wall-clock gain and holds the second half twice while joining (about
+/// 40 % more peak memory), so hosts opt in where a core is known to be idle.
+///
+/// Every byte after a `\n` starts a block, and a block reads no text before its
+/// start, so the only things the second half needs from the first are the line
+/// number (added afterwards) and the [`ParserState`] (`%` lines seen). The second
+/// half is parsed with the state most files have there; when the first half ends
+/// in another state, that guess is thrown away and the first parser simply
+/// continues through the second half.
+pub fn parse_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
+    let text: Arc<[u8]> = text.into();
+    let mid = text.len() / 2;
+    let split = memchr::memchr(b'\n', &text[mid..]).map(|k| mid + k + 1);
+    let Some(split) = split.filter(|s| *s < text.len()) else {
+        return parse_serial(opts, text);
+    };
+    let first_byte = text
+        .iter()
+        .find(|b| !is_ws(**b) && !matches!(b, b'\n' | b'\r'))
+        .copied();
+    let guess = ParserState {
+        // ServoWorks never records `%` lines in the state.
+        percent_seen: opts.dialect != Dialect::Servoworks && first_byte == Some(b'%'),
+        after_end: false,
+        seen_content: true,
+    };
+    let (mut program, mut parser, second) = std::thread::scope(|s| {
+        let t2 = text.clone();
+        let handle = std::thread::Builder::new().spawn_scoped(s, move || {
+            let mut p = with_capacity(opts.dialect, t2.clone(), t2.len() - split);
+            let mut parser = Parser::resume(opts, t2, split, 0, guess);
+            parser.parse_blocks(&mut p, usize::MAX);
+            p
+        });
+        let mut program = with_capacity(opts.dialect, text.clone(), text.len());
+        let mut parser = Parser::new(opts, text.clone());
+        let all = text.clone();
+        while parser.pos < split && parser.pos < all.len() {
+            parser.parse_block(&mut program, &all);
+        }
+        // A thread that could not start or that failed leaves the work to this one.
+        let second = handle.ok().and_then(|h| h.join().ok());
+        (program, parser, second)
+    });
+    match second {
+        Some(second) if parser.pos == split && parser.state() == guess => {
+            append_rebased(&mut program, second, parser.line);
+        }
+        _ => {
+            parser.parse_blocks(&mut program, usize::MAX);
+        }
+    }
+    program
+}
+
+/// Appends a program parsed from a later block boundary (its lines counted from
+/// 0, its ids from 0) to `program`, whose last block ends at that boundary and
+/// has `lines` line breaks before it.
+fn append_rebased(program: &mut Program, second: Program, lines: u32) {
+    let items = program.items.len() as u32;
+    let exprs = program.exprs.len() as u32;
+    let lists = program.expr_lists.len() as u32;
+    let id = |e: ExprId| ExprId(e.0.saturating_add(exprs));
+    program.tokens.extend_from_slice(&second.tokens);
+    program.blocks.extend(second.blocks.iter().map(|b| Block {
+        line: b.line.saturating_add(lines),
+        items: (
+            b.items.0.saturating_add(items),
+            b.items.1.saturating_add(items),
+        ),
+        ..*b
+    }));
+    program.items.extend(second.items.iter().map(|it| {
+        let kind = match it.kind {
+            ItemKind::Word(mut w) => {
+                if let WordValue::Expr(e) = w.value {
+                    w.value = WordValue::Expr(id(e));
+                }
+                ItemKind::Word(w)
+            }
+            ItemKind::Assign { target, value } => ItemKind::Assign {
+                target: id(target),
+                value: id(value),
+            },
+            ItemKind::OWord(mut o) => {
+                if let OLabel::Expr(e) = o.label {
+                    o.label = OLabel::Expr(id(e));
+                }
+                o.args = (
+                    o.args.0.saturating_add(lists),
+                    o.args.1.saturating_add(lists),
+                );
+                ItemKind::OWord(o)
+            }
+            ItemKind::Macro(m) => ItemKind::Macro(match m {
+                MacroStmt::Goto { target } => MacroStmt::Goto { target: id(target) },
+                MacroStmt::IfGoto { cond, target } => MacroStmt::IfGoto {
+                    cond: id(cond),
+                    target: id(target),
+                },
+                MacroStmt::IfThen { cond } => MacroStmt::IfThen { cond: id(cond) },
+                MacroStmt::While { cond, m } => MacroStmt::While {
+                    cond: id(cond),
+                    m: id(m),
+                },
+                MacroStmt::Do { m } => MacroStmt::Do { m: id(m) },
+                MacroStmt::End { m } => MacroStmt::End { m: id(m) },
+                MacroStmt::Output => MacroStmt::Output,
+            }),
+            k @ (ItemKind::Comment(_) | ItemKind::ProgramHead { .. } | ItemKind::Error) => k,
+        };
+        Item { kind, ..*it }
+    }));
+    program.exprs.extend(second.exprs.iter().map(|n| {
+        let expr = match n.expr {
+            Expr::Var { index } => Expr::Var { index: id(index) },
+            Expr::Neg { arg } => Expr::Neg { arg: id(arg) },
+            Expr::Plus { arg } => Expr::Plus { arg: id(arg) },
+            Expr::Binary { op, lhs, rhs } => Expr::Binary {
+                op,
+                lhs: id(lhs),
+                rhs: id(rhs),
+            },
+            Expr::Call { func, arg, arg2 } => Expr::Call {
+                func,
+                arg: id(arg),
+                arg2: arg2.map(id),
+            },
+            Expr::Group { inner } => Expr::Group { inner: id(inner) },
+            e @ (Expr::Num(_) | Expr::Named { .. } | Expr::Error) => e,
+        };
+        ExprNode { expr, ..*n }
+    }));
+    program
+        .expr_lists
+        .extend(second.expr_lists.iter().map(|e| id(*e)));
+    program.diagnostics.extend(second.diagnostics);
 }
 
 /// A resumable parser over one file's text.
@@ -168,9 +323,12 @@ impl Parser {
     /// Parses up to `max_blocks` blocks into `program`, appending. Returns the
     /// number of blocks parsed (0 at end of input).
     pub fn parse_blocks(&mut self, program: &mut Program, max_blocks: usize) -> usize {
+        // One handle on the text for the whole run: cloning the `Arc` per block
+        // cost two atomic operations per line.
+        let text = self.text.clone();
         let mut n = 0;
-        while n < max_blocks && self.pos < self.text.len() {
-            self.parse_block(program);
+        while n < max_blocks && self.pos < text.len() {
+            self.parse_block(program, &text);
             n += 1;
         }
         n
@@ -225,13 +383,12 @@ impl Parser {
         (content_end, end, newline)
     }
 
-    fn parse_block(&mut self, p: &mut Program) {
+    fn parse_block(&mut self, p: &mut Program, text: &[u8]) {
         let start = self.pos;
         let (content_end, end, newline) = self.block_bounds();
         let line = self.line;
         let item_start = p.items.len() as u32;
         let dialect = self.opts.dialect;
-        let text = self.text.clone();
         let content = &text[start..content_end];
         // First and last non-blank bytes decide the line's kind without allocating.
         let first_nb = content.iter().position(|b| !is_ws(*b));
