@@ -18,22 +18,9 @@ use std::time::{Duration, Instant};
 use harness::Client;
 use serde_json::{json, Value};
 
-/// SplitMix64: a fixed seed gives the same edit sequence on every run.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
-}
+#[path = "../../tests/common/rng.rs"]
+mod rng;
+use rng::Rng;
 
 /// Text the edits insert: words, whole blocks, broken syntax, expressions
 /// and a non-ASCII comment (positions are UTF-16 on the wire). No loops,
