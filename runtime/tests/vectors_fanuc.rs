@@ -271,6 +271,19 @@ fn m99_in_main_stops_the_dry_run() {
     assert_eq!(out.motions.len(), 1);
 }
 
+/// `M99 P<n>` in a main program jumps to block N<n> of that program
+/// (fanuc.md §4.7), so it is not the endless restart a bare M99 is.
+#[test]
+fn m99_p_in_main_jumps_to_the_sequence_number() {
+    let out = run_fanuc("G00 X1.;\nM99 P20;\nN10 G00 X5.;\nN20 G00 X2.;\nM30;\n", "");
+    assert_eq!(codes(&out), Vec::<&str>::new());
+    assert_eq!(ends(&out), vec![[1.0, 0.0, 0.0], [2.0, 0.0, 0.0]]);
+    // A missing target is alarm PS0078 and stops the run there.
+    let out = run_fanuc("G00 X1.;\nM99 P30;\nN20 G00 X2.;\nM30;\n", "");
+    assert_eq!(codes(&out), vec!["F007"]);
+    assert_eq!(out.motions.len(), 1);
+}
+
 #[test]
 fn g09_exact_stop_is_one_shot() {
     let out = run_fanuc("G64 G01 X10. F100;\nG09 X20.;\nX30.;\nM30;\n", "");

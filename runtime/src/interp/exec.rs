@@ -4802,6 +4802,17 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_m(990) && (!self.ngc() || !self.frames.is_empty()) {
             if self.frames.is_empty() {
+                // `M99 P<n>` in a main program jumps to block N<n> of the main
+                // program (a common way to skip to the end or a restart point);
+                // a missing N is alarm PS0078.
+                if let Some(n) = w.get(b'P') {
+                    let span =
+                        w.m.iter()
+                            .find(|m| m.0 == 990)
+                            .map(|m| m.1)
+                            .unwrap_or_default();
+                    return self.goto_seq(fi, self.cur.1, n, span);
+                }
                 // M99 in a main program: the control loops back to the start.
                 self.diag(
                     codes::INTERP,
@@ -4815,7 +4826,6 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.saw_end = true;
                 self.st.ended = true;
                 self.event(EventKind::ProgramEnd);
-                let _ = fi;
                 return Ok(Flow::Stop);
             }
             let seq = w.get(b'P');
