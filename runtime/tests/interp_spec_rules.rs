@@ -188,3 +188,28 @@ fn file_lints() {
         ]
     );
 }
+
+/// F014 in a subprogram: the first call moves the tool, the second call's
+/// rapid goes nowhere. A block that moves on some pass is not flagged; a block
+/// that never moves is flagged once.
+#[test]
+fn rapid_no_motion_in_a_subprogram_is_judged_over_every_pass() {
+    let sub = "o100 sub\nG0 X[#1] Y[#2]\nG0 Z5\no100 endsub\n";
+    let out = run_ngc(&format!(
+        "{sub}G0 X0 Y0 Z10\no100 call [10] [20]\no100 call [10] [20]\nM2\n"
+    ));
+    assert_eq!(codes(&out), Vec::<&str>::new());
+    // Called only at the position it goes to: it never moves, one note.
+    let out = run_ngc(&format!(
+        "{sub}G0 X10 Y20 Z5\no100 call [10] [20]\no100 call [10] [20]\nM2\n"
+    ));
+    let notes: Vec<u32> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "F014")
+        .map(|d| d.span.start)
+        .collect();
+    assert_eq!(notes.len(), 2, "{:?}", out.diagnostics);
+    // One for `G0 X[#1] Y[#2]` (offset 9) and one for `G0 Z5`.
+    assert_eq!(notes[0], 9);
+}

@@ -30,11 +30,32 @@ pub(super) struct SpecMem {
     /// Whether the optional rule F015 is selected, looked up once: the registry
     /// search costs more than the rest of a motion block's checks.
     feed_spindle_off: Option<bool>,
+    /// Rapid blocks (file, block) that have moved the tool at least once, and
+    /// those that carry an F014 note: a rapid in a subprogram or loop is a
+    /// no-op on some passes only, and the note is for rapids that never move.
+    rapid_moved: std::collections::HashSet<(usize, u32)>,
+    rapid_noted: std::collections::HashSet<(usize, u32)>,
 }
 
 const AXES: &[u8; 6] = b"XYZABC";
 
 impl Interp<'_, '_> {
+    /// Removes the F014 note of a rapid block that has now moved the tool.
+    fn withdraw_rapid_note(&mut self, here: (usize, u32), span: Span) {
+        if !self.spec.rapid_noted.remove(&here) {
+            return;
+        }
+        let file = self.file_id();
+        if let Some(j) = self
+            .out
+            .diagnostics
+            .iter()
+            .rposition(|d| d.code == codes::RAPID_NO_MOTION && d.span == span && d.file == file)
+        {
+            self.out.diagnostics.remove(j);
+        }
+    }
+
     fn key_num(&self, k: &str) -> Option<f64> {
         let v = self.input.machine.get(k)?;
         v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
@@ -371,8 +392,16 @@ impl Interp<'_, '_> {
             // A rapid to where the tool already is.
             if m == 0 && w.has_g(0) && w.any_axis() && !self.out.motions.is_empty() {
                 let t = self.target(w);
+                let here = self.cur;
                 if dist(&t, &self.st.pos) < 1e-9 {
-                    self.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
+                    if !self.spec.rapid_moved.contains(&here)
+                        && !self.spec.rapid_noted.contains(&here)
+                    {
+                        self.spec.rapid_noted.insert(here);
+                        self.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
+                    }
+                } else if self.spec.rapid_moved.insert(here) {
+                    self.withdraw_rapid_note(here, s);
                 }
             }
             // Feed moves with the spindle off (optional rule).

@@ -5,6 +5,8 @@ use analyzer::declare_rule;
 declare_rule! {
     /// ## What it does
     /// Flags a G0 with axis words whose target is where the tool already is (after the first motion).
+    /// A block that runs more than once (in a subprogram or a loop) is flagged only if it never
+    /// moves the tool on any pass.
     ///
     /// ## Why is this bad?
     /// The block does nothing but costs a block; it often hides a wrong coordinate.
