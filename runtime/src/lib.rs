@@ -8,6 +8,7 @@ pub mod plan;
 pub mod rules;
 
 pub use interp::{
-    run, run_streaming, run_with_snapshots, BlockSnapshot, Event, EventKind, Motion, MotionKind,
-    NoResolver, ResolvedFile, Resolver, RunInput, RunOutput, CANON_FILE_NAME,
+    rerun, run, run_checkpointed, run_streaming, run_with_snapshots, BlockSnapshot, Checkpoints,
+    Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver, RunInput, RunOutput,
+    CANON_FILE_NAME,
 };

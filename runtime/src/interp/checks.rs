@@ -10,7 +10,7 @@ fn is_feed_motion(g: u32) -> bool {
 }
 
 /// What the state checks remember between blocks.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone, PartialEq)]
 pub(super) struct Mem {
     /// A T word has been given since the start.
     t_seen: bool,
@@ -26,6 +26,18 @@ pub(super) struct Mem {
     rigid_s_cleared: bool,
     /// The current block's motion, computed once per block.
     motion: Option<(u32, Span)>,
+}
+
+impl Mem {
+    /// Applies `f` to the source spans remembered (a rerun moves them).
+    pub(super) fn shift_spans(&mut self, f: impl Fn(Span) -> Span) {
+        if let Some(s) = self.t_unused.as_mut() {
+            *s = f(*s);
+        }
+        if let Some((_, s)) = self.motion.as_mut() {
+            *s = f(*s);
+        }
+    }
 }
 
 impl Interp<'_, '_> {

@@ -20,8 +20,10 @@ use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
 mod context;
+mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
+pub use resume::{rerun, run_checkpointed, Checkpoints};
 
 #[path = "checks.rs"]
 mod checks;
@@ -370,6 +372,8 @@ struct Interp<'a, 'i> {
     /// LinuxCNC's `doing_break`: set by a break out of a while or repeat loop and
     /// consumed by the next `do` loop's closing `while`.
     pending_break: bool,
+    /// Checkpoints and rerun state (`resume.rs`); `None` for plain runs.
+    resume: Option<resume::Resume>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -486,6 +490,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             top_context: None,
             naive_tol: 0.0,
             pending_break: false,
+            resume: None,
         };
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -818,7 +823,10 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn run_main_with(&mut self, mut sink: Option<&mut MotionSink<'_>>) {
-        self.spec_input_files();
+        // A restored rerun has the input files' diagnostics from before.
+        if !self.resume.as_ref().is_some_and(|r| r.restored) {
+            self.spec_input_files();
+        }
         let p = self.files[0].prog.clone();
         if self.ngc() {
             if let Some(b) = p
@@ -843,6 +851,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                     break;
                 }
                 continue;
+            }
+            if self.resume.is_some() && self.resume_point(fi, bi) {
+                break;
             }
             self.steps += 1;
             if self.steps > budget {
@@ -967,6 +978,11 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn finish(mut self) -> RunOutput {
+        if let Some(r) = &self.resume {
+            self.out
+                .checkpoints
+                .set_executed(self.steps.saturating_sub(r.start_steps));
+        }
         if let Some(c) = self.canon.take() {
             self.out.canon = c.lines;
         }

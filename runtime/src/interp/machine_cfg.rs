@@ -13,7 +13,7 @@ pub struct Tool {
     pub y_offset: f64,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct MachineCfg {
     /// ServoWorks circle error allowance (mm), default 0.
     pub circle_error_allowance: f64,

@@ -15,7 +15,8 @@ mod state;
 mod types;
 
 pub use exec::{
-    run, run_streaming, run_with_snapshots, run_without_fast_path, MotionSink, SNAPSHOT_LIMIT,
+    rerun, run, run_checkpointed, run_streaming, run_with_snapshots, run_without_fast_path,
+    Checkpoints, MotionSink, SNAPSHOT_LIMIT,
 };
 pub use state::{Modal, State};
 pub use types::*;

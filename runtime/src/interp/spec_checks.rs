@@ -7,7 +7,7 @@ use analyzer::syntax::{BinOp, Expr, Item};
 use super::*;
 
 /// What these checks remember between blocks.
-#[derive(Debug, Default)]
+#[derive(Debug, Default, Clone, PartialEq)]
 pub(super) struct SpecMem {
     /// ServoWorks: G311 (feed excludes rotary axes) is in force.
     g311: bool,
@@ -35,9 +35,30 @@ pub(super) struct SpecMem {
     /// no-op on some passes only, and the note is for rapids that never move.
     rapid_moved: std::collections::HashSet<(usize, u32)>,
     rapid_noted: std::collections::HashSet<(usize, u32)>,
+    /// Every block runs at most once (a program without calls, loops or jumps):
+    /// the per-block rapid bookkeeping above is not needed.
+    pub(super) single_pass: bool,
 }
 
 const AXES: &[u8; 6] = b"XYZABC";
+
+impl SpecMem {
+    /// Applies `f` to the source spans remembered (a rerun moves them).
+    pub(super) fn shift_spans(&mut self, f: impl Fn(Span) -> Span) {
+        for (_, s) in &mut self.dollar {
+            *s = f(*s);
+        }
+        for (_, s) in &mut self.bare_axes {
+            *s = f(*s);
+        }
+    }
+
+    /// Moves the remembered motion count (a rerun changes how many motions
+    /// came before).
+    pub(super) fn shift_motion_count(&mut self, d: i64) {
+        self.motions_seen = (self.motions_seen as i64 + d).max(0) as usize;
+    }
+}
 
 impl Interp<'_, '_> {
     /// Removes the F014 note of a rapid block that has now moved the tool.
@@ -390,17 +411,19 @@ impl Interp<'_, '_> {
         }
         if let Some((m, s)) = motion {
             // A rapid to where the tool already is.
-            if m == 0 && w.has_g(0) && w.any_axis() && !self.out.motions.is_empty() {
+            if m == 0 && w.has_g(0) && w.any_axis() && self.any_motion() {
                 let t = self.target(w);
                 let here = self.cur;
                 if dist(&t, &self.st.pos) < 1e-9 {
-                    if !self.spec.rapid_moved.contains(&here)
+                    if self.spec.single_pass {
+                        self.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
+                    } else if !self.spec.rapid_moved.contains(&here)
                         && !self.spec.rapid_noted.contains(&here)
                     {
                         self.spec.rapid_noted.insert(here);
                         self.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
                     }
-                } else if self.spec.rapid_moved.insert(here) {
+                } else if !self.spec.single_pass && self.spec.rapid_moved.insert(here) {
                     self.withdraw_rapid_note(here, s);
                 }
             }

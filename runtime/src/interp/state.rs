@@ -56,7 +56,7 @@ pub struct CycleMem {
     pub z_abs: Option<f64>,
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct State {
     pub modal: Modal,
     /// Programmed point (program frame, before scaling/mirror/rotation), mm/deg.

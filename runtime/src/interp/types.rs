@@ -153,6 +153,8 @@ pub struct RunOutput {
     /// the program file in some messages; the interpreter does not know its path and
     /// writes [`CANON_FILE_NAME`] there for the caller to replace.
     pub canon_error: Option<String>,
+    /// Checkpoints of a [`super::run_checkpointed`] run, for [`super::rerun`].
+    pub checkpoints: super::Checkpoints,
 }
 
 /// Stands for the program's path in [`RunOutput::canon_error`].
