@@ -26,7 +26,13 @@ pub struct DryRunInput<'a> {
     pub roots: &'a [PathBuf],
     /// Set when the client cancelled the request; a runner checks it between steps.
     pub cancel: &'a CancelFlag,
+    /// The run of an earlier version of the document, which an incremental
+    /// runner may continue from (it takes the run out).
+    pub previous: Option<&'a PreviousRun>,
 }
+
+/// A runner's own record of a run, kept for the next version's rerun.
+pub type PreviousRun = std::sync::Mutex<Option<runtime::RunOutput>>;
 
 /// The kind of a toolpath segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -66,17 +72,9 @@ pub struct Timing {
     pub cycle_time_s: f64,
 }
 
-/// The machine state after one block of the document.
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlockState {
-    /// Modal codes in force (`G1`, `G17`, `G90`, …).
-    pub modal: Vec<String>,
-    /// Program coordinates X Y Z A B C (mm, degrees).
-    pub position: [f64; 6],
-    pub feed: f64,
-    pub spindle: f64,
-    pub tool: u32,
-}
+/// The machine state after one block of the document: modal codes in force,
+/// program coordinates (mm, degrees), feed, spindle and tool.
+pub type BlockState = runtime::BlockSnapshot;
 
 /// What a runner returns: segments, timing (when a planner is available),
 /// tool changes, per-block state and flow-sensitive diagnostics.
@@ -86,10 +84,20 @@ pub struct RunReport {
     pub timing: Option<Timing>,
     /// The document's tool changes: 0-based line and program time (when planned).
     pub tool_changes: Vec<(u32, Option<f64>)>,
-    /// One entry per block of the document (`None`: never executed).
-    pub snapshots: Vec<Option<BlockState>>,
     /// Runtime diagnostics in the document (FileId 0).
     pub diagnostics: Vec<Diagnostic>,
+    /// The interpreter's output (with one state per block of the document),
+    /// until the next version's run takes it to continue from.
+    pub run: Arc<PreviousRun>,
+}
+
+impl RunReport {
+    /// The machine state after block `bi` (`None`: never executed, or the
+    /// run has been handed to a newer version).
+    pub fn block_state(&self, bi: usize) -> Option<BlockState> {
+        let run = self.run.lock().unwrap_or_else(|p| p.into_inner());
+        run.as_ref()?.snapshots.get(bi)?.clone()
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -231,7 +239,7 @@ mod tests {
             }),
             tool_changes: vec![],
             diagnostics: vec![],
-            snapshots: vec![],
+            run: Default::default(),
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);

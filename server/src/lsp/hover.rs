@@ -169,7 +169,7 @@ fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
     if program.blocks[bi].items.0 == program.blocks[bi].items.1 {
         return None;
     }
-    let s = report.snapshots.get(bi)?.as_ref()?;
+    let s = report.block_state(bi)?;
     let axes = ['X', 'Y', 'Z', 'A', 'B', 'C'];
     let pos: Vec<String> = axes
         .iter()

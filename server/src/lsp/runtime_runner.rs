@@ -12,7 +12,7 @@ use std::sync::Arc;
 use analyzer::{Dialect, FileId};
 use runtime::{dryrun, EventKind, ResolvedFile, Resolver, RunInput};
 
-use super::dry_run::{BlockState, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
+use super::dry_run::{DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
 use super::nav::{self, Sym};
 use super::workspace;
 
@@ -134,7 +134,7 @@ impl DryRunner for RuntimeRunner {
                 .map(|(_, t)| t)
         };
         let (tool_table, var_file) = (read(&input.tool_table), read(&input.var_file));
-        let out = runtime::run(&RunInput {
+        let run_input = RunInput {
             program: input.program,
             settings: input.settings,
             machine: input.machine,
@@ -143,7 +143,43 @@ impl DryRunner for RuntimeRunner {
             emit_canon: false,
             tool_table: tool_table.as_deref(),
             var_file: var_file.as_deref(),
-        });
+        };
+        // An earlier version's run continues from its last checkpoint before
+        // the edit (`runtime::rerun`); without one, a checkpointed full run.
+        let previous = input
+            .previous
+            .and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).take());
+        let t0 = std::time::Instant::now();
+        let rerun = previous.is_some();
+        let mut out = match previous {
+            Some(prev) => runtime::rerun(&run_input, true, prev),
+            None => runtime::run_checkpointed(&run_input, true),
+        };
+        if rerun && std::env::var_os("PARTSCOPE_RERUN_CHECK").is_some() {
+            let full = runtime::run_checkpointed(&run_input, true);
+            if full.diagnostics != out.diagnostics {
+                eprintln!(
+                    "RERUN MISMATCH: rerun {:?}\nfull {:?}",
+                    out.diagnostics
+                        .iter()
+                        .map(|d| (d.code, d.span.start))
+                        .collect::<Vec<_>>(),
+                    full.diagnostics
+                        .iter()
+                        .map(|d| (d.code, d.span.start))
+                        .collect::<Vec<_>>()
+                );
+            }
+        }
+        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
+            eprintln!(
+                "partscope lsp: interpreter {:?}, {} of {} blocks executed{}",
+                t0.elapsed(),
+                out.checkpoints.executed(),
+                input.program.blocks.len(),
+                if rerun { " (rerun)" } else { "" }
+            );
+        }
         if input.cancel.is_cancelled() {
             return None;
         }
@@ -193,19 +229,6 @@ impl DryRunner for RuntimeRunner {
                 )
             })
             .collect();
-        let snapshots = out
-            .snapshots
-            .into_iter()
-            .map(|s| {
-                s.map(|s| BlockState {
-                    modal: s.modal,
-                    position: s.position,
-                    feed: s.feed,
-                    spindle: s.spindle,
-                    tool: s.tool,
-                })
-            })
-            .collect();
         let loaded = resolver.loaded.borrow();
         let diagnostics = out
             .diagnostics
@@ -218,12 +241,15 @@ impl DryRunner for RuntimeRunner {
                 }
             })
             .collect();
+        // The canonical lines are not needed again; the rest is what a rerun
+        // continues from.
+        out.canon = Vec::new();
         Some(RunReport {
             segments,
             timing,
             tool_changes,
             diagnostics,
-            snapshots,
+            run: Arc::new(std::sync::Mutex::new(Some(out))),
         })
     }
 }
@@ -249,6 +275,7 @@ mod run_tests {
             var_file: None,
             roots: &[],
             cancel: &cancel,
+            previous: None,
         };
         RuntimeRunner.run(&input).unwrap()
     }
@@ -272,7 +299,7 @@ mod run_tests {
             (last[0] - 6.0).abs() < 1e-9 && (last[1] - 4.0).abs() < 1e-9,
             "{last:?}"
         );
-        let s = r.snapshots[2].as_ref().unwrap();
+        let s = r.block_state(2).unwrap();
         assert_eq!(s.position[0], 4.0);
         assert!(s.modal.iter().any(|m| m == "G1"), "{:?}", s.modal);
     }

@@ -232,7 +232,13 @@ impl Backend {
             if !current {
                 return;
             }
-            if !snap.run_eligible || !this.is_current(&snap.uri, generation) {
+            // A newer analysis of the same version is scheduled (a re-analysis
+            // without an edit): it publishes, with the interpreter's results;
+            // publishing the static ones here would make those flicker.
+            if !this.is_current(&snap.uri, generation) {
+                return;
+            }
+            if !snap.run_eligible {
                 this.publish(&snap).await;
                 return;
             }
@@ -388,6 +394,19 @@ impl Backend {
             .is_some_and(|d| d.version == snap.version);
         if !current {
             return;
+        }
+        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
+            eprintln!(
+                "partscope lsp: publish {} v{}: {} diagnostics, run {}",
+                snap.uri.as_str(),
+                snap.version,
+                diags.len(),
+                if snap.cached_run().is_some() {
+                    "included"
+                } else {
+                    "not included"
+                }
+            );
         }
         self.client
             .publish_diagnostics(snap.uri.clone(), diags, Some(snap.version))

@@ -12,7 +12,7 @@ use tower_lsp_server::ls_types::{
 };
 
 use super::config::{self, ClientOptions, DocSettings};
-use super::dry_run::{CancelFlag, DryRunInput, DryRunner, RunReport};
+use super::dry_run::{CancelFlag, DryRunInput, DryRunner, PreviousRun, RunReport};
 use super::position::{rope_bytes, span_to_range};
 
 pub struct Snapshot {
@@ -34,6 +34,9 @@ pub struct Snapshot {
     run_lock: std::sync::Mutex<()>,
     /// Static and runtime diagnostics together, once the run is done.
     merged: OnceLock<Vec<analyzer::Diagnostic>>,
+    /// The latest earlier version's interpreter output, which this version's
+    /// run continues from instead of starting over.
+    previous_run: Option<Arc<PreviousRun>>,
 }
 
 /// Everything needed to analyse a document, cloned out of the server state.
@@ -62,6 +65,15 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     // `PARTSCOPE_LSP_BASELINE` turns incremental analysis off, so that the
     // latency benchmark can measure both in one session with one binary.
     let previous = inputs.previous.filter(|_| !baseline_mode());
+    // The newest run among earlier versions (a version whose run never
+    // happened passes its own predecessor's on).
+    let previous_run = previous.as_ref().and_then(|p| {
+        p.run
+            .get()
+            .and_then(|r| r.as_ref())
+            .map(|r| r.run.clone())
+            .or_else(|| p.previous_run.clone())
+    });
     // The previous analysis is edited in place when this is its only holder
     // (the server hands it over once a newer version exists); otherwise,
     // while a run or a request still reads it, it is copied first.
@@ -103,6 +115,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         run: OnceLock::new(),
         run_lock: std::sync::Mutex::new(()),
         merged: OnceLock::new(),
+        previous_run,
     }
 }
 
@@ -184,6 +197,7 @@ impl Snapshot {
             var_file: self.doc.var_file.clone(),
             roots: &self.roots,
             cancel,
+            previous: self.previous_run.as_deref(),
         };
         let report = self.runner.run(&input).map(Arc::new);
         if cancel.is_cancelled() {

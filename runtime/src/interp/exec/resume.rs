@@ -195,7 +195,9 @@ fn single_pass(p: &Program) -> bool {
                     b'G' => matches!(v, Some(x) if x == 65.0 || x == 66.0 || x == 66.1),
                     _ => false,
                 };
-                if calls || (matches!(w.letter, b'M' | b'G') && v.is_none()) {
+                // A computed G or M code could be a call.
+                let computed = matches!(w.value, analyzer::syntax::WordValue::Expr(_));
+                if calls || (matches!(w.letter, b'M' | b'G') && computed) {
                     return false;
                 }
             }
