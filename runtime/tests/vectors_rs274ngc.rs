@@ -631,3 +631,172 @@ fn tv_f4_g94_resets_feed_linuxcnc() {
     assert_eq!(codes(&out), vec!["F001"]);
     assert!(out.motions.is_empty());
 }
+
+#[test]
+fn tv_a4_quarter_circle_cw() {
+    let out = run_ngc("G21 G17 G90\nG2 X1 Y1 I1 F10\nM2\n");
+    let m = &out.motions[0];
+    match m.kind {
+        MotionKind::Arc { center, radius, .. } => {
+            assert_pt(
+                [center[0], center[1], center[2], 0.0, 0.0, 0.0],
+                &[1.0, 0.0, 0.0],
+                1e-12,
+            );
+            assert!(close(radius, 1.0, 1e-12), "{radius}");
+        }
+        k => panic!("not an arc: {k:?}"),
+    }
+    assert!(
+        close(length(m), std::f64::consts::FRAC_PI_2, 1e-9),
+        "{}",
+        length(m)
+    );
+    assert_pt(m.end, &[1.0, 1.0, 0.0], 1e-12);
+}
+
+/// The digest's reading of §8.4.2: from X = 2, `G92 X0` stores +2 (the
+/// seed's prose says −2; see ⚠ SEED-INTERNAL in rs274ngc.md §3.20).
+#[test]
+fn tv_g2_g92_from_x2() {
+    let mm = "machine_units = \"mm\"";
+    for (g92, want) in [("X0", 2.0), ("X5", -3.0), ("X2", 0.0)] {
+        let out = run_profile(
+            &format!("G21\nG0 X2\nG92 {g92}\nG0 Y#5211\nM2\n"),
+            Variant::Linuxcnc,
+            mm,
+        );
+        assert_eq!(out.motions[1].end[1], want, "G92 {g92}");
+    }
+}
+
+/// G53 moves in machine coordinates whatever the offsets; G53 needs G0/G1
+/// (NGC404) and absolute mode (NGC406), both rule K003.
+#[test]
+fn tv_g6_g53() {
+    let out = run_ngc("G21\nG10 L2 P1 X5\nG92 X1\nG53 G0 X0\nM2\n");
+    assert_eq!(out.motions[0].end[0], 0.0);
+    let out = run_ngc("G21 F10\nG2 X1 Y1 I1\nG53 X1\nM2\n");
+    assert_eq!(codes(&out), vec!["K003"]);
+    let out = run_ngc("G21\nG91 G53 G0 X1\nM2\n");
+    assert_eq!(codes(&out), vec!["K003"]);
+}
+
+/// #5220 selects the coordinate system at start-up; out of range, the
+/// `linuxcnc` profile falls back to G54 (as rs274 does: `SET_G5X_OFFSET(3, …)`
+/// and `(1, …)` for these two `.var` files) and `emc2` faults. The `.var`
+/// values are in the standalone interpreter's inch machine units.
+#[test]
+fn tv_g7_start_up_coordinate_system() {
+    let prog = "G21\nG0 X0\nM2\n";
+    let var = "5220 3.0\n5221 1.0\n5261 7.0\n";
+    let out = run_full(Dialect::Rs274ngc, prog, "", &[], None, Some(var));
+    assert!(close(out.motions[0].end[0], 7.0 * 25.4, 1e-9), "G56 active");
+    let var = "5220 12.0\n5221 1.0\n5261 7.0\n";
+    let out = run_full(Dialect::Rs274ngc, prog, "", &[], None, Some(var));
+    assert!(
+        close(out.motions[0].end[0], 25.4, 1e-9),
+        "falls back to G54"
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let mut settings = Settings::new(Dialect::Rs274ngc);
+    settings.variant = Variant::Emc2;
+    let a = analyzer::analyze(prog.as_bytes().to_vec(), &settings);
+    let machine = toml::Table::new();
+    let out = run(&RunInput {
+        program: &a.program,
+        settings: &settings,
+        machine: &machine,
+        resolver: &NoResolver,
+        step_budget: 1000,
+        emit_canon: false,
+        tool_table: None,
+        var_file: Some(var),
+    });
+    assert_eq!(codes(&out), vec!["X003"], "emc2: start-up fault");
+}
+
+/// `T2 M6 G43 H2 G0 Z1`: the tool change, then the length offset of tool 2,
+/// then the rapid to program Z1 (order of execution).
+#[test]
+fn tv_e1_tool_change_offset_then_motion() {
+    let tools = "T2 P2 Z3.0 D0.5\n";
+    let out = run_full(
+        Dialect::Rs274ngc,
+        "G21\nT2 M6 G43 H2 G0 Z1\nM2\n",
+        "machine_units = \"mm\"",
+        &[],
+        Some(tools),
+        None,
+    );
+    let change = out
+        .events
+        .iter()
+        .position(|e| matches!(e.kind, runtime::EventKind::ToolChange { tool: 2 }))
+        .expect("tool change");
+    assert_eq!(out.events[change].motion_index, 0, "before the rapid");
+    assert_eq!(out.motions.len(), 1);
+    assert!(is_rapid(&out.motions[0]));
+    // Program Z1 with a 3 mm tool: machine Z 4.
+    assert!(
+        close(out.motions[0].end[2], 4.0, 1e-12),
+        "{:?}",
+        out.motions[0].end
+    );
+}
+
+/// §9.3 with tool 1 one inch long: the machine Z carries the offset while
+/// G43 is on; N05 dwells 10 s before its move.
+#[test]
+fn tv_t1_tool_length_offset_program() {
+    let prog = "G20\nN01 G1 F15 X0 Y0 Z0\nN02 G43 H1 Z0 X1\nN03 G49 X0 Z0\nN04 G0 X2\nN05 G1 G43 H1 G4 P10 Z0 X3\nN06 G49 X2 Z0\nM2\n";
+    let out = run_full(
+        Dialect::Rs274ngc,
+        prog,
+        "machine_units = \"inch\"",
+        &[],
+        Some("T1 P1 Z1.0 D0.0\n"),
+        None,
+    );
+    let inch = 25.4;
+    let z: Vec<f64> = out.motions.iter().map(|m| m.end[2] / inch).collect();
+    let x: Vec<f64> = out.motions.iter().map(|m| m.end[0] / inch).collect();
+    for (got, want) in z.iter().zip([0.0, 1.0, 0.0, 0.0, 1.0, 0.0]) {
+        assert!(close(*got, want, 1e-12), "machine Z {z:?}");
+    }
+    for (got, want) in x.iter().zip([0.0, 1.0, 0.0, 2.0, 3.0, 2.0]) {
+        assert!(close(*got, want, 1e-12), "X {x:?}");
+    }
+    let dwell = out
+        .events
+        .iter()
+        .find(|e| matches!(e.kind, runtime::EventKind::Dwell(_)))
+        .expect("dwell");
+    assert_eq!(dwell.kind, runtime::EventKind::Dwell(10.0));
+    assert_eq!(dwell.motion_index, 4, "before the N05 move");
+}
+
+/// §9.4.1's contour without compensation: every arc has r1 = r2, sweeps of
+/// 90, 90, 90, 143.1301 and 36.8699 degrees, and a path of 17.712389 from
+/// (1, 4.5).
+#[test]
+fn tv_r1_contour_geometry() {
+    let prog = "G20 G17 G90 F10\nG0 X1 Y4.5\nN0020 G1 Y3.5\nN0030 G3 X2 Y2.5 I1\nN0040 G2 X2.5 Y2 J-0.5\nN0050 G1 Y-1\nN0060 G2 X2 Y-1.5 I-0.5\nN0070 G1 X-2\nN0080 G2 X-2.3 Y-0.6 J0.5\nN0090 G1 X1.7 Y2.4\nN0100 G2 X2 Y2.5 I0.3 J-0.4\nM2\n";
+    let out = run_ngc(prog);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let inch = 25.4;
+    let total: f64 = out.motions.iter().skip(1).map(length).sum::<f64>() / inch;
+    assert!(close(total, 17.712389, 1e-6), "{total}");
+    let radii: Vec<f64> = out
+        .motions
+        .iter()
+        .filter_map(|m| match m.kind {
+            MotionKind::Arc { radius, .. } => Some(radius / inch),
+            _ => None,
+        })
+        .collect();
+    for (got, want) in radii.iter().zip([1.0, 0.5, 0.5, 0.5, 0.5]) {
+        assert!(close(*got, want, 1e-12), "{radii:?}");
+    }
+    assert_eq!(radii.len(), 5);
+}

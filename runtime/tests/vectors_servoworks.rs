@@ -662,3 +662,34 @@ fn tv63_group01_code_in_cycle_block_is_not_executed() {
     );
     assert_eq!(ends(&g01), vec![[0.0, 0.0, 50.0]]);
 }
+
+/// TV-38 (§6.3.15): an arc as the first move under radius compensation
+/// (SW082), scaling switched on during it (SW081), G28 during it (SW083).
+#[test]
+fn tv38_tool_radius_compensation_limitations() {
+    let out = run_sw(
+        "G90 G17 G21\nG41 D1\nG02 X10. Y10. R10. F100.\nG40\nM30\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"T004"), "{:?}", out.diagnostics);
+    let out = run_sw(
+        "G90 G17 G21\nG41 D1\nG01 X10. F100.\nG51 P2.\nG50\nG40\nM30\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"K003"), "{:?}", out.diagnostics);
+    let out = run_sw(
+        "G90 G17 G21\nG41 D1\nG01 X10. F100.\nG28 X0\nG40\nM30\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"T004"), "{:?}", out.diagnostics);
+    // The same moves without compensation are clean of both rules.
+    let out = run_sw(
+        "G90 G17 G21\nG02 X10. Y10. R10. F100.\nG51 P2.\nG50\nG28 X0\nM30\n",
+        "",
+    );
+    assert!(
+        !codes(&out).iter().any(|c| *c == "T004" || *c == "K003"),
+        "{:?}",
+        out.diagnostics
+    );
+}

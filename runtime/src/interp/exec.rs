@@ -412,8 +412,21 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         let sw = dialect == Dialect::Servoworks;
+        let mut modal = Modal::power_on(sw, dialect == Dialect::Fanuc);
+        // RS274/NGC starts in the coordinate system #5220 names (1 = G54 …
+        // 9 = G59.3); a value out of range is a start-up fault in the 2007
+        // semantics and G54 in LinuxCNC 2.9.
+        let mut bad_origin = None;
+        if dialect == Dialect::Rs274ngc {
+            let n = params[5220].unwrap_or(1.0);
+            if n.fract() == 0.0 && (1.0..=9.0).contains(&n) {
+                modal.origin = n as usize;
+            } else {
+                bad_origin = Some(n);
+            }
+        }
         let st = State {
-            modal: Modal::power_on(sw, dialect == Dialect::Fanuc),
+            modal,
             pos: [0.0; 6],
             mpos: [0.0; 6],
             g92: [0.0; 6],
@@ -492,14 +505,24 @@ impl<'a, 'i> Interp<'a, 'i> {
             pending_break: false,
             resume: None,
         };
+        if let Some(n) = bad_origin {
+            if it.variant == Variant::Emc2 {
+                it.diag(
+                    codes::INTERP,
+                    Severity::Error,
+                    Span::default(),
+                    format!("parameter #5220 is {n}: the start-up coordinate system must be a whole number 1 to 9 (G54 to G59.3); the control faults"),
+                );
+            }
+        }
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
-        let (g5x, g92) = (it.g5x_prog(), it.st.g92);
+        let (g5x, g92, origin) = (it.g5x_prog(), it.st.g92, it.st.modal.origin);
         let u = it.unit();
         let rot = it.rotation_of(1);
         if let Some(c) = it.canon.as_mut() {
             let g = g5x.map(|v| v);
-            c.preamble(1, &scale6(g, u), &scale6(g92, u), rot);
+            c.preamble(origin, &scale6(g, u), &scale6(g92, u), rot);
         }
         it
     }
