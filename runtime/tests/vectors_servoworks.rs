@@ -693,3 +693,81 @@ fn tv38_tool_radius_compensation_limitations() {
         out.diagnostics
     );
 }
+
+/// TV-60 (§6.3.38, §6.3.41): G85 feeds down and back up (160 mm per hole,
+/// 48 s at F200); after the last hole (G98) a rapid from R to the initial
+/// level. G89 P100 dwells 0.1 s at each bottom.
+#[test]
+fn tv60_g85_g89_boring() {
+    let prog = "G00 Z50.\nG90 G99 G85 X200 Y200 Z-100 R-20 F200;\nY250;\nY300;\nG98 Y350;\nM30\n";
+    let out = run_sw(prog, "");
+    let feeds: Vec<_> = out.motions.iter().filter(|m| is_feed(m)).collect();
+    assert_eq!(feeds.len(), 8, "down and up per hole");
+    for (pair, y) in feeds.chunks(2).zip([200.0, 250.0, 300.0, 350.0]) {
+        assert_pt(pair[0].start, &[200.0, y, -20.0], 1e-9);
+        assert_pt(pair[0].end, &[200.0, y, -100.0], 1e-9);
+        assert_pt(pair[1].end, &[200.0, y, -20.0], 1e-9);
+        let per_hole: f64 = pair.iter().map(|m| length(m)).sum();
+        assert_eq!(per_hole, 160.0);
+        // 160 mm at 200 mm/min.
+        assert!(close(per_hole / pair[0].feed * 60.0, 48.0, 1e-12));
+    }
+    let last = out.motions.last().expect("motion");
+    assert!(is_rapid(last));
+    assert_pt(last.start, &[200.0, 350.0, -20.0], 1e-9);
+    assert_pt(last.end, &[200.0, 350.0, 50.0], 1e-9);
+    let g89 = run_sw(
+        "G00 Z50.\nG90 G99 G89 X200 Y200 Z-100 R-20 P100 F200;\nY250;\nG80\nM30\n",
+        "",
+    );
+    let dwells: Vec<f64> = g89
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            runtime::EventKind::Dwell(s) => Some(s),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dwells, vec![0.1, 0.1]);
+    // `G85 … Q4 P100`: Q and P mean nothing to G85 (SW132, rule W020).
+    let a = analyzer::analyze(
+        b"G90 G99 G85 X200 Y200 Z-100 R-20 Q4 P100 F200\nG80\nM30\n".to_vec(),
+        &analyzer::Settings::new(analyzer::Dialect::Servoworks),
+    );
+    assert!(
+        a.diagnostics.iter().any(|d| d.code == "W020"),
+        "{:?}",
+        a.diagnostics
+    );
+}
+
+/// TV-58 (§6.3.37, §6.3.30): rigid tapping in G95 feeds 80 mm down and up
+/// at F·S = 200 × 100 = 20000 mm/min (0.48 s) and dwells P 0.5 s at the
+/// bottom and again at R; M29 drives the spindle, so no M03 is needed.
+#[test]
+fn tv58_rigid_tapping() {
+    let out = run_sw(
+        "G00 Z50.\nM29 S100;\nG90 G95 G99 G84 X200 Y200 Z-100 R-20 P500 F200;\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(codes(&out), Vec::<&str>::new());
+    let feeds: Vec<_> = out.motions.iter().filter(|m| is_feed(m)).collect();
+    assert_eq!(feeds.len(), 2);
+    assert_pt(feeds[0].end, &[200.0, 200.0, -100.0], 1e-9);
+    assert_pt(feeds[1].end, &[200.0, 200.0, -20.0], 1e-9);
+    for m in &feeds {
+        assert_eq!(m.feed, 20000.0);
+        assert!(close(length(m) / m.feed * 60.0, 0.24, 1e-12));
+    }
+    let first_feed = out.motions.iter().position(is_feed).expect("feed");
+    let dwells: Vec<(f64, usize)> = out
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            runtime::EventKind::Dwell(s) => Some((s, e.motion_index)),
+            _ => None,
+        })
+        .collect();
+    // After the down feed, and after the up feed.
+    assert_eq!(dwells, vec![(0.5, first_feed + 1), (0.5, first_feed + 2)]);
+}

@@ -350,8 +350,10 @@ impl Interp<'_, '_> {
                 "feed per revolution (G95) with no spindle speed: the feed is zero; program S",
             );
         }
+        // Rigid tapping (M29) turns the spindle itself, in position control.
+        let rigid = self.st.modal.rigid_tap && matches!(g, 740 | 840);
         if is_cycle(g) {
-            if dir == 0 {
+            if dir == 0 && !rigid {
                 self.diag(
                     codes::CYCLE_SPINDLE,
                     Severity::Warning,

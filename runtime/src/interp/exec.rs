@@ -5421,6 +5421,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.feed_to(at(self, bottom), span)?;
                 dwell_ev(self);
                 self.feed_to(at(self, r), span)?;
+                // ServoWorks rigid tapping dwells P again at R (§6.3.30, §6.3.37).
+                if self.dialect == Dialect::Servoworks && self.st.modal.rigid_tap {
+                    dwell_ev(self);
+                }
                 if ret > r {
                     self.rapid_to(at(self, ret));
                 }
