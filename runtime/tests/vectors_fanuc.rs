@@ -384,3 +384,99 @@ fn optional_stop_switch_decides_whether_m1_costs_time() {
         30.0
     );
 }
+
+/// §8.3 rigid tapping (Z feed 1000 mm/min, S1000, lead 1.0 mm), per minute
+/// and per revolution: 80 mm in at 4.8 s and out at 4.8 s, no dwell, back to
+/// the initial level (G98 by default).
+#[test]
+fn example_8_3_rigid_tapping() {
+    for (mode, f) in [("G94", "F1000"), ("G95", "F1.0")] {
+        let prog = format!(
+            "G21 G90;\n{mode};\nG00 X120.0 Y100.0;\nM29 S1000;\nG84 Z-100.0 R-20.0 {f};\nG80;\nM30;\n"
+        );
+        let out = run_fanuc(&prog, "");
+        assert!(
+            !out.diagnostics
+                .iter()
+                .any(|d| d.severity == analyzer::Severity::Error
+                    || d.severity == analyzer::Severity::Warning),
+            "{mode}: {:?}",
+            out.diagnostics
+        );
+        let feeds: Vec<_> = out.motions.iter().filter(|m| is_feed(m)).collect();
+        assert_eq!(feeds.len(), 2, "{mode}");
+        assert_pt(feeds[0].start, &[120.0, 100.0, -20.0], 1e-9);
+        assert_pt(feeds[0].end, &[120.0, 100.0, -100.0], 1e-9);
+        assert_pt(feeds[1].end, &[120.0, 100.0, -20.0], 1e-9);
+        for m in &feeds {
+            assert!(close(m.feed, 1000.0, 1e-9), "{mode}: feed {}", m.feed);
+            assert!(close(length(m) / m.feed * 60.0, 4.8, 1e-12));
+        }
+        assert!(!out
+            .events
+            .iter()
+            .any(|e| matches!(e.kind, runtime::EventKind::Dwell(_))));
+        let last = out.motions.last().expect("motion");
+        assert_pt(last.end, &[120.0, 100.0, 0.0], 1e-9);
+    }
+    // M29 given while the tapping cycle is already modal: PS0204 (rule C004).
+    let out = run_fanuc(
+        "G21 G90;\nM3 S1000;\nG84 X10. Z-100.0 R-20.0 F1000;\nM29 S1000;\nG80;\nM30;\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"C004"), "{:?}", out.diagnostics);
+    // F0 in rigid tapping (rule C009).
+    let out = run_fanuc(
+        "G21 G90;\nM29 S1000;\nG84 X10. Z-100.0 R-20.0 F0;\nG80;\nM30;\n",
+        "",
+    );
+    assert!(codes(&out).contains(&"C009"), "{:?}", out.diagnostics);
+}
+
+/// §8.2's cycle examples on their common hole pattern (six holes, the last
+/// with G98): feed length per hole at F120 and dwell per hole.
+#[test]
+fn example_8_2_individual_cycles() {
+    // (cycle words, spindle, feed mm per hole, dwell s per hole)
+    let cases: &[(&str, &str, f64, f64)] = &[
+        ("G81 Z-150. R-100.", "M3 S500", 50.0, 0.0),
+        ("G82 Z-150. R-100. P1000", "M3 S500", 50.0, 1.0),
+        ("G85 Z-150. R-120.", "M3 S500", 60.0, 0.0),
+        ("G89 Z-150. R-120. P1000", "M3 S500", 60.0, 1.0),
+        ("G86 Z-150. R-100.", "M3 S500", 50.0, 0.0),
+        ("G74 Z-150. R-120.", "M4 S100", 60.0, 0.0),
+        ("G84 Z-150. R-120. P300", "M3 S100", 60.0, 0.3),
+    ];
+    for (cycle, spindle, per_hole, dwell) in cases {
+        let prog = format!(
+            "G21 G90 G00 Z0.;\n{spindle};\nG90 G99 {} X300. Y-250. {} F120.;\nY-550.;\nY-750.;\nX1000.;\nY-550.;\nG98 Y-750.;\nG80 G28 G91 X0 Y0 Z0;\nM5;\nM30;\n",
+            &cycle[..3],
+            &cycle[4..]
+        );
+        let out = run_fanuc(&prog, "");
+        let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+        assert!(close(feed, 6.0 * per_hole, 1e-9), "{cycle}: feed {feed}");
+        // At F120 mm/min: 25 s per 50 mm.
+        assert!(close(per_hole / 120.0 * 60.0 * 6.0, feed / 2.0, 1e-9));
+        let dwells: f64 = out
+            .events
+            .iter()
+            .filter_map(|e| match e.kind {
+                runtime::EventKind::Dwell(s) => Some(s),
+                _ => None,
+            })
+            .sum();
+        assert!(close(dwells, 6.0 * dwell, 1e-12), "{cycle}: dwell {dwells}");
+        let errors: Vec<_> = out
+            .diagnostics
+            .iter()
+            .filter(|d| {
+                matches!(
+                    d.severity,
+                    analyzer::Severity::Error | analyzer::Severity::Warning
+                )
+            })
+            .collect();
+        assert!(errors.is_empty(), "{cycle}: {errors:?}");
+    }
+}

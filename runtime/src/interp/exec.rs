@@ -3219,7 +3219,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             if self.st.modal.rotation {
                 self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "reference-position return (G28/G30) is not allowed while coordinate rotation (G68) is on");
             }
-            if !self.ngc() && self.st.modal.modal_cycle() {
+            // G80 in the same block cancels the cycle first (`G80 G28 G91 X0 Y0 Z0`
+            // ends the FANUC manual's cycle examples).
+            if !self.ngc() && self.st.modal.modal_cycle() && !w.has_g(800) {
                 self.diag(codes::CYCLE_STATE, Severity::Error, span, "reference-position return while a canned cycle is modal: cancel it with G80 first (PS0044)");
                 self.st.modal.motion = 800;
                 self.st.cycle = CycleMem::default();
