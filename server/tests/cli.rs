@@ -360,3 +360,24 @@ fn streamed_run_summary_equals_buffered_summary() {
         assert_eq!(streamed["dwell_s"].as_f64(), Some(1.5), "{name}");
     }
 }
+
+/// A FANUC macro file (returns with M99, never ends the program) is checked
+/// as its callers would run it: no dry run of its own, so its arguments are
+/// not "read before assigned" and its M99 is not an endless loop. A main
+/// program (it ends with M30) is still run.
+#[test]
+fn fanuc_macro_file_is_not_run_on_its_own() {
+    let dir = tempdir("macro-file");
+    let f = write(
+        &dir,
+        "o9100.nc",
+        b"%\nO9100 (BOLT CIRCLE)\n#1=#1+1.\nG00 X#24 Y#25\nM99\n%\n",
+    );
+    let (code, diags) = check_json(&["--dialect", "fanuc", f.to_str().unwrap()]);
+    assert_eq!(codes(&diags), vec![], "{diags:?}");
+    assert_eq!(code, 0);
+    let f = write(&dir, "main.nc", b"%\nO1000\nG21 G90 G01 X1.\nM30\n%\n");
+    let (_, diags) = check_json(&["--dialect", "fanuc", f.to_str().unwrap()]);
+    // The interpreter's zero-feed error shows the main program was run.
+    assert!(codes(&diags).iter().any(|c| c.0 == "F001"), "{diags:?}");
+}

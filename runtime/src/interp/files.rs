@@ -220,3 +220,28 @@ impl<'a> FileEntry<'a> {
         }
     }
 }
+
+/// A subprogram file, which only its callers can run meaningfully: an
+/// RS274/NGC file whose first statement is `o<name> sub` (LinuxCNC calls it by
+/// name), or a FANUC/ServoWorks file that returns with M99 and never ends with
+/// M2/M30 (run on its own, M99 would restart it forever, and its arguments
+/// `#1`… would be vacant).
+pub fn is_subprogram_file(program: &Program) -> bool {
+    use analyzer::syntax::{ItemKind, OKeyword};
+    if program.dialect == analyzer::Dialect::Rs274ngc {
+        return program
+            .items
+            .iter()
+            .find(|it| !matches!(it.kind, ItemKind::Comment(_)))
+            .is_some_and(
+                |it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub)),
+            );
+    }
+    let m = |v: f64| {
+        program.items.iter().any(|it| match &it.kind {
+            ItemKind::Word(w) => w.letter == b'M' && w.num().is_some_and(|n| n.value == v),
+            _ => false,
+        })
+    };
+    m(99.0) && !m(2.0) && !m(30.0)
+}

@@ -107,8 +107,11 @@ fn check_file(
         };
     let text: Arc<[u8]> = bytes.into();
     let parsed = analyzer::parse_text(text.clone(), &settings);
-    // Subprogram files are analysed when they are called, from the caller's point of view.
-    let is_subprogram = dialect == analyzer::Dialect::Servoworks
+    // Subprogram files are analysed when they are called, from the caller's point of
+    // view: ServoWorks `O<name>.dat` files, and FANUC/ServoWorks files that return
+    // with M99 and never end the program (as the language server judges them).
+    // RS274/NGC subroutine files are run as rs274 runs them.
+    let is_subprogram = (dialect == analyzer::Dialect::Servoworks
         && path
             .extension()
             .and_then(|e| e.to_str())
@@ -116,7 +119,9 @@ fn check_file(
         && path
             .file_name()
             .and_then(|n| n.to_str())
-            .is_some_and(|n| n.starts_with('O'));
+            .is_some_and(|n| n.starts_with('O')))
+        || (dialect != analyzer::Dialect::Rs274ngc
+            && runtime::interp::files::is_subprogram_file(&parsed.program));
     let interpret = !args.no_run && !is_subprogram && !analyzer::reports_l009(&parsed, &settings);
     // The static rules and the interpreter only read the syntax tree: they run side by
     // side, on two cores when the pool has them free.

@@ -100,7 +100,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     }
     let run_eligible = !syntax_only
         && text.len() <= doc.max_run_file_size
-        && !is_subroutine_file(&analysis.program);
+        && !runtime::interp::files::is_subprogram_file(&analysis.program);
     Snapshot {
         uri: inputs.uri,
         version: inputs.version,
@@ -125,30 +125,6 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
 pub fn baseline_mode() -> bool {
     static BASELINE: OnceLock<bool> = OnceLock::new();
     *BASELINE.get_or_init(|| std::env::var_os("PARTSCOPE_LSP_BASELINE").is_some())
-}
-
-/// A subprogram file, which only its callers can run meaningfully: an
-/// RS274/NGC file whose first statement is `o<name> sub` (LinuxCNC calls it by
-/// name), or a FANUC/ServoWorks file that returns with M99 and never ends with
-/// M2/M30 (run on its own, M99 would restart it forever).
-fn is_subroutine_file(program: &analyzer::syntax::Program) -> bool {
-    use analyzer::syntax::{ItemKind, OKeyword};
-    if program.dialect == analyzer::Dialect::Rs274ngc {
-        return program
-            .items
-            .iter()
-            .find(|it| !matches!(it.kind, ItemKind::Comment(_)))
-            .is_some_and(
-                |it| matches!(it.kind, ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub)),
-            );
-    }
-    let m = |v: f64| {
-        program.items.iter().any(|it| match &it.kind {
-            ItemKind::Word(w) => w.letter == b'M' && w.num().is_some_and(|n| n.value == v),
-            _ => false,
-        })
-    };
-    m(99.0) && !m(2.0) && !m(30.0)
 }
 
 pub fn rule_href(code: &str) -> Option<Uri> {
@@ -268,7 +244,7 @@ impl Snapshot {
 
 #[cfg(test)]
 mod tests {
-    use super::is_subroutine_file;
+    use runtime::interp::files::is_subprogram_file as is_subroutine_file;
     use analyzer::syntax::{parse, ParseOptions};
     use analyzer::Dialect;
 
