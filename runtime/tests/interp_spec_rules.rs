@@ -213,3 +213,17 @@ fn rapid_no_motion_in_a_subprogram_is_judged_over_every_pass() {
     // One for `G0 X[#1] Y[#2]` (offset 9) and one for `G0 Z5`.
     assert_eq!(notes[0], 9);
 }
+
+/// LinuxCNC reads an I word with the G71/G72 lathe cycles (rs274 checks
+/// "I word with no …" against them too), so it is not an unused word there.
+#[test]
+fn i_word_is_used_by_lathe_roughing_cycles() {
+    for g in ["G71", "G71.1", "G72", "G72.2"] {
+        let out = run_ngc(&format!(
+            "G18 G7 G21 G90\nG0 X30 Z5\n{g} Q100 X30 Z5 D0.5 I0.2 R0.3 F100\nM2\no100 sub\nG1 X10 Z0\no100 endsub\n"
+        ));
+        assert!(!codes(&out).contains(&"X008"), "{g}: {:?}", out.diagnostics);
+    }
+    let out = run_ngc("G21 G90\nG1 X1 I0.2 F100\nM2\n");
+    assert!(codes(&out).contains(&"X008"), "{:?}", out.diagnostics);
+}

@@ -1623,8 +1623,30 @@ impl<'p> Cx<'p> {
         while self.peek().is_some_and(|c| c.is_ascii_alphabetic()) {
             self.pos += 1;
         }
+        let mut keyword = OKeyword::from_name(&String::from_utf8_lossy(&self.text[ks..self.pos]));
+        // LinuxCNC drops blanks before it reads a line, so `else if`, `end sub` or
+        // `end while` are the keywords `elseif`, `endsub`, `endwhile`.
+        let mut joined: Vec<u8> = self.text[ks..self.pos].to_vec();
+        let mut j = self.pos;
+        while !joined.is_empty() {
+            let mut k = j;
+            while self.at(k).is_some_and(is_ws) {
+                k += 1;
+            }
+            if k == j || !self.at(k).is_some_and(|c| c.is_ascii_alphabetic()) {
+                break;
+            }
+            while let Some(c) = self.at(k).filter(|c| c.is_ascii_alphabetic()) {
+                joined.push(c);
+                k += 1;
+            }
+            j = k;
+            if let Some(kw) = OKeyword::from_name(&String::from_utf8_lossy(&joined)) {
+                keyword = Some(kw);
+                self.pos = j;
+            }
+        }
         let kw_span = Span::new(ks as u32, self.pos as u32);
-        let keyword = OKeyword::from_name(&String::from_utf8_lossy(kw_span.slice(self.text)));
         if self.pos > ks {
             self.token(ks, TokenKind::Keyword);
         }

@@ -3692,8 +3692,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     ));
                 }
                 let t = self.target(w);
-                if self.ngc() && dist(&self.st.pos, &t) == 0.0 {
-                    return Err(self.err(codes::PROBE_STATE, bspan, "the probe move starts at its target: a G38 move needs a target away from the current position"));
+                // G38.3 and G38.5 report a failed probe in #5070 instead of
+                // stopping, so LinuxCNC lets them start at their target.
+                if self.ngc() && matches!(mode, 382 | 384) && dist(&self.st.pos, &t) == 0.0 {
+                    return Err(self.err(codes::PROBE_STATE, bspan, "Start point too close to probe point: a G38.2/G38.4 move needs a target away from the current position"));
                 }
                 self.check_feed(bspan)?;
                 self.canon("TURN_PROBE_ON()");
@@ -5600,6 +5602,10 @@ fn rs274_message(msg: &str) -> String {
             "R i j k words all missing for arc",
         ),
         ("SQRT of a negative", "Negative argument to sqrt"),
+        (
+            "Start point too close to probe point",
+            "Start point too close to probe point",
+        ),
         ("argument to sqrt out of range", "Negative argument to sqrt"),
         (
             "argument to ln out of range",

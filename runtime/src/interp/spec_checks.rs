@@ -300,7 +300,7 @@ impl Interp<'_, '_> {
         let unused: [(u8, bool, &str); 8] = [
             (b'D', gm(&[410, 411, 420, 421, 960]) || lathe_cycle, "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it"),
             (b'H', gm(&[430, 432, 760]), "H word with no G43 or G76 to use it"),
-            (b'I', matches!(mode, 20 | 30 | 50 | 51 | 870 | 331 | 760) || gm(&[100]), "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it"),
+            (b'I', matches!(mode, 20 | 30 | 50 | 51 | 870 | 331 | 760) || gm(&[100, 710, 711, 712, 720, 721, 722]), "I word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it"),
             (b'J', matches!(mode, 20 | 30 | 50 | 51 | 870 | 331 | 760) || gm(&[100]), "J word with no G2, G3, G5, G5.1, G10, G33.1, G76, or G87 to use it"),
             (b'L', cycle || matches!(mode, 20 | 30 | 52 | 760) || gm(&[100, 410, 411, 420, 421]) || mm(&[660, 980]) || lathe_cycle, "L word with no G10, cutter compensation, canned cycle, digital/analog input, M98 or NURBS code"),
             (b'P', cycle || matches!(mode, 20 | 30 | 50 | 52 | 760) || gm(&[40, 100, 640]) || mm(&[190, 500, 510, 520, 530, 620, 630, 640, 650, 660, 980]) || user_m || lathe_cycle, "P word with no G2 G3 G4 G10 G64 G5 G5.2 G76 G82 G86 G88 G89 or M50 M51 M52 M53 M62 M63 M64 M65 M66 M98 or user M code to use it"),

@@ -244,9 +244,9 @@ impl Snapshot {
 
 #[cfg(test)]
 mod tests {
-    use runtime::interp::files::is_subprogram_file as is_subroutine_file;
     use analyzer::syntax::{parse, ParseOptions};
     use analyzer::Dialect;
+    use runtime::interp::files::is_subprogram_file as is_subroutine_file;
 
     fn sub(dialect: Dialect, text: &str) -> bool {
         is_subroutine_file(&parse(
