@@ -3636,9 +3636,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             52 if self.ngc() => {
                 self.st.modal.motion = 52;
-                let t = self.target(w);
-                let wgt = w.get(b'P').unwrap_or(1.0);
-                self.nurbs.push((t, wgt));
+                // A block without coordinates adds no control point: the first
+                // one (where the tool is) is implied, as in LinuxCNC.
+                if w.any_axis() {
+                    let t = self.target(w);
+                    let wgt = w.get(b'P').unwrap_or(1.0);
+                    self.nurbs.push((t, wgt));
+                }
             }
             760 if self.ngc() => {
                 self.st.modal.motion = 760;

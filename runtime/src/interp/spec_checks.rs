@@ -366,11 +366,22 @@ impl Interp<'_, '_> {
                     format!("NURBS weight P{p} must be positive"),
                 ));
             }
-            if !(w.has(b'X') && w.has(b'Y')) {
+            // The first control point may leave out X and Y (it is where the
+            // tool is); any other needs both, and one without the other is
+            // always an error.
+            let span = motion.map(|m| m.1).unwrap_or(bspan);
+            if w.has(b'X') != w.has(b'Y') {
                 return Err(self.err(
                     codes::NURBS_BLOCK,
-                    motion.map(|m| m.1).unwrap_or(bspan),
-                    "a G5.2 control point needs both X and Y",
+                    span,
+                    "You must specify both X and Y coordinates for Control Points",
+                ));
+            }
+            if !w.has(b'X') && w.get(b'P').is_some_and(|p| p > 0.0) && !self.nurbs.is_empty() {
+                return Err(self.err(
+                    codes::NURBS_BLOCK,
+                    span,
+                    "Can specify P without X and Y only for the first control point",
                 ));
             }
         }
