@@ -3601,6 +3601,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
             }
             let t = self.to_program(m);
+            // The block's G0/G1 stays the motion mode (`G53 G0 Z0`, then `X0 Y0`
+            // is another rapid).
+            if matches!(mode, 0 | 10) {
+                self.st.modal.motion = mode;
+            }
             if mode == 10 {
                 self.feed_to(t, bspan)?;
             } else {
@@ -5256,8 +5261,26 @@ impl<'a, 'i> Interp<'a, 'i> {
             repeats
         };
         self.steps += repeats.max(0) as u64;
+        // LinuxCNC polar words (`@` radius, `^` angle) in a cycle: each
+        // repetition in G91 turns and extends from the last hole, so
+        // `G91 G81 … ^60 L6` drills six holes 60 degrees apart.
+        let polar = (ngc && (w.polar_r.is_some() || w.polar_a.is_some())).then(|| {
+            (
+                w.polar_r.map(|v| self.lin(v)),
+                w.polar_a.map(f64::to_radians),
+            )
+        });
         for k in 0..repeats {
-            if inc {
+            if let Some((dr, dth)) = polar {
+                let (r0, th0) = (pa.hypot(pb), pb.atan2(pa));
+                let (r, th) = if inc {
+                    (r0 + dr.unwrap_or(0.0), th0 + dth.unwrap_or(0.0))
+                } else {
+                    (dr.unwrap_or(r0), dth.unwrap_or(th0))
+                };
+                pa = r * th.cos();
+                pb = r * th.sin();
+            } else if inc {
                 pa += da.unwrap_or(0.0);
                 pb += db.unwrap_or(0.0);
             } else {
