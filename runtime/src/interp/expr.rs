@@ -24,7 +24,9 @@ pub trait VarSource {
     fn named_exists(&self, name: &str) -> bool;
 }
 
-/// RS274/NGC equality tolerance (LinuxCNC 2.9).
+/// RS274/NGC equality tolerance of `EQ` and `NE` (LinuxCNC 2.9, as the digest's
+/// TV-P12 gives it). Debian's `rs274` binary compares with 0.0001 instead
+/// (`[1 EQ 1.00009]` is true there); the digest's vector wins here.
 pub const NGC_EQ_TOL: f64 = 1e-6;
 
 fn err(span: Span, code: &'static str, message: impl Into<String>) -> EvalError {
@@ -351,8 +353,12 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
         BinOp::Ne => f64::from(u8::from((x - y).abs() >= NGC_EQ_TOL)),
         BinOp::Gt => f64::from(u8::from(x > y)),
         BinOp::Lt => f64::from(u8::from(x < y)),
-        BinOp::Ge => f64::from(u8::from(x >= y || (ngc && (x - y).abs() < NGC_EQ_TOL))),
-        BinOp::Le => f64::from(u8::from(x <= y || (ngc && (x - y).abs() < NGC_EQ_TOL))),
+        // `LE` and `GE` are strict in the reference rs274 (2.9): `[0.1 + 0.2 LE 0.3]`
+        // is false there, and a loop stepping 0.0005 up to `LE 0.0375` runs 75
+        // times (LinuxCNC's `nc_files/threading.ngc`). The tolerance the digest
+        // describes came to LinuxCNC after 2.9.
+        BinOp::Ge => f64::from(u8::from(x >= y)),
+        BinOp::Le => f64::from(u8::from(x <= y)),
     };
     check(v, span).map(Some)
 }
