@@ -3734,6 +3734,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 for (k, v) in t.iter().enumerate() {
                     self.set_param(5061 + k, Some(*v));
                 }
+                // #5070 (probe tripped) reads 0 after every probe move in the
+                // standalone rs274, so `while [#5070 NE 0]` retry loops end.
+                if self.ngc() {
+                    self.set_param(5070, Some(0.0));
+                }
             }
             23 | 33 | 22 | 32 => {
                 self.st.modal.motion = mode;
