@@ -719,6 +719,63 @@ fn tool_table_named_by_the_config_reaches_the_interpreter() {
     assert!(c.shutdown().success());
 }
 
+/// A LinuxCNC `.ini` named by `partscope.toml` (`ini = …`) reaches the
+/// interpreter as in `partscope check`: its TOOL_TABLE (relative to the `.ini`)
+/// makes an unknown tool an error, and its axis limits are the travel.
+#[test]
+fn linuxcnc_ini_named_by_the_config_reaches_the_interpreter() {
+    let root = workspace("ini");
+    std::fs::create_dir_all(root.join("lathe/machine")).unwrap();
+    std::fs::write(
+        root.join("lathe/partscope.toml"),
+        "dialect = \"rs274ngc\"\nini = \"machine/mill.ini\"\n",
+    )
+    .unwrap();
+    std::fs::write(
+        root.join("lathe/machine/mill.ini"),
+        "[EMCIO]\nTOOL_TABLE = t.tbl\n[TRAJ]\nLINEAR_UNITS = mm\nCOORDINATES = XYZ\nMAX_LINEAR_VELOCITY = 60\n[AXIS_X]\nMIN_LIMIT = -10\nMAX_LIMIT = 100\nMAX_VELOCITY = 60\nMAX_ACCELERATION = 800\n",
+    )
+    .unwrap();
+    std::fs::write(root.join("lathe/machine/t.tbl"), "T1 P1 Z0.5 D0.25\n").unwrap();
+    std::fs::write(
+        root.join("lathe/job.ngc"),
+        "G21 G90\nT1 M6\nG0 X150\nT5 M6\nM2\n",
+    )
+    .unwrap();
+    let (code, diags) = {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_partscope"))
+            .args(["check", "--format", "json"])
+            .arg(root.join("lathe/job.ngc"))
+            .output()
+            .unwrap();
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+        let mut d: Vec<(String, u64)> = v
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|d| {
+                (
+                    d["code"].as_str().unwrap().to_string(),
+                    d["line"].as_u64().unwrap() - 1,
+                )
+            })
+            .collect();
+        d.sort();
+        (out.status.code(), d)
+    };
+    assert_eq!(code, Some(1));
+    assert!(diags.contains(&("T001".to_string(), 3)), "check: {diags:?}");
+    // X150 is beyond the .ini's MAX_LIMIT of 100.
+    assert!(diags.iter().any(|d| d.1 == 2), "check: {diags:?}");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("lathe/job.ngc"), "ngc");
+    let mut got = c.diagnostics(&uri, 1);
+    got.sort();
+    assert_eq!(got, diags, "the language server and check agree");
+    assert!(c.shutdown().success());
+}
+
 /// Above 256 KB a version's static diagnostics are published at once and the
 /// interpreter's follow in a second publish, once edits have paused.
 #[test]

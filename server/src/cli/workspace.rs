@@ -123,15 +123,11 @@ impl LoadedConfig {
         let mut var = self.config.var_file.as_ref().map(|t| dir.join(t));
         if let Some(ini) = &self.config.ini {
             let ini = dir.join(ini);
-            match std::fs::read_to_string(&ini)
-                .map_err(|e| e.to_string())
-                .and_then(|text| runtime::machine::MachineProfile::from_linuxcnc_ini(&text))
-            {
-                Ok((profile, extras)) => {
-                    let base = ini.parent().map(Path::to_path_buf).unwrap_or_default();
-                    tbl = tbl.or_else(|| extras.tool_table.map(|t| base.join(t)));
-                    var = var.or_else(|| extras.parameter_file.map(|t| base.join(t)));
-                    out.ini_profile = Some(profile);
+            match read_ini(&ini) {
+                Ok(ini) => {
+                    tbl = tbl.or(ini.tool_table);
+                    var = var.or(ini.var_file);
+                    out.ini_profile = Some(ini.profile);
                 }
                 Err(e) => out.warnings.push(format!("{}: {e}", ini.display())),
             }
@@ -170,6 +166,27 @@ pub fn warn_once(msg: &str) {
 
 /// The interpreter's `[machine]` table for a config with a LinuxCNC `ini`: the
 /// ini's axes (travel limits) unless the table lists its own.
+/// A LinuxCNC `.ini` as a machine profile, with the tool table and parameter
+/// file it names (relative paths resolved against the `.ini`'s folder).
+pub struct IniMachine {
+    pub profile: runtime::machine::MachineProfile,
+    pub tool_table: Option<PathBuf>,
+    pub var_file: Option<PathBuf>,
+}
+
+/// Reads a LinuxCNC `.ini` (the `ini` key of `partscope.toml`); the CLI and the
+/// language server both read it here.
+pub fn read_ini(path: &Path) -> Result<IniMachine, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| e.to_string())?;
+    let (profile, extras) = runtime::machine::MachineProfile::from_linuxcnc_ini(&text)?;
+    let base = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    Ok(IniMachine {
+        profile,
+        tool_table: extras.tool_table.map(|t| base.join(t)),
+        var_file: extras.parameter_file.map(|t| base.join(t)),
+    })
+}
+
 pub fn machine_table_with(
     table: &toml::Table,
     ini: Option<&runtime::machine::MachineProfile>,

@@ -213,11 +213,33 @@ pub fn resolve(
         p.as_ref()
             .map(|p| config_dir.clone().unwrap_or_default().join(p))
     };
+    let mut tool_table = beside_config(&config.tool_table);
+    let mut var_file = beside_config(&config.var_file);
+    let mut machine = config.machine;
+    // A LinuxCNC `.ini` named by the config gives the machine's axes, and its
+    // tool table and parameter file unless the config names its own, as in
+    // `partscope check`. Like every file the server reads, it must be inside
+    // the workspace.
+    if let Some(ini) = beside_config(&config.ini) {
+        match crate::lsp::workspace::confine(&ini, roots)
+            .ok_or_else(|| format!("{} is outside the workspace", ini.display()))
+            .and_then(|p| crate::cli::workspace::read_ini(&p))
+        {
+            Ok(ini) => {
+                machine = crate::cli::workspace::machine_table_with(&machine, Some(&ini.profile));
+                tool_table = tool_table.or(ini.tool_table);
+                var_file = var_file.or(ini.var_file);
+            }
+            Err(e) => {
+                config_error.get_or_insert(format!("{}: {e}", ini.display()));
+            }
+        }
+    }
     DocSettings {
-        tool_table: beside_config(&config.tool_table),
-        var_file: beside_config(&config.var_file),
+        tool_table,
+        var_file,
         settings,
-        machine: config.machine,
+        machine,
         config_path,
         config_error,
         max_file_size: client.max_file_size.unwrap_or(DEFAULT_MAX_FILE_SIZE),
