@@ -476,3 +476,28 @@ fn vacant_word_vectors() {
     assert_eq!(found(&out, "X005"), vec![Severity::Warning]);
     assert!(found(&run_fanuc("G01 X1. F100\nM30\n", ""), "X005").is_empty());
 }
+
+/// M61 Q<n> (set the tool number without a change) stops, like M6, at a tool
+/// the configured table lacks: rs274 says "Requested tool 4 not found in the
+/// tool table".
+#[test]
+fn m61_with_a_tool_the_table_lacks_stops() {
+    let tools = Some("T1 P1 D6 Z10\n");
+    let out = run_with(
+        analyzer::Dialect::Rs274ngc,
+        "G21\nM61 Q4\nG0 X1\nM2\n",
+        "",
+        &[],
+        tools,
+    );
+    assert_eq!(codes(&out), vec!["T001"]);
+    assert!(out.motions.is_empty());
+    let out = run_with(
+        analyzer::Dialect::Rs274ngc,
+        "G21\nM61 Q1\nG0 X1\nM2\n",
+        "",
+        &[],
+        tools,
+    );
+    assert_eq!(codes(&out), Vec::<&str>::new());
+}

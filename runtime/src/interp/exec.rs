@@ -2478,6 +2478,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_m(610) {
             let t = w.get(b'Q').unwrap_or(0.0) as u32;
+            // Like M6, M61 stops at a tool number the table lacks.
+            if ngc {
+                self.check_tool(t, w.sp(b'Q'))?;
+            }
             // The standalone rs274 announces the new number but keeps reading the old
             // tool's data (#5400-#5410, G43 without H); `--emit canon` copies it, the
             // dry run loads the tool as a real LinuxCNC does.
