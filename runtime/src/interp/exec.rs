@@ -4266,9 +4266,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             tip[a] = p[0];
             tip[b] = p[1];
             let m_end = self.to_machine(tip);
+            // Motions are stored in mm, the machine position in program units.
+            let lu = self.lu();
             if let Some(m) = self.out.motions.get_mut(q.motion) {
-                m.end[a] = m_end[a];
-                m.end[b] = m_end[b];
+                m.end[a] = m_end[a] * lu;
+                m.end[b] = m_end[b] * lu;
             }
         }
         self.st.comp_queue = queue;
