@@ -212,6 +212,23 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
     let length = if length > 1e-12 { length } else { rot };
     // Feed in mm/s: inverse time gives the move's duration; per-revolution feeds
     // (G95, threads) scale with the spindle speed.
+    // Exponential moves: the integrated X–A length, at the feed that gives the
+    // integrated time of the feed running from F to Q.
+    if let (MotionKind::Exponential { curve, end_feed }, None) = (m.kind, m.inverse_time) {
+        let e = curve.measure(m.feed, end_feed);
+        if e.length > 1e-12 && e.minutes > 0.0 && e.minutes.is_finite() {
+            return Segment {
+                kind,
+                start: m.start,
+                end: m.end,
+                length: e.length,
+                feed: e.length / (e.minutes * 60.0),
+                mode,
+                block: index,
+                tool: m.tool,
+            };
+        }
+    }
     let feed = match (m.inverse_time, m.kind) {
         (_, MotionKind::Rapid) => 0.0,
         (Some(inv), _) if inv > 0.0 => length * inv / 60.0,

@@ -572,6 +572,104 @@ fn tv21_k_word_in_g17_arc_sw033() {
     assert_eq!(codes(&out), vec!["A008", "A005"], "{:?}", out.diagnostics);
 }
 
+/// `G02.3 X30.5 Y2.0 Z-5.0 I10.0 J30.0 R1.0 F20 Q10` from X0 A0: A turns by
+/// K·ln(30.5·tan 10° + 1) = 6.066818 rad = +347.603° (G03.3: −347.603°), Y and
+/// Z move with X, and the planner gets the integrated length 349.296 (X and A)
+/// and time 21.978 min of the feed running from 20 to 10.
+#[test]
+fn tv25_exponential_interpolation() {
+    for (code, a) in [("G02.3", "347.603"), ("G03.3", "-347.603")] {
+        let out = run_sw(
+            &format!("G90 G01 X0 A0 F100\n{code} X30.5 Y2.0 Z-5.0 I10.0 J30.0 R1.0 F20 Q10\nM30\n"),
+            "",
+        );
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        let m = &out.motions[1];
+        assert!(
+            matches!(m.kind, MotionKind::Exponential { .. }),
+            "{:?}",
+            m.kind
+        );
+        assert_pt(m.end, &[30.5, 2.0, -5.0], 1e-12);
+        assert_eq!(format!("{:.3}", m.end[3]), a);
+        assert!(close(m.end[3].abs().to_radians(), 6.066818, 5e-7));
+        let s = runtime::dryrun::segment_of(m, 0);
+        assert_eq!(format!("{:.3}", s.length), "349.296");
+        assert_eq!(format!("{:.3}", s.length / s.feed / 60.0), "21.978");
+    }
+    // I = 0 has no curve (SW045): the block is a straight move and A stays.
+    let out = run_sw("G02.3 X30.5 I0 J30.0 R1.0 F20 Q10\nM30\n", "");
+    assert!(matches!(out.motions[0].kind, MotionKind::Feed));
+    assert_eq!(out.motions[0].end[3], 0.0);
+}
+
+/// §6.3.8's torque example: `G10 L20 P3 R12` makes Z a torque axis, so N30
+/// moves only X and Y, (10,10) → (50,100): 98.489 mm at 3000 mm/min =
+/// 1.9698 s, while Z outputs 20 % torque; N40 (Z 0 %) and N60 (X 50 %, X a
+/// torque axis since N50) move nothing and N70 dwells 3 s; after N80/N90
+/// (R1: normal again) N100 positions all three axes, Z from where it was
+/// switched over (the torque moves are not simulated).
+#[test]
+fn tv31_torque_axes() {
+    let prog = "N10 G00 X10.0 Y10.0 Z10.0\nN20 G10 L20 P3 R12\nN30 G01 X50.0 Y100.0 Z20.0 F3000.0\nN40 Z0.0\nN50 G10 L20 P1 R12\nN60 X50.0\nN70 G04 X3.0\nN80 G10 L20 P1 R1\nN90 G10 L20 P3 R1\nN100 X200.0 Y200.0 Z200.0\nM30\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(
+        ends(&out),
+        vec![
+            [10.0, 10.0, 10.0],
+            [50.0, 100.0, 10.0],
+            [200.0, 200.0, 200.0]
+        ]
+    );
+    let n30 = &out.motions[1];
+    assert_eq!(format!("{:.3}", length(n30)), "98.489");
+    assert_eq!(format!("{:.4}", length(n30) / n30.feed * 60.0), "1.9698");
+    let dwell: Vec<(f64, usize)> = out
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            EventKind::Dwell(s) => Some((s, e.motion_index)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dwell, vec![(3.0, 2)]);
+    assert_eq!(
+        out.motions[2].start[2], 10.0,
+        "N100 starts Z where N20 left it"
+    );
+    // The axis-word form: X a torque axis, Y a PLC axis (positioned).
+    let out = run_sw("G10 L20 X12 Y10\nG01 X5 Y5 F100\nM30\n", "");
+    assert_eq!(ends(&out), vec![[0.0, 5.0, 0.0]]);
+}
+
+/// G310 (the default) spreads F over all moving axes: X 1272.8 mm/min,
+/// Y 1697.1, A 2121.3 deg/min and a block time of 70.711/3000 min = 1.4142 s.
+/// The motion carries the XY share of F, which the planner runs over the
+/// 50 mm of XY.
+#[test]
+fn tv42_g310_feed_includes_the_rotary_axes() {
+    for prog in [
+        "G310;\nG91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+        "G91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+        "G311\nG310 G91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+    ] {
+        let out = run_sw(prog, "");
+        let m = &out.motions[0];
+        assert_pt(m.end, &[30.0, 40.0, 0.0, 50.0], 1e-12);
+        let s = runtime::dryrun::segment_of(m, 0);
+        assert!(close(s.length, 50.0, 1e-12));
+        let secs = s.length / s.feed;
+        assert!(close(secs, 5000f64.sqrt() / 3000.0 * 60.0, 1e-12), "{secs}");
+        assert_eq!(format!("{secs:.4}"), "1.4142");
+        let speed = |d: f64| format!("{:.1}", m.feed * d / length(m));
+        assert_eq!(
+            [speed(30.0), speed(40.0), speed(50.0)],
+            ["1272.8", "1697.1", "2121.3"]
+        );
+    }
+}
+
 #[test]
 fn tv43_g311_feed_is_along_the_linear_axes() {
     let out = run_sw("G311\nG91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n", "");

@@ -16,6 +16,7 @@ use super::arc::{self, ArcError, ArcSpec};
 use super::expr::{self, EvalError, Val, VarSource};
 use super::files::{label_key, FileEntry, ProgRef};
 use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
+use super::rotary_feed;
 use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
@@ -451,6 +452,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             mirror: ([false; 3], [0.0; 3]),
             rotation: ([0.0; 2], 0.0),
             ended: false,
+            torque_axes: 0,
             g28_mid: None,
             line: 0,
             g66: None,
@@ -2202,6 +2204,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.exec_comp(w)?;
         self.exec_tlo(w)?;
         self.exec_coord_select(w)?;
+        if self.input.program.dialect == analyzer::Dialect::Servoworks {
+            if w.has_g(3110) {
+                self.st.modal.feed_linear_only = true;
+            } else if w.has_g(3100) {
+                self.st.modal.feed_linear_only = false;
+            }
+        }
         for (code, mode) in [(610u32, "CANON_EXACT_PATH"), (611, "CANON_EXACT_STOP")] {
             if w.has_g(code) {
                 self.st.modal.path = code;
@@ -3020,6 +3029,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     self.cfg.tools.insert(t, tool);
                 }
+                20 if self.input.program.dialect == Dialect::Servoworks => {
+                    self.servoworks_axis_types(w, p);
+                }
                 2 | 20 => {
                     let origin = if p == 0 {
                         self.st.modal.origin
@@ -3398,6 +3410,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             return t;
         }
         for i in 0..6 {
+            if self.st.torque_axes & (1 << i) != 0 {
+                continue;
+            }
             if let Some(v) = w.get(letters[i]) {
                 let v = if i < 3 { self.lin(v) } else { v };
                 t[i] = if inc { t[i] + v } else { v };
@@ -3405,6 +3420,33 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
         t
+    }
+
+    /// ServoWorks `G10 L20`: axis types, as `P<axis> R<type>` or as axis words
+    /// holding the types (`G10 L20 X2 Y10`). Type 12 makes a torque axis; the
+    /// other types (1 normal, 2 rotary, 3 rotary single-turn, 10 PLC) leave the
+    /// axis positioned by the program. Axes past C are not modelled.
+    fn servoworks_axis_types(&mut self, w: &Words, p: i64) {
+        let mut set = |axis: usize, ty: f64| {
+            if axis < 6 {
+                if ty.round() == 12.0 {
+                    self.st.torque_axes |= 1 << axis;
+                } else {
+                    self.st.torque_axes &= !(1 << axis);
+                }
+            }
+        };
+        if let Some(r) = w.get(b'R') {
+            if (1..=8).contains(&p) {
+                set((p - 1) as usize, r);
+            }
+            return;
+        }
+        for (i, c) in [b'X', b'Y', b'Z', b'A', b'B', b'C'].into_iter().enumerate() {
+            if let Some(v) = w.get(c) {
+                set(i, v);
+            }
+        }
     }
 
     /// A motion from internal-unit geometry; converts lengths to mm.
@@ -3434,6 +3476,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             feed * lu * self.st.spindle
         } else {
             feed * lu
+        };
+        let feed = if matches!(kind, MotionKind::Feed)
+            && self.input.program.dialect == analyzer::Dialect::Servoworks
+            && !self.st.modal.feed_linear_only
+        {
+            rotary_feed::g310_linear_feed(feed, &start, &end)
+        } else {
+            feed
         };
         Motion {
             kind,
@@ -3619,7 +3669,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             10 => {
                 self.st.modal.motion = 10;
-                if has_axes || (self.ngc() && motion.is_some()) {
+                // A G01 whose axis words all name torque axes only sets torques.
+                let torque_only = self.st.torque_axes != 0
+                    && b"XYZABCUVW"
+                        .iter()
+                        .enumerate()
+                        .all(|(i, c)| !w.has(*c) || (i < 6 && self.st.torque_axes & (1 << i) != 0));
+                if (has_axes && !torque_only) || (self.ngc() && motion.is_some()) {
                     let t = self.target(w);
                     self.comp_move(t, false, bspan)?;
                 }
@@ -3728,14 +3784,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             23 | 33 | 22 | 32 => {
                 self.st.modal.motion = mode;
-                let t = self.target(w);
+                let mut t = self.target(w);
                 self.check_feed(bspan)?;
-                let end = self.to_machine(t);
                 let kind = if mode == 23 || mode == 33 {
-                    MotionKind::Exponential
+                    self.exponential_kind(w, &mut t)
                 } else {
                     MotionKind::Involute
                 };
+                let end = self.to_machine(t);
                 let m = self.motion_base(kind, self.st.mpos, end, self.st.feed);
                 self.out.motions.push(m);
                 self.st.mpos = end;
@@ -3745,6 +3801,31 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// The motion kind of a G02.3/G03.3 block, with A's end in `t`: A turns by
+    /// the exponential curve's rotation (the format has no A word). Undefined
+    /// curves (SW045 reports them) leave a straight move.
+    fn exponential_kind(&mut self, w: &Words, t: &mut [f64; 6]) -> MotionKind {
+        let lu = self.lu();
+        let (i, j, r) = (w.get(b'I'), w.get(b'J'), w.get(b'R'));
+        let curve = match (i, j, r) {
+            (Some(i), Some(j), Some(r)) => super::exponential::ExpCurve::new(
+                i,
+                j,
+                r * lu,
+                self.st.pos[0] * lu,
+                t[0] * lu,
+                self.st.modal.motion == 33,
+            ),
+            _ => None,
+        };
+        let Some(curve) = curve else {
+            return MotionKind::Feed;
+        };
+        t[3] = self.st.pos[3] + curve.a_travel();
+        let end_feed = w.get(b'Q').map(|q| q * lu).unwrap_or(self.st.feed * lu);
+        MotionKind::Exponential { curve, end_feed }
     }
 
     /// G5 (cubic) / G5.1 (quadratic) splines in the XY plane. The canonical

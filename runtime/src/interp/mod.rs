@@ -8,9 +8,11 @@
 
 pub mod arc;
 mod exec;
+pub mod exponential;
 pub mod expr;
 pub mod files;
 mod machine_cfg;
+pub mod rotary_feed;
 mod state;
 mod types;
 
