@@ -37,6 +37,14 @@ const INTERPRETER_KEYS: &[&str] = &[
     "involute_tolerance",
     "trc_g41_side",
     "drill_shift",
+    "ndc_axis",
+    "ndc_rotation_feed",
+    "ndc_angle_limit",
+    "ndc_length_limit",
+    "g37_ratio",
+    "g37_speed",
+    "g37_limit",
+    "g37_measured",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the

@@ -21,6 +21,8 @@ use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
 mod context;
+mod g37;
+pub(super) use g37::G37Cfg;
 mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
@@ -2205,6 +2207,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.exec_tlo(w)?;
         self.exec_coord_select(w)?;
         if self.input.program.dialect == analyzer::Dialect::Servoworks {
+            if w.has_g(401) {
+                self.st.modal.ndc = None;
+            } else if w.has_g(411) {
+                self.st.modal.ndc = Some(true);
+            } else if w.has_g(421) {
+                self.st.modal.ndc = Some(false);
+            }
             if w.has_g(3110) {
                 self.st.modal.feed_linear_only = true;
             } else if w.has_g(3100) {
@@ -2289,7 +2298,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         let consumed = self.exec_modal0(w)?;
         // Motion.
         if !consumed {
+            let before = self.out.motions.len();
             self.exec_motion(w, bspan)?;
+            if let Some(left) = self.st.modal.ndc {
+                self.ndc_after_motion(before, left);
+            }
             // A G66 modal call runs the macro after each block that moves an axis.
             if let Some((name, args)) = self.st.g66.clone() {
                 if w.any_axis() && !self.frames.iter().any(|f| f.modal_call) {
@@ -2991,6 +3004,10 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Non-modal codes that consume axis words. Returns whether they did.
     fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
+        if self.dialect == Dialect::Servoworks && w.has_g(370) {
+            self.exec_g37(w)?;
+            return Ok(true);
+        }
         // Scaling, mirror and rotation codes take their centre from the axis words.
         if !self.ngc() && [510u32, 511, 501, 680].iter().any(|g| w.has_g(*g)) {
             return Ok(true);
@@ -3420,6 +3437,43 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
         t
+    }
+
+    /// Normal direction control after the block's motion (at index `i`): the
+    /// in-place turn of the tool axis goes in before it and arcs turn the axis
+    /// by their sweep. Blocks that made other than one G01/G02/G03 motion, and
+    /// moves held back by radius compensation, are left alone.
+    fn ndc_after_motion(&mut self, i: usize, left: bool) {
+        if self.out.motions.len() != i + 1
+            || !self.st.comp_queue.is_empty()
+            || !matches!(self.st.modal.motion, 10 | 20 | 30)
+        {
+            return;
+        }
+        let cfg = self.cfg.ndc;
+        let a = cfg.axis;
+        let Some(m) = self.out.motions.get(i) else {
+            return;
+        };
+        let Some(step) = super::ndc::step(m, m.start[a], left, &cfg) else {
+            return;
+        };
+        let turn = step.turn.unwrap_or(0.0);
+        if turn != 0.0 {
+            let mut r = m.clone();
+            r.kind = MotionKind::Feed;
+            r.end = r.start;
+            r.end[a] += turn;
+            r.feed = cfg.rotation_feed;
+            r.inverse_time = None;
+            self.out.motions.insert(i, r);
+        }
+        if let Some(m) = self.out.motions.last_mut() {
+            m.start[a] += turn;
+            m.end[a] += turn + step.along;
+        }
+        self.st.pos[a] += turn + step.along;
+        self.st.mpos[a] += turn + step.along;
     }
 
     /// ServoWorks `G10 L20`: axis types, as `P<axis> R<type>` or as axis words

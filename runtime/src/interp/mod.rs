@@ -12,6 +12,7 @@ pub mod exponential;
 pub mod expr;
 pub mod files;
 mod machine_cfg;
+pub mod ndc;
 pub mod rotary_feed;
 mod state;
 mod types;

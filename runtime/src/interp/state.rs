@@ -40,6 +40,9 @@ pub struct Modal {
     /// ServoWorks G311: the feed is along the linear axes only (G310, the
     /// default, spreads it over the rotary axes too).
     pub feed_linear_only: bool,
+    /// ServoWorks normal direction control: G41.1 (tool left, `Some(true)`),
+    /// G42.1 (`Some(false)`) or G40.1 (`None`).
+    pub ndc: Option<bool>,
 }
 
 /// Memory of a canned cycle's modal data (program frame, mm).
@@ -137,6 +140,7 @@ impl Modal {
             ijk_abs: false,
             diameter: false,
             feed_linear_only: false,
+            ndc: None,
         }
     }
 
