@@ -45,6 +45,7 @@ const INTERPRETER_KEYS: &[&str] = &[
     "g37_speed",
     "g37_limit",
     "g37_measured",
+    "tcp_arm_length",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the

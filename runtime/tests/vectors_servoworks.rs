@@ -777,6 +777,42 @@ fn tv36_g37_calibration_timing() {
     assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
 }
 
+/// TCP (G43.2) with arm 80 and tool 2 20 long (L = 100): the tip at the
+/// origin with C45 B−45 puts the tool base point at (50, 50, 70.711), which
+/// is what the travel limits see; the motion keeps the tip (the feed runs
+/// along it). With B0 the base is at (0, 0, 100).
+#[test]
+fn tv37_tcp_base_point_against_the_travel_limits() {
+    let prog = "G43.2 H2\nG01 X0 Y0 Z0 B-45. C45. F1000\nG49\nM30\n";
+    let limits = |x: f64, z: f64| {
+        format!("tcp_arm_length = 80.0\n[tools.T2]\nlength = 20.0\n[[axes]]\nletter = \"X\"\nmin_travel = -200.0\nmax_travel = {x}\n[[axes]]\nletter = \"Z\"\nmin_travel = -200.0\nmax_travel = {z}\n")
+    };
+    let out = run_sw(prog, &limits(50.001, 70.7107));
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_pt(
+        out.motions[0].end,
+        &[0.0, 0.0, 0.0, 0.0, -45.0, 45.0],
+        1e-12,
+    );
+    let out = run_sw(prog, &limits(49.999, 70.7106));
+    let msgs: Vec<&str> = out.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(codes(&out), vec!["K002", "K002"], "{msgs:?}");
+    assert!(
+        msgs[0].contains("moves X") && msgs[1].contains("moves Z"),
+        "{msgs:?}"
+    );
+    let out = run_sw(
+        "G43.2 H2\nG01 X0 Y0 Z0 B0 C45. F1000\nG49\nM30\n",
+        &limits(0.0, 100.0),
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let out = run_sw(
+        "G43.2 H2\nG01 X0 Y0 Z0 B0 C45. F1000\nG49\nM30\n",
+        &limits(0.0, 99.999),
+    );
+    assert_eq!(out.diagnostics.len(), 1);
+}
+
 /// G310 (the default) spreads F over all moving axes: X 1272.8 mm/min,
 /// Y 1697.1, A 2121.3 deg/min and a block time of 70.711/3000 min = 1.4142 s.
 /// The motion carries the XY share of F, which the planner runs over the

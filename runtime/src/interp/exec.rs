@@ -455,6 +455,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             rotation: ([0.0; 2], 0.0),
             ended: false,
             torque_axes: 0,
+            tcp_length: 0.0,
             g28_mid: None,
             line: 0,
             g66: None,
@@ -941,10 +942,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             return;
         }
         let mut hit = [false; 6];
+        // Under ServoWorks TCP the linear axes carry the tool base point.
+        let tcp = (self.dialect == Dialect::Servoworks && self.st.modal.tlo_mode == 432)
+            .then_some(self.st.tcp_length);
         for m in self.out.motions.iter().skip(first) {
+            let mut end = m.end;
+            if let Some(l) = tcp {
+                let b = super::tcp::base_point([end[0], end[1], end[2]], end[4], end[5], l);
+                end[..3].copy_from_slice(&b);
+            }
             for (i, lim) in self.cfg.limits.iter().enumerate() {
                 if let Some((lo, hi)) = lim {
-                    if m.end[i] < lo - 1e-9 || m.end[i] > hi + 1e-9 {
+                    if end[i] < lo - 1e-9 || end[i] > hi + 1e-9 {
                         hit[i] = true;
                     }
                 }
@@ -2713,6 +2722,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(432) {
             self.st.modal.tlo_mode = 432;
+            if self.dialect == Dialect::Servoworks {
+                let h = w.get(b'H').map(|v| v.round().max(0.0) as u32).unwrap_or(0);
+                let tool = self.cfg.tools.get(&h).copied().unwrap_or_default();
+                self.st.tcp_length = self.cfg.tcp_arm_length + tool.length * self.pfac();
+            }
             if self.ngc() {
                 // LinuxCNC G43.2 adds a tool's offset (H) to the one in force.
                 let add;

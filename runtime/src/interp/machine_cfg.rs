@@ -56,6 +56,8 @@ pub struct MachineCfg {
     pub ndc: super::ndc::NdcConfig,
     /// ServoWorks G37 ratio, speed, limit and the simulated measurement.
     pub(super) g37: super::exec::G37Cfg,
+    /// ServoWorks TCP Arm Length (mm): pivot to tool holder.
+    pub tcp_arm_length: f64,
 }
 
 /// Reads `drill_shift`: the letter names the first (X) or second (Y) axis of the
@@ -181,6 +183,7 @@ impl MachineCfg {
             drill_shift: drill_shift(t.get("drill_shift")),
             ndc: super::ndc::NdcConfig::read(t),
             g37: super::exec::G37Cfg::read(t),
+            tcp_arm_length: f("tcp_arm_length", 0.0),
             optional_stop: b("optional_stop", false),
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),

@@ -15,6 +15,7 @@ mod machine_cfg;
 pub mod ndc;
 pub mod rotary_feed;
 mod state;
+pub mod tcp;
 mod types;
 
 pub use exec::{

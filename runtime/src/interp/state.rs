@@ -108,6 +108,9 @@ pub struct State {
     /// per axis X…C. Their motion words are torques in % of the rated torque,
     /// not positions, so they do not move the axis in the dry run.
     pub torque_axes: u8,
+    /// ServoWorks G43.2: arm length + tool length (mm), from the tip to the
+    /// tool base point the linear axes carry.
+    pub tcp_length: f64,
     /// Intermediate point of the last G28/G30 (for FANUC/ServoWorks G29).
     pub g28_mid: Option<[f64; 6]>,
     /// 1-based line of the block being executed (`#<_line>`).
