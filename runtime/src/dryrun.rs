@@ -216,6 +216,7 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
                 (planar * planar + rise * rise).sqrt(),
             )
         }
+        MotionKind::Involute { curve, .. } => (SegmentKind::Line, curve.length()),
         _ => (SegmentKind::Line, straight),
     };
     let length = if length > 1e-12 { length } else { rot };
@@ -530,6 +531,31 @@ pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
                     center[1] + (along + rise * f) * normal[1] + radial[1] * cs + b[1] * sn,
                     center[2] + (along + rise * f) * normal[2] + radial[2] * cs + b[2] * sn,
                 ]);
+            }
+        }
+        if let MotionKind::Involute { curve, axes } = m.kind {
+            // The tangent turns by dφ per step, on a radius of curvature of at
+            // most R·φ: steps that keep the chord within `chord` of the curve.
+            let rho = curve.base_radius * curve.phi_start.max(curve.phi_end);
+            let step = if chord < rho {
+                2.0 * (1.0 - chord / rho).acos()
+            } else {
+                std::f64::consts::FRAC_PI_2
+            };
+            let span = curve.phi_end - curve.phi_start;
+            let n = ((span.abs() / step.max(1e-3)).ceil() as usize).clamp(2, 2048);
+            let (a, b) = (usize::from(axes[0]).min(2), usize::from(axes[1]).min(2));
+            for k in 1..n {
+                let f = k as f64 / n as f64;
+                let q = curve.point(curve.phi_start + span * f);
+                let mut p = [
+                    m.start[0] + (m.end[0] - m.start[0]) * f,
+                    m.start[1] + (m.end[1] - m.start[1]) * f,
+                    m.start[2] + (m.end[2] - m.start[2]) * f,
+                ];
+                p[a] = q[0];
+                p[b] = q[1];
+                points.push(p);
             }
         }
         points.push([m.end[0], m.end[1], m.end[2]]);

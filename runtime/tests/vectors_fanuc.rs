@@ -599,3 +599,36 @@ fn example_8_2_boring_cycles() {
     let (out, _) = one_hole("G87 Z-150. R-120. Q5. P1000", "");
     assert_eq!(codes(&out), vec!["C006"]);
 }
+
+/// §8.6's N203 in the XY plane: from (−1, 0) about (0, 0) with R 1 to
+/// (1, 9.425). The end is φ = 9.4250 rad unwound (≈ 3π), the path is
+/// R·φ²/2 = 44.41 mm (to the digest's two decimals) and takes that over F;
+/// the toolpath follows the involute (every point R·√(1 + φ²) from the
+/// centre, the φ = 3π point at (1, 9.42478)).
+#[test]
+fn example_8_6_involute_path() {
+    let out = run_fanuc(
+        "G17 G90 G00 X-1. Y0;\nG02.2 X1.0 Y9.425 I1.0 J0 R1.0 F100.;\nM30;\n",
+        "",
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let m = &out.motions[1];
+    let runtime::MotionKind::Involute { curve, .. } = m.kind else {
+        panic!("not an involute: {:?}", m.kind);
+    };
+    assert_eq!(format!("{:.4}", curve.phi_end), "9.4250");
+    let s = runtime::dryrun::segment_of(m, 0);
+    assert!(close(s.length, 44.41, 0.01), "{}", s.length);
+    assert!(close(s.length / s.feed, s.length / 100.0 * 60.0, 1e-9));
+    let tp = runtime::dryrun::toolpath(&out, 0.001);
+    let pts = &tp.segments[1].points;
+    assert!(pts.len() > 100, "{}", pts.len());
+    for p in &pts[..pts.len() - 1] {
+        let rho = p[0].hypot(p[1]);
+        let phi = (rho * rho - 1.0).max(0.0).sqrt();
+        let q = curve.point(phi);
+        assert!(close(q[0], p[0], 1e-9) && close(q[1], p[1], 1e-9), "{p:?}");
+    }
+    let p = curve.point(3.0 * std::f64::consts::PI);
+    assert_eq!(format!("{:.5} {:.5}", p[0], p[1]), "1.00000 9.42478");
+}

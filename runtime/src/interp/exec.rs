@@ -3854,10 +3854,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.st.modal.motion = mode;
                 let mut t = self.target(w);
                 self.check_feed(bspan)?;
+                let end = self.to_machine(t);
                 let kind = if mode == 23 || mode == 33 {
                     self.exponential_kind(w, &mut t)
                 } else {
-                    MotionKind::Involute
+                    self.involute_kind(w, &end, mode == 32)
                 };
                 let end = self.to_machine(t);
                 let m = self.motion_base(kind, self.st.mpos, end, self.st.feed);
@@ -3869,6 +3870,29 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// The motion kind of a G02.2/G03.2 block ending at machine point `end`: the
+    /// involute of the base circle (radius R, centre start + I/J/K in the plane)
+    /// through the start. Undefined curves (the checks report them) leave a
+    /// straight move.
+    fn involute_kind(&self, w: &Words, end: &[f64; 6], ccw: bool) -> MotionKind {
+        let (a, b) = self.plane_axes();
+        let (la, lb) = (b"IJK"[a.min(2)], b"IJK"[b.min(2)]);
+        let (Some(i), Some(j), Some(r)) = (w.get(la), w.get(lb), w.get(b'R')) else {
+            return MotionKind::Feed;
+        };
+        let lu = self.lu();
+        let (i, j, r) = (self.lin(i) * lu, self.lin(j) * lu, self.lin(r).abs() * lu);
+        let s = [self.st.mpos[a] * lu, self.st.mpos[b] * lu];
+        let e = [end[a] * lu, end[b] * lu];
+        match super::involute::InvoluteCurve::new(s, e, [s[0] + i, s[1] + j], r, ccw) {
+            Some(curve) => MotionKind::Involute {
+                curve,
+                axes: [a as u8, b as u8],
+            },
+            None => MotionKind::Feed,
+        }
     }
 
     /// The motion kind of a G02.3/G03.3 block, with A's end in `t`: A turns by

@@ -66,7 +66,12 @@ pub enum MotionKind {
         curve: super::exponential::ExpCurve,
         end_feed: f64,
     },
-    Involute,
+    /// Involute interpolation (G02.2/G03.2) along `curve`, whose coordinates are
+    /// the machine axes `axes` (mm). Without a defined curve the block is a `Feed`.
+    Involute {
+        curve: super::involute::InvoluteCurve,
+        axes: [u8; 2],
+    },
     /// Spindle-synchronised move (G33, G76 passes); `feed` is the pitch in mm/rev.
     Thread,
     Probe,
