@@ -1002,9 +1002,10 @@ fn tv_r2_material_edge_triangle() {
 }
 
 /// A concave corner for a tool on the left: `linuxcnc` pulls the end point
-/// back and the tool stops at (1.75, 0.25) before going up.
+/// back and the tool stops at (1.75, 0.25) before going up; `emc2` stops
+/// with NGC416 (X003) at the corner.
 #[test]
-fn tv_r3_concave_corner_linuxcnc() {
+fn tv_r3_concave_corner() {
     let prog = "G20\nT2 M6\nG17 G40 G0 X0 Y-1\nG41 D2 G1 X0 Y0 F10\nX2 Y0\nX2 Y2\nG40\nM2\n";
     let (out, xy) = comp_run(prog, Variant::Linuxcnc);
     assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
@@ -1016,6 +1017,12 @@ fn tv_r3_concave_corner_linuxcnc() {
         [1.75, 2.0],
     ];
     assert_xy(&xy, &want, 1e-12);
+    let (out, _) = comp_run(prog, Variant::Emc2);
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(
+        out.diagnostics[0].message,
+        "Concave corner with cutter radius comp"
+    );
 }
 
 /// r = 0.5 inside an arc of radius 0.4 → NGC418 (X003, rs274's message).

@@ -67,6 +67,10 @@ pub fn run_without_fast_path(input: &RunInput<'_>, snapshots: bool) -> RunOutput
     it.finish()
 }
 
+/// The 2007 EMC2 interpreter refuses every concave corner under cutter radius
+/// compensation (rs274ngc.md NGC416); LinuxCNC 2.9 stops the tool short instead.
+const EMC2_CONCAVE: &str = "Concave corner with cutter radius comp";
+
 /// Motions a streaming run hands to its sink at a time: big enough that the sink's
 /// per-call cost vanishes, small enough that memory stays flat.
 const STREAM_CHUNK: usize = 4096;
@@ -4263,6 +4267,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             self.st.comp_endpoint = Some([mid[a], mid[b]]);
         } else if concave {
+            if self.variant == Variant::Emc2 {
+                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+            }
             match front_arc {
                 None => {
                     let half = (beta + PI) / 2.0;
@@ -4825,6 +4832,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             )
         };
         if beta < -small || beta > PI + small || ((beta - PI).abs() < small && !inside) {
+            if self.variant == Variant::Emc2 {
+                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+            }
             let front_arc = self.st.comp_queue.first().copied().filter(|q| q.kind == 2);
             let mid = match front_arc {
                 None => {
