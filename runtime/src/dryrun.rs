@@ -37,6 +37,15 @@ const INTERPRETER_KEYS: &[&str] = &[
     "involute_tolerance",
     "trc_g41_side",
     "drill_shift",
+    "ndc_axis",
+    "ndc_rotation_feed",
+    "ndc_angle_limit",
+    "ndc_length_limit",
+    "g37_ratio",
+    "g37_speed",
+    "g37_limit",
+    "g37_measured",
+    "tcp_arm_length",
 ];
 
 /// The planner profile from a `[machine]` table: the dialect's defaults with the
@@ -207,11 +216,29 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
                 (planar * planar + rise * rise).sqrt(),
             )
         }
+        MotionKind::Involute { curve, .. } => (SegmentKind::Line, curve.length()),
         _ => (SegmentKind::Line, straight),
     };
     let length = if length > 1e-12 { length } else { rot };
     // Feed in mm/s: inverse time gives the move's duration; per-revolution feeds
     // (G95, threads) scale with the spindle speed.
+    // Exponential moves: the integrated X–A length, at the feed that gives the
+    // integrated time of the feed running from F to Q.
+    if let (MotionKind::Exponential { curve, end_feed }, None) = (m.kind, m.inverse_time) {
+        let e = curve.measure(m.feed, end_feed);
+        if e.length > 1e-12 && e.minutes > 0.0 && e.minutes.is_finite() {
+            return Segment {
+                kind,
+                start: m.start,
+                end: m.end,
+                length: e.length,
+                feed: e.length / (e.minutes * 60.0),
+                mode,
+                block: index,
+                tool: m.tool,
+            };
+        }
+    }
     let feed = match (m.inverse_time, m.kind) {
         (_, MotionKind::Rapid) => 0.0,
         (Some(inv), _) if inv > 0.0 => length * inv / 60.0,
@@ -504,6 +531,31 @@ pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
                     center[1] + (along + rise * f) * normal[1] + radial[1] * cs + b[1] * sn,
                     center[2] + (along + rise * f) * normal[2] + radial[2] * cs + b[2] * sn,
                 ]);
+            }
+        }
+        if let MotionKind::Involute { curve, axes } = m.kind {
+            // The tangent turns by dφ per step, on a radius of curvature of at
+            // most R·φ: steps that keep the chord within `chord` of the curve.
+            let rho = curve.base_radius * curve.phi_start.max(curve.phi_end);
+            let step = if chord < rho {
+                2.0 * (1.0 - chord / rho).acos()
+            } else {
+                std::f64::consts::FRAC_PI_2
+            };
+            let span = curve.phi_end - curve.phi_start;
+            let n = ((span.abs() / step.max(1e-3)).ceil() as usize).clamp(2, 2048);
+            let (a, b) = (usize::from(axes[0]).min(2), usize::from(axes[1]).min(2));
+            for k in 1..n {
+                let f = k as f64 / n as f64;
+                let q = curve.point(curve.phi_start + span * f);
+                let mut p = [
+                    m.start[0] + (m.end[0] - m.start[0]) * f,
+                    m.start[1] + (m.end[1] - m.start[1]) * f,
+                    m.start[2] + (m.end[2] - m.start[2]) * f,
+                ];
+                p[a] = q[0];
+                p[b] = q[1];
+                points.push(p);
             }
         }
         points.push([m.end[0], m.end[1], m.end[2]]);

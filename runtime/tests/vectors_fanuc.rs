@@ -480,3 +480,155 @@ fn example_8_2_individual_cycles() {
         assert!(errors.is_empty(), "{cycle}: {errors:?}");
     }
 }
+
+/// One hole of a §8.2 example at (300, −250) from Z0 under G99, with the
+/// machine keys `machine`; returns the run and the Z ends after the rapid to
+/// the hole.
+fn one_hole(cycle: &str, machine: &str) -> (runtime::RunOutput, Vec<f64>) {
+    let g99 = if cycle.starts_with("G87") { "" } else { "G99 " };
+    let prog = format!(
+        "G21 G90 G00 Z0.;\nM3 S500;\nG90 {g99}{} X300. Y-250. {} F120.;\nG80;\nM30;\n",
+        &cycle[..3],
+        &cycle[4..]
+    );
+    let out = run_fanuc(&prog, machine);
+    let z = out.motions.iter().skip(2).map(|m| m.end[2]).collect();
+    (out, z)
+}
+
+fn dwell_total(out: &runtime::RunOutput) -> f64 {
+    out.events
+        .iter()
+        .filter_map(|e| match e.kind {
+            runtime::EventKind::Dwell(s) => Some(s),
+            _ => None,
+        })
+        .sum()
+}
+
+/// §8.2's G73 and G83 with Q15 over 50 mm: four pecks ending at −115, −130,
+/// −145, −150. G73 backs off d (No. 5114) after each of the first three, so
+/// the feed length is 50 + 3d; G83 rapids up to R (15, 30, 45) and back down
+/// to d (No. 5115) above the last depth (90 − 3d). Both then return to R.
+#[test]
+fn example_8_2_peck_cycles() {
+    for d in [1.0, 2.0] {
+        let machine = format!("g73_retract = {d:.1}\ng83_clearance = {d:.1}");
+        let (out, z) = one_hole("G73 Z-150. R-100. Q15.", &machine);
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        let want = [
+            -100.0,
+            -115.0,
+            -115.0 + d,
+            -130.0,
+            -130.0 + d,
+            -145.0,
+            -145.0 + d,
+            -150.0,
+            -100.0,
+        ];
+        assert_eq!(z, want, "G73 d {d}");
+        let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+        assert!(close(feed, 50.0 + 3.0 * d, 1e-9), "G73 feed {feed}");
+
+        let (out, z) = one_hole("G83 Z-150. R-100. Q15.", &machine);
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        let want = [
+            -100.0,
+            -115.0,
+            -100.0,
+            -115.0 + d,
+            -130.0,
+            -100.0,
+            -130.0 + d,
+            -145.0,
+            -100.0,
+            -145.0 + d,
+            -150.0,
+            -100.0,
+        ];
+        assert_eq!(z, want, "G83 d {d}");
+        let feed: f64 = out.motions.iter().filter(|m| is_feed(m)).map(length).sum();
+        assert!(close(feed, 50.0 + 3.0 * d, 1e-9), "G83 feed {feed}");
+        // Rapid up to R after pecks 1–3: 15 + 30 + 45 = 90 (the Z list above
+        // holds the rapids down, 90 − 3d in all).
+        let up: f64 = out
+            .motions
+            .windows(2)
+            .filter(|w| is_rapid(&w[1]) && is_feed(&w[0]) && w[1].end[2] == -100.0)
+            .map(|w| -100.0 - w[0].end[2])
+            .take(3)
+            .sum();
+        assert!(close(up, 90.0, 1e-9), "up {up}");
+    }
+}
+
+/// §8.2's G76 (fine boring: 30 mm feed = 15 s at F120, 1 s dwell, a 5 mm shift
+/// along +X, the default of No. 5148, then a rapid out), G88 (50 mm feed = 25 s,
+/// 1 s dwell, then the manual-hold stop) and G87 as printed (R−120 above
+/// Z−150: FAN079, rule C006).
+#[test]
+fn example_8_2_boring_cycles() {
+    let (out, z) = one_hole("G76 Z-150. R-120. Q5. P1000", "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(z, [-120.0, -150.0, -150.0, -120.0, -120.0]);
+    let feed: Vec<&runtime::Motion> = out.motions.iter().filter(|m| is_feed(m)).collect();
+    assert_eq!(feed.len(), 1);
+    assert!(close(length(feed[0]) / feed[0].feed * 60.0, 15.0, 1e-12));
+    assert_eq!(dwell_total(&out), 1.0);
+    let shift = &out.motions[4];
+    assert!(is_rapid(shift));
+    assert_eq!(shift.end[0] - shift.start[0], 5.0, "shift along +X");
+
+    let (out, z) = one_hole("G88 Z-150. R-100. P1000", "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(z, [-100.0, -150.0, -100.0]);
+    let m = &out.motions[3];
+    assert!(close(length(m) / m.feed * 60.0, 25.0, 1e-12));
+    assert_eq!(dwell_total(&out), 1.0);
+    let stop = out
+        .events
+        .iter()
+        .position(|e| matches!(e.kind, runtime::EventKind::Stop { optional: false }))
+        .expect("manual hold");
+    assert_eq!(
+        out.events[stop].motion_index, 4,
+        "at the bottom, before the retract"
+    );
+
+    let (out, _) = one_hole("G87 Z-150. R-120. Q5. P1000", "");
+    assert_eq!(codes(&out), vec!["C006"]);
+}
+
+/// §8.6's N203 in the XY plane: from (−1, 0) about (0, 0) with R 1 to
+/// (1, 9.425). The end is φ = 9.4250 rad unwound (≈ 3π), the path is
+/// R·φ²/2 = 44.41 mm (to the digest's two decimals) and takes that over F;
+/// the toolpath follows the involute (every point R·√(1 + φ²) from the
+/// centre, the φ = 3π point at (1, 9.42478)).
+#[test]
+fn example_8_6_involute_path() {
+    let out = run_fanuc(
+        "G17 G90 G00 X-1. Y0;\nG02.2 X1.0 Y9.425 I1.0 J0 R1.0 F100.;\nM30;\n",
+        "",
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let m = &out.motions[1];
+    let runtime::MotionKind::Involute { curve, .. } = m.kind else {
+        panic!("not an involute: {:?}", m.kind);
+    };
+    assert_eq!(format!("{:.4}", curve.phi_end), "9.4250");
+    let s = runtime::dryrun::segment_of(m, 0);
+    assert!(close(s.length, 44.41, 0.01), "{}", s.length);
+    assert!(close(s.length / s.feed, s.length / 100.0 * 60.0, 1e-9));
+    let tp = runtime::dryrun::toolpath(&out, 0.001);
+    let pts = &tp.segments[1].points;
+    assert!(pts.len() > 100, "{}", pts.len());
+    for p in &pts[..pts.len() - 1] {
+        let rho = p[0].hypot(p[1]);
+        let phi = (rho * rho - 1.0).max(0.0).sqrt();
+        let q = curve.point(phi);
+        assert!(close(q[0], p[0], 1e-9) && close(q[1], p[1], 1e-9), "{p:?}");
+    }
+    let p = curve.point(3.0 * std::f64::consts::PI);
+    assert_eq!(format!("{:.5} {:.5}", p[0], p[1]), "1.00000 9.42478");
+}

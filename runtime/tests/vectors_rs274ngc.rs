@@ -800,3 +800,273 @@ fn tv_r1_contour_geometry() {
     }
     assert_eq!(radii.len(), 5);
 }
+
+/// Nominal time of a motion in seconds: the planner segment's length over its
+/// feed, before acceleration.
+fn nominal_seconds(m: &runtime::Motion) -> f64 {
+    let s = runtime::dryrun::segment_of(m, 0);
+    s.length / s.feed
+}
+
+/// The G76 example of the digest (`linuxcnc` pass depths): passes at
+/// |I| + J·n^(1/R) while below |I| + K, then 1 + H passes at |I| + K. Each
+/// pass's synchronised cut runs at X = 0.2 − depth (external thread).
+#[test]
+fn tv_c9_g76_pass_depths() {
+    let cycle = "G76 P0.05 Z-1 I-.075 J0.008 K0.045 Q29.5 L2 E0.045";
+    let depths = |extra: &str| -> Vec<f64> {
+        let out = run_ngc(&format!(
+            "G20 G18 G90\nS100 M3\nG0 X0.2 Z-0.5\n{cycle}{extra}\nM2\n"
+        ));
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        out.motions
+            .iter()
+            .filter(|m| matches!(m.kind, MotionKind::Thread) && m.start[0] == m.end[0])
+            .map(|m| 0.2 - m.end[0] / 25.4)
+            .collect()
+    };
+    let d = depths("");
+    let want = [0.083, 0.091, 0.099, 0.107, 0.115, 0.120];
+    assert_eq!(d.len(), 6, "{d:?}");
+    for (got, want) in d.iter().zip(want) {
+        assert!(close(*got, want, 1e-12), "{d:?}");
+    }
+    assert_eq!(depths(" R2").len(), 32);
+    let d = depths(" H2");
+    assert_eq!(d.len(), 8, "{d:?}");
+    for got in &d[5..] {
+        assert!(close(*got, 0.120, 1e-12), "{d:?}");
+    }
+}
+
+/// §8.5's five circles: the G10 lines set the G55–G58 offsets and each
+/// `G3 X-.1 Y0 I.1 J0` is a full circle of radius 0.1 about program (0,0), so
+/// the centres in machine XY are the offsets.
+#[test]
+fn tv_g5_five_circles() {
+    let mut prog = String::from("G20\nG10 L2 P1 x0 y0 z0\nG10 L2 P2 x0.5\nG10 L2 P3 x-0.5\nG10 L2 P4 y0.5\nG10 L2 P5 y-0.5\n");
+    for g in ["g54", "g55", "g56", "g57", "g58"] {
+        prog.push_str(&format!(
+            "{g} g0 x-.1 y0 z0\ng1 f1 z-.25\ng3 x-.1 y0 i.1 j0\ng0 z0\n"
+        ));
+    }
+    prog.push_str("#1=#5241\n#2=#5261\n#3=#5282\n#4=#5302\ng54 g0 x#1 y#2 z0\ng0 x#3 y#4\nm2\n");
+    let out = run_ngc(&prog);
+    let inch = 25.4;
+    let centres: Vec<[f64; 2]> = out
+        .motions
+        .iter()
+        .filter_map(|m| match m.kind {
+            MotionKind::Arc { center, radius, .. } => {
+                assert!(close(radius / inch, 0.1, 1e-12), "r {radius}");
+                assert!(close(length(m) / inch, 0.2 * std::f64::consts::PI, 1e-9));
+                Some([center[0] / inch, center[1] / inch])
+            }
+            _ => None,
+        })
+        .collect();
+    let want = [[0.0, 0.0], [0.5, 0.0], [-0.5, 0.0], [0.0, 0.5], [0.0, -0.5]];
+    assert_eq!(centres.len(), 5);
+    for (got, want) in centres.iter().zip(want) {
+        assert!(
+            close(got[0], want[0], 1e-12) && close(got[1], want[1], 1e-12),
+            "{centres:?}"
+        );
+    }
+    // #5241 = 0.5, #5261 = −0.5, #5282 = 0.5, #5302 = −0.5.
+    let n = out.motions.len();
+    assert_pt(out.motions[n - 2].end, &[0.5 * inch, -0.5 * inch], 1e-12);
+    assert_pt(out.motions[n - 1].end, &[0.5 * inch, -0.5 * inch], 1e-12);
+}
+
+/// Feeds of moves of rotary axes only are in degrees per minute along the
+/// combined rotary distance: 90° at F90 and D = √(30² + 40²) = 50° at F50 both
+/// take one minute.
+#[test]
+fn tv_f3_rotary_only_feed_time() {
+    let out = run_ngc("G21 G94 F90 G1 A90\nM2\n");
+    assert!(close(nominal_seconds(&out.motions[0]), 60.0, 1e-9));
+    let out = run_ngc("G21 G94 G1 A30 B40 F50\nM2\n");
+    let s = runtime::dryrun::segment_of(&out.motions[0], 0);
+    assert!(close(s.length, 50.0, 1e-12), "{}", s.length);
+    assert!(close(nominal_seconds(&out.motions[0]), 60.0, 1e-9));
+}
+
+/// G33 at K0.0625 in/rev and 100 rpm over one inch: 16 revolutions, 0.16 min = 9.6 s
+/// (the wait for the spindle index is not modelled).
+#[test]
+fn tv_f5_g33_time() {
+    let out = run_ngc("G20 G18 G90\nS100 M3\nG0 X0 Z0\nG33 Z-1 K0.0625\nM2\n");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let m = &out.motions[1];
+    assert!(matches!(m.kind, MotionKind::Thread));
+    assert!(close(m.feed / 25.4, 0.0625, 1e-15));
+    assert!(
+        close(nominal_seconds(m), 9.6, 1e-9),
+        "{}",
+        nominal_seconds(m)
+    );
+}
+
+/// Runs a G20 program with the cutter-compensation tools of §9.4 (inch table:
+/// tool 1 diameter 1.0, tool 2 0.5, tool 4 0.489 — Jon Elson's — and tool 5
+/// −0.03) and returns its motions' XY ends in inches.
+fn comp_run(prog: &str, variant: Variant) -> (RunOutput, Vec<[f64; 2]>) {
+    let mut settings = Settings::new(Dialect::Rs274ngc);
+    settings.variant = variant;
+    let a = analyzer::analyze(prog.as_bytes().to_vec(), &settings);
+    let machine: toml::Table = toml::from_str("machine_units = \"inch\"").expect("toml");
+    let tools = "T1 P1 D1.0 Z0\nT2 P2 D0.5 Z0\nT4 P4 D0.489 Z0\nT5 P5 D-0.03 Z0\n";
+    let out = run(&RunInput {
+        program: &a.program,
+        settings: &settings,
+        machine: &machine,
+        resolver: &NoResolver,
+        step_budget: 100_000,
+        emit_canon: false,
+        tool_table: Some(tools),
+        var_file: None,
+    });
+    let xy = out
+        .motions
+        .iter()
+        .map(|m| [m.end[0] / 25.4, m.end[1] / 25.4])
+        .collect();
+    (out, xy)
+}
+
+#[track_caller]
+fn assert_xy(got: &[[f64; 2]], want: &[[f64; 2]], tol: f64) {
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            close(g[0], w[0], tol) && close(g[1], w[1], tol),
+            "got {got:?}\nwant {want:?}"
+        );
+    }
+}
+
+/// §9.4.1's tool-path contour with a −0.03 diameter: the 0.015 offset goes to
+/// the right of the path despite G41 (rs274 prints the same points).
+#[test]
+fn tv_r1_negative_diameter_runs_on_the_right() {
+    let prog = "G20 G17 G90 F10\nT5 M6\nG0 X1 Y5\nN0010 G1 X1 Y4.5\nN0020 G41 G1 Y3.5\nN0030 G3 X2 Y2.5 I1\nN0040 G2 X2.5 Y2 J-0.5\nN0050 G1 Y-1\nN0060 G2 X2 Y-1.5 I-0.5\nN0070 G1 X-2\nN0080 G2 X-2.3 Y-0.6 J0.5\nN0090 G1 X1.7 Y2.4\nN0100 G2 X2 Y2.5 I0.3 J-0.4\nN0110 G40\nM2\n";
+    let (out, xy) = comp_run(prog, Variant::Linuxcnc);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    // The hypotenuse (direction (4,3)/5) is offset by 0.015·(0.6, −0.8).
+    let want = [
+        [1.0, 5.0],
+        [1.0, 4.5],
+        [0.985, 3.5],
+        [2.0, 2.485],
+        [2.485, 2.0],
+        [2.485, -1.0],
+        [2.0, -1.485],
+        [-2.0, -1.485],
+        [-2.291, -0.612],
+        [1.709, 2.388],
+        [2.0, 2.485],
+    ];
+    assert_xy(&xy, &want, 1e-12);
+}
+
+/// §9.4.1 example 1: the material-edge triangle with a 1.0 diameter tool runs
+/// clockwise around the outside with three inserted arcs of radius 0.5 and no
+/// errors. From (0, 3) the entry move ends 0.5 from (2, 2), perpendicular to it.
+#[test]
+fn tv_r2_material_edge_triangle() {
+    let prog = "G20 G17 G90\nT1 M6\nG0 X0 Y3\nN0010 G41 G1 X2 Y2 F10\nN0020 Y-1\nN0030 X-2\nN0040 X2 Y2\nN0050 G40\nM2\n";
+    let (out, xy) = comp_run(prog, Variant::Linuxcnc);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let s5 = 5f64.sqrt();
+    let want = [
+        [0.0, 3.0],
+        [2.0 + 0.5 / s5, 2.0 + 1.0 / s5],
+        [2.5, 2.0],
+        [2.5, -1.0],
+        [2.0, -1.5],
+        [-2.0, -1.5],
+        [-2.3, -0.6],
+        [1.7, 2.4],
+    ];
+    assert_xy(&xy, &want, 1e-12);
+    let arcs: Vec<(f64, f64)> = out
+        .motions
+        .iter()
+        .filter_map(|m| match m.kind {
+            MotionKind::Arc { radius, normal, .. } => Some((radius / 25.4, normal[2])),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(arcs, vec![(0.5, -1.0); 3], "three clockwise arcs of r 0.5");
+}
+
+/// A concave corner for a tool on the left: `linuxcnc` pulls the end point
+/// back and the tool stops at (1.75, 0.25) before going up; `emc2` stops
+/// with NGC416 (X003) at the corner.
+#[test]
+fn tv_r3_concave_corner() {
+    let prog = "G20\nT2 M6\nG17 G40 G0 X0 Y-1\nG41 D2 G1 X0 Y0 F10\nX2 Y0\nX2 Y2\nG40\nM2\n";
+    let (out, xy) = comp_run(prog, Variant::Linuxcnc);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let want = [
+        [0.0, -1.0],
+        [-0.25, 0.0],
+        [0.0, 0.25],
+        [1.75, 0.25],
+        [1.75, 2.0],
+    ];
+    assert_xy(&xy, &want, 1e-12);
+    let (out, _) = comp_run(prog, Variant::Emc2);
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(
+        out.diagnostics[0].message,
+        "Concave corner with cutter radius comp"
+    );
+}
+
+/// r = 0.5 inside an arc of radius 0.4 → NGC418 (X003, rs274's message).
+#[test]
+fn tv_r4_tool_inside_a_smaller_arc() {
+    let prog = "G20 G17\nT1 M6\nG0 X-2 Y0\nG41 D1 G1 X0 Y0 F10\nG3 X0.8 Y0 I0.4 J0\nG40\nM2\n";
+    let (out, _) = comp_run(prog, Variant::Linuxcnc);
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(
+        out.diagnostics[0].message,
+        "Tool radius not less than arc radius with comp"
+    );
+}
+
+/// r = 0.5 and an entry move of 0.3 → NGC417 (X003).
+#[test]
+fn tv_r5_entry_move_shorter_than_the_radius() {
+    let prog = "G20 G17\nT1 M6\nG0 X0 Y0\nG41 D1 G1 X0.3 Y0 F10\nX2\nM2\n";
+    let (out, xy) = comp_run(prog, Variant::Linuxcnc);
+    assert_eq!(codes(&out), vec!["X003"]);
+    assert_eq!(xy, vec![[0.0, 0.0]], "no compensated move");
+}
+
+/// Jon Elson's program passes with tool 4 (diameter 0.489): the lead-in and
+/// lead-out nip the corner. The points are rs274's (printed to 4 decimals);
+/// the straight cuts run 0.2445 above Y3.1875. The seed gives no feed before
+/// N10, so F10 comes first.
+#[test]
+fn tv_r6_jon_elson_lead_in_and_out() {
+    let prog = "G20 F10\nT4 M6\nN10 G01 G40 X-1.3531 Y3.4\nN15 F10 G17 G41 D4 X-0.7 Y3.1875\nN20 X0. Y3.1875\nN40 X0.5667 F10\nN50 G03 X0.8225 Y3.3307 R0.3\nN60 G02 X2.9728 Y4.3563 R2.1875\nN70 G01 X7.212 Y3.7986\nN80 G02 X8.1985 Y3.2849 R1.625\nN90 G03 X8.4197 Y3.1875 R0.3\nN100 G01 X9.\nN110 G40 X10.1972 Y3.432\nN220 M02\n";
+    let (out, xy) = comp_run(prog, Variant::Linuxcnc);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let want = [
+        [-1.3531, 3.4],
+        [-0.6612, 3.432],
+        [0.0, 3.432],
+        [0.5667, 3.432],
+        [0.6141, 3.4585],
+        [3.0047, 4.5987],
+        [7.2439, 4.0410],
+        [8.3788, 3.4500],
+        [8.4197, 3.4320],
+        [9.0, 3.432],
+        [10.1972, 3.432],
+    ];
+    assert_xy(&xy, &want, 5e-5);
+}

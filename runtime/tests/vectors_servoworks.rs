@@ -572,6 +572,274 @@ fn tv21_k_word_in_g17_arc_sw033() {
     assert_eq!(codes(&out), vec!["A008", "A005"], "{:?}", out.diagnostics);
 }
 
+/// `G02.3 X30.5 Y2.0 Z-5.0 I10.0 J30.0 R1.0 F20 Q10` from X0 A0: A turns by
+/// K·ln(30.5·tan 10° + 1) = 6.066818 rad = +347.603° (G03.3: −347.603°), Y and
+/// Z move with X, and the planner gets the integrated length 349.296 (X and A)
+/// and time 21.978 min of the feed running from 20 to 10.
+#[test]
+fn tv25_exponential_interpolation() {
+    for (code, a) in [("G02.3", "347.603"), ("G03.3", "-347.603")] {
+        let out = run_sw(
+            &format!("G90 G01 X0 A0 F100\n{code} X30.5 Y2.0 Z-5.0 I10.0 J30.0 R1.0 F20 Q10\nM30\n"),
+            "",
+        );
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        let m = &out.motions[1];
+        assert!(
+            matches!(m.kind, MotionKind::Exponential { .. }),
+            "{:?}",
+            m.kind
+        );
+        assert_pt(m.end, &[30.5, 2.0, -5.0], 1e-12);
+        assert_eq!(format!("{:.3}", m.end[3]), a);
+        assert!(close(m.end[3].abs().to_radians(), 6.066818, 5e-7));
+        let s = runtime::dryrun::segment_of(m, 0);
+        assert_eq!(format!("{:.3}", s.length), "349.296");
+        assert_eq!(format!("{:.3}", s.length / s.feed / 60.0), "21.978");
+    }
+    // I = 0 has no curve (SW045): the block is a straight move and A stays.
+    let out = run_sw("G02.3 X30.5 I0 J30.0 R1.0 F20 Q10\nM30\n", "");
+    assert!(matches!(out.motions[0].kind, MotionKind::Feed));
+    assert_eq!(out.motions[0].end[3], 0.0);
+}
+
+/// §6.3.8's torque example: `G10 L20 P3 R12` makes Z a torque axis, so N30
+/// moves only X and Y, (10,10) → (50,100): 98.489 mm at 3000 mm/min =
+/// 1.9698 s, while Z outputs 20 % torque; N40 (Z 0 %) and N60 (X 50 %, X a
+/// torque axis since N50) move nothing and N70 dwells 3 s; after N80/N90
+/// (R1: normal again) N100 positions all three axes, Z from where it was
+/// switched over (the torque moves are not simulated).
+#[test]
+fn tv31_torque_axes() {
+    let prog = "N10 G00 X10.0 Y10.0 Z10.0\nN20 G10 L20 P3 R12\nN30 G01 X50.0 Y100.0 Z20.0 F3000.0\nN40 Z0.0\nN50 G10 L20 P1 R12\nN60 X50.0\nN70 G04 X3.0\nN80 G10 L20 P1 R1\nN90 G10 L20 P3 R1\nN100 X200.0 Y200.0 Z200.0\nM30\n";
+    let out = run_sw(prog, "");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_eq!(
+        ends(&out),
+        vec![
+            [10.0, 10.0, 10.0],
+            [50.0, 100.0, 10.0],
+            [200.0, 200.0, 200.0]
+        ]
+    );
+    let n30 = &out.motions[1];
+    assert_eq!(format!("{:.3}", length(n30)), "98.489");
+    assert_eq!(format!("{:.4}", length(n30) / n30.feed * 60.0), "1.9698");
+    let dwell: Vec<(f64, usize)> = out
+        .events
+        .iter()
+        .filter_map(|e| match e.kind {
+            EventKind::Dwell(s) => Some((s, e.motion_index)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dwell, vec![(3.0, 2)]);
+    assert_eq!(
+        out.motions[2].start[2], 10.0,
+        "N100 starts Z where N20 left it"
+    );
+    // The axis-word form: X a torque axis, Y a PLC axis (positioned).
+    let out = run_sw("G10 L20 X12 Y10\nG01 X5 Y5 F100\nM30\n", "");
+    assert_eq!(ends(&out), vec![[0.0, 5.0, 0.0]]);
+}
+
+/// The rotary-only moves (in-place turns of the normal-direction axis C) of
+/// a run: (ΔC, seconds at their feed).
+fn ndc_turns(out: &runtime::RunOutput) -> Vec<(f64, f64)> {
+    out.motions
+        .iter()
+        .filter(|m| is_feed(m) && (0..3).all(|i| m.start[i] == m.end[i]) && m.start[5] != m.end[5])
+        .map(|m| {
+            (
+                m.end[5] - m.start[5],
+                (m.end[5] - m.start[5]).abs() / m.feed * 60.0,
+            )
+        })
+        .collect()
+}
+
+/// G41.1 on a clockwise arc of radius 50 from 12 o'clock to 10:30 (a 315° CW
+/// sweep): the tool turns in place to 270° at the start and with the arc to
+/// 315° at the end. Under G42.1: 90° at the start, down through 0° to 135°.
+#[test]
+fn tv39_ndc_on_an_arc() {
+    for (code, start, end) in [("G41.1", 270.0, 315.0), ("G42.1", 90.0, 135.0)] {
+        let out = run_sw(
+            &format!("G00 X0 Y50.\n{code}\nG02 X-35.355 Y35.355 I0 J-50. F1000\nG40.1\nM30\n"),
+            "",
+        );
+        // The end point is given to 3 decimals: the centre is corrected.
+        assert_eq!(codes(&out), vec!["A004"]);
+        assert_eq!(out.motions.len(), 3, "rapid, turn, arc");
+        let turn = &out.motions[1];
+        assert!(
+            close(turn.end[5].rem_euclid(360.0), start, 1e-3),
+            "{:?}",
+            turn.end
+        );
+        let arc = &out.motions[2];
+        assert!(matches!(arc.kind, MotionKind::Arc { .. }));
+        assert!(close(arc.start[5], turn.end[5], 1e-12));
+        assert!(
+            close(arc.end[5] - arc.start[5], -315.0, 1e-3),
+            "continuous, with the arc"
+        );
+        assert!(close(arc.end[5].rem_euclid(360.0), end, 1e-3));
+    }
+}
+
+/// TV-40: E, SE, W, N from a tool angle of 0° under G41.1 with a length limit
+/// below the shortest side: the angle limit decides which corners turn; each
+/// in-place turn takes angle / Rotation Feedrate (1000 deg/min by default).
+#[test]
+fn tv40_ndc_angle_limit() {
+    let prog = "G41.1\nG01 X100. F1000\nX150. Y-50.\nX0. Y-50.\nX0. Y0.\nG40.1\nM30\n";
+    let cases: &[(f64, &[f64], f64)] = &[
+        (0.0, &[90.0, 45.0, 135.0, 90.0], 0.0),
+        (44.0, &[90.0, 45.0, 135.0, 90.0], 0.0),
+        (46.0, &[90.0, 180.0, 90.0], 0.0),
+        (91.0, &[135.0, 135.0], 90.0),
+        (181.0, &[], 0.0),
+    ];
+    for (limit, want, last) in cases {
+        let out = run_sw(
+            prog,
+            &format!("ndc_angle_limit = {limit:.1}\nndc_length_limit = 10.0"),
+        );
+        assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+        let turns = ndc_turns(&out);
+        let got: Vec<f64> = turns.iter().map(|t| t.0.abs()).collect();
+        assert_eq!(got, *want, "limit {limit}");
+        for (d, secs) in &turns {
+            assert!(close(*secs, d.abs() / 1000.0 * 60.0, 1e-12));
+        }
+        let c = out.motions.last().map(|m| m.end[5]).unwrap_or(0.0);
+        assert!(
+            close(c.rem_euclid(360.0), *last, 1e-9),
+            "limit {limit}: {c}"
+        );
+    }
+    // Sides shorter than the length limit turn nothing.
+    let out = run_sw(prog, "ndc_length_limit = 200.0");
+    assert!(ndc_turns(&out).is_empty());
+}
+
+/// TV-41: an octagon cut from outside (counter-clockwise, G42.1) turns 45° per
+/// corner; with a 60° angle limit the first corner does not turn, the second
+/// turns 90°, and so on.
+#[test]
+fn tv41_ndc_octagon() {
+    let mut prog = String::from("G00 X0 Y0 C90.\nG42.1\nG01 F1000 ");
+    let (mut x, mut y) = (0.0f64, 0.0f64);
+    for k in 0..8 {
+        let a = (45.0 * k as f64).to_radians();
+        x += 10.0 * a.cos();
+        y += 10.0 * a.sin();
+        prog.push_str(&format!("X{x:.6} Y{y:.6}\n"));
+    }
+    prog.push_str("G40.1\nM30\n");
+    let out = run_sw(&prog, "ndc_angle_limit = 60.0");
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let turns: Vec<f64> = ndc_turns(&out).iter().map(|t| t.0).collect();
+    assert_eq!(turns.len(), 3, "{turns:?}");
+    for t in turns {
+        assert!(close(t, 90.0, 1e-4), "{t}");
+    }
+}
+
+/// G37 from Z0 toward the surface position Z20 with ratio 0.5 and G37 Speed
+/// 100 mm/min, the sensor triggering at Z19.5 (`g37_measured = -0.5`): 10 mm
+/// at rapid, then 9.5 mm at the G37 Speed (5.7 s). The calibration −0.5 turns
+/// H1 = 5.0 into 4.5, so `G01 Z0.` then goes to machine Z 4.5. A G37 Limit of
+/// 0.4 makes the trigger 0.5 early an error.
+#[test]
+fn tv36_g37_calibration_timing() {
+    let machine =
+        "g37_ratio = 0.5\ng37_speed = 100.0\ng37_measured = -0.5\n[tools.T1]\nlength = 5.0\n";
+    let prog = "G43 H1\nG00 Z0.\nG37 Z20.\nG01 Z0. F100\nM30\n";
+    let out = run_sw(prog, machine);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let m = &out.motions[1..];
+    assert_eq!(m.len(), 3, "{m:?}");
+    assert!(is_rapid(&m[0]));
+    assert!(close(length(&m[0]), 10.0, 1e-12));
+    assert!(is_feed(&m[1]));
+    assert!(close(length(&m[1]), 9.5, 1e-12));
+    assert!(close(length(&m[1]) / m[1].feed * 60.0, 5.7, 1e-12));
+    // Machine Z: 5 + 19.5 at the trigger, then program Z0 with the 4.5 offset.
+    assert!(close(m[1].end[2], 24.5, 1e-12));
+    assert!(close(m[2].end[2], 4.5, 1e-12), "{:?}", m[2].end);
+    let out = run_sw(prog, &format!("g37_limit = 0.4\n{machine}"));
+    assert_eq!(codes(&out), vec!["T005"]);
+    assert_eq!(out.motions.len(), 3, "stops at the trigger");
+    // Within the limit there is no error.
+    let out = run_sw(prog, &format!("g37_limit = 0.6\n{machine}"));
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+}
+
+/// TCP (G43.2) with arm 80 and tool 2 20 long (L = 100): the tip at the
+/// origin with C45 B−45 puts the tool base point at (50, 50, 70.711), which
+/// is what the travel limits see; the motion keeps the tip (the feed runs
+/// along it). With B0 the base is at (0, 0, 100).
+#[test]
+fn tv37_tcp_base_point_against_the_travel_limits() {
+    let prog = "G43.2 H2\nG01 X0 Y0 Z0 B-45. C45. F1000\nG49\nM30\n";
+    let limits = |x: f64, z: f64| {
+        format!("tcp_arm_length = 80.0\n[tools.T2]\nlength = 20.0\n[[axes]]\nletter = \"X\"\nmin_travel = -200.0\nmax_travel = {x}\n[[axes]]\nletter = \"Z\"\nmin_travel = -200.0\nmax_travel = {z}\n")
+    };
+    let out = run_sw(prog, &limits(50.001, 70.7107));
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    assert_pt(
+        out.motions[0].end,
+        &[0.0, 0.0, 0.0, 0.0, -45.0, 45.0],
+        1e-12,
+    );
+    let out = run_sw(prog, &limits(49.999, 70.7106));
+    let msgs: Vec<&str> = out.diagnostics.iter().map(|d| d.message.as_str()).collect();
+    assert_eq!(codes(&out), vec!["K002", "K002"], "{msgs:?}");
+    assert!(
+        msgs[0].contains("moves X") && msgs[1].contains("moves Z"),
+        "{msgs:?}"
+    );
+    let out = run_sw(
+        "G43.2 H2\nG01 X0 Y0 Z0 B0 C45. F1000\nG49\nM30\n",
+        &limits(0.0, 100.0),
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let out = run_sw(
+        "G43.2 H2\nG01 X0 Y0 Z0 B0 C45. F1000\nG49\nM30\n",
+        &limits(0.0, 99.999),
+    );
+    assert_eq!(out.diagnostics.len(), 1);
+}
+
+/// G310 (the default) spreads F over all moving axes: X 1272.8 mm/min,
+/// Y 1697.1, A 2121.3 deg/min and a block time of 70.711/3000 min = 1.4142 s.
+/// The motion carries the XY share of F, which the planner runs over the
+/// 50 mm of XY.
+#[test]
+fn tv42_g310_feed_includes_the_rotary_axes() {
+    for prog in [
+        "G310;\nG91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+        "G91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+        "G311\nG310 G91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n",
+    ] {
+        let out = run_sw(prog, "");
+        let m = &out.motions[0];
+        assert_pt(m.end, &[30.0, 40.0, 0.0, 50.0], 1e-12);
+        let s = runtime::dryrun::segment_of(m, 0);
+        assert!(close(s.length, 50.0, 1e-12));
+        let secs = s.length / s.feed;
+        assert!(close(secs, 5000f64.sqrt() / 3000.0 * 60.0, 1e-12), "{secs}");
+        assert_eq!(format!("{secs:.4}"), "1.4142");
+        let speed = |d: f64| format!("{:.1}", m.feed * d / length(m));
+        assert_eq!(
+            [speed(30.0), speed(40.0), speed(50.0)],
+            ["1272.8", "1697.1", "2121.3"]
+        );
+    }
+}
+
 #[test]
 fn tv43_g311_feed_is_along_the_linear_axes() {
     let out = run_sw("G311\nG91 G01 X30.0 Y40.0 A50.0 F3000\nM30\n", "");

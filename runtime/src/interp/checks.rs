@@ -531,7 +531,10 @@ impl Interp<'_, '_> {
         } else {
             w.has_g(900) || !self.st.modal.incremental
         };
-        let repeats = if ngc {
+        // LinuxCNC's G76 is a threading cycle whose L word selects the tapers.
+        let repeats = if ngc && mode == 760 {
+            None
+        } else if ngc {
             w.get(b'L').map(|l| l.round() as i64)
         } else if d == Dialect::Fanuc {
             w.raw_k.map(|k| k.round() as i64)

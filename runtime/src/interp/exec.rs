@@ -16,10 +16,13 @@ use super::arc::{self, ArcError, ArcSpec};
 use super::expr::{self, EvalError, Val, VarSource};
 use super::files::{label_key, FileEntry, ProgRef};
 use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
+use super::rotary_feed;
 use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
 mod context;
+mod g37;
+pub(super) use g37::G37Cfg;
 mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
@@ -63,6 +66,10 @@ pub fn run_without_fast_path(input: &RunInput<'_>, snapshots: bool) -> RunOutput
     it.run_main();
     it.finish()
 }
+
+/// The 2007 EMC2 interpreter refuses every concave corner under cutter radius
+/// compensation (rs274ngc.md NGC416); LinuxCNC 2.9 stops the tool short instead.
+const EMC2_CONCAVE: &str = "Concave corner with cutter radius comp";
 
 /// Motions a streaming run hands to its sink at a time: big enough that the sink's
 /// per-call cost vanishes, small enough that memory stays flat.
@@ -451,6 +458,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             mirror: ([false; 3], [0.0; 3]),
             rotation: ([0.0; 2], 0.0),
             ended: false,
+            torque_axes: 0,
+            tcp_length: 0.0,
             g28_mid: None,
             line: 0,
             g66: None,
@@ -937,10 +946,18 @@ impl<'a, 'i> Interp<'a, 'i> {
             return;
         }
         let mut hit = [false; 6];
+        // Under ServoWorks TCP the linear axes carry the tool base point.
+        let tcp = (self.dialect == Dialect::Servoworks && self.st.modal.tlo_mode == 432)
+            .then_some(self.st.tcp_length);
         for m in self.out.motions.iter().skip(first) {
+            let mut end = m.end;
+            if let Some(l) = tcp {
+                let b = super::tcp::base_point([end[0], end[1], end[2]], end[4], end[5], l);
+                end[..3].copy_from_slice(&b);
+            }
             for (i, lim) in self.cfg.limits.iter().enumerate() {
                 if let Some((lo, hi)) = lim {
-                    if m.end[i] < lo - 1e-9 || m.end[i] > hi + 1e-9 {
+                    if end[i] < lo - 1e-9 || end[i] > hi + 1e-9 {
                         hit[i] = true;
                     }
                 }
@@ -2202,6 +2219,20 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.exec_comp(w)?;
         self.exec_tlo(w)?;
         self.exec_coord_select(w)?;
+        if self.input.program.dialect == analyzer::Dialect::Servoworks {
+            if w.has_g(401) {
+                self.st.modal.ndc = None;
+            } else if w.has_g(411) {
+                self.st.modal.ndc = Some(true);
+            } else if w.has_g(421) {
+                self.st.modal.ndc = Some(false);
+            }
+            if w.has_g(3110) {
+                self.st.modal.feed_linear_only = true;
+            } else if w.has_g(3100) {
+                self.st.modal.feed_linear_only = false;
+            }
+        }
         for (code, mode) in [(610u32, "CANON_EXACT_PATH"), (611, "CANON_EXACT_STOP")] {
             if w.has_g(code) {
                 self.st.modal.path = code;
@@ -2280,7 +2311,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         let consumed = self.exec_modal0(w)?;
         // Motion.
         if !consumed {
+            let before = self.out.motions.len();
             self.exec_motion(w, bspan)?;
+            if let Some(left) = self.st.modal.ndc {
+                self.ndc_after_motion(before, left);
+            }
             // A G66 modal call runs the macro after each block that moves an axis.
             if let Some((name, args)) = self.st.g66.clone() {
                 if w.any_axis() && !self.frames.iter().any(|f| f.modal_call) {
@@ -2695,6 +2730,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         if w.has_g(432) {
             self.st.modal.tlo_mode = 432;
+            if self.dialect == Dialect::Servoworks {
+                let h = w.get(b'H').map(|v| v.round().max(0.0) as u32).unwrap_or(0);
+                let tool = self.cfg.tools.get(&h).copied().unwrap_or_default();
+                self.st.tcp_length = self.cfg.tcp_arm_length + tool.length * self.pfac();
+            }
             if self.ngc() {
                 // LinuxCNC G43.2 adds a tool's offset (H) to the one in force.
                 let add;
@@ -2986,6 +3026,10 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Non-modal codes that consume axis words. Returns whether they did.
     fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
+        if self.dialect == Dialect::Servoworks && w.has_g(370) {
+            self.exec_g37(w)?;
+            return Ok(true);
+        }
         // Scaling, mirror and rotation codes take their centre from the axis words.
         if !self.ngc() && [510u32, 511, 501, 680].iter().any(|g| w.has_g(*g)) {
             return Ok(true);
@@ -3023,6 +3067,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                         }
                     }
                     self.cfg.tools.insert(t, tool);
+                }
+                20 if self.input.program.dialect == Dialect::Servoworks => {
+                    self.servoworks_axis_types(w, p);
                 }
                 2 | 20 => {
                     let origin = if p == 0 {
@@ -3402,6 +3449,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             return t;
         }
         for i in 0..6 {
+            if self.st.torque_axes & (1 << i) != 0 {
+                continue;
+            }
             if let Some(v) = w.get(letters[i]) {
                 let v = if i < 3 { self.lin(v) } else { v };
                 t[i] = if inc { t[i] + v } else { v };
@@ -3409,6 +3459,70 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
         t
+    }
+
+    /// Normal direction control after the block's motion (at index `i`): the
+    /// in-place turn of the tool axis goes in before it and arcs turn the axis
+    /// by their sweep. Blocks that made other than one G01/G02/G03 motion, and
+    /// moves held back by radius compensation, are left alone.
+    fn ndc_after_motion(&mut self, i: usize, left: bool) {
+        if self.out.motions.len() != i + 1
+            || !self.st.comp_queue.is_empty()
+            || !matches!(self.st.modal.motion, 10 | 20 | 30)
+        {
+            return;
+        }
+        let cfg = self.cfg.ndc;
+        let a = cfg.axis;
+        let Some(m) = self.out.motions.get(i) else {
+            return;
+        };
+        let Some(step) = super::ndc::step(m, m.start[a], left, &cfg) else {
+            return;
+        };
+        let turn = step.turn.unwrap_or(0.0);
+        if turn != 0.0 {
+            let mut r = m.clone();
+            r.kind = MotionKind::Feed;
+            r.end = r.start;
+            r.end[a] += turn;
+            r.feed = cfg.rotation_feed;
+            r.inverse_time = None;
+            self.out.motions.insert(i, r);
+        }
+        if let Some(m) = self.out.motions.last_mut() {
+            m.start[a] += turn;
+            m.end[a] += turn + step.along;
+        }
+        self.st.pos[a] += turn + step.along;
+        self.st.mpos[a] += turn + step.along;
+    }
+
+    /// ServoWorks `G10 L20`: axis types, as `P<axis> R<type>` or as axis words
+    /// holding the types (`G10 L20 X2 Y10`). Type 12 makes a torque axis; the
+    /// other types (1 normal, 2 rotary, 3 rotary single-turn, 10 PLC) leave the
+    /// axis positioned by the program. Axes past C are not modelled.
+    fn servoworks_axis_types(&mut self, w: &Words, p: i64) {
+        let mut set = |axis: usize, ty: f64| {
+            if axis < 6 {
+                if ty.round() == 12.0 {
+                    self.st.torque_axes |= 1 << axis;
+                } else {
+                    self.st.torque_axes &= !(1 << axis);
+                }
+            }
+        };
+        if let Some(r) = w.get(b'R') {
+            if (1..=8).contains(&p) {
+                set((p - 1) as usize, r);
+            }
+            return;
+        }
+        for (i, c) in [b'X', b'Y', b'Z', b'A', b'B', b'C'].into_iter().enumerate() {
+            if let Some(v) = w.get(c) {
+                set(i, v);
+            }
+        }
     }
 
     /// A motion from internal-unit geometry; converts lengths to mm.
@@ -3438,6 +3552,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             feed * lu * self.st.spindle
         } else {
             feed * lu
+        };
+        let feed = if matches!(kind, MotionKind::Feed)
+            && self.input.program.dialect == analyzer::Dialect::Servoworks
+            && !self.st.modal.feed_linear_only
+        {
+            rotary_feed::g310_linear_feed(feed, &start, &end)
+        } else {
+            feed
         };
         Motion {
             kind,
@@ -3628,7 +3750,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             10 => {
                 self.st.modal.motion = 10;
-                if has_axes || (self.ngc() && motion.is_some()) {
+                // A G01 whose axis words all name torque axes only sets torques.
+                let torque_only = self.st.torque_axes != 0
+                    && b"XYZABCUVW"
+                        .iter()
+                        .enumerate()
+                        .all(|(i, c)| !w.has(*c) || (i < 6 && self.st.torque_axes & (1 << i) != 0));
+                if (has_axes && !torque_only) || (self.ngc() && motion.is_some()) {
                     let t = self.target(w);
                     self.comp_move(t, false, bspan)?;
                 }
@@ -3746,14 +3874,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             23 | 33 | 22 | 32 => {
                 self.st.modal.motion = mode;
-                let t = self.target(w);
+                let mut t = self.target(w);
                 self.check_feed(bspan)?;
                 let end = self.to_machine(t);
                 let kind = if mode == 23 || mode == 33 {
-                    MotionKind::Exponential
+                    self.exponential_kind(w, &mut t)
                 } else {
-                    MotionKind::Involute
+                    self.involute_kind(w, &end, mode == 32)
                 };
+                let end = self.to_machine(t);
                 let m = self.motion_base(kind, self.st.mpos, end, self.st.feed);
                 self.out.motions.push(m);
                 self.st.mpos = end;
@@ -3763,6 +3892,54 @@ impl<'a, 'i> Interp<'a, 'i> {
             _ => {}
         }
         Ok(())
+    }
+
+    /// The motion kind of a G02.2/G03.2 block ending at machine point `end`: the
+    /// involute of the base circle (radius R, centre start + I/J/K in the plane)
+    /// through the start. Undefined curves (the checks report them) leave a
+    /// straight move.
+    fn involute_kind(&self, w: &Words, end: &[f64; 6], ccw: bool) -> MotionKind {
+        let (a, b) = self.plane_axes();
+        let (la, lb) = (b"IJK"[a.min(2)], b"IJK"[b.min(2)]);
+        let (Some(i), Some(j), Some(r)) = (w.get(la), w.get(lb), w.get(b'R')) else {
+            return MotionKind::Feed;
+        };
+        let lu = self.lu();
+        let (i, j, r) = (self.lin(i) * lu, self.lin(j) * lu, self.lin(r).abs() * lu);
+        let s = [self.st.mpos[a] * lu, self.st.mpos[b] * lu];
+        let e = [end[a] * lu, end[b] * lu];
+        match super::involute::InvoluteCurve::new(s, e, [s[0] + i, s[1] + j], r, ccw) {
+            Some(curve) => MotionKind::Involute {
+                curve,
+                axes: [a as u8, b as u8],
+            },
+            None => MotionKind::Feed,
+        }
+    }
+
+    /// The motion kind of a G02.3/G03.3 block, with A's end in `t`: A turns by
+    /// the exponential curve's rotation (the format has no A word). Undefined
+    /// curves (SW045 reports them) leave a straight move.
+    fn exponential_kind(&mut self, w: &Words, t: &mut [f64; 6]) -> MotionKind {
+        let lu = self.lu();
+        let (i, j, r) = (w.get(b'I'), w.get(b'J'), w.get(b'R'));
+        let curve = match (i, j, r) {
+            (Some(i), Some(j), Some(r)) => super::exponential::ExpCurve::new(
+                i,
+                j,
+                r * lu,
+                self.st.pos[0] * lu,
+                t[0] * lu,
+                self.st.modal.motion == 33,
+            ),
+            _ => None,
+        };
+        let Some(curve) = curve else {
+            return MotionKind::Feed;
+        };
+        t[3] = self.st.pos[3] + curve.a_travel();
+        let end_feed = w.get(b'Q').map(|q| q * lu).unwrap_or(self.st.feed * lu);
+        MotionKind::Exponential { curve, end_feed }
     }
 
     /// G5 (cubic) / G5.1 (quadratic) splines in the XY plane. The canonical
@@ -4108,6 +4285,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             self.st.comp_endpoint = Some([mid[a], mid[b]]);
         } else if concave {
+            if self.variant == Variant::Emc2 {
+                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+            }
             match front_arc {
                 None => {
                     let half = (beta + PI) / 2.0;
@@ -4284,9 +4464,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             tip[a] = p[0];
             tip[b] = p[1];
             let m_end = self.to_machine(tip);
+            // Motions are stored in mm, the machine position in program units.
+            let lu = self.lu();
             if let Some(m) = self.out.motions.get_mut(q.motion) {
-                m.end[a] = m_end[a];
-                m.end[b] = m_end[b];
+                m.end[a] = m_end[a] * lu;
+                m.end[b] = m_end[b] * lu;
             }
         }
         self.st.comp_queue = queue;
@@ -4668,6 +4850,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             )
         };
         if beta < -small || beta > PI + small || ((beta - PI).abs() < small && !inside) {
+            if self.variant == Variant::Emc2 {
+                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+            }
             let front_arc = self.st.comp_queue.first().copied().filter(|q| q.kind == 2);
             let mid = match front_arc {
                 None => {

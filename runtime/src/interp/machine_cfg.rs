@@ -52,6 +52,12 @@ pub struct MachineCfg {
     /// (ServoWorks "No Shift"). Key `drill_shift = "+X" | "-X" | "+Y" | "-Y" | "none"`,
     /// default `+X` (ServoWorks digest recommendation; FANUC No. 5101 RD1/RD2 = 0).
     pub drill_shift: Option<(usize, f64)>,
+    /// ServoWorks normal direction control parameters.
+    pub ndc: super::ndc::NdcConfig,
+    /// ServoWorks G37 ratio, speed, limit and the simulated measurement.
+    pub(super) g37: super::exec::G37Cfg,
+    /// ServoWorks TCP Arm Length (mm): pivot to tool holder.
+    pub tcp_arm_length: f64,
 }
 
 /// Reads `drill_shift`: the letter names the first (X) or second (Y) axis of the
@@ -175,6 +181,9 @@ impl MachineCfg {
                 .and_then(|v| v.as_str())
                 .is_some_and(|s| s.eq_ignore_ascii_case("right")),
             drill_shift: drill_shift(t.get("drill_shift")),
+            ndc: super::ndc::NdcConfig::read(t),
+            g37: super::exec::G37Cfg::read(t),
+            tcp_arm_length: f("tcp_arm_length", 0.0),
             optional_stop: b("optional_stop", false),
             circle_error_allowance: f("circle_error_allowance", 0.0),
             arc_radius_tolerance: f("arc_radius_tolerance", 0.02),

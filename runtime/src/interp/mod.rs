@@ -8,10 +8,15 @@
 
 pub mod arc;
 mod exec;
+pub mod exponential;
 pub mod expr;
 pub mod files;
+pub mod involute;
 mod machine_cfg;
+pub mod ndc;
+pub mod rotary_feed;
 mod state;
+pub mod tcp;
 mod types;
 
 pub use exec::{

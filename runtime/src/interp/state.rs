@@ -37,6 +37,12 @@ pub struct Modal {
     pub ijk_abs: bool,
     /// RS274/NGC G7: X words are diameters.
     pub diameter: bool,
+    /// ServoWorks G311: the feed is along the linear axes only (G310, the
+    /// default, spreads it over the rotary axes too).
+    pub feed_linear_only: bool,
+    /// ServoWorks normal direction control: G41.1 (tool left, `Some(true)`),
+    /// G42.1 (`Some(false)`) or G40.1 (`None`).
+    pub ndc: Option<bool>,
 }
 
 /// Memory of a canned cycle's modal data (program frame, mm).
@@ -98,6 +104,13 @@ pub struct State {
     /// Rotation centre (plane coordinates) and angle (degrees).
     pub rotation: ([f64; 2], f64),
     pub ended: bool,
+    /// ServoWorks: axes switched to torque control (`G10 L20 … R12`), one bit
+    /// per axis X…C. Their motion words are torques in % of the rated torque,
+    /// not positions, so they do not move the axis in the dry run.
+    pub torque_axes: u8,
+    /// ServoWorks G43.2: arm length + tool length (mm), from the tip to the
+    /// tool base point the linear axes carry.
+    pub tcp_length: f64,
     /// Intermediate point of the last G28/G30 (for FANUC/ServoWorks G29).
     pub g28_mid: Option<[f64; 6]>,
     /// 1-based line of the block being executed (`#<_line>`).
@@ -129,6 +142,8 @@ impl Modal {
             rigid_tap: false,
             ijk_abs: false,
             diameter: false,
+            feed_linear_only: false,
+            ndc: None,
         }
     }
 

@@ -59,8 +59,19 @@ pub enum MotionKind {
         turns: i32,
         radius: f64,
     },
-    Exponential,
-    Involute,
+    /// ServoWorks exponential interpolation (G02.3/G03.3): A turns with X
+    /// along `curve`; the feed runs from the motion's `feed` (F) to `end_feed`
+    /// (Q, mm/min) along X. Without a defined curve the block is a `Feed`.
+    Exponential {
+        curve: super::exponential::ExpCurve,
+        end_feed: f64,
+    },
+    /// Involute interpolation (G02.2/G03.2) along `curve`, whose coordinates are
+    /// the machine axes `axes` (mm). Without a defined curve the block is a `Feed`.
+    Involute {
+        curve: super::involute::InvoluteCurve,
+        axes: [u8; 2],
+    },
     /// Spindle-synchronised move (G33, G76 passes); `feed` is the pitch in mm/rev.
     Thread,
     Probe,

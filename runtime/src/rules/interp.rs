@@ -24,12 +24,12 @@ declare_rule! {
     /// ## Dialects
     /// All.
     ///
-    /// Implements: SW024, SW026, NGC223, NGC231, NGC417, NGC418
+    /// Implements: SW024, SW026, NGC223, NGC231, NGC416, NGC417, NGC418
     pub static INTERP = {
         code: "X003",
         name: "interpreter-error",
         summary: "Other run-time condition the control rejects or handles surprisingly",
-        implements: &["SW024", "SW026", "NGC223", "NGC231", "NGC417", "NGC418"],
+        implements: &["SW024", "SW026", "NGC223", "NGC231", "NGC416", "NGC417", "NGC418"],
         origin: Runtime,
         default_enabled: true,
     }
