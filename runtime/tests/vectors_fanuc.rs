@@ -620,6 +620,14 @@ fn example_8_6_involute_path() {
     let s = runtime::dryrun::segment_of(m, 0);
     assert!(close(s.length, 44.41, 0.01), "{}", s.length);
     assert!(close(s.length / s.feed, s.length / 100.0 * 60.0, 1e-9));
+    // The planner runs the curve's length, not its chord, at F100.
+    let profile = runtime::machine::MachineProfile::default_for(analyzer::Dialect::Fanuc);
+    let dry = runtime::dryrun::plan_run(&out, &profile);
+    assert!(
+        close(dry.totals.cutting_s, s.length / 100.0 * 60.0, 0.05),
+        "{}",
+        dry.totals.cutting_s
+    );
     let tp = runtime::dryrun::toolpath(&out, 0.001);
     let pts = &tp.segments[1].points;
     assert!(pts.len() > 100, "{}", pts.len());

@@ -596,6 +596,11 @@ fn tv25_exponential_interpolation() {
         let s = runtime::dryrun::segment_of(m, 0);
         assert_eq!(format!("{:.3}", s.length), "349.296");
         assert_eq!(format!("{:.3}", s.length / s.feed / 60.0), "21.978");
+        // The planner runs it in that time (acceleration adds well under 0.1 s).
+        let profile = runtime::machine::MachineProfile::default_for(Dialect::Servoworks);
+        let dry = runtime::dryrun::plan_run(&out, &profile);
+        let cut = dry.totals.cutting_s / 60.0 - length(&out.motions[0]) / 100.0;
+        assert!(close(cut, 21.978, 0.002), "{cut}");
     }
     // I = 0 has no curve (SW045): the block is a straight move and A stays.
     let out = run_sw("G02.3 X30.5 I0 J30.0 R1.0 F20 Q10\nM30\n", "");

@@ -46,6 +46,9 @@ impl InvoluteCurve {
         let dir = if ccw { 1.0 } else { -1.0 };
         let sense = if re >= rs { dir } else { -dir };
         let ang = (start[1] - center[1]).atan2(start[0] - center[0]);
+        if !(ps.is_finite() && pe.is_finite() && ang.is_finite() && (pe * pe).is_finite()) {
+            return None;
+        }
         Some(InvoluteCurve {
             center,
             base_radius: r,

@@ -362,7 +362,13 @@ impl Planner {
                 if !cart && !ang {
                     return None;
                 }
-                let dtot = if cart { xyz_len } else { abc_len };
+                // Curves planned as lines (involutes, exponential moves) bring their
+                // own path length, longer than the chord.
+                let dtot = if cart {
+                    xyz_len.max(seg.length)
+                } else {
+                    abc_len
+                };
                 // G0 runs each axis at most at its rapid rate (LinuxCNC: the same as
                 // its maximum velocity).
                 let tv = axis_time(if rapid { &self.rapid } else { &self.vel }, sel);

@@ -98,6 +98,8 @@ pub struct Segment {
     pub start: Pose,
     pub end: Pose,
     /// Path length in mm (XYZ), or in degrees for moves of rotary axes only.
+    /// Curves planned as lines (involutes, exponential moves) give their own
+    /// length here, which the planner uses instead of the chord.
     pub length: f64,
     /// Programmed feed, mm/s (ignored for rapids).
     pub feed: f64,
