@@ -2831,6 +2831,27 @@ impl<'a, 'i> Interp<'a, 'i> {
         if self.ngc() {
             return Ok(());
         }
+        // Between M29 and the G84/G74 block the spindle is already switched to position control:
+        // the seed (§5.2.1) says an S command or axis movement there stops with PS0203.
+        let starts_tap = w.has_g(840) || w.has_g(740);
+        if self.dialect == Dialect::Fanuc
+            && self.st.modal.rigid_tap
+            && !matches!(self.st.modal.motion, 740 | 840)
+            && !starts_tap
+            && !w.has_m(290)
+            && (w.has(b'S') || w.any_axis())
+        {
+            let span = if w.has(b'S') {
+                w.sp(b'S')
+            } else {
+                b"XYZABCUVW"
+                    .iter()
+                    .find(|c| w.has(**c))
+                    .map(|c| w.sp(*c))
+                    .unwrap_or_default()
+            };
+            self.diag(codes::RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
+        }
         if w.has_m(290) {
             let span =
                 w.m.iter()
@@ -4085,6 +4106,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         if k <= j {
             return Err(self.err(codes::CYCLE_STATE, span, "in G76, K must be greater than J"));
         }
+        // In diameter mode (G7) rs274 halves I, J and K after checking them, as it halves X:
+        // they are diameters too.
+        let (i, j, k) = if self.st.modal.diameter {
+            (i / 2.0, j / 2.0, k / 2.0)
+        } else {
+            (i, j, k)
+        };
         let end = self.target(w);
         let start = self.st.pos;
         let boring = i > 0.0;
@@ -4619,7 +4647,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             Ok(s) => s,
             Err(e) => return Err(self.arc_error(e, s2, e2, spec, span)),
         };
-        if sol.corrected && self.dialect == Dialect::Servoworks {
+        // A mismatch within the machine-unit bound √(m1² + m2²) is what rounding end points and
+        // centres to the machine unit leaves (CAM output); the manual (§6.3.3 Limitations) runs
+        // such arcs without complaint, so only a correction beyond it is worth a warning.
+        let resolution = (2.0 * self.cfg.machine_unit * self.cfg.machine_unit).sqrt();
+        if sol.corrected && self.dialect == Dialect::Servoworks && sol.mismatch > resolution {
             let code = if has_r {
                 codes::ARC_CORRECTED_R
             } else {
