@@ -2641,11 +2641,18 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn tool_diameter(&self, d: Option<f64>) -> f64 {
         let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
-        self.cfg
-            .tools
-            .get(&idx)
-            .map(|t| t.diameter * self.pfac())
-            .unwrap_or(0.0)
+        let Some(t) = self.cfg.tools.get(&idx) else {
+            return 0.0;
+        };
+        if self.ngc() && self.cfg.param_unit == 25.4 {
+            // rs274 divides by its external length unit, the rounded constant
+            // 0.03937007874016 (a hair above 1/25.4), then by 25.4 in an inch program:
+            // compensated points at an exact half of the last printed digit round as
+            // they do there.
+            let prog = if self.st.modal.inch { 25.4 } else { 1.0 };
+            return t.diameter / 0.039_370_078_740_16 / prog;
+        }
+        t.diameter * self.pfac()
     }
 
     fn exec_comp(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -4239,9 +4246,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         let r = self.st.comp_radius;
         let left = self.comp_left();
         let op = self.st.pos;
-        // Directions along the axes come out exact, as the reference output shows.
-        let snap = |v: f64| if v.abs() < 1e-15 { 0.0 } else { v };
-        let dir = |ang: f64| (snap(ang.cos()), snap(ang.sin()));
+        // rs274 stores its ±π/2 in a double and takes the cosine of a double sum: along the
+        // axes the sign of the tiny remainder decides whether `-0.0000` or `0.0000` is
+        // printed, so no rounding to zero here.
+        let dir = |ang: f64, gamma: f64| {
+            let (s, c) = (ang + gamma).sin_cos();
+            (c, s)
+        };
         if self.st.comp_first {
             let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
             if dist <= r && self.ngc() {
@@ -4279,16 +4290,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         let mut alpha = (t[b] - op[b]).atan2(t[a] - op[a]);
         let (beta, gamma) = if left {
             if theta < alpha {
-                theta += 2.0 * PI;
+                let (hi, lo) = add_ld(theta, 2.0 * PI);
+                theta = hi + lo;
             }
             (theta - alpha - FRAC_PI_2, FRAC_PI_2)
         } else {
             if alpha < theta {
-                alpha += 2.0 * PI;
+                let (hi, lo) = add_ld(alpha, 2.0 * PI);
+                alpha = hi + lo;
             }
             (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
         };
-        let (ex, ey) = dir(alpha + gamma);
+        let (ex, ey) = dir(alpha, gamma);
         let mut end = t;
         end[a] += r * ex;
         end[b] += r * ey;
@@ -4327,7 +4340,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                         ));
                     }
                     let retreat = r / half.tan();
-                    let (rx, ry) = dir(theta + gamma);
+                    let (rx, ry) = dir(theta, gamma);
                     let back = [c[a] + retreat * rx, c[b] + retreat * ry];
                     self.comp_move_endpoint(back, span)?;
                 }
@@ -6017,4 +6030,18 @@ fn macro_args(w: &Words) -> Vec<Option<f64>> {
         }
     }
     args
+}
+
+/// `a + b` where `b` is the double constant 2π standing for LinuxCNC's long-double
+/// `2 * M_PIl`: the sum as a double and the remainder, including what the double constant
+/// lacks of the true value; their sum rounds as rs274's long-double sum stored in a double.
+fn add_ld(a: f64, b: f64) -> (f64, f64) {
+    use std::f64::consts::PI;
+    // 2π − 2.0 * PI (the double constant is short of the true value by this much).
+    const TWO_PI_LO: f64 = 2.449_293_598_294_706_4e-16;
+    let b_lo = if b == 2.0 * PI { TWO_PI_LO } else { 0.0 };
+    let s = a + b;
+    let bb = s - a;
+    let err = (a - (s - bb)) + (b - bb);
+    (s, err + b_lo)
 }
