@@ -440,6 +440,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             g52: [0.0; 6],
             tlo: [0.0; 6],
             comp_radius: 0.0,
+            comp_orientation: 0,
             comp_first: true,
             comp_tip: [0.0; 6],
             comp_queue: Vec::new(),
@@ -2686,6 +2687,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.st.modal.comp = if code == 410 { 420 } else { 410 };
                 }
                 self.st.comp_radius = dia.abs() / 2.0;
+                // G41.1/G42.1 take the orientation from L (G18 only); G41/G42 from the table.
+                self.st.comp_orientation = if dynamic {
+                    w.get(b'L').map(|l| l.clamp(0.0, 9.0) as u8).unwrap_or(0)
+                } else {
+                    let idx = w
+                        .get(b'D')
+                        .map(|v| v.round() as u32)
+                        .unwrap_or(self.st.tool);
+                    self.cfg.tools.get(&idx).map(|t| t.orientation).unwrap_or(0)
+                };
                 let side = if self.comp_left() { "left" } else { "right" };
                 self.st.comp_first = true;
                 self.comp_flush();
@@ -4391,6 +4402,32 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     /// Emits a compensated straight move and holds it back (LinuxCNC's enqueue).
+    /// Where a compensated point `p` puts the tool's origin. LinuxCNC compensates the centre
+    /// of a lathe tool's nose radius, and moves its origin (the imaginary tip the tool table
+    /// measures) by the radius along X and Z as the orientation says; mill cutters
+    /// (orientation 0 or 9) and other planes than G18 are not moved.
+    fn lathe_origin(&self, mut p: [f64; 6]) -> [f64; 6] {
+        if !self.ngc()
+            || self.st.modal.plane != 180
+            || self.st.modal.comp == 400
+            || matches!(self.st.comp_orientation, 0 | 9)
+        {
+            return p;
+        }
+        let r = self.st.comp_radius;
+        match self.st.comp_orientation {
+            1 | 2 | 6 => p[0] -= r,
+            3 | 4 | 8 => p[0] += r,
+            _ => {}
+        }
+        match self.st.comp_orientation {
+            2 | 3 | 7 => p[2] -= r,
+            1 | 4 | 5 => p[2] += r,
+            _ => {}
+        }
+        p
+    }
+
     fn comp_emit(
         &mut self,
         end: [f64; 6],
@@ -4398,6 +4435,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         dir: [f64; 2],
         span: Span,
     ) -> Result<(), Diagnostic> {
+        let end = self.lathe_origin(end);
         if rapid {
             self.rapid_to(end);
         } else {
@@ -4449,6 +4487,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let queue = std::mem::take(&mut self.st.comp_queue);
         let endpoint = self.st.comp_endpoint;
         let (a, b) = self.plane_axes();
+        let shift = self.lathe_origin([0.0; 6]);
         let u = self.unit();
         for q in queue.iter().copied() {
             if q.kind == 2 {
@@ -4495,8 +4534,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                         .collect();
                     let (ia, ib) = if q.kind == 2 { (0, 1) } else { (a, b) };
                     if args.len() > ia.max(ib) {
-                        args[ia] = f4(p[0] / u);
-                        args[ib] = f4(p[1] / u);
+                        args[ia] = f4((p[0] + shift[a]) / u);
+                        args[ib] = f4((p[1] + shift[b]) / u);
                         *line = format!("{head}{})", args.join(", "));
                     }
                 }
@@ -4504,7 +4543,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut tip = self.st.comp_tip;
             tip[a] = p[0];
             tip[b] = p[1];
-            let m_end = self.to_machine(tip);
+            let m_end = self.to_machine(self.lathe_origin(tip));
             // Motions are stored in mm, the machine position in program units.
             let lu = self.lu();
             if let Some(m) = self.out.motions.get_mut(q.motion) {
@@ -4517,7 +4556,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut tip = self.st.comp_tip;
             tip[a] = p[0];
             tip[b] = p[1];
-            let m_end = self.to_machine(tip);
+            let m_end = self.to_machine(self.lathe_origin(tip));
             self.st.mpos[a] = m_end[a];
             self.st.mpos[b] = m_end[b];
             self.st.comp_tip = tip;
@@ -4537,6 +4576,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         span: Span,
     ) -> Result<(), Diagnostic> {
         self.check_feed(span)?;
+        let (to, center) = (self.lathe_origin(to), self.lathe_origin(center));
         let (a, b) = self.plane_axes();
         let n = self.normal_axis();
         let u = self.unit();
@@ -4709,13 +4749,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         let pe = e2;
         let ca = self.comp_arc(t, e2, sol.center, sol.radius, rot, span)?;
         let (e2, t, radius, center) = (ca.end, ca.target, ca.radius, ca.center);
+        // A lathe tool's controlled point is its origin, not the centre of its nose radius.
+        let shift = self.lathe_origin([0.0; 6]);
+        let t_out = self.lathe_origin(t);
+        let e2_out = [e2[0] + shift[a], e2[1] + shift[b]];
+        let center_out = [center[0] + shift[a], center[1] + shift[b]];
         if self.canon.is_some() {
             self.canon(format!(
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
-                f4(e2[0] / u),
-                f4(e2[1] / u),
-                f4(center[0] / u),
-                f4(center[1] / u),
+                f4(e2_out[0] / u),
+                f4(e2_out[1] / u),
+                f4(center_out[0] / u),
+                f4(center_out[1] / u),
                 rot,
                 f4(t[n] / u),
                 f4(t[3]),
@@ -4725,8 +4770,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;
-        c3[a] = center[0];
-        c3[b] = center[1];
+        c3[a] = center_out[0];
+        c3[b] = center_out[1];
         let cm = self.to_machine(c3);
         // Counter-clockwise in each plane's (first, second) axes turns about the
         // positive normal axis, including G18's (Z, X).
@@ -4746,7 +4791,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             1.0
         };
-        let end = self.to_machine(t);
+        let end = self.to_machine(t_out);
         let feed = self.effective_feed(0.0);
         let m = self.motion_base(
             MotionKind::Arc {
