@@ -915,8 +915,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     if self.canon.is_some() && self.out.canon_error.is_none() {
                         let line = self.line_text(self.cur.0, self.cur.1);
-                        self.out.canon_error =
-                            Some(format!("{}\n{line}", rs274_message(&d.message)));
+                        // An expression the parser could not read: rs274 names the `#`.
+                        let msg = Some(&line)
+                            .filter(|_| {
+                                self.ngc()
+                                    && d.message
+                                        .eq_ignore_ascii_case("expression could not be parsed")
+                            })
+                            .and_then(|l| rs274_parameter_message(l))
+                            .unwrap_or_else(|| rs274_message(&d.message));
+                        self.out.canon_error = Some(format!("{msg}\n{line}"));
                     }
                     self.out.diagnostics.push(d);
                     break;
@@ -1174,6 +1182,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         // RS274/NGC and FANUC stop at a block they cannot read; the parser
         // already reported why (ServoWorks skips unknown data).
         if self.dialect != Dialect::Servoworks && self.files[fi].error_blocks.contains(&bi) {
+            if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
+                let line = self.line_text(fi, bi);
+                if let Some(msg) = rs274_parameter_message(&line) {
+                    self.out.canon_error = Some(format!("{msg}\n{line}"));
+                }
+            }
             return Ok(Flow::Stop);
         }
         let items = prog.items_of(&block);
@@ -5902,6 +5916,66 @@ struct CompArc {
 
 /// rs274's wording of an interpreter error, from our message: known messages map
 /// to its text; otherwise the part before the first explanation, capitalised.
+/// rs274's words for a `#` it cannot read in `line`, the first one from the left: a name
+/// that is no function (`#foo`), a `<name` without `>`, or nothing it can read as a number
+/// (`#]`). `None` when every `#` reads (the block failed for another reason).
+fn rs274_parameter_message(line: &str) -> Option<String> {
+    // rs274 reads a letter after `#` as a unary function; the first letter picks the
+    // candidates, and a letter no function starts with has its own message.
+    const FUNCTIONS: [&str; 14] = [
+        "abs", "acos", "asin", "atan", "cos", "exists", "exp", "fix", "fup", "ln", "round", "sin",
+        "sqrt", "tan",
+    ];
+    const FIRST: &[u8] = b"aceflrst";
+    let text = line.to_ascii_lowercase();
+    let b = text.as_bytes();
+    let mut i = 0;
+    let mut comment = false;
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        match c {
+            b'(' => comment = true,
+            b')' => comment = false,
+            b';' if !comment => return None,
+            b'#' if !comment => {
+                let mut j = i;
+                while j < b.len() && (b[j] == b' ' || b[j] == b'\t') {
+                    j += 1;
+                }
+                match b.get(j) {
+                    Some(b'<') => {
+                        if !b[j..].contains(&b'>') {
+                            return Some("Named parameter not terminated".to_string());
+                        }
+                    }
+                    Some(c) if c.is_ascii_alphabetic() => {
+                        let word: String = b[j..]
+                            .iter()
+                            .take_while(|c| c.is_ascii_alphabetic())
+                            .map(|&c| c as char)
+                            .collect();
+                        if !FUNCTIONS.iter().any(|f| word.starts_with(f)) {
+                            return Some(if FIRST.contains(c) {
+                                format!("Unknown word starting with {}", *c as char)
+                            } else {
+                                "Unknown word where unary operation could be".to_string()
+                            });
+                        }
+                    }
+                    Some(c)
+                        if c.is_ascii_digit() || matches!(c, b'[' | b'+' | b'-' | b'.' | b'#') => {}
+                    _ => {
+                        return Some("bad number format (conversion failed) parsing ''".to_string())
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 fn rs274_message(msg: &str) -> String {
     const KNOWN: &[(&str, &str)] = &[
         (
