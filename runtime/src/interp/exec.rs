@@ -4898,6 +4898,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             let c_len = b_len / a_ang.cos();
             let center = [end[0] + c_len * ab_ang.cos(), end[1] + c_len * ab_ang.sin()];
+            // A lathe tool first moves its origin to where the compensated arc starts, or
+            // the arc would not be one (LinuxCNC queues this feed before the arc).
+            if self.lathe_origin([0.0; 6]) != [0.0; 6] {
+                let here = self.st.pos;
+                self.comp_emit(here, false, [0.0; 2], span)?;
+                self.st.pos = here;
+            }
             self.st.comp_first = false;
             let mut target = t;
             target[a] = end[0];
