@@ -227,3 +227,32 @@ fn i_word_is_used_by_lathe_roughing_cycles() {
     let out = run_ngc("G21 G90\nG1 X1 I0.2 F100\nM2\n");
     assert!(codes(&out).contains(&"X008"), "{:?}", out.diagnostics);
 }
+
+#[test]
+fn servoworks_arc_mismatch_below_the_machine_unit_is_not_reported() {
+    // CAM output rounded to 0.001 mm: r1 = 12.346, r2 = 12.34545, 0.0006 mm apart, under the
+    // machine-unit bound √2 · 0.001 of §6.3.3, so the control runs the arc as written.
+    let cam = "G90 G17 G21\nG00 X12.346 Y0.\nG03 X8.729 Y8.73 I-12.346 J0. F1500.\nM30\n";
+    let out = run_sw(cam, "circle_error_allowance = 0.01");
+    assert_eq!(found(&out, cam, &["A003", "A004"]), vec![]);
+    // r2 = 12.34255: 0.0035 mm off, beyond the machine unit and within the allowance (SW039).
+    let off = "G90 G17 G21\nG00 X12.346 Y0.\nG03 X8.725 Y8.73 I-12.346 J0. F1500.\nM30\n";
+    let out = run_sw(off, "circle_error_allowance = 0.01");
+    assert_eq!(
+        found(&out, off, &["A003", "A004"]),
+        vec![("A004", 3, Severity::Warning)]
+    );
+}
+
+#[test]
+fn fanuc_move_between_m29_and_the_tap_is_ps0203() {
+    // fanuc.md §8.3 negative test: `M29 S1000; G00 X10.; G84 …` → FAN100 (PS0203).
+    let bad = "G21 G90\nM03 S500\nM29 S500\nG00 X20. Y20.\nG84 Z-15. R5. F625.\nG80\nM30\n";
+    assert_eq!(
+        found(&run_fanuc(bad, ""), bad, &["C004"]),
+        vec![("C004", 4, Severity::Error)]
+    );
+    // Positioned before M29, the tap right after it, further holes in the cycle: no alarm.
+    let ok = "G21 G90\nG00 X20. Y20.\nM03 S500\nM29 S500\nG84 Z-15. R5. F625.\nX40.\nG80\nM30\n";
+    assert_eq!(found(&run_fanuc(ok, ""), ok, &["C004"]), vec![]);
+}

@@ -998,7 +998,15 @@ fn tv_r2_material_edge_triangle() {
             _ => None,
         })
         .collect();
-    assert_eq!(arcs, vec![(0.5, -1.0); 3], "three clockwise arcs of r 0.5");
+    // The radius is the tool table's diameter over rs274's external unit 0.03937007874016
+    // and 25.4, which is 0.5 to within 1e-13.
+    assert_eq!(arcs.len(), 3, "three arcs");
+    for (r, n) in arcs {
+        assert!(
+            (r - 0.5).abs() < 1e-12 && n == -1.0,
+            "clockwise arc of r 0.5: {r} {n}"
+        );
+    }
 }
 
 /// A concave corner for a tool on the left: `linuxcnc` pulls the end point

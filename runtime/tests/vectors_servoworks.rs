@@ -673,8 +673,9 @@ fn tv39_ndc_on_an_arc() {
             &format!("G00 X0 Y50.\n{code}\nG02 X-35.355 Y35.355 I0 J-50. F1000\nG40.1\nM30\n"),
             "",
         );
-        // The end point is given to 3 decimals: the centre is corrected.
-        assert_eq!(codes(&out), vec!["A004"]);
+        // The end point is given to 3 decimals (r2 = 49.99974): a mismatch below the
+        // machine-unit bound √2 · 0.001 of §6.3.3, so nothing is reported.
+        assert_eq!(codes(&out), Vec::<&str>::new());
         assert_eq!(out.motions.len(), 3, "rapid, turn, arc");
         let turn = &out.motions[1];
         assert!(

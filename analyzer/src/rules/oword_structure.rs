@@ -6,6 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::{ItemKind, OKeyword, OLabel, Program};
 
+use super::util::lit;
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -38,7 +39,8 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC, error.
+    /// RS274/NGC, error; a warning for a `while`, `do`, `if` or `repeat` left open with an
+    /// M2/M30 after it, which rs274 runs to that end without looking for the closer.
     ///
     /// Implements: NGC601, NGC602, NGC603, NGC604, NGC605
     pub static OWORD_STRUCTURE = {
@@ -268,15 +270,37 @@ impl Rule for OwordStructure {
             }
         }
         for f in stack {
-            out.push(Diagnostic::error(
-                "P001",
-                f.span,
-                format!(
-                    "`{}` is never closed: add the matching `{}` with the same label. LinuxCNC would search to the end of the file and stop.",
-                    p.str_of(f.span).trim(),
-                    f.kind.closer()
-                ),
-            ));
+            let text = format!(
+                "`{}` is never closed: add the matching `{}` with the same label. LinuxCNC would search to the end of the file and stop.",
+                p.str_of(f.span).trim(),
+                f.kind.closer()
+            );
+            // LinuxCNC only looks for the closer when it has to jump to it (a false
+            // condition, a break). With M2/M30 after the opener the
+            // program may end first and run cleanly, as rs274 does; the interpreter
+            // reports the failed search when it happens, so this stays a warning.
+            let end_follows = f.kind != Open::Sub
+                && p.blocks
+                    .iter()
+                    .filter(|b| b.span.start > f.span.start)
+                    .any(|b| {
+                        p.words(b).any(|(_, w)| {
+                            w.letter == b'M' && matches!(lit(w), Some(v) if v == 2.0 || v == 30.0)
+                        })
+                    });
+            out.push(if end_follows {
+                Diagnostic::warning(
+                    "P001",
+                    f.span,
+                    format!(
+                        "`{}` is never closed: add the matching `{}` with the same label. LinuxCNC stops only when it has to jump to it; until then the program runs on to the M2/M30 after it (a loop body runs once).",
+                        p.str_of(f.span).trim(),
+                        f.kind.closer()
+                    ),
+                )
+            } else {
+                Diagnostic::error("P001", f.span, text)
+            });
         }
     }
 }

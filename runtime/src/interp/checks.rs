@@ -439,6 +439,28 @@ impl Interp<'_, '_> {
     fn cycle_checks(&mut self, w: &Words) -> Result<(), Diagnostic> {
         let d = self.dialect;
         let ngc = d == Dialect::Rs274ngc;
+        // rs274 checks the words of spindle-synchronised motions with the rest of the block,
+        // before anything in it runs (and before the spindle and plane checks of the move).
+        if let Some((m @ (330 | 331 | 760), span)) = self.chk.motion.filter(|_| ngc) {
+            let missing = if m == 760 {
+                if !w.has(b'P') {
+                    Some("P word missing with G76")
+                } else if !(w.has(b'I') && w.has(b'J') && w.has(b'K')) {
+                    Some("I J or K words missing with G76")
+                } else {
+                    None
+                }
+            } else if !w.has(b'K') {
+                Some("K word missing with g33/g33.1")
+            } else if w.has(b'F') {
+                Some("F word used with a g33/g33.1")
+            } else {
+                None
+            };
+            if let Some(msg) = missing {
+                return Err(self.err(codes::CYCLE_STATE, span, msg));
+            }
+        }
         let modal = self.st.modal.modal_cycle() && !w.has_g(800);
         if modal && !ngc {
             if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 0 | 10 | 20 | 30)) {

@@ -440,6 +440,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             g52: [0.0; 6],
             tlo: [0.0; 6],
             comp_radius: 0.0,
+            comp_orientation: 0,
             comp_first: true,
             comp_tip: [0.0; 6],
             comp_queue: Vec::new(),
@@ -914,8 +915,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     }
                     if self.canon.is_some() && self.out.canon_error.is_none() {
                         let line = self.line_text(self.cur.0, self.cur.1);
-                        self.out.canon_error =
-                            Some(format!("{}\n{line}", rs274_message(&d.message)));
+                        // An expression the parser could not read: rs274 names the `#`.
+                        let msg = Some(&line)
+                            .filter(|_| {
+                                self.ngc()
+                                    && d.message
+                                        .eq_ignore_ascii_case("expression could not be parsed")
+                            })
+                            .and_then(|l| rs274_parameter_message(l))
+                            .unwrap_or_else(|| rs274_message(&d.message));
+                        self.out.canon_error = Some(format!("{msg}\n{line}"));
                     }
                     self.out.diagnostics.push(d);
                     break;
@@ -1173,6 +1182,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         // RS274/NGC and FANUC stop at a block they cannot read; the parser
         // already reported why (ServoWorks skips unknown data).
         if self.dialect != Dialect::Servoworks && self.files[fi].error_blocks.contains(&bi) {
+            if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
+                let line = self.line_text(fi, bi);
+                if let Some(msg) = rs274_parameter_message(&line) {
+                    self.out.canon_error = Some(format!("{msg}\n{line}"));
+                }
+            }
             return Ok(Flow::Stop);
         }
         let items = prog.items_of(&block);
@@ -2641,11 +2656,18 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     fn tool_diameter(&self, d: Option<f64>) -> f64 {
         let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
-        self.cfg
-            .tools
-            .get(&idx)
-            .map(|t| t.diameter * self.pfac())
-            .unwrap_or(0.0)
+        let Some(t) = self.cfg.tools.get(&idx) else {
+            return 0.0;
+        };
+        if self.ngc() && self.cfg.param_unit == 25.4 {
+            // rs274 divides by its external length unit, the rounded constant
+            // 0.03937007874016 (a hair above 1/25.4), then by 25.4 in an inch program:
+            // compensated points at an exact half of the last printed digit round as
+            // they do there.
+            let prog = if self.st.modal.inch { 25.4 } else { 1.0 };
+            return t.diameter / 0.039_370_078_740_16 / prog;
+        }
+        t.diameter * self.pfac()
     }
 
     fn exec_comp(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -2679,6 +2701,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     self.st.modal.comp = if code == 410 { 420 } else { 410 };
                 }
                 self.st.comp_radius = dia.abs() / 2.0;
+                // G41.1/G42.1 take the orientation from L (G18 only); G41/G42 from the table.
+                self.st.comp_orientation = if dynamic {
+                    w.get(b'L').map(|l| l.clamp(0.0, 9.0) as u8).unwrap_or(0)
+                } else {
+                    let idx = w
+                        .get(b'D')
+                        .map(|v| v.round() as u32)
+                        .unwrap_or(self.st.tool);
+                    self.cfg.tools.get(&idx).map(|t| t.orientation).unwrap_or(0)
+                };
                 let side = if self.comp_left() { "left" } else { "right" };
                 self.st.comp_first = true;
                 self.comp_flush();
@@ -2830,6 +2862,27 @@ impl<'a, 'i> Interp<'a, 'i> {
         // (ServoWorks look-ahead and FANUC/ServoWorks coordinate transforms.)
         if self.ngc() {
             return Ok(());
+        }
+        // Between M29 and the G84/G74 block the spindle is already switched to position control:
+        // the seed (§5.2.1) says an S command or axis movement there stops with PS0203.
+        let starts_tap = w.has_g(840) || w.has_g(740);
+        if self.dialect == Dialect::Fanuc
+            && self.st.modal.rigid_tap
+            && !matches!(self.st.modal.motion, 740 | 840)
+            && !starts_tap
+            && !w.has_m(290)
+            && (w.has(b'S') || w.any_axis())
+        {
+            let span = if w.has(b'S') {
+                w.sp(b'S')
+            } else {
+                b"XYZABCUVW"
+                    .iter()
+                    .find(|c| w.has(**c))
+                    .map(|c| w.sp(*c))
+                    .unwrap_or_default()
+            };
+            self.diag(codes::RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
         }
         if w.has_m(290) {
             let span =
@@ -4085,6 +4138,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         if k <= j {
             return Err(self.err(codes::CYCLE_STATE, span, "in G76, K must be greater than J"));
         }
+        // In diameter mode (G7) rs274 halves I, J and K after checking them, as it halves X:
+        // they are diameters too.
+        let (i, j, k) = if self.st.modal.diameter {
+            (i / 2.0, j / 2.0, k / 2.0)
+        } else {
+            (i, j, k)
+        };
         let end = self.target(w);
         let start = self.st.pos;
         let boring = i > 0.0;
@@ -4211,9 +4271,13 @@ impl<'a, 'i> Interp<'a, 'i> {
         let r = self.st.comp_radius;
         let left = self.comp_left();
         let op = self.st.pos;
-        // Directions along the axes come out exact, as the reference output shows.
-        let snap = |v: f64| if v.abs() < 1e-15 { 0.0 } else { v };
-        let dir = |ang: f64| (snap(ang.cos()), snap(ang.sin()));
+        // rs274 stores its ±π/2 in a double and takes the cosine of a double sum: along the
+        // axes the sign of the tiny remainder decides whether `-0.0000` or `0.0000` is
+        // printed, so no rounding to zero here.
+        let dir = |ang: f64, gamma: f64| {
+            let (s, c) = (ang + gamma).sin_cos();
+            (c, s)
+        };
         if self.st.comp_first {
             let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
             if dist <= r && self.ngc() {
@@ -4251,16 +4315,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         let mut alpha = (t[b] - op[b]).atan2(t[a] - op[a]);
         let (beta, gamma) = if left {
             if theta < alpha {
-                theta += 2.0 * PI;
+                let (hi, lo) = add_ld(theta, 2.0 * PI);
+                theta = hi + lo;
             }
             (theta - alpha - FRAC_PI_2, FRAC_PI_2)
         } else {
             if alpha < theta {
-                alpha += 2.0 * PI;
+                let (hi, lo) = add_ld(alpha, 2.0 * PI);
+                alpha = hi + lo;
             }
             (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
         };
-        let (ex, ey) = dir(alpha + gamma);
+        let (ex, ey) = dir(alpha, gamma);
         let mut end = t;
         end[a] += r * ex;
         end[b] += r * ey;
@@ -4299,7 +4365,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                         ));
                     }
                     let retreat = r / half.tan();
-                    let (rx, ry) = dir(theta + gamma);
+                    let (rx, ry) = dir(theta, gamma);
                     let back = [c[a] + retreat * rx, c[b] + retreat * ry];
                     self.comp_move_endpoint(back, span)?;
                 }
@@ -4350,6 +4416,32 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     /// Emits a compensated straight move and holds it back (LinuxCNC's enqueue).
+    /// Where a compensated point `p` puts the tool's origin. LinuxCNC compensates the centre
+    /// of a lathe tool's nose radius, and moves its origin (the imaginary tip the tool table
+    /// measures) by the radius along X and Z as the orientation says; mill cutters
+    /// (orientation 0 or 9) and other planes than G18 are not moved.
+    fn lathe_origin(&self, mut p: [f64; 6]) -> [f64; 6] {
+        if !self.ngc()
+            || self.st.modal.plane != 180
+            || self.st.modal.comp == 400
+            || matches!(self.st.comp_orientation, 0 | 9)
+        {
+            return p;
+        }
+        let r = self.st.comp_radius;
+        match self.st.comp_orientation {
+            1 | 2 | 6 => p[0] -= r,
+            3 | 4 | 8 => p[0] += r,
+            _ => {}
+        }
+        match self.st.comp_orientation {
+            2 | 3 | 7 => p[2] -= r,
+            1 | 4 | 5 => p[2] += r,
+            _ => {}
+        }
+        p
+    }
+
     fn comp_emit(
         &mut self,
         end: [f64; 6],
@@ -4357,6 +4449,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         dir: [f64; 2],
         span: Span,
     ) -> Result<(), Diagnostic> {
+        let end = self.lathe_origin(end);
         if rapid {
             self.rapid_to(end);
         } else {
@@ -4408,6 +4501,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let queue = std::mem::take(&mut self.st.comp_queue);
         let endpoint = self.st.comp_endpoint;
         let (a, b) = self.plane_axes();
+        let shift = self.lathe_origin([0.0; 6]);
         let u = self.unit();
         for q in queue.iter().copied() {
             if q.kind == 2 {
@@ -4454,8 +4548,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                         .collect();
                     let (ia, ib) = if q.kind == 2 { (0, 1) } else { (a, b) };
                     if args.len() > ia.max(ib) {
-                        args[ia] = f4(p[0] / u);
-                        args[ib] = f4(p[1] / u);
+                        args[ia] = f4((p[0] + shift[a]) / u);
+                        args[ib] = f4((p[1] + shift[b]) / u);
                         *line = format!("{head}{})", args.join(", "));
                     }
                 }
@@ -4463,7 +4557,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut tip = self.st.comp_tip;
             tip[a] = p[0];
             tip[b] = p[1];
-            let m_end = self.to_machine(tip);
+            let m_end = self.to_machine(self.lathe_origin(tip));
             // Motions are stored in mm, the machine position in program units.
             let lu = self.lu();
             if let Some(m) = self.out.motions.get_mut(q.motion) {
@@ -4476,7 +4570,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             let mut tip = self.st.comp_tip;
             tip[a] = p[0];
             tip[b] = p[1];
-            let m_end = self.to_machine(tip);
+            let m_end = self.to_machine(self.lathe_origin(tip));
             self.st.mpos[a] = m_end[a];
             self.st.mpos[b] = m_end[b];
             self.st.comp_tip = tip;
@@ -4496,6 +4590,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         span: Span,
     ) -> Result<(), Diagnostic> {
         self.check_feed(span)?;
+        let (to, center) = (self.lathe_origin(to), self.lathe_origin(center));
         let (a, b) = self.plane_axes();
         let n = self.normal_axis();
         let u = self.unit();
@@ -4619,7 +4714,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             Ok(s) => s,
             Err(e) => return Err(self.arc_error(e, s2, e2, spec, span)),
         };
-        if sol.corrected && self.dialect == Dialect::Servoworks {
+        // A mismatch within the machine-unit bound √(m1² + m2²) is what rounding end points and
+        // centres to the machine unit leaves (CAM output); the manual (§6.3.3 Limitations) runs
+        // such arcs without complaint, so only a correction beyond it is worth a warning.
+        let resolution = (2.0 * self.cfg.machine_unit * self.cfg.machine_unit).sqrt();
+        if sol.corrected && self.dialect == Dialect::Servoworks && sol.mismatch > resolution {
             let code = if has_r {
                 codes::ARC_CORRECTED_R
             } else {
@@ -4664,13 +4763,18 @@ impl<'a, 'i> Interp<'a, 'i> {
         let pe = e2;
         let ca = self.comp_arc(t, e2, sol.center, sol.radius, rot, span)?;
         let (e2, t, radius, center) = (ca.end, ca.target, ca.radius, ca.center);
+        // A lathe tool's controlled point is its origin, not the centre of its nose radius.
+        let shift = self.lathe_origin([0.0; 6]);
+        let t_out = self.lathe_origin(t);
+        let e2_out = [e2[0] + shift[a], e2[1] + shift[b]];
+        let center_out = [center[0] + shift[a], center[1] + shift[b]];
         if self.canon.is_some() {
             self.canon(format!(
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
-                f4(e2[0] / u),
-                f4(e2[1] / u),
-                f4(center[0] / u),
-                f4(center[1] / u),
+                f4(e2_out[0] / u),
+                f4(e2_out[1] / u),
+                f4(center_out[0] / u),
+                f4(center_out[1] / u),
                 rot,
                 f4(t[n] / u),
                 f4(t[3]),
@@ -4680,8 +4784,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;
-        c3[a] = center[0];
-        c3[b] = center[1];
+        c3[a] = center_out[0];
+        c3[b] = center_out[1];
         let cm = self.to_machine(c3);
         // Counter-clockwise in each plane's (first, second) axes turns about the
         // positive normal axis, including G18's (Z, X).
@@ -4701,7 +4805,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             1.0
         };
-        let end = self.to_machine(t);
+        let end = self.to_machine(t_out);
         let feed = self.effective_feed(0.0);
         let m = self.motion_base(
             MotionKind::Arc {
@@ -4794,6 +4898,13 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             let c_len = b_len / a_ang.cos();
             let center = [end[0] + c_len * ab_ang.cos(), end[1] + c_len * ab_ang.sin()];
+            // A lathe tool first moves its origin to where the compensated arc starts, or
+            // the arc would not be one (LinuxCNC queues this feed before the arc).
+            if self.lathe_origin([0.0; 6]) != [0.0; 6] {
+                let here = self.st.pos;
+                self.comp_emit(here, false, [0.0; 2], span)?;
+                self.st.pos = here;
+            }
             self.st.comp_first = false;
             let mut target = t;
             target[a] = end[0];
@@ -5812,6 +5923,66 @@ struct CompArc {
 
 /// rs274's wording of an interpreter error, from our message: known messages map
 /// to its text; otherwise the part before the first explanation, capitalised.
+/// rs274's words for a `#` it cannot read in `line`, the first one from the left: a name
+/// that is no function (`#foo`), a `<name` without `>`, or nothing it can read as a number
+/// (`#]`). `None` when every `#` reads (the block failed for another reason).
+fn rs274_parameter_message(line: &str) -> Option<String> {
+    // rs274 reads a letter after `#` as a unary function; the first letter picks the
+    // candidates, and a letter no function starts with has its own message.
+    const FUNCTIONS: [&str; 14] = [
+        "abs", "acos", "asin", "atan", "cos", "exists", "exp", "fix", "fup", "ln", "round", "sin",
+        "sqrt", "tan",
+    ];
+    const FIRST: &[u8] = b"aceflrst";
+    let text = line.to_ascii_lowercase();
+    let b = text.as_bytes();
+    let mut i = 0;
+    let mut comment = false;
+    while i < b.len() {
+        let c = b[i];
+        i += 1;
+        match c {
+            b'(' => comment = true,
+            b')' => comment = false,
+            b';' if !comment => return None,
+            b'#' if !comment => {
+                let mut j = i;
+                while j < b.len() && (b[j] == b' ' || b[j] == b'\t') {
+                    j += 1;
+                }
+                match b.get(j) {
+                    Some(b'<') => {
+                        if !b[j..].contains(&b'>') {
+                            return Some("Named parameter not terminated".to_string());
+                        }
+                    }
+                    Some(c) if c.is_ascii_alphabetic() => {
+                        let word: String = b[j..]
+                            .iter()
+                            .take_while(|c| c.is_ascii_alphabetic())
+                            .map(|&c| c as char)
+                            .collect();
+                        if !FUNCTIONS.iter().any(|f| word.starts_with(f)) {
+                            return Some(if FIRST.contains(c) {
+                                format!("Unknown word starting with {}", *c as char)
+                            } else {
+                                "Unknown word where unary operation could be".to_string()
+                            });
+                        }
+                    }
+                    Some(c)
+                        if c.is_ascii_digit() || matches!(c, b'[' | b'+' | b'-' | b'.' | b'#') => {}
+                    _ => {
+                        return Some("bad number format (conversion failed) parsing ''".to_string())
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 fn rs274_message(msg: &str) -> String {
     const KNOWN: &[(&str, &str)] = &[
         (
@@ -5985,4 +6156,18 @@ fn macro_args(w: &Words) -> Vec<Option<f64>> {
         }
     }
     args
+}
+
+/// `a + b` where `b` is the double constant 2π standing for LinuxCNC's long-double
+/// `2 * M_PIl`: the sum as a double and the remainder, including what the double constant
+/// lacks of the true value; their sum rounds as rs274's long-double sum stored in a double.
+fn add_ld(a: f64, b: f64) -> (f64, f64) {
+    use std::f64::consts::PI;
+    // 2π − 2.0 * PI (the double constant is short of the true value by this much).
+    const TWO_PI_LO: f64 = 2.449_293_598_294_706_4e-16;
+    let b_lo = if b == 2.0 * PI { TWO_PI_LO } else { 0.0 };
+    let s = a + b;
+    let bb = s - a;
+    let err = (a - (s - bb)) + (b - bb);
+    (s, err + b_lo)
 }

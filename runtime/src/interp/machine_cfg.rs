@@ -11,6 +11,8 @@ pub struct Tool {
     pub diameter: f64,
     pub x_offset: f64,
     pub y_offset: f64,
+    /// LinuxCNC lathe tool orientation (the tool table's Q, 0-9; 0 is a mill cutter).
+    pub orientation: u8,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -115,6 +117,7 @@ impl MachineCfg {
                         diameter: diameter / param_unit,
                         x_offset: 0.0,
                         y_offset: 0.0,
+                        orientation: 0,
                     },
                 );
             }
@@ -234,6 +237,7 @@ pub fn parse_tool_table(
                 'D' => tool.diameter = v * unit,
                 'X' => tool.x_offset = v * unit,
                 'Y' => tool.y_offset = v * unit,
+                'Q' if (0.0..=9.0).contains(&v) => tool.orientation = v as u8,
                 _ => {}
             }
         }

@@ -74,6 +74,8 @@ pub struct State {
     /// Tool length offset (Z) and X offset, mm.
     pub tlo: [f64; 6],
     pub comp_radius: f64,
+    /// Cutter compensation: the lathe tool orientation (0 and 9: no origin shift).
+    pub comp_orientation: u8,
     /// Cutter compensation: the next move is the entry move.
     pub comp_first: bool,
     /// Cutter compensation: the tool tip (program frame), when it differs from `pos`.

@@ -1,0 +1,13 @@
+%
+O9001 (BOLT CIRCLE: X Y CENTRE, I RADIUS, A START ANGLE, B HOLES, Z R F)
+#10 = 0
+WHILE [#10 LT #2] DO1
+#11 = #1 + #10 * 360. / #2
+#12 = #24 + #4 * COS[#11]
+#13 = #25 + #4 * SIN[#11]
+G99 G81 X#12 Y#13 Z#26 R#18 F#9
+#10 = #10 + 1
+END1
+G80
+M99
+%
