@@ -49,7 +49,16 @@ pub struct Parsed {
 
 /// Reads one file (see [`Parsed`]).
 pub fn parse_text(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parsed {
-    let text: Arc<[u8]> = text.into();
+    read(text.into(), settings, false)
+}
+
+/// [`parse_text`] without tokens ([`syntax::parse_lean`]): for hosts that lint and
+/// run but never highlight or print the tree, such as the command line.
+pub fn parse_text_lean(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parsed {
+    read(text.into(), settings, true)
+}
+
+fn read(text: Arc<[u8]>, settings: &Settings, lean: bool) -> Parsed {
     let opts = syntax::ParseOptions {
         dialect: settings.dialect,
         variant: settings.variant,
@@ -65,7 +74,11 @@ pub fn parse_text(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parsed {
         };
     }
     let utf8 = utf8_check(&text);
-    let program = syntax::parse(opts, text);
+    let program = if lean {
+        syntax::parse_lean(opts, text)
+    } else {
+        syntax::parse(opts, text)
+    };
     let mut diagnostics = program.diagnostics.clone();
     diagnostics.extend(utf8);
     Parsed {

@@ -3,6 +3,7 @@
 use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
+use crate::span::Span;
 use crate::syntax::TokenKind;
 
 use super::{ProgramCx, Rule, RuleMeta};
@@ -64,27 +65,31 @@ impl Rule for BracketNesting {
         if p.dialect != Dialect::Fanuc {
             return;
         }
-        let mut depth = 0u32;
-        let mut reported = false;
-        for (i, t) in p.tokens.iter().enumerate() {
-            match t.kind {
-                TokenKind::Newline | TokenKind::Eob => {
-                    depth = 0;
-                    reported = false;
-                }
-                TokenKind::LBracket => {
-                    depth += 1;
-                    if depth > MAX_DEPTH && !reported {
-                        reported = true;
-                        out.push(Diagnostic::error(
-                            "W014",
-                            p.token_span(i),
-                            "Brackets nested more than five levels deep: Custom Macro B evaluates at most five (alarm PS0118). Compute part of the expression into a variable first.",
-                        ));
+        // Only blocks with a `[` can nest; their tokens are read again from the text,
+        // since hosts may parse without tokens.
+        for block in &p.blocks {
+            if memchr::memchr(b'[', p.slice(block.span)).is_none() {
+                continue;
+            }
+            let mut depth = 0u32;
+            let tokens = crate::syntax::block_tokens(p, block);
+            for (i, t) in tokens.iter().enumerate() {
+                match t.kind {
+                    TokenKind::LBracket => {
+                        depth += 1;
+                        if depth > MAX_DEPTH {
+                            let end = tokens.get(i + 1).map_or(t.start + 1, |n| n.start);
+                            out.push(Diagnostic::error(
+                                "W014",
+                                Span::new(t.start, end),
+                                "Brackets nested more than five levels deep: Custom Macro B evaluates at most five (alarm PS0118). Compute part of the expression into a variable first.",
+                            ));
+                            break;
+                        }
                     }
+                    TokenKind::RBracket => depth = depth.saturating_sub(1),
+                    _ => {}
                 }
-                TokenKind::RBracket => depth = depth.saturating_sub(1),
-                _ => {}
             }
         }
     }

@@ -11,4 +11,6 @@ mod ast;
 mod parser;
 
 pub use ast::*;
-pub use parser::{parse, parse_in_two, parse_serial, ParseOptions, Parser, ParserState};
+pub use parser::{
+    block_tokens, parse, parse_in_two, parse_lean, parse_serial, ParseOptions, Parser, ParserState,
+};

@@ -79,6 +79,52 @@ pub fn parse_serial(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     program
 }
 
+/// Parses a whole file on the calling thread without recording tokens: the blocks,
+/// items, expressions and diagnostics are those of [`parse_serial`], and
+/// `tokens` stays empty. For hosts that only lint or run (the CLI), which never
+/// look at tokens; it saves their time and about a quarter of the tree's memory.
+pub fn parse_lean(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
+    let text: Arc<[u8]> = text.into();
+    let mut program = with_capacity(opts.dialect, text.clone(), text.len());
+    program.tokens = Vec::new();
+    let mut parser = Parser::new(opts, text).without_tokens();
+    parser.parse_blocks(&mut program, usize::MAX);
+    program
+}
+
+/// The tokens of one block, read again from the text: for programs parsed by
+/// [`parse_lean`], or to look at one block without walking the token list. Equal to
+/// the slice of a full parse's tokens that lies in the block, terminator included.
+///
+/// A block depends on no parser state but the `%` lines before it, which only
+/// decide the kind of `%` and ignored blocks; those are rebuilt from the kind
+/// recorded in the block.
+pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
+    let start = block.span.start as usize;
+    if start >= program.text.len() {
+        return Vec::new();
+    }
+    let state = ParserState {
+        percent_seen: matches!(block.kind, BlockKind::Percent | BlockKind::Ignored),
+        after_end: block.kind == BlockKind::Ignored,
+        seen_content: true,
+    };
+    let opts = ParseOptions::new(program.dialect);
+    let mut scratch = Program {
+        dialect: program.dialect,
+        text: program.text.clone(),
+        tokens: Vec::new(),
+        blocks: Vec::new(),
+        items: Vec::new(),
+        exprs: Vec::new(),
+        expr_lists: Vec::new(),
+        diagnostics: Vec::new(),
+    };
+    let mut parser = Parser::resume(opts, program.text.clone(), start, block.line, state);
+    parser.parse_blocks(&mut scratch, 1);
+    scratch.tokens
+}
+
 /// Parses the two halves of the text (split after a line break near the middle)
 /// on two threads and joins them; the result equals [`parse_serial`]'s.
 ///
@@ -234,6 +280,10 @@ pub struct Parser {
     after_end: bool,
     /// At least one non-blank line has been seen (RS274/NGC opening `%` rule).
     seen_content: bool,
+    /// Plain lines take [`plain_line`] (off only to test it against the general path).
+    plain_fast: bool,
+    /// Whether tokens are recorded (see [`parse_lean`]).
+    tokens: bool,
 }
 
 /// The state a [`Parser`] carries across block boundaries.
@@ -255,6 +305,8 @@ struct Cx<'p> {
     limit: usize,
     dialect: Dialect,
     depth: u32,
+    /// Whether tokens are recorded.
+    tokens: bool,
 }
 
 fn is_ws(b: u8) -> bool {
@@ -275,7 +327,23 @@ impl Parser {
             percent_seen: false,
             after_end: false,
             seen_content: false,
+            plain_fast: true,
+            tokens: true,
         }
+    }
+
+    /// Turns the fast path for plain lines off, so that tests can compare it with
+    /// the general path on the same text.
+    #[doc(hidden)]
+    pub fn without_fast_path(mut self) -> Parser {
+        self.plain_fast = false;
+        self
+    }
+
+    /// A parser that records no tokens (see [`parse_lean`]).
+    pub fn without_tokens(mut self) -> Parser {
+        self.tokens = false;
+        self
     }
 
     pub fn is_done(&self) -> bool {
@@ -317,6 +385,8 @@ impl Parser {
             percent_seen: state.percent_seen,
             after_end: state.after_end,
             seen_content: state.seen_content,
+            plain_fast: true,
+            tokens: true,
         }
     }
 
@@ -406,6 +476,7 @@ impl Parser {
             limit: content_end,
             dialect,
             depth: 0,
+            tokens: self.tokens,
         };
 
         if self.after_end {
@@ -462,8 +533,12 @@ impl Parser {
             if !blank {
                 self.seen_content = true;
             }
-            skip = cx.block_start(start);
-            cx.items();
+            if !(self.plain_fast
+                && plain_line(cx.p, text, start, content_end, dialect, self.tokens))
+            {
+                skip = cx.block_start(start);
+                cx.items();
+            }
         }
         if kind == BlockKind::Normal && !blank {
             self.seen_content = true;
@@ -508,6 +583,146 @@ impl Parser {
     }
 }
 
+/// The fast path for plain lines: address letters each followed directly by a
+/// literal number (`X1.25 Y-0.5 F300`), separated by blanks. Such lines are most of
+/// what CAM systems write, and for them the general path (keywords, program heads,
+/// names, expressions, blanks inside numbers, diagnostics) reduces to the tokens and
+/// word items built here, identical to what it would build (the differential test
+/// `plain_lines_parse_as_the_general_path_does` compares the two).
+///
+/// Returns `false`, leaving `p` as it was, when the line holds anything else; the
+/// general path then reads it.
+fn plain_line(
+    p: &mut Program,
+    text: &[u8],
+    start: usize,
+    end: usize,
+    dialect: Dialect,
+    tokens: bool,
+) -> bool {
+    const POW10: [f64; 16] = [
+        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+    ];
+    let Some(line) = text.get(start..end) else {
+        return false;
+    };
+    let (tokens_before, items_before) = (p.tokens.len(), p.items.len());
+    let base = start;
+    let n = line.len();
+    let mut i = 0;
+    let mut failed = false;
+    while i < n {
+        let b = line[i];
+        if is_ws(b) {
+            let s = i;
+            while i < n && is_ws(line[i]) {
+                i += 1;
+            }
+            if tokens {
+                p.tokens.push(Token {
+                    start: (base + s) as u32,
+                    kind: TokenKind::Whitespace,
+                });
+            }
+            continue;
+        }
+        // `O` starts program heads and O-words; a ServoWorks `P` may be a name.
+        if !b.is_ascii_uppercase() || b == b'O' || (b == b'P' && dialect == Dialect::Servoworks) {
+            failed = true;
+            break;
+        }
+        let ls = i;
+        i += 1;
+        let ns = i;
+        let mut signed = false;
+        let mut negative = false;
+        if i < n && (line[i] == b'-' || line[i] == b'+') {
+            signed = true;
+            negative = line[i] == b'-';
+            i += 1;
+        }
+        let mut mant: u64 = 0;
+        let mut digits = 0u32;
+        while i < n && line[i].is_ascii_digit() {
+            mant = mant
+                .wrapping_mul(10)
+                .wrapping_add(u64::from(line[i] - b'0'));
+            digits += 1;
+            i += 1;
+        }
+        let mut frac = 0usize;
+        let has_point = i < n && line[i] == b'.';
+        if has_point {
+            i += 1;
+            while i < n && line[i].is_ascii_digit() {
+                mant = mant
+                    .wrapping_mul(10)
+                    .wrapping_add(u64::from(line[i] - b'0'));
+                digits += 1;
+                frac += 1;
+                i += 1;
+            }
+        }
+        if digits == 0 || digits > 15 {
+            failed = true;
+            break;
+        }
+        // The number must end here: at the end of the line, before a letter, or before
+        // blanks that do not continue it (RS274/NGC and FANUC read `X1 5` as `X15`).
+        if i < n {
+            let c = line[i];
+            if is_ws(c) {
+                if dialect != Dialect::Servoworks {
+                    let mut j = i;
+                    while j < n && is_ws(line[j]) {
+                        j += 1;
+                    }
+                    if j < n && (line[j].is_ascii_digit() || line[j] == b'.') {
+                        failed = true;
+                        break;
+                    }
+                }
+            } else if !c.is_ascii_uppercase() {
+                failed = true;
+                break;
+            }
+        }
+        let v = mant as f64 / POW10[frac];
+        let span = |a: usize, b: usize| Span::new((base + a) as u32, (base + b) as u32);
+        if tokens {
+            p.tokens.push(Token {
+                start: (base + ls) as u32,
+                kind: TokenKind::Letter,
+            });
+            p.tokens.push(Token {
+                start: (base + ns) as u32,
+                kind: TokenKind::Number,
+            });
+        }
+        p.items.push(Item {
+            kind: ItemKind::Word(Word {
+                letter: b,
+                comma: false,
+                letter_span: span(ls, ls + 1),
+                value: WordValue::Num(Num {
+                    value: if negative { -v } else { v },
+                    span: span(ns, i),
+                    has_point,
+                    signed,
+                    digits: digits as u16,
+                }),
+            }),
+            span: span(ls, i),
+        });
+    }
+    if failed {
+        p.tokens.truncate(tokens_before);
+        p.items.truncate(items_before);
+        return false;
+    }
+    true
+}
+
 impl<'p> Cx<'p> {
     fn at(&self, i: usize) -> Option<u8> {
         self.text.get(i).copied()
@@ -520,6 +735,9 @@ impl<'p> Cx<'p> {
     /// Starts a token at `start` unless the previous token has the same kind
     /// and is mergeable (whitespace, unknown runs).
     fn token(&mut self, start: usize, kind: TokenKind) {
+        if !self.tokens {
+            return;
+        }
         let start = start as u32;
         if let Some(last) = self.p.tokens.last() {
             if last.start == start {

@@ -106,7 +106,7 @@ fn check_file(
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
     let text: Arc<[u8]> = bytes.into();
-    let parsed = analyzer::parse_text(text.clone(), &settings);
+    let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
     // view: ServoWorks `O<name>.dat` files, and FANUC/ServoWorks files that return
     // with M99 and never end the program (as the language server judges them).
