@@ -24,9 +24,15 @@ fn ngc_files(dir: &Path, out: &mut Vec<PathBuf>) {
 
 /// Runs `text` both ways and returns how many motions it made.
 fn same(name: &str, text: &[u8]) -> usize {
+    same_with(name, text, &[])
+}
+
+/// [`same`] with extra rules selected.
+fn same_with(name: &str, text: &[u8], select: &[&str]) -> usize {
     let dialect = Dialect::Rs274ngc;
     let program = parse(ParseOptions::new(dialect), Arc::<[u8]>::from(text));
-    let settings = Settings::new(dialect);
+    let mut settings = Settings::new(dialect);
+    settings.select = select.iter().map(|s| s.to_string()).collect();
     let machine = toml::Table::new();
     let input = runtime::RunInput {
         program: &program,
@@ -86,6 +92,10 @@ fn fast_path_matches_general_path_at_its_edges() {
             "G21 G90 F100 T1 M6\nG41 D1 G1 X5 Y5\nX10\nG40\nX20 Y20\nX30\nM2\n",
         ),
         (
+            "arc after a line after G40",
+            "G21 G90 F100 T1 M6\nG41 D1 G1 X5 Y5\nX10\nG40\nX20 Y20\nG2 X30 Y30 R10\nM2\n",
+        ),
+        (
             "compensation on",
             "G21 G90 F100 T1 M6\nG42 G1 X5 Y5\nX10\nY10\nX0\nG40 X-5\nM2\n",
         ),
@@ -125,4 +135,43 @@ fn fast_path_matches_general_path_at_its_edges() {
     for (name, text) in cases {
         same(name, text.as_bytes());
     }
+    // The optional rule for feed moves with the spindle stopped, on and off.
+    let spindle = "G21 G90 F100\nG1 X1\nX2\nS1000 M3\nX3\nM5\nX4\nG0 X0\nM2\n";
+    let warned = |select: &[&str]| {
+        let program = parse(
+            ParseOptions::new(Dialect::Rs274ngc),
+            Arc::<[u8]>::from(spindle.as_bytes()),
+        );
+        let mut settings = Settings::new(Dialect::Rs274ngc);
+        settings.select = select.iter().map(|s| s.to_string()).collect();
+        let machine = toml::Table::new();
+        let input = runtime::RunInput {
+            program: &program,
+            settings: &settings,
+            machine: &machine,
+            resolver: &runtime::NoResolver,
+            step_budget: 1_000_000,
+            emit_canon: false,
+            tool_table: None,
+            var_file: None,
+        };
+        runtime::run_with_snapshots(&input, false)
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == "F015")
+            .count()
+    };
+    same_with(
+        "feed with the spindle stopped",
+        spindle.as_bytes(),
+        &["F015"],
+    );
+    // G1 X1, X2 and X4 feed with the spindle stopped.
+    assert_eq!(warned(&["F015"]), 3);
+    assert_eq!(warned(&[]), 0);
+    // M70 saved in a subroutine: the level is dropped on return, so M72 fails.
+    same(
+        "M70 levels",
+        b"G21 G90 F100\no100 sub\nM70\nG1 X1\no100 endsub\no100 call\nX2\nM72\nM2\n",
+    );
 }

@@ -89,6 +89,35 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
+    /// [`Self::state_checks`] reduced to what can act on a plain motion line of the
+    /// fast path (`fast.rs`: RS274/NGC, only X/Y/Z/F numbers, a modal G0/G1, no cutter
+    /// compensation, feed per minute, no diameter mode, no G66). Every other check
+    /// needs a G/M code, another letter, or a state the fast path excludes; what
+    /// remains, in the general order, is:
+    /// - the block's motion (`block_motion`): the modal code, at the first axis word;
+    /// - `tool_offset_checks`: Z after an M6 that kept the old tool's length offset;
+    /// - `comp_motion_checks`: the first motion after G40 clears the flag (a line,
+    ///   so never an error);
+    /// - `ngc_spec_checks`: M70/M73 levels left by a return, feed with the spindle
+    ///   stopped (when selected), and the look-ahead count of `spec_checks`.
+    ///
+    /// `runtime/tests/fast_path.rs` runs programs both ways and compares everything.
+    pub(super) fn plain_motion_checks(&mut self, w: &Words, bspan: Span) {
+        let span = [b'X', b'Y', b'Z']
+            .iter()
+            .find(|c| w.has(**c))
+            .map(|c| w.sp(*c))
+            .unwrap_or_default();
+        let m = self.st.modal.motion;
+        self.chk.motion = Some((m, span));
+        if self.chk.m6_without_g43 && w.has(b'Z') {
+            self.chk.m6_without_g43 = false;
+            self.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
+        }
+        self.chk.after_g40 = false;
+        self.plain_spec_checks(m, span, bspan);
+    }
+
     /// Codes LinuxCNC (and FANUC, for planes and G45–G48) refuse while cutter
     /// radius compensation is on.
     fn comp_conflicts(&mut self, w: &Words) -> Result<(), Diagnostic> {

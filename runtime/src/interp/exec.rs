@@ -1181,7 +1181,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         // RS274/NGC and FANUC stop at a block they cannot read; the parser
         // already reported why (ServoWorks skips unknown data).
-        if self.dialect != Dialect::Servoworks && self.files[fi].error_blocks.contains(&bi) {
+        if self.dialect != Dialect::Servoworks
+            && !self.files[fi].error_blocks.is_empty()
+            && self.files[fi].error_blocks.contains(&bi)
+        {
             if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
                 let line = self.line_text(fi, bi);
                 if let Some(msg) = rs274_parameter_message(&line) {
@@ -1194,10 +1197,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         if items.is_empty() {
             return Ok(Flow::Next);
         }
-        self.spec_items(&prog, items);
+        // A plain motion line needs nothing of `spec_items` but the clearing of its
+        // per-block lists, which the fast path does (no `$`, no expressions).
         if let Some(r) = self.fast_motion_block(items, block.span) {
             return r;
         }
+        self.spec_items(&prog, items);
         // A bare O-word line (program title, M98 target) does nothing, not even its comments.
         if self.ngc()
             && items

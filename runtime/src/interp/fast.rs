@@ -59,7 +59,6 @@ impl Interp<'_, '_> {
             w.v[i] = Some(n.value);
             w.span[i] = it.span;
             w.point[i] = n.has_point;
-            w.ijk_order.push((c, n.value));
         }
         if !axes {
             return None;
@@ -71,7 +70,7 @@ impl Interp<'_, '_> {
     fn fast_motion(&mut self, w: &Words, bspan: Span) -> Result<Flow, Diagnostic> {
         self.inv_rate_set = false;
         self.block_exact = false;
-        self.state_checks(w, bspan)?;
+        self.plain_motion_checks(w, bspan);
         if let Some(f) = w.get(b'F') {
             self.st.feed = f * self.unit();
         }

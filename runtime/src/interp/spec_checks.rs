@@ -277,6 +277,39 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
+    /// What `spec_checks` does for a plain motion line of the fast path (see
+    /// `plain_motion_checks`): the M70/M73 levels, feed with the spindle stopped,
+    /// and the look-ahead count.
+    pub(super) fn plain_spec_checks(&mut self, m: u32, s: Span, bspan: Span) {
+        self.spec.dollar.clear();
+        self.spec.bare_axes.clear();
+        if !self.spec.saved_levels.is_empty() {
+            let level = self.frames.len();
+            self.spec.saved_levels.retain(|l| *l <= level);
+        }
+        if m == 10 && self.feed_spindle_off_wanted() && self.st.spindle_dir == 0 {
+            self.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
+        }
+        let _ = bspan;
+        // Compensation is off on the fast path, so the count restarts.
+        self.spec.blocks_without_motion = 0;
+        self.spec.motions_seen = self.out.motions.len();
+    }
+
+    /// Whether the optional rule for feed moves with the spindle stopped is selected
+    /// (looked up once).
+    fn feed_spindle_off_wanted(&mut self) -> bool {
+        match self.spec.feed_spindle_off {
+            Some(w) => w,
+            None => {
+                let w = crate::rules::lookup(codes::FEED_SPINDLE_OFF)
+                    .is_some_and(|meta| self.input.settings.rule_enabled(meta));
+                self.spec.feed_spindle_off = Some(w);
+                w
+            }
+        }
+    }
+
     fn ngc_spec_checks(
         &mut self,
         w: &Words,
@@ -440,15 +473,7 @@ impl Interp<'_, '_> {
             }
             // Feed moves with the spindle off (optional rule).
             // Off by default, so it is computed only when selected.
-            let wanted = match self.spec.feed_spindle_off {
-                Some(w) => w,
-                None => {
-                    let w = crate::rules::lookup(codes::FEED_SPINDLE_OFF)
-                        .is_some_and(|meta| self.input.settings.rule_enabled(meta));
-                    self.spec.feed_spindle_off = Some(w);
-                    w
-                }
-            };
+            let wanted = self.feed_spindle_off_wanted();
             if wanted && (matches!(m, 10 | 20 | 30) || is_cycle(m)) && self.st.spindle_dir == 0 {
                 self.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
             }
