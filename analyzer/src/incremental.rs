@@ -659,7 +659,6 @@ impl Shift {
     fn item(&self, it: &Item) -> Item {
         let kind = match it.kind {
             ItemKind::Word(mut w) => {
-                w.letter_span = self.span(w.letter_span);
                 w.value = match w.value {
                     WordValue::Num(mut n) => {
                         n.span = self.span(n.span);
@@ -667,10 +666,6 @@ impl Shift {
                     }
                     WordValue::Expr(e) => WordValue::Expr(self.id(e)),
                     WordValue::Name(s) => WordValue::Name(self.span(s)),
-                    WordValue::Indexed(i, mut n) => {
-                        n.span = self.span(n.span);
-                        WordValue::Indexed(i, n)
-                    }
                     WordValue::Missing => WordValue::Missing,
                 };
                 ItemKind::Word(w)
@@ -682,13 +677,11 @@ impl Shift {
             ItemKind::Comment(c) => ItemKind::Comment(c),
             ItemKind::OWord(mut o) => {
                 o.label = match o.label {
-                    OLabel::Name(s) => OLabel::Name(self.span(s)),
                     OLabel::Expr(e) => OLabel::Expr(self.id(e)),
                     other => other,
                 };
                 o.label_span = self.span(o.label_span);
-                o.keyword_span = self.span(o.keyword_span);
-                o.args = (add(o.args.0, self.lists), add(o.args.1, self.lists));
+                o.args_start = add(o.args_start, self.lists);
                 ItemKind::OWord(o)
             }
             ItemKind::Macro(m) => ItemKind::Macro(match m {

@@ -90,7 +90,7 @@ fn ngc_owords_and_named_parameters() {
         .items
         .iter()
         .filter_map(|i| match i.kind {
-            ItemKind::OWord(o) => Some((o.keyword, prog.expr_list(o.args).len())),
+            ItemKind::OWord(o) => Some((o.keyword, prog.expr_list(o.args()).len())),
             _ => None,
         })
         .collect();
@@ -106,8 +106,9 @@ fn ngc_owords_and_named_parameters() {
     let ItemKind::OWord(o) = prog.items_of(&prog.blocks[0])[0].kind else {
         panic!()
     };
-    let OLabel::Name(n) = o.label else { panic!() };
-    assert_eq!(&*prog.str_of(n), "drill");
+    assert_eq!(o.label, OLabel::Name);
+    assert_eq!(&*prog.str_of(o.name_span()), "drill");
+    assert_eq!(&*prog.str_of(o.label_span), "<drill>");
 }
 
 #[test]
@@ -154,7 +155,8 @@ fn servoworks_lexical_rules() {
     };
     assert_eq!(&*prog.str_of(n), "MoveXY");
     let (_, s) = prog.words(&prog.blocks[4]).next().unwrap();
-    assert!(matches!(s.value, WordValue::Indexed(2, n) if n.value == 1500.0));
+    assert_eq!(s.spindle, Some(2));
+    assert!(matches!(s.value, WordValue::Num(n) if n.value == 1500.0));
     assert!(matches!(
         prog.items_of(&prog.blocks[5])[0].kind,
         ItemKind::ProgramHead { number: None, .. }

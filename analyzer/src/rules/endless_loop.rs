@@ -114,7 +114,7 @@ impl Rule for EndlessLoop {
                         let crate::syntax::OLabel::Number(l) = o.label else {
                             continue;
                         };
-                        let cond = p.expr_list(o.args).first().copied();
+                        let cond = p.expr_list(o.args()).first().copied();
                         match o.keyword {
                             Some(OKeyword::Do) => open.push((l, item.span, false, false, true)),
                             Some(OKeyword::While) => {

@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::span::Span;
-use crate::syntax::{BlockKind, Expr, ItemKind, OKeyword, OLabel, Program};
+use crate::syntax::{BlockKind, Expr, ItemKind, OKeyword, OLabel, OWord, Program};
 
 use super::util::{block_exprs, expr_nodes, is_emc2, lit};
 use super::{ProgramCx, Rule, RuleMeta};
@@ -64,10 +64,13 @@ declare_rule! {
 
 pub struct OwordCalls;
 
-fn label(p: &Program, l: OLabel) -> Option<String> {
-    match l {
+fn label(p: &Program, ow: &OWord) -> Option<String> {
+    match ow.label {
         OLabel::Number(n) => Some(n.to_string()),
-        OLabel::Name(s) => Some(format!("<{}>", p.str_of(s).to_ascii_lowercase())),
+        OLabel::Name => Some(format!(
+            "<{}>",
+            p.str_of(ow.name_span()).to_ascii_lowercase()
+        )),
         _ => None,
     }
 }
@@ -145,7 +148,7 @@ impl Rule for OwordCalls {
             for item in p.items_of(b) {
                 match item.kind {
                     ItemKind::OWord(o) => {
-                        let Some(l) = label(p, o.label) else { continue };
+                        let Some(l) = label(p, &o) else { continue };
                         match o.keyword {
                             Some(OKeyword::Sub) => {
                                 defs.push((l.clone(), item.span.start, item.span));
@@ -158,7 +161,7 @@ impl Rule for OwordCalls {
                                 depth = 0;
                             }
                             Some(OKeyword::Call) => {
-                                let n = p.expr_list(o.args).len();
+                                let n = p.expr_list(o.args()).len();
                                 if n > 30 {
                                     out.push(Diagnostic::error(
                                         "P008",

@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::span::Span;
-use crate::syntax::{ItemKind, OKeyword, OLabel, Program};
+use crate::syntax::{ItemKind, OKeyword, OLabel, OWord, Program};
 
 use super::util::lit;
 use super::{ProgramCx, Rule, RuleMeta};
@@ -91,10 +91,10 @@ impl Open {
 }
 
 /// A label as text for comparison (`o100` and `o<name>`, case-insensitive).
-fn label_key(p: &Program, l: OLabel) -> Option<String> {
-    match l {
+fn label_key(p: &Program, ow: &OWord) -> Option<String> {
+    match ow.label {
         OLabel::Number(n) => Some(n.to_string()),
-        OLabel::Name(s) => Some(p.str_of(s).to_ascii_lowercase()),
+        OLabel::Name => Some(p.str_of(ow.name_span()).to_ascii_lowercase()),
         OLabel::Expr(_) | OLabel::Missing => None,
     }
 }
@@ -138,7 +138,7 @@ impl Rule for OwordStructure {
             };
             let span = items[pos].span;
             let Some(kw) = ow.keyword else { continue };
-            let label = label_key(p, ow.label);
+            let label = label_key(p, &ow);
             let name = format!("o{}", p.str_of(ow.label_span));
             match kw {
                 OKeyword::Sub => {

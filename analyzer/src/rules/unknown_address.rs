@@ -77,11 +77,7 @@ impl Rule for UnknownAddress {
                     ),
                     _ => format!("{l} is not an address of this control (FANUC alarm PS0009)."),
                 };
-                out.push(Diagnostic::error(
-                    "W005",
-                    w.letter_span.cover(item.span),
-                    msg,
-                ));
+                out.push(Diagnostic::error("W005", item.span, msg));
                 continue;
             }
             if macro_call {

@@ -150,7 +150,7 @@ pub fn block_exprs(program: &Program, items: &[Item]) -> Vec<crate::syntax::Expr
                 ..
             }) => out.push(e),
             ItemKind::Assign { target, value } => out.extend([target, value]),
-            ItemKind::OWord(o) => out.extend(program.expr_list(o.args).iter().copied()),
+            ItemKind::OWord(o) => out.extend(program.expr_list(o.args()).iter().copied()),
             ItemKind::Macro(m) => match m {
                 M::Goto { target } => out.push(target),
                 M::IfGoto { cond, target } => out.extend([cond, target]),

@@ -3,7 +3,7 @@
 use crate::declare_rule;
 use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
-use crate::syntax::{ItemKind, WordValue};
+use crate::syntax::ItemKind;
 
 use super::util::{has, is_drilling_cycle, is_emc2, lit, near_integer, word_item};
 use super::{BlockCx, Rule, RuleMeta};
@@ -207,7 +207,7 @@ impl Rule for WordValueRange {
                 }
                 if let Some((item, w)) = word_item(cx, b'S') {
                     let text = cx.program.str_of(item.span).into_owned();
-                    if let WordValue::Indexed(sp, _) = w.value {
+                    if let Some(sp) = w.spindle {
                         if !(1..=16).contains(&sp) {
                             k.out.push(Diagnostic::error(
                                 "W007",

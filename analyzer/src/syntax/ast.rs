@@ -223,8 +223,6 @@ pub enum WordValue {
     Expr(ExprId),
     /// A name (`M98 PMoveXY` in ServoWorks).
     Name(Span),
-    /// `S2_1500` (ServoWorks multi-spindle): spindle number and speed.
-    Indexed(u32, Num),
     /// The letter had no value; a diagnostic was emitted.
     Missing,
 }
@@ -235,17 +233,29 @@ pub struct Word {
     pub letter: u8,
     /// Written after a comma (`,C` / `,R` chamfer and corner in FANUC).
     pub comma: bool,
-    pub letter_span: Span,
+    /// `S2_1500` (ServoWorks multi-spindle): the spindle number; the value is the speed.
+    pub spindle: Option<u16>,
     pub value: WordValue,
 }
+
+// The syntax tree holds one `Item` per word: its size is most of the tree's memory.
+// A word fits 32 bytes (the item kind's tag goes into a niche of `comma`), so every
+// other item kind must fit beside it; this assertion keeps it so.
+const _: () = assert!(std::mem::size_of::<Item>() <= 40);
 
 impl Word {
     /// The literal numeric value, if the word has one.
     pub fn num(&self) -> Option<&Num> {
         match &self.value {
-            WordValue::Num(n) | WordValue::Indexed(_, n) => Some(n),
+            WordValue::Num(n) => Some(n),
             _ => None,
         }
+    }
+
+    /// The span of the address letter, given the word's item span.
+    pub fn letter_span(&self, item: Span) -> Span {
+        let at = item.start + u32::from(self.comma);
+        Span::new(at, at + 1)
     }
 
     pub fn letter_char(&self) -> char {
@@ -337,8 +347,9 @@ impl OKeyword {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum OLabel {
     Number(u32),
-    /// Span of the name between `<` and `>`.
-    Name(Span),
+    /// `o<name>`: the name lies between the `<` and `>` of the label span
+    /// ([`OWord::name_span`]).
+    Name,
     /// Computed label (`o#1`, `o[…]`).
     Expr(ExprId),
     Missing,
@@ -349,9 +360,26 @@ pub struct OWord {
     pub label: OLabel,
     pub label_span: Span,
     pub keyword: Option<OKeyword>,
-    pub keyword_span: Span,
-    /// Range into [`Program::expr_lists`].
-    pub args: (u32, u32),
+    /// First of the arguments in [`Program::expr_lists`].
+    pub args_start: u32,
+    /// Number of arguments (a call with more is cut at `u16::MAX`).
+    pub args_len: u16,
+}
+
+impl OWord {
+    /// Range of the arguments in [`Program::expr_lists`].
+    pub fn args(&self) -> (u32, u32) {
+        (self.args_start, self.args_start + u32::from(self.args_len))
+    }
+
+    /// The name of an `o<name>` label, without its brackets.
+    pub fn name_span(&self) -> Span {
+        let s = self.label_span;
+        Span::new(
+            (s.start + 1).min(s.end),
+            s.end.saturating_sub(1).max(s.start),
+        )
+    }
 }
 
 /// FANUC Custom Macro B (and ServoWorks macro) statements.

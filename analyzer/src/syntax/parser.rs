@@ -217,10 +217,7 @@ fn append_rebased(program: &mut Program, second: Program, lines: u32) {
                 if let OLabel::Expr(e) = o.label {
                     o.label = OLabel::Expr(id(e));
                 }
-                o.args = (
-                    o.args.0.saturating_add(lists),
-                    o.args.1.saturating_add(lists),
-                );
+                o.args_start = o.args_start.saturating_add(lists);
                 ItemKind::OWord(o)
             }
             ItemKind::Macro(m) => ItemKind::Macro(match m {
@@ -307,6 +304,8 @@ struct Cx<'p> {
     depth: u32,
     /// Whether tokens are recorded.
     tokens: bool,
+    /// The spindle number of the word being read (`S2_1500`).
+    spindle: Option<u16>,
 }
 
 fn is_ws(b: u8) -> bool {
@@ -477,6 +476,7 @@ impl Parser {
             dialect,
             depth: 0,
             tokens: self.tokens,
+            spindle: None,
         };
 
         if self.after_end {
@@ -703,7 +703,7 @@ fn plain_line(
             kind: ItemKind::Word(Word {
                 letter: b,
                 comma: false,
-                letter_span: span(ls, ls + 1),
+                spindle: None,
                 value: WordValue::Num(Num {
                     value: if negative { -v } else { v },
                     span: span(ns, i),
@@ -1590,14 +1590,14 @@ impl<'p> Cx<'p> {
         let letter = self.text[ls].to_ascii_uppercase();
         self.pos += 1;
         self.token(ls, TokenKind::Letter);
-        let letter_span = Span::new(ls as u32, self.pos as u32);
         self.ws();
+        self.spindle = None;
         let value = self.word_value(letter);
         self.push_item(
             ItemKind::Word(Word {
                 letter,
                 comma,
-                letter_span,
+                spindle: self.spindle,
                 value,
             }),
             start,
@@ -1673,7 +1673,8 @@ impl<'p> Cx<'p> {
                     let speed = self.number(false);
                     // The `_` is part of the number token run.
                     let _ = speed_start;
-                    return WordValue::Indexed(n.value.max(0.0) as u32, speed);
+                    self.spindle = Some(n.value.clamp(0.0, f64::from(u16::MAX)) as u16);
+                    return WordValue::Num(speed);
                 }
                 WordValue::Num(n)
             }
@@ -1803,7 +1804,7 @@ impl<'p> Cx<'p> {
                 if self.at(j) == Some(b'>') {
                     self.pos = j + 1;
                     self.token(ls, TokenKind::Name);
-                    OLabel::Name(Span::new(ls as u32 + 1, j as u32))
+                    OLabel::Name
                 } else {
                     self.pos = self.limit;
                     self.token(ls, TokenKind::Unknown);
@@ -1870,7 +1871,7 @@ impl<'p> Cx<'p> {
         }
         // A bare `O100` (LinuxCNC 2.9: the head of an M98 subprogram or a title) has no
         // keyword; only an unknown word after the label is an error.
-        let bare = kw_span.is_empty() && matches!(label, OLabel::Number(_) | OLabel::Name(_)) && {
+        let bare = kw_span.is_empty() && matches!(label, OLabel::Number(_) | OLabel::Name) && {
             let mut j = self.pos;
             while self.at(j).is_some_and(is_ws) {
                 j += 1;
@@ -1931,14 +1932,16 @@ impl<'p> Cx<'p> {
                 }
             }
         }
+        // Hostile input aside, calls have a handful of arguments.
+        args.truncate(usize::from(u16::MAX));
+        let args_len = args.len() as u16;
         self.p.expr_lists.extend(args);
-        let args_end = self.p.expr_lists.len() as u32;
         let ow = OWord {
             label,
             label_span,
             keyword,
-            keyword_span: kw_span,
-            args: (args_start, args_end),
+            args_start,
+            args_len,
         };
         // The O-word item spans up to the end of its arguments.
         self.push_item(ItemKind::OWord(ow), start);

@@ -1290,7 +1290,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             match &it.kind {
                 ItemKind::Word(word) => {
                     let val = match word.value {
-                        WordValue::Num(n) | WordValue::Indexed(_, n) => Some(n.value),
+                        WordValue::Num(n) => Some(n.value),
                         WordValue::Expr(e) => self.eval(&prog, e)?,
                         WordValue::Name(s) => {
                             w.pname = Some(prog.str_of(s).into_owned());
@@ -1661,7 +1661,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Next);
         };
         let ctrl = self.files[fi].ctrl.get(&bi).cloned().unwrap_or_default();
-        let args: Vec<ExprId> = p.expr_list(ow.args).to_vec();
+        let args: Vec<ExprId> = p.expr_list(ow.args()).to_vec();
         let cond = |s: &Self| -> Result<bool, Diagnostic> {
             match args.first() {
                 Some(e) => Ok(s.eval_num(p, *e)? != 0.0),
@@ -1753,7 +1753,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 }
                 let key = match ow.label {
                     OLabel::Expr(e) => Some(format!("{}", self.eval_num(p, e)?.round() as i64)),
-                    ref l => label_key(p, l),
+                    _ => label_key(p, &ow),
                 };
                 let Some(key) = key else {
                     return Err(self.err(codes::FLOW, span, "call without a subroutine name"));
@@ -1822,7 +1822,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     if o.keyword == Some(OKeyword::Else) {
                         return Ok(Flow::Goto(fi, b + 1));
                     }
-                    let a = p.expr_list(o.args).first().copied();
+                    let a = p.expr_list(o.args()).first().copied();
                     if let Some(a) = a {
                         if self.eval_num(p, a)? != 0.0 {
                             return Ok(Flow::Goto(fi, b + 1));

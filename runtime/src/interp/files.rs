@@ -54,10 +54,10 @@ pub struct FileEntry<'a> {
 }
 
 /// The key of an O-word label (`100`, `name`).
-pub fn label_key(p: &Program, label: &OLabel) -> Option<String> {
-    match label {
+pub fn label_key(p: &Program, ow: &analyzer::syntax::OWord) -> Option<String> {
+    match ow.label {
         OLabel::Number(n) => Some(n.to_string()),
-        OLabel::Name(s) => Some(p.str_of(*s).trim().to_ascii_lowercase()),
+        OLabel::Name => Some(p.str_of(ow.name_span()).trim().to_ascii_lowercase()),
         _ => None,
     }
 }
@@ -140,7 +140,7 @@ impl<'a> FileEntry<'a> {
                             }
                             continue;
                         };
-                        let Some(key) = label_key(&p, &ow.label) else {
+                        let Some(key) = label_key(&p, ow) else {
                             continue;
                         };
                         self.index_oword(&mut stack, key, kw, bi);

@@ -4,7 +4,7 @@
 
 use analyzer::dialect::Dialect;
 use analyzer::syntax::{
-    Block, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, Program, WordValue,
+    Block, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, OWord, Program, WordValue,
 };
 use analyzer::Span;
 
@@ -54,10 +54,10 @@ fn program_key(program: &Program, name: Span, number: Option<u32>) -> String {
     }
 }
 
-fn label_key(program: &Program, label: &OLabel) -> Option<String> {
-    match label {
+fn label_key(program: &Program, ow: &OWord) -> Option<String> {
+    match ow.label {
         OLabel::Number(n) => Some(n.to_string()),
-        OLabel::Name(span) => Some(program.str_of(*span).trim().to_ascii_lowercase()),
+        OLabel::Name => Some(program.str_of(ow.name_span()).trim().to_ascii_lowercase()),
         _ => None,
     }
 }
@@ -118,7 +118,7 @@ pub fn block_occurrences(program: &Program, block: &Block, out: &mut Vec<Occ>) {
     for item in program.items_of(block) {
         match &item.kind {
             ItemKind::OWord(ow) => {
-                let Some(key) = label_key(program, &ow.label) else {
+                let Some(key) = label_key(program, ow) else {
                     continue;
                 };
                 out.push(Occ {

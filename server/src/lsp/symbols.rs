@@ -1,7 +1,7 @@
 //! Document symbols and folding ranges: programs, subprograms, O-word control
 //! blocks and tool sections, computed once as nested regions of blocks.
 
-use analyzer::syntax::{ItemKind, OKeyword, OLabel, Program};
+use analyzer::syntax::{ItemKind, OKeyword, OLabel, OWord, Program};
 use analyzer::Span;
 use ropey::Rope;
 #[allow(deprecated)]
@@ -32,10 +32,13 @@ pub struct Region {
     pub parent: Option<usize>,
 }
 
-fn label_text(program: &Program, l: &OLabel) -> String {
-    match l {
+fn label_text(program: &Program, ow: &OWord) -> String {
+    match ow.label {
         OLabel::Number(n) => format!("o{n}"),
-        OLabel::Name(s) => format!("o<{}>", program.str_of(*s).trim().to_ascii_lowercase()),
+        OLabel::Name => format!(
+            "o<{}>",
+            program.str_of(ow.name_span()).trim().to_ascii_lowercase()
+        ),
         _ => "o?".into(),
     }
 }
@@ -108,7 +111,7 @@ pub fn regions(program: &Program) -> Vec<Region> {
                     ));
                 }
                 ItemKind::OWord(ow) => {
-                    let label = label_text(program, &ow.label);
+                    let label = label_text(program, &ow);
                     let Some(kw) = ow.keyword else { continue };
                     let name = format!("{label} {}", kw.as_str());
                     match kw {
