@@ -111,7 +111,7 @@ pub fn regions(program: &Program) -> Vec<Region> {
                     ));
                 }
                 ItemKind::OWord(ow) => {
-                    let label = label_text(program, &ow);
+                    let label = label_text(program, ow);
                     let Some(kw) = ow.keyword else { continue };
                     let name = format!("{label} {}", kw.as_str());
                     match kw {
