@@ -8,7 +8,7 @@ pub mod plan;
 pub mod rules;
 
 pub use interp::{
-    rerun, run, run_checkpointed, run_streaming, run_with_snapshots, BlockSnapshot, Checkpoints,
-    Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile, Resolver, RunInput, RunOutput,
-    CANON_FILE_NAME,
+    rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
+    BlockSnapshot, Checkpoints, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile,
+    Resolver, RunInput, RunOutput, CANON_FILE_NAME,
 };

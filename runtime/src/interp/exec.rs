@@ -81,16 +81,26 @@ const STREAM_CHUNK: usize = 4096;
 /// them when `k == motions.len()`).
 pub type MotionSink<'s> = dyn FnMut(&[Motion], &[Event]) + 's;
 
+/// A [`MotionSink`] that receives the interpreter's own buffers: it may take their
+/// contents (swapping in empty vectors it has recycled) instead of copying them.
+/// Whatever it leaves in them is dropped.
+pub type OwnedMotionSink<'s> = dyn FnMut(&mut Vec<Motion>, &mut Vec<Event>) + 's;
+
 /// Like [`run_with_snapshots`] without snapshots, but motions and events go to `sink`
 /// while the program runs instead of accumulating in the output: hosts that only
 /// need totals (cycle time) or nothing at all (lint) run in memory that does not grow
 /// with the program. The returned output has empty `motions` and `events`.
 pub fn run_streaming(input: &RunInput<'_>, sink: &mut MotionSink<'_>) -> RunOutput {
+    run_streaming_owned(input, &mut |m, e| sink(m, e))
+}
+
+/// [`run_streaming`] handing over the buffers themselves ([`OwnedMotionSink`]).
+pub fn run_streaming_owned(input: &RunInput<'_>, sink: &mut OwnedMotionSink<'_>) -> RunOutput {
     let mut it = Interp::new(input, false);
     it.run_main_with(Some(sink));
     let mut out = it.finish();
     if !out.motions.is_empty() || !out.events.is_empty() {
-        sink(&out.motions, &out.events);
+        sink(&mut out.motions, &mut out.events);
     }
     out.motions = Vec::new();
     out.events = Vec::new();
@@ -840,12 +850,12 @@ impl<'a, 'i> Interp<'a, 'i> {
 
     /// Hands the motions and events so far to `sink`, unless a compensated move is
     /// still pending (it may yet be moved, so it must stay in the buffer).
-    fn drain_to(&mut self, sink: &mut MotionSink<'_>) {
+    fn drain_to(&mut self, sink: &mut OwnedMotionSink<'_>) {
         if !self.st.comp_queue.is_empty() {
             return;
         }
-        sink(&self.out.motions, &self.out.events);
         self.motions_drained += self.out.motions.len();
+        sink(&mut self.out.motions, &mut self.out.events);
         self.out.motions.clear();
         self.out.events.clear();
     }
@@ -855,7 +865,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.motions_drained > 0 || !self.out.motions.is_empty()
     }
 
-    fn run_main_with(&mut self, mut sink: Option<&mut MotionSink<'_>>) {
+    fn run_main_with(&mut self, mut sink: Option<&mut OwnedMotionSink<'_>>) {
         // A restored rerun has the input files' diagnostics from before.
         if !self.resume.as_ref().is_some_and(|r| r.restored) {
             self.spec_input_files();

@@ -20,8 +20,8 @@ pub mod tcp;
 mod types;
 
 pub use exec::{
-    rerun, run, run_checkpointed, run_streaming, run_with_snapshots, run_without_fast_path,
-    Checkpoints, MotionSink, SNAPSHOT_LIMIT,
+    rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
+    run_without_fast_path, Checkpoints, MotionSink, OwnedMotionSink, SNAPSHOT_LIMIT,
 };
 pub use state::{Modal, State};
 pub use types::*;

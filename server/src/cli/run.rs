@@ -415,10 +415,11 @@ fn plan_beside(
                 }
                 plan.finish()
             });
-            let out = runtime::run_streaming(input, &mut |m, e| {
+            let out = runtime::run_streaming_owned(input, &mut |m, e| {
+                // The full buffers go to the planner; emptied ones come back.
                 let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
-                mb.extend_from_slice(m);
-                eb.extend_from_slice(e);
+                std::mem::swap(m, &mut mb);
+                std::mem::swap(e, &mut eb);
                 // The planner only stops early by panicking, which the join passes on.
                 let _ = tx.send((mb, eb));
             });
