@@ -267,11 +267,12 @@ impl Interp<'_, '_> {
                 "G7X error: I must be greater than zero.",
             ));
         }
-        // Under cutter compensation (G70 only) the passes start from where the
-        // block's approach left the tool, as LinuxCNC does since its fix of the
-        // G7x start point; the 2.9.0 pre-release used as reference starts them
-        // from the profile's end, which only changes compensated moves.
+        // Under cutter compensation (G70 only) rs274 keeps the programmed point
+        // where the approach left it, but the profile reader has moved its
+        // current (compensated) point to the profile's end.
         if self.st.modal.comp != 400 {
+            self.st.comp_tip[0] = self.st.pos[0];
+            self.st.comp_tip[2] = self.st.pos[2];
             self.st.pos = pos_before;
         }
         let mut path = Path::new(cap.segs);
