@@ -924,6 +924,12 @@ impl Path {
                     return Err("the cycle does not converge".into());
                 }
                 while x - TOL > loc.im {
+                    // Stepping down one depth of cut at a time keeps LinuxCNC's
+                    // rounding; a tiny depth on a tall profile must still end.
+                    guard += 1;
+                    if guard > 10_000_000 {
+                        return Err("the cycle does not converge".into());
+                    }
                     x -= self.delta;
                 }
                 if self.segs[p].dive(&mut loc, x, out, p == 0)? {
@@ -1005,5 +1011,111 @@ pub(crate) fn radius_center(s: C, e: C, r: f64, ccw: bool) -> C {
         mid + d
     } else {
         mid - d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// G71 Q… X10 Z2 D0 I1.5 R0.5 on the profile X4 Z0, X8 Z-5, Z-10: the moves
+    /// rs274 (LinuxCNC 2.9) prints after the block's own approach.
+    #[test]
+    fn g71_passes_match_rs274() {
+        let segs = vec![
+            Seg::line(c(2.0, 10.0), c(0.0, 4.0)),
+            Seg::line(c(0.0, 4.0), c(-5.0, 8.0)),
+            Seg::line(c(-5.0, 8.0), c(-10.0, 8.0)),
+        ];
+        let mut path = Path::new(segs);
+        let mut out = Vec::new();
+        let r = path.g71(0, 10.0, 2.0, 0.0, 0.0, 0.0, 1.5, 0.5, false, &mut out);
+        assert_eq!(r, Ok(()));
+        let (rp, fd) = (true, false);
+        let want = [
+            (rp, 2.0, 10.0),
+            (rp, 2.0, 10.0),
+            (fd, -10.0, 10.0),
+            (rp, -9.5, 10.5),
+            (rp, 1.5, 10.5),
+            (rp, 2.0, 10.0),
+            (rp, 1.5, 8.5),
+            (fd, -10.0, 8.5),
+            (rp, -9.5, 9.0),
+            (rp, 1.0, 9.0),
+            (rp, 1.5, 8.5),
+            (rp, 1.0, 7.0),
+            (fd, -3.75, 7.0),
+            (rp, -3.25, 7.5),
+            (rp, 0.5, 7.5),
+            (rp, 1.0, 7.0),
+            (rp, 0.5, 5.5),
+            (fd, -1.875, 5.5),
+            (rp, -1.375, 6.0),
+            (rp, 0.0, 6.0),
+            (rp, 0.5, 5.5),
+            (rp, 0.0, 4.0),
+            (fd, -5.0, 8.0),
+            (fd, -10.0, 8.0),
+            (fd, -10.0, 10.0),
+        ];
+        assert_eq!(out.len(), want.len());
+        for (k, (m, (rapid, z, x))) in out.iter().zip(want).enumerate() {
+            let (is_rapid, p) = match *m {
+                Out::Rapid(p) => (true, p),
+                Out::Feed(p) => (false, p),
+                Out::Arc { e, .. } => (false, e),
+            };
+            let p = path.unmap(p);
+            assert_eq!(is_rapid, rapid, "move {k}");
+            assert!(
+                (p.re - z).abs() < 1e-9 && (p.im - x).abs() < 1e-9,
+                "move {k}: {p:?}"
+            );
+        }
+    }
+
+    /// A profile that turns back in Z cannot be roughed: rs274 says "Not monotonic".
+    #[test]
+    fn turning_back_is_an_error() {
+        let segs = vec![
+            Seg::line(c(2.0, 12.0), c(0.0, 4.0)),
+            Seg::line(c(0.0, 4.0), c(-5.0, 8.0)),
+            Seg::line(c(-5.0, 8.0), c(-2.0, 8.0)),
+            Seg::line(c(-2.0, 8.0), c(-10.0, 10.0)),
+        ];
+        let mut out = Vec::new();
+        let r = Path::new(segs).g71(0, 12.0, 2.0, 0.0, 0.0, 0.5, 1.0, 0.5, false, &mut out);
+        assert_eq!(r, Err("Not monotonic".to_string()));
+        assert!(out.is_empty());
+    }
+
+    /// Complex division follows Smith's method, so results keep the C runtime's
+    /// rounding: (1 + 2i) / (3 - 4i) = -0.2 + 0.4i.
+    #[test]
+    fn division() {
+        let q = c(1.0, 2.0) / c(3.0, -4.0);
+        assert!((q.re + 0.2).abs() < 1e-15 && (q.im - 0.4).abs() < 1e-15);
+    }
+
+    /// The eight working frames map back as LinuxCNC's output stage does.
+    #[test]
+    fn unmap_frames() {
+        let p = c(1.0, 2.0);
+        let want = [
+            (1.0, 2.0),
+            (-1.0, 2.0),
+            (1.0, -2.0),
+            (-1.0, -2.0),
+            (-2.0, 1.0),
+            (-2.0, -1.0),
+            (2.0, 1.0),
+            (2.0, -1.0),
+        ];
+        for (f, (re, im)) in want.into_iter().enumerate() {
+            let mut path = Path::new(Vec::new());
+            path.flip = f as u8;
+            assert_eq!(path.unmap(p), c(re, im), "frame {f}");
+        }
     }
 }
