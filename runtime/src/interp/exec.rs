@@ -1473,6 +1473,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if w.has_m(60) || w.has_m(610) {
+            // After G40 the programmed point is where the last compensated move was
+            // aimed, but the canon last commanded the tool's offset point, which
+            // the tool change re-reads.
+            if self.st.modal.comp == 400 {
+                let (a, b) = self.plane_axes();
+                let here = self.to_program(self.st.mpos);
+                self.st.pos[a] = here[a];
+                self.st.pos[b] = here[b];
+            }
             for i in 0..6 {
                 self.st.pos[i] -= self.tlo_drift[i];
             }
