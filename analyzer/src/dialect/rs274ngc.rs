@@ -397,8 +397,9 @@ const BASE: &[CodeInfo] = &[
         712,
         Some(1),
         Motion,
-        "Lathe roughing along Z, roughing only (LinuxCNC)",
-        "Variant of G71 from the LinuxCNC lathe cycle family; same words and plane rule.",
+        "Lathe roughing along Z, pockets only (LinuxCNC)",
+        "Skips the first roughing pass and cuts only the pockets after the first one, where \
+         G71.1 stopped. G18 only; not with G41/G42.",
         TURN_CYCLE,
     )
     .only(MODERN),
@@ -425,8 +426,9 @@ const BASE: &[CodeInfo] = &[
         722,
         Some(1),
         Motion,
-        "Lathe roughing along X, roughing only (LinuxCNC)",
-        "Variant of G72 from the LinuxCNC lathe cycle family; same words and plane rule.",
+        "Lathe roughing along X, pockets only (LinuxCNC)",
+        "Skips the first roughing pass and cuts only the pockets after the first one, where \
+         G72.1 stopped. G18 only; not with G41/G42.",
         TURN_CYCLE,
     )
     .only(MODERN),

@@ -95,6 +95,16 @@ impl Rule for UnknownAddress {
                 ));
                 continue;
             }
+            // LinuxCNC reads the profile of a G70-G72 cycle with U and W as relative
+            // X and Z, whatever the machine's axes; a program with such a cycle may
+            // use them in its profile subroutines.
+            if !configured
+                && d == Dialect::Rs274ngc
+                && matches!(w.letter, b'U' | b'W')
+                && has_lathe_cycle(cx.program)
+            {
+                continue;
+            }
             if !configured {
                 let have: String = cx.settings.axes.iter().collect();
                 out.push(Diagnostic::error(
@@ -105,4 +115,16 @@ impl Rule for UnknownAddress {
             }
         }
     }
+}
+
+/// Whether the program has a G70, G71 or G72 cycle (any form) with a literal code.
+fn has_lathe_cycle(p: &crate::syntax::Program) -> bool {
+    p.blocks.iter().any(|b| {
+        p.items_of(b).iter().any(|it| match &it.kind {
+            crate::syntax::ItemKind::Word(w) => {
+                w.letter == b'G' && w.num().is_some_and(|n| (70.0..73.0).contains(&n.value))
+            }
+            _ => false,
+        })
+    })
 }

@@ -22,6 +22,8 @@ use super::types::*;
 
 mod context;
 mod g37;
+mod g7x;
+mod g7x_geom;
 pub(super) use g37::G37Cfg;
 mod resume;
 use crate::canon::{f4, Canon};
@@ -391,6 +393,8 @@ struct Interp<'a, 'i> {
     pending_break: bool,
     /// Checkpoints and rerun state (`resume.rs`); `None` for plain runs.
     resume: Option<resume::Resume>,
+    /// RS274/NGC: the profile of a G70-G72 cycle being read from its subroutine.
+    g7x: Option<g7x::Capture>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -523,6 +527,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             top_context: None,
             naive_tol: 0.0,
             pending_break: false,
+            g7x: None,
             resume: None,
         };
         if let Some(n) = bad_origin {
@@ -1085,7 +1090,8 @@ impl<'a, 'i> Interp<'a, 'i> {
                     .get(bi as usize)
                     .map(|b| f.prog.str_of(b.span))
             })
-            .map(|t| t.trim().to_string())
+            // rs274 shows the line as written, with its indentation.
+            .map(|t| t.trim_end().to_string())
             .unwrap_or_default()
     }
 
@@ -1208,9 +1214,12 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(Flow::Next);
         }
         // A plain motion line needs nothing of `spec_items` but the clearing of its
-        // per-block lists, which the fast path does (no `$`, no expressions).
-        if let Some(r) = self.fast_motion_block(items, block.span) {
-            return r;
+        // per-block lists, which the fast path does (no `$`, no expressions). A G7x
+        // profile being read collects its moves instead of running them.
+        if self.g7x.is_none() {
+            if let Some(r) = self.fast_motion_block(items, block.span) {
+                return r;
+            }
         }
         self.spec_items(&prog, items);
         // A bare O-word line (program title, M98 target) does nothing, not even its comments.
@@ -1358,8 +1367,11 @@ impl<'a, 'i> Interp<'a, 'i> {
                             });
                         }
                         b'O' => {}
+                        // A G7x profile may use U and W (relative X and Z).
                         c @ (b'U' | b'V' | b'W')
-                            if self.ngc() && !self.input.settings.axes.contains(&(c as char)) =>
+                            if self.ngc()
+                                && !self.input.settings.axes.contains(&(c as char))
+                                && !(self.g7x_capturing() && c != b'V') =>
                         {
                             return Err(self.err(
                                 codes::INTERP,
@@ -1445,6 +1457,12 @@ impl<'a, 'i> Interp<'a, 'i> {
         }
         w.raw_k = w.get(b'K');
         self.scale_words(&mut w);
+        // A G7x profile block only adds to the profile; LinuxCNC reads it
+        // without executing any of its other words.
+        if self.g7x_capturing() {
+            self.g7x_profile_block(&w, block.span)?;
+            return Ok(Flow::Next);
+        }
         self.inv_rate_set = false;
         let before = (self.out.motions.len(), self.st.tlo);
         let flow = self.exec_words(fi, bi, &prog, &w, &comments, block.span)?;
@@ -1471,6 +1489,15 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
         }
         if w.has_m(60) || w.has_m(610) {
+            // After G40 the programmed point is where the last compensated move was
+            // aimed, but the canon last commanded the tool's offset point, which
+            // the tool change re-reads.
+            if self.st.modal.comp == 400 {
+                let (a, b) = self.plane_axes();
+                let here = self.to_program(self.st.mpos);
+                self.st.pos[a] = here[a];
+                self.st.pos[b] = here[b];
+            }
             for i in 0..6 {
                 self.st.pos[i] -= self.tlo_drift[i];
             }
@@ -3756,7 +3783,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     | 730
                     | 740
                     | 810..=890
-            ) || (self.ngc() && matches!(g, 50..=53))
+            ) || (self.ngc() && matches!(g, 50..=53 | 700 | 710..=712 | 720..=722))
             {
                 // rs274 lets any other group-1 code in the block win over G80
                 // (`G0 G40 G49 G80` is a rapid with no axis words).
@@ -3957,6 +3984,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                 self.st.mpos = end;
                 self.st.pos = t;
             }
+            700 | 710..=712 | 720..=722 if self.ngc() => self.exec_g7x(mode, w, bspan)?,
             m if is_cycle(m) && (motion.is_some() || has_axes) => self.exec_cycle(m, w, bspan)?,
             _ => {}
         }
@@ -4782,8 +4810,10 @@ impl<'a, 'i> Interp<'a, 'i> {
         // A lathe tool's controlled point is its origin, not the centre of its nose radius.
         let shift = self.lathe_origin([0.0; 6]);
         let t_out = self.lathe_origin(t);
-        let e2_out = [e2[0] + shift[a], e2[1] + shift[b]];
-        let center_out = [center[0] + shift[a], center[1] + shift[b]];
+        // Adding a zero shift would turn a -0 (which rs274 prints as -0.0000) into +0.
+        let sh = |v: f64, d: f64| if d == 0.0 { v } else { v + d };
+        let e2_out = [sh(e2[0], shift[a]), sh(e2[1], shift[b])];
+        let center_out = [sh(center[0], shift[a]), sh(center[1], shift[b])];
         if self.canon.is_some() {
             self.canon(format!(
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",

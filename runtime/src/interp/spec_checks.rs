@@ -418,28 +418,28 @@ impl Interp<'_, '_> {
                 ));
             }
         }
-        // Lathe roughing/finishing cycles.
+        // Lathe roughing/finishing cycles, checked in LinuxCNC's order and words.
         if let Some(&(g, s)) =
             w.g.iter()
                 .find(|(g, _)| matches!(g, 700 | 710 | 711 | 712 | 720 | 721 | 722))
         {
             let name = format!("G{}.{}", g / 10, g % 10);
+            if !w.has(b'Q') {
+                return Err(self.err(codes::LATHE_CYCLE, s, "G7x.x  requires a Q word"));
+            }
+            if g != 700 && self.st.modal.comp != 400 {
+                return Err(self.err(
+                    codes::LATHE_CYCLE,
+                    s,
+                    format!("{name} cannot be used with cutter compensation enabled"),
+                ));
+            }
             if self.st.modal.plane != 180 && !w.has_g(180) {
                 return Err(self.err(
                     codes::LATHE_CYCLE,
                     s,
                     format!("{name} can only be used in XZ plane (G18)"),
                 ));
-            }
-            if !w.has(b'Q') {
-                return Err(self.err(
-                    codes::LATHE_CYCLE,
-                    s,
-                    format!("{name} needs Q: the number of the subroutine that holds the profile"),
-                ));
-            }
-            if g != 700 && self.st.modal.comp != 400 {
-                return Err(self.err(codes::LATHE_CYCLE, s, format!("{name} cannot be used while cutter radius compensation is on: cancel it with G40 first")));
             }
         }
         // Plane selection for arcs in UVW planes.

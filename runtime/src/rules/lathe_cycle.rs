@@ -5,6 +5,9 @@ use analyzer::declare_rule;
 declare_rule! {
     /// ## What it does
     /// Flags the lathe cycles G70, G71 and G72 (and their .1/.2 forms) outside the XZ plane (G18), without Q (the profile subroutine), and G71/G72 while cutter radius compensation is on.
+    /// The interpreter runs the cycle as LinuxCNC does and reports the profile errors LinuxCNC
+    /// stops on under this code too: a profile that is not monotonic, a corner (A/C) that cannot
+    /// be finished, an arc without I/K, U/W in G91, an I that is not positive.
     ///
     /// ## Why is this bad?
     /// LinuxCNC refuses them ("G71.0 can only be used in XZ plane (G18)") and stops.
@@ -23,7 +26,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC. Error; interpretation stops. (The profile's monotonicity is not checked.)
+    /// RS274/NGC. Error; interpretation stops.
     ///
     /// Implements: NGC822
     pub static LATHE_CYCLE = {
