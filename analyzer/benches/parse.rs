@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_in_two, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, parse_lean, ParseOptions};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
@@ -86,6 +86,21 @@ fn bench_parse(c: &mut Criterion) {
         group.bench_function(dialect.as_str(), |b| {
             b.iter(|| {
                 let program = parse(ParseOptions::new(dialect), text.clone());
+                black_box(program.blocks.len())
+            })
+        });
+    }
+    group.finish();
+
+    // Without tokens, as the command line parses.
+    let mut group = c.benchmark_group("parse_lean_1M_lines");
+    short(&mut group);
+    for dialect in Dialect::ALL {
+        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_function(dialect.as_str(), |b| {
+            b.iter(|| {
+                let program = parse_lean(ParseOptions::new(dialect), text.clone());
                 black_box(program.blocks.len())
             })
         });

@@ -411,6 +411,11 @@ impl Parser {
         if !semicolon_ends {
             // Only a line break ends the block: a vectorised search.
             i = memchr::memchr2(b'\n', b'\r', &t[i..]).map_or(t.len(), |k| i + k);
+        } else if let Some(k) = memchr::memchr3(b'\n', b'\r', b';', &t[i..])
+            .filter(|k| memchr::memchr(b'(', &t[i..i + k]).is_none())
+        {
+            // No comment before the first line break or `;`: that ends the block.
+            i += k;
         } else {
             // A comment may contain `;` without ending the block; parentheses do not span lines.
             let mut in_comment = false;
