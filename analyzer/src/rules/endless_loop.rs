@@ -64,6 +64,10 @@ impl Rule for EndlessLoop {
         &ENDLESS_LOOP
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         match p.dialect {

@@ -189,6 +189,10 @@ impl Rule for MacroLoopStructure {
         &MACRO_LOOP_STRUCTURE
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect == Dialect::Fanuc {
             loops(cx.program, Some(out));

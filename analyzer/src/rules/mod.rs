@@ -114,6 +114,13 @@ pub trait Rule: Sync {
     fn reports_on_axis_feed_blocks(&self) -> bool {
         true
     }
+
+    /// Whether the rule has a `check_block` at all. Whole-file rules say `false`
+    /// and are not called once per block (half a million no-op calls on a large
+    /// CAM program).
+    fn has_block_check(&self) -> bool {
+        true
+    }
 }
 
 /// Declares a rule's metadata from its doc comment.
@@ -168,9 +175,16 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         return;
     }
     let mut codes = Vec::new();
-    let skipped = skipped_blocks(cx.program);
+    // The stretches are needed by the whole-file rules too; computing them once
+    // here saves a second pass over every block.
+    let skipped = skipped_blocks_in(cx.program, cx.segments());
+    let block_rules: Vec<&'static dyn Rule> = enabled
+        .iter()
+        .copied()
+        .filter(|r| r.has_block_check())
+        .collect();
     // The rules that can report on an axis/feed block, chosen once for the whole file.
-    let axis_feed: Vec<&'static dyn Rule> = enabled
+    let axis_feed: Vec<&'static dyn Rule> = block_rules
         .iter()
         .copied()
         .filter(|r| r.reports_on_axis_feed_blocks())
@@ -184,7 +198,7 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
             codes.clear();
             run_block_rules(cx, &axis_feed, i, block, &codes, out);
         } else {
-            check_block_at(cx, &enabled, i, &mut codes, out);
+            check_block_at(cx, &block_rules, i, &mut codes, out);
         }
     }
     check_whole_program(cx, &enabled, out);
@@ -282,5 +296,50 @@ pub fn check_whole_program(
 ) {
     for r in enabled {
         r.check_program(cx, out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dialect::Dialect;
+    use crate::syntax::{parse, ParseOptions};
+
+    /// [`check`] skips the block call of rules without a block check; calling it
+    /// anyway must report nothing on any kind of block.
+    #[test]
+    fn rules_without_a_block_check_report_nothing_per_block() {
+        let text = "%\nO1000 (PART)\nN10 G21 G17 G90 G40 G49 G80\nT1 M6\nG43 H1 Z50.\n\
+            G0 X0 Y0 S1200 M3\n#1 = 2\n#<a> = [#1 * 3]\nIF [#1 GT 1] GOTO 20\nWHILE [#1 LT 3] DO1\n\
+            #1 = [#1 + 1]\nEND1\nN20 G1 X1.5 Y2 F300\nX2 Y3 Z4\nG2 X1 Y1 R5\nG81 Z-1 R1 F100\n\
+            G80\nG4 P1\n/ M1\no100 sub\no100 endsub\no100 call [1]\nG92 X0\nG65 P9000 A1 B2\n\
+            M98 P1000 L2\nM99\n(partscope: allow W001)\nG10 L2 P1 X0\nM30\nX1\n%\n";
+        let mut calls = 0;
+        for dialect in [Dialect::Rs274ngc, Dialect::Fanuc, Dialect::Servoworks] {
+            let program = parse(ParseOptions::new(dialect), text.as_bytes().to_vec());
+            let settings = crate::Settings::new(dialect);
+            for (i, block) in program.blocks.iter().enumerate() {
+                let mut codes = Vec::new();
+                context::collect_codes(&program, block, &mut codes);
+                let cx = BlockCx {
+                    program: &program,
+                    block,
+                    index: i,
+                    settings: &settings,
+                    codes: &codes,
+                };
+                for rule in registry::STATIC_RULES
+                    .iter()
+                    .filter(|r| !r.has_block_check())
+                {
+                    let mut out = Vec::new();
+                    rule.check_block(&cx, &mut out);
+                    assert!(out.is_empty(), "{} reported {out:?}", rule.meta().code);
+                    calls += 1;
+                }
+            }
+        }
+        // The seventeen whole-file rules, on every block of three parses.
+        assert!(calls >= 17 * 3 * 30, "{calls}");
     }
 }

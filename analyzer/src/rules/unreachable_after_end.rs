@@ -54,6 +54,10 @@ impl Rule for UnreachableAfterEnd {
         &UNREACHABLE_AFTER_END
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         let d = p.dialect;

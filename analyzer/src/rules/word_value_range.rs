@@ -55,6 +55,13 @@ pub struct WordValueRange;
 struct Ctx<'a, 'b> {
     cx: &'a BlockCx<'b>,
     out: &'a mut Vec<Diagnostic>,
+    /// The letters of the block's words not after a comma ([`letter_bit`]).
+    present: u128,
+}
+
+/// A letter's bit in [`Ctx::present`].
+fn letter_bit(letter: u8) -> u128 {
+    1u128 << (letter & 127)
 }
 
 impl Ctx<'_, '_> {
@@ -66,6 +73,11 @@ impl Ctx<'_, '_> {
         ok: impl Fn(f64) -> bool,
         msg: impl Fn(&str) -> String,
     ) {
+        // A rule checks up to a dozen letters a block, and most are absent: one pass
+        // over the words up front answers them all.
+        if self.present & letter_bit(letter) == 0 {
+            return;
+        }
         let Some((item, w)) = word_item(self.cx, letter) else {
             return;
         };
@@ -95,7 +107,11 @@ impl Rule for WordValueRange {
             .iter()
             .find(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let cyc = |t: u32| cycle.is_some_and(|c| c.num.is_some_and(|n| n.0 == t));
-        let mut k = Ctx { cx, out };
+        let present = cx
+            .words()
+            .filter(|(_, w)| !w.comma)
+            .fold(0, |m, (_, w)| m | letter_bit(w.letter));
+        let mut k = Ctx { cx, out, present };
         match d {
             Dialect::Servoworks => {
                 if has(cx, 'G', 100) {
@@ -408,9 +424,11 @@ impl Rule for WordValueRange {
                     let Some(n) = w.num().filter(|_| !w.comma) else {
                         continue;
                     };
-                    let text = cx.program.str_of(item.span).into_owned();
+                    // Decoded only when there is something to report.
+                    let text = || cx.program.str_of(item.span).into_owned();
                     let l = w.letter_char();
                     if n.value < 0.0 && unsigned.contains(&w.letter) {
+                        let text = text();
                         k.out.push(Diagnostic::error(
                             "W007",
                             item.span,
@@ -426,6 +444,7 @@ impl Rule for WordValueRange {
                         _ => continue,
                     };
                     if usize::from(n.digits) > max {
+                        let text = text();
                         k.out.push(Diagnostic::error(
                             "W007",
                             item.span,
