@@ -65,7 +65,7 @@ mod unreachable_after_end;
 pub(crate) mod util;
 mod word_value_range;
 
-pub use context::{BlockCode, BlockCx, ProgramCx, Seg};
+pub use context::{AxisFeedWords, BlockCode, BlockCx, ProgramCx, Seg};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
 mod word_without_user;
@@ -120,6 +120,15 @@ pub trait Rule: Sync {
     /// CAM program).
     fn has_block_check(&self) -> bool {
         true
+    }
+
+    /// Whether `check_block` is certain to report nothing on an axis/feed block
+    /// with these words, told from one summary the block rules share instead of
+    /// each walking the words. `false` (the default) means "call me"; a rule that
+    /// answers `true` must be silent then (`rules::tests` checks it on random
+    /// blocks).
+    fn silent_on_axis_feed(&self, _cx: &BlockCx<'_>, _words: &AxisFeedWords) -> bool {
+        false
     }
 }
 
@@ -193,15 +202,43 @@ pub fn check(cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         if skipped.get(i).copied().unwrap_or(false) {
             continue;
         }
-        if context::is_axis_feed_block(cx.program, block) {
+        if let Some(words) = context::axis_feed_words(cx.program, block) {
             // No G or M word, so the block has no codes to collect.
             codes.clear();
-            run_block_rules(cx, &axis_feed, i, block, &codes, out);
+            run_axis_feed_rules(cx, &axis_feed, i, block, &words, out);
         } else {
             check_block_at(cx, &block_rules, i, &mut codes, out);
         }
     }
     check_whole_program(cx, &enabled, out);
+}
+
+/// Calls the rules `rules` on the axis/feed block `i` with the words `words`,
+/// except those that can tell from `words` alone that they would be silent.
+fn run_axis_feed_rules(
+    cx: &ProgramCx<'_>,
+    rules: &[&'static dyn Rule],
+    i: usize,
+    block: &crate::syntax::Block,
+    words: &AxisFeedWords,
+    out: &mut Vec<Diagnostic>,
+) {
+    // As in `run_block_rules`: a pathological block gets no block rule.
+    if (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK {
+        return;
+    }
+    let bcx = BlockCx {
+        program: cx.program,
+        block,
+        index: i,
+        settings: cx.settings,
+        codes: &[],
+    };
+    for r in rules {
+        if !r.silent_on_axis_feed(&bcx, words) {
+            r.check_block(&bcx, out);
+        }
+    }
 }
 
 /// The static rules the settings enable, in registry order.
@@ -341,5 +378,105 @@ mod tests {
         }
         // The seventeen whole-file rules, on every block of three parses.
         assert!(calls >= 17 * 3 * 30, "{calls}");
+    }
+
+    /// A rule that claims from the shared summary that it is silent on an
+    /// axis/feed block really reports nothing there, in every dialect, variant
+    /// and axis configuration; and the claim is made often enough to matter.
+    #[test]
+    fn rules_silent_by_summary_report_nothing() {
+        use crate::dialect::Variant;
+        const VALUES: &[&str] = &[
+            "0",
+            "1",
+            "-1",
+            "0.",
+            "-0",
+            "+2",
+            ".5",
+            "-.5",
+            "1.5",
+            "-12.3456",
+            "100000",
+            "123456789",
+            "1234567890",
+            "-1234567890123",
+            "0.0001",
+            "2 5.4",
+            "-3 .25",
+        ];
+        let letters = b"XYZABCUVWIJKRFE";
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = |n: usize| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as usize
+        };
+        let mut text = String::new();
+        for _ in 0..4000 {
+            for w in 0..1 + next(5) {
+                if w > 0 && next(2) == 0 {
+                    text.push(' ');
+                }
+                text.push(letters[next(letters.len())] as char);
+                text.push_str(VALUES[next(VALUES.len())]);
+            }
+            text.push('\n');
+        }
+        let variants = [
+            (Dialect::Rs274ngc, Variant::Linuxcnc),
+            (Dialect::Rs274ngc, Variant::Emc2),
+            (Dialect::Servoworks, Variant::S100M),
+            (Dialect::Fanuc, Dialect::Fanuc.default_variant()),
+        ];
+        let (mut silent, mut checked) = (0, 0);
+        for (dialect, variant) in variants {
+            let program = parse(ParseOptions::new(dialect), text.as_bytes().to_vec());
+            for axes in [
+                &['X', 'Y', 'Z'][..],
+                &['X', 'Y', 'Z', 'A', 'B', 'C', 'U', 'V', 'W', 'E'],
+            ] {
+                for imu in [false, true] {
+                    let mut settings = crate::Settings::new(dialect);
+                    settings.variant = variant;
+                    settings.axes = axes.to_vec();
+                    settings.integer_machine_unit = imu;
+                    for (i, block) in program.blocks.iter().enumerate() {
+                        let words = context::axis_feed_words(&program, block);
+                        assert_eq!(
+                            words.is_some(),
+                            context::is_axis_feed_block(&program, block)
+                        );
+                        let Some(words) = words else {
+                            continue;
+                        };
+                        let cx = BlockCx {
+                            program: &program,
+                            block,
+                            index: i,
+                            settings: &settings,
+                            codes: &[],
+                        };
+                        for rule in registry::STATIC_RULES {
+                            checked += 1;
+                            if !rule.silent_on_axis_feed(&cx, &words) {
+                                continue;
+                            }
+                            silent += 1;
+                            let mut out = Vec::new();
+                            rule.check_block(&cx, &mut out);
+                            assert!(
+                                out.is_empty(),
+                                "{} claimed silence but reported {out:?} on {:?} ({dialect:?})",
+                                rule.meta().code,
+                                program.str_of(block.span)
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert!(silent > 50_000, "{silent} silent of {checked}");
     }
 }

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{has, is_emc2, is_machine_axis};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -48,6 +48,29 @@ declare_rule! {
 
 pub struct UnknownAddress;
 
+/// The letters the dialect reads as words other than axes, and its axis letters,
+/// as bit masks: one test per word instead of two byte scans.
+fn letter_sets(d: Dialect, emc2: bool) -> (u128, u128) {
+    match d {
+        Dialect::Rs274ngc if emc2 => (
+            const { letters(b"DFGHIJKLMNPQRST") },
+            const { letters(b"XYZABC") },
+        ),
+        Dialect::Rs274ngc => (
+            const { letters(b"DEFGHIJKLMNPQRST$@^") },
+            const { letters(b"XYZABCUVW") },
+        ),
+        Dialect::Servoworks => (
+            const { letters(b"DFGHIJKLMNOPQRST") },
+            const { letters(b"XYZABCEUVW") },
+        ),
+        Dialect::Fanuc => (
+            const { letters(b"DEFGHIJKLMNOPQRST") },
+            const { letters(b"XYZABCUVW") },
+        ),
+    }
+}
+
 /// The set of ASCII letters in `s`, one bit per byte value.
 const fn letters(s: &[u8]) -> u128 {
     let mut m = 0u128;
@@ -64,28 +87,30 @@ impl Rule for UnknownAddress {
         &UNKNOWN_ADDRESS
     }
 
+    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
+        // An axis/feed block has no comma words and no G65/G66, so each word's
+        // verdict depends on its letter alone: silent when every letter is one
+        // the dialect reads as a non-axis word, or an axis of the machine (and, for
+        // ServoWorks, not one of the E/U/V/W axes it warns about).
+        let d = cx.program.dialect;
+        let (other, axes) = letter_sets(d, is_emc2(cx.settings));
+        let mut quiet = other;
+        for a in &cx.settings.axes {
+            let l = *a as u32;
+            if l < 128 && axes & (1u128 << l) != 0 {
+                quiet |= 1u128 << l;
+            }
+        }
+        if d == Dialect::Servoworks {
+            quiet &= !const { letters(b"EUVW") };
+        }
+        words.letters & !quiet == 0
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let emc2 = is_emc2(cx.settings);
-        // Letter sets as bit masks: one test per word instead of two byte scans.
-        let (other, axes) = match d {
-            Dialect::Rs274ngc if emc2 => (
-                const { letters(b"DFGHIJKLMNPQRST") },
-                const { letters(b"XYZABC") },
-            ),
-            Dialect::Rs274ngc => (
-                const { letters(b"DEFGHIJKLMNPQRST$@^") },
-                const { letters(b"XYZABCUVW") },
-            ),
-            Dialect::Servoworks => (
-                const { letters(b"DFGHIJKLMNOPQRST") },
-                const { letters(b"XYZABCEUVW") },
-            ),
-            Dialect::Fanuc => (
-                const { letters(b"DEFGHIJKLMNOPQRST") },
-                const { letters(b"XYZABCUVW") },
-            ),
-        };
+        let (other, axes) = letter_sets(d, emc2);
         let in_set = |set: u128, l: u8| l < 128 && set & (1u128 << l) != 0;
         let macro_call =
             d != Dialect::Rs274ngc && (has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661));

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{ItemKind, WordValue};
 
 use super::util::{has, is_drilling_cycle, is_emc2, lit, near_integer, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -97,6 +97,20 @@ fn int_in(v: f64, lo: f64, hi: f64) -> bool {
 impl Rule for WordValueRange {
     fn meta(&self) -> &'static RuleMeta {
         &WORD_VALUE_RANGE
+    }
+
+    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
+        // With no G or M code and only axis, arc and feed letters, the checks
+        // that remain are the sign of F (RS274/NGC), the sign of K and F and the
+        // digit counts (FANUC); ServoWorks checks none of these letters.
+        let bit = |l: u8| 1u128 << l;
+        match cx.program.dialect {
+            Dialect::Servoworks => true,
+            Dialect::Rs274ngc => words.negative & bit(b'F') == 0,
+            Dialect::Fanuc => {
+                words.negative & (bit(b'K') | bit(b'F')) == 0 && words.max_digits <= 9
+            }
+        }
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
