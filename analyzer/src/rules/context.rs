@@ -180,6 +180,17 @@ pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>)
 /// The letters of an axis/feed block: axes, arc centre and radius, feed.
 const AXIS_FEED_LETTERS: &[u8] = b"XYZABCUVWIJKRF";
 
+/// [`AXIS_FEED_LETTERS`] as bits `1 << letter`.
+const AXIS_FEED_MASK: u128 = {
+    let mut m = 0u128;
+    let mut i = 0;
+    while i < AXIS_FEED_LETTERS.len() {
+        m |= 1u128 << AXIS_FEED_LETTERS[i];
+        i += 1;
+    }
+    m
+};
+
 /// What the block rules that do run on an axis/feed block need to know to tell,
 /// without walking the words again, that they have nothing to report
 /// ([`super::Rule::silent_on_axis_feed`]). Letters are bits `1 << letter`.
@@ -210,10 +221,10 @@ pub fn axis_feed_words(program: &Program, block: &Block) -> Option<AxisFeedWords
         let WordValue::Num(n) = &w.value else {
             return None;
         };
-        if w.comma || !AXIS_FEED_LETTERS.contains(&w.letter) {
+        let bit = 1u128 << (w.letter & 127);
+        if w.comma || w.letter >= 128 || AXIS_FEED_MASK & bit == 0 {
             return None;
         }
-        let bit = 1u128 << (w.letter & 127);
         s.repeated |= s.letters & bit != 0;
         s.letters |= bit;
         // NaN counts as negative: a check `v >= 0` rejects it.

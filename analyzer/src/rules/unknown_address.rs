@@ -91,20 +91,25 @@ impl Rule for UnknownAddress {
         // An axis/feed block has no comma words and no G65/G66, so each word's
         // verdict depends on its letter alone: silent when every letter is one
         // the dialect reads as a non-axis word, or an axis of the machine (and, for
-        // ServoWorks, not one of the E/U/V/W axes it warns about).
+        // ServoWorks, not one of the E/U/V/W axes it warns about). A block has
+        // two or three such letters, so they are looked up one by one.
         let d = cx.program.dialect;
         let (other, axes) = letter_sets(d, is_emc2(cx.settings));
-        let mut quiet = other;
-        for a in &cx.settings.axes {
-            let l = *a as u32;
-            if l < 128 && axes & (1u128 << l) != 0 {
-                quiet |= 1u128 << l;
+        let mut rest = words.letters & !other;
+        while rest != 0 {
+            let l = rest.trailing_zeros();
+            rest &= rest - 1;
+            let Ok(letter) = u8::try_from(l) else {
+                return false;
+            };
+            if axes & (1u128 << l) == 0
+                || (d == Dialect::Servoworks && matches!(letter, b'E' | b'U' | b'V' | b'W'))
+                || !is_machine_axis(cx.settings, letter)
+            {
+                return false;
             }
         }
-        if d == Dialect::Servoworks {
-            quiet &= !const { letters(b"EUVW") };
-        }
-        words.letters & !quiet == 0
+        true
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
