@@ -53,6 +53,10 @@ impl Rule for BlockTooLong {
         &BLOCK_TOO_LONG
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         if d == Dialect::Fanuc {

@@ -60,6 +60,10 @@ impl Rule for BracketNesting {
         &BRACKET_NESTING
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Fanuc {

@@ -180,6 +180,62 @@ pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>)
 /// The letters of an axis/feed block: axes, arc centre and radius, feed.
 const AXIS_FEED_LETTERS: &[u8] = b"XYZABCUVWIJKRF";
 
+/// [`AXIS_FEED_LETTERS`] as bits `1 << letter`.
+const AXIS_FEED_MASK: u128 = {
+    let mut m = 0u128;
+    let mut i = 0;
+    while i < AXIS_FEED_LETTERS.len() {
+        m |= 1u128 << AXIS_FEED_LETTERS[i];
+        i += 1;
+    }
+    m
+};
+
+/// What the block rules that do run on an axis/feed block need to know to tell,
+/// without walking the words again, that they have nothing to report
+/// ([`super::Rule::silent_on_axis_feed`]). Letters are bits `1 << letter`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct AxisFeedWords {
+    /// The letters of the block's words.
+    pub letters: u128,
+    /// Some letter appears more than once.
+    pub repeated: bool,
+    /// The letters with a negative value.
+    pub negative: u128,
+    /// The most digits of any number of the block.
+    pub max_digits: u16,
+}
+
+/// [`is_axis_feed_block`] and, for such a block, its [`AxisFeedWords`], in one
+/// pass over the items.
+pub fn axis_feed_words(program: &Program, block: &Block) -> Option<AxisFeedWords> {
+    let items = program.items_of(block);
+    if items.is_empty() || block.skip.is_some() {
+        return None;
+    }
+    let mut s = AxisFeedWords::default();
+    for it in items {
+        let ItemKind::Word(w) = &it.kind else {
+            return None;
+        };
+        let WordValue::Num(n) = &w.value else {
+            return None;
+        };
+        let bit = 1u128 << (w.letter & 127);
+        if w.comma || w.letter >= 128 || AXIS_FEED_MASK & bit == 0 {
+            return None;
+        }
+        s.repeated |= s.letters & bit != 0;
+        s.letters |= bit;
+        // NaN counts as negative: a check `v >= 0` rejects it.
+        if n.value < 0.0 || n.value.is_nan() {
+            s.negative |= bit;
+        }
+        s.max_digits = s.max_digits.max(n.digits);
+    }
+    Some(s)
+}
+
 /// Whether every item of the block is a plain axis/feed word with a literal value
 /// (`X1.5 Z-0.2`, `I3 J0 F200`): no G or M code, no expression, comment, statement
 /// or other letter. Such blocks make up most of a CAM program, and the block rules

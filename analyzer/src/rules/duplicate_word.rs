@@ -5,7 +5,7 @@ use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
 use super::util::{has, removal_span};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -51,6 +51,11 @@ pub struct DuplicateWord;
 impl Rule for DuplicateWord {
     fn meta(&self) -> &'static RuleMeta {
         &DUPLICATE_WORD
+    }
+
+    fn silent_on_axis_feed(&self, _cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
+        // Without a repeated letter there is no duplicate to report.
+        !words.repeated
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -64,11 +64,15 @@ impl Rule for EndlessLoop {
         &ENDLESS_LOOP
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         match p.dialect {
             Dialect::Fanuc => {
-                let ranges = super::macro_loop_structure::loops(p, None);
+                let ranges = super::macro_loop_structure::loops(p, cx.segments(), None);
                 for (s, e) in ranges {
                     let Some(head) = p.blocks.get(s).and_then(|b| {
                         p.items_of(b).iter().find(|i| {

@@ -61,25 +61,43 @@ impl Rule for GotoTarget {
         &GOTO_TARGET
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Fanuc {
             return;
         }
         // Program sections: a new `O` head starts a new search scope.
+        // Plain blocks (words only, no N) hold no head, sequence number or GOTO, so
+        // a run of them takes one step in each pass below.
+        let segs = cx.segments();
         let mut section = vec![0usize; p.blocks.len()];
         let mut cur = 0;
-        for (bi, b) in p.blocks.iter().enumerate() {
-            if p.items_of(b)
-                .iter()
-                .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }))
+        for seg in segs {
+            let Some(b) = p.blocks.get(seg.first) else {
+                break;
+            };
+            if !seg.plain
+                && p.items_of(b)
+                    .iter()
+                    .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }))
             {
                 cur += 1;
             }
-            section[bi] = cur;
+            if let Some(run) = section.get_mut(seg.first..seg.first + seg.len) {
+                run.fill(cur);
+            }
         }
+        let non_plain = || {
+            segs.iter()
+                .filter(|s| !s.plain)
+                .filter_map(|s| p.blocks.get(s.first).map(|b| (s.first, b)))
+        };
         let mut numbers: Vec<(usize, f64)> = Vec::new();
-        for (bi, b) in p.blocks.iter().enumerate() {
+        for (bi, b) in non_plain() {
             for (_, w) in p.words(b) {
                 if w.letter == b'N' {
                     if let Some(v) = lit(w) {
@@ -94,8 +112,8 @@ impl Rule for GotoTarget {
         for &(tb, v) in &numbers {
             index.entry((section[tb], v.to_bits())).or_insert(tb);
         }
-        let ranges = loops(p, None);
-        for (bi, b) in p.blocks.iter().enumerate() {
+        let ranges = loops(p, segs, None);
+        for (bi, b) in non_plain() {
             for item in p.items_of(b) {
                 let target = match item.kind {
                     ItemKind::Macro(MacroStmt::Goto { target })

@@ -77,7 +77,11 @@ struct Frame {
 
 /// Walks the loops of a FANUC program. Returns the closed loop ranges (block
 /// indices of the `DO` and the `END`) and, when `out` is given, reports errors.
-pub(super) fn loops(p: &Program, mut out: Option<&mut Vec<Diagnostic>>) -> Vec<(usize, usize)> {
+pub(super) fn loops(
+    p: &Program,
+    segs: &[super::Seg],
+    mut out: Option<&mut Vec<Diagnostic>>,
+) -> Vec<(usize, usize)> {
     let mut ranges = Vec::new();
     let mut stack: Vec<Frame> = Vec::new();
     let mut report = |d: Diagnostic| {
@@ -95,7 +99,12 @@ pub(super) fn loops(p: &Program, mut out: Option<&mut Vec<Diagnostic>>) -> Vec<(
             ));
         }
     };
-    for (bi, block) in p.blocks.iter().enumerate() {
+    // Plain blocks hold words only, which no arm below matches: their runs are skipped.
+    for seg in segs.iter().filter(|s| !s.plain) {
+        let bi = seg.first;
+        let Some(block) = p.blocks.get(bi) else {
+            break;
+        };
         for item in p.items_of(block) {
             match item.kind {
                 ItemKind::ProgramHead { .. } => unclosed(&mut stack, &mut report),
@@ -189,9 +198,13 @@ impl Rule for MacroLoopStructure {
         &MACRO_LOOP_STRUCTURE
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         if cx.program.dialect == Dialect::Fanuc {
-            loops(cx.program, Some(out));
+            loops(cx.program, cx.segments(), Some(out));
         }
     }
 }

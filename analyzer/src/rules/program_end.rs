@@ -76,6 +76,10 @@ impl Rule for ProgramEnd {
         &PROGRAM_END
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         // A run of plain blocks counts once: they are all code blocks at the

@@ -62,6 +62,10 @@ impl Rule for SequenceNumber {
         &SEQUENCE_NUMBER
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         let d = p.dialect;

@@ -53,6 +53,10 @@ impl Rule for TooFewDecimals {
         &TOO_FEW_DECIMALS
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Rs274ngc {

@@ -86,6 +86,10 @@ impl Rule for LineNumbers {
         &LINE_NUMBERS
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         if p.dialect != Dialect::Rs274ngc {
@@ -112,6 +116,10 @@ impl Rule for LineNumbers {
 impl Rule for LineNumberOrder {
     fn meta(&self) -> &'static RuleMeta {
         &LINE_NUMBER_ORDER
+    }
+
+    fn has_block_check(&self) -> bool {
+        false
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{has, is_emc2, is_machine_axis};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -48,28 +48,83 @@ declare_rule! {
 
 pub struct UnknownAddress;
 
+/// The letters the dialect reads as words other than axes, and its axis letters,
+/// as bit masks: one test per word instead of two byte scans.
+fn letter_sets(d: Dialect, emc2: bool) -> (u128, u128) {
+    match d {
+        Dialect::Rs274ngc if emc2 => (
+            const { letters(b"DFGHIJKLMNPQRST") },
+            const { letters(b"XYZABC") },
+        ),
+        Dialect::Rs274ngc => (
+            const { letters(b"DEFGHIJKLMNPQRST$@^") },
+            const { letters(b"XYZABCUVW") },
+        ),
+        Dialect::Servoworks => (
+            const { letters(b"DFGHIJKLMNOPQRST") },
+            const { letters(b"XYZABCEUVW") },
+        ),
+        Dialect::Fanuc => (
+            const { letters(b"DEFGHIJKLMNOPQRST") },
+            const { letters(b"XYZABCUVW") },
+        ),
+    }
+}
+
+/// The set of ASCII letters in `s`, one bit per byte value.
+const fn letters(s: &[u8]) -> u128 {
+    let mut m = 0u128;
+    let mut i = 0;
+    while i < s.len() {
+        m |= 1u128 << (s[i] & 127);
+        i += 1;
+    }
+    m
+}
+
 impl Rule for UnknownAddress {
     fn meta(&self) -> &'static RuleMeta {
         &UNKNOWN_ADDRESS
     }
 
+    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
+        // An axis/feed block has no comma words and no G65/G66, so each word's
+        // verdict depends on its letter alone: silent when every letter is one
+        // the dialect reads as a non-axis word, or an axis of the machine (and, for
+        // ServoWorks, not one of the E/U/V/W axes it warns about). A block has
+        // two or three such letters, so they are looked up one by one.
+        let d = cx.program.dialect;
+        let (other, axes) = letter_sets(d, is_emc2(cx.settings));
+        let mut rest = words.letters & !other;
+        while rest != 0 {
+            let l = rest.trailing_zeros();
+            rest &= rest - 1;
+            let Ok(letter) = u8::try_from(l) else {
+                return false;
+            };
+            if axes & (1u128 << l) == 0
+                || (d == Dialect::Servoworks && matches!(letter, b'E' | b'U' | b'V' | b'W'))
+                || !is_machine_axis(cx.settings, letter)
+            {
+                return false;
+            }
+        }
+        true
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
         let emc2 = is_emc2(cx.settings);
-        let (other, axes): (&[u8], &[u8]) = match d {
-            Dialect::Rs274ngc if emc2 => (b"DFGHIJKLMNPQRST", b"XYZABC"),
-            Dialect::Rs274ngc => (b"DEFGHIJKLMNPQRST$@^", b"XYZABCUVW"),
-            Dialect::Servoworks => (b"DFGHIJKLMNOPQRST", b"XYZABCEUVW"),
-            Dialect::Fanuc => (b"DEFGHIJKLMNOPQRST", b"XYZABCUVW"),
-        };
+        let (other, axes) = letter_sets(d, emc2);
+        let in_set = |set: u128, l: u8| l < 128 && set & (1u128 << l) != 0;
         let macro_call =
             d != Dialect::Rs274ngc && (has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661));
         for (item, w) in cx.words() {
-            if w.comma || other.contains(&w.letter) {
+            if w.comma || in_set(other, w.letter) {
                 continue;
             }
             let l = w.letter_char();
-            if !axes.contains(&w.letter) {
+            if !in_set(axes, w.letter) {
                 let msg = match d {
                     Dialect::Rs274ngc => format!(
                         "Unknown word starting with {l}: {l} is not a word letter in the `{}` profile.",

@@ -54,19 +54,41 @@ impl Rule for UnreachableAfterEnd {
         &UNREACHABLE_AFTER_END
     }
 
+    fn has_block_check(&self) -> bool {
+        false
+    }
+
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
         let p = cx.program;
         let d = p.dialect;
         let mut targets: Vec<f64> = Vec::new();
         if d == Dialect::Fanuc {
-            for item in &p.items {
-                if let ItemKind::Macro(
-                    MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. },
-                ) = item.kind
-                {
-                    targets.extend(literal(p, target));
+            let mut goto_targets = |items: &[crate::syntax::Item]| {
+                for item in items {
+                    if let ItemKind::Macro(
+                        MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. },
+                    ) = item.kind
+                    {
+                        targets.extend(literal(p, target));
+                    }
                 }
+            };
+            // Plain blocks hold words only, so the items of their runs are skipped;
+            // every other item, inside a block or not, is read in order.
+            let mut next = 0usize;
+            for seg in cx.segments() {
+                let (Some(b), Some(last)) = (p.blocks.get(seg.first), p.blocks.get(seg.last()))
+                else {
+                    break;
+                };
+                let (start, end) = (b.items.0 as usize, last.items.1 as usize);
+                goto_targets(p.items.get(next..start).unwrap_or(&[]));
+                if !seg.plain {
+                    goto_targets(p.items.get(start..end).unwrap_or(&[]));
+                }
+                next = next.max(end);
             }
+            goto_targets(p.items.get(next..).unwrap_or(&[]));
         }
         if d == Dialect::Rs274ngc {
             // LinuxCNC stops reading at an unconditional top-level end; `dead_blocks`
@@ -129,7 +151,23 @@ impl Rule for UnreachableAfterEnd {
                     out.push(unreachable(span, n, end, Severity::Warning));
                 }
             };
-        for b in &p.blocks {
+        for seg in cx.segments() {
+            let (Some(b), Some(last)) = (p.blocks.get(seg.first), p.blocks.get(seg.last())) else {
+                break;
+            };
+            if seg.plain {
+                // A run of plain blocks (words only: no program head, N, O or M
+                // word) starts no scope and ends no program; after an end it is
+                // dead as a whole.
+                if ended.is_some() {
+                    let span = b.span.cover(last.span);
+                    run = Some(match run {
+                        Some((s, n)) => (s.cover(span), n + seg.len),
+                        None => (span, seg.len),
+                    });
+                }
+                continue;
+            }
             if b.kind != BlockKind::Normal || !has_code_items(p, b) {
                 continue;
             }
@@ -204,4 +242,55 @@ fn unreachable(span: crate::span::Span, n: usize, end: &str, severity: Severity)
         span,
         format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{analyze, Dialect, Settings};
+
+    /// The P006 reports of `text`: (covered text, message start).
+    fn p006(dialect: Dialect, text: &str) -> Vec<(String, String)> {
+        let a = analyze(text.as_bytes().to_vec(), &Settings::new(dialect));
+        a.diagnostics
+            .iter()
+            .filter(|d| d.code == "P006")
+            .map(|d| {
+                let covered = text[d.span.start as usize..d.span.end as usize].to_string();
+                let head = d.message.split(':').next().unwrap_or("").to_string();
+                (covered, head)
+            })
+            .collect()
+    }
+
+    /// Runs of plain blocks after the end are counted block by block, as one
+    /// report over all of them.
+    #[test]
+    fn plain_runs_after_the_end_count_every_block() {
+        assert_eq!(
+            p006(
+                Dialect::Servoworks,
+                "G00 X0\nM30\nG01 X1 F100\nX2\nX3 Y4\n(note)\nG00 X10.0\n"
+            ),
+            vec![(
+                "G01 X1 F100\nX2\nX3 Y4\n(note)\nG00 X10.0".to_string(),
+                "These 4 blocks are never executed".to_string()
+            )]
+        );
+    }
+
+    /// A GOTO target after the end starts a live scope, and the plain run
+    /// before it is reported up to its last block.
+    #[test]
+    fn a_goto_target_ends_the_dead_run() {
+        assert_eq!(
+            p006(
+                Dialect::Fanuc,
+                "O1000\n#1=1\nGOTO 20\nM30\nX1.\nX2.\nX3. Z1.\nN20 X3.\nM30\n"
+            ),
+            vec![(
+                "X1.\nX2.\nX3. Z1.".to_string(),
+                "These 3 blocks are never executed".to_string()
+            )]
+        );
+    }
 }

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::ItemKind;
 
 use super::util::{has, is_drilling_cycle, is_emc2, lit, near_integer, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -55,6 +55,13 @@ pub struct WordValueRange;
 struct Ctx<'a, 'b> {
     cx: &'a BlockCx<'b>,
     out: &'a mut Vec<Diagnostic>,
+    /// The letters of the block's words not after a comma ([`letter_bit`]).
+    present: u128,
+}
+
+/// A letter's bit in [`Ctx::present`].
+fn letter_bit(letter: u8) -> u128 {
+    1u128 << (letter & 127)
 }
 
 impl Ctx<'_, '_> {
@@ -66,6 +73,11 @@ impl Ctx<'_, '_> {
         ok: impl Fn(f64) -> bool,
         msg: impl Fn(&str) -> String,
     ) {
+        // A rule checks up to a dozen letters a block, and most are absent: one pass
+        // over the words up front answers them all.
+        if self.present & letter_bit(letter) == 0 {
+            return;
+        }
         let Some((item, w)) = word_item(self.cx, letter) else {
             return;
         };
@@ -87,6 +99,20 @@ impl Rule for WordValueRange {
         &WORD_VALUE_RANGE
     }
 
+    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
+        // With no G or M code and only axis, arc and feed letters, the checks
+        // that remain are the sign of F (RS274/NGC), the sign of K and F and the
+        // digit counts (FANUC); ServoWorks checks none of these letters.
+        let bit = |l: u8| 1u128 << l;
+        match cx.program.dialect {
+            Dialect::Servoworks => true,
+            Dialect::Rs274ngc => words.negative & bit(b'F') == 0,
+            Dialect::Fanuc => {
+                words.negative & (bit(b'K') | bit(b'F')) == 0 && words.max_digits <= 9
+            }
+        }
+    }
+
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         use Severity::{Error as E, Info as I, Warning as W};
         let d = cx.program.dialect;
@@ -95,7 +121,11 @@ impl Rule for WordValueRange {
             .iter()
             .find(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let cyc = |t: u32| cycle.is_some_and(|c| c.num.is_some_and(|n| n.0 == t));
-        let mut k = Ctx { cx, out };
+        let present = cx
+            .words()
+            .filter(|(_, w)| !w.comma)
+            .fold(0, |m, (_, w)| m | letter_bit(w.letter));
+        let mut k = Ctx { cx, out, present };
         match d {
             Dialect::Servoworks => {
                 if has(cx, 'G', 100) {
@@ -408,9 +438,11 @@ impl Rule for WordValueRange {
                     let Some(n) = w.num().filter(|_| !w.comma) else {
                         continue;
                     };
-                    let text = cx.program.str_of(item.span).into_owned();
+                    // Decoded only when there is something to report.
+                    let text = || cx.program.str_of(item.span).into_owned();
                     let l = w.letter_char();
                     if n.value < 0.0 && unsigned.contains(&w.letter) {
+                        let text = text();
                         k.out.push(Diagnostic::error(
                             "W007",
                             item.span,
@@ -426,6 +458,7 @@ impl Rule for WordValueRange {
                         _ => continue,
                     };
                     if usize::from(n.digits) > max {
+                        let text = text();
                         k.out.push(Diagnostic::error(
                             "W007",
                             item.span,

@@ -10,11 +10,13 @@ use super::profile::{scurve_penalty, trapezoid};
 use super::servo::{self, Run, View};
 
 mod blend;
+mod chain;
 use super::{
     cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel, Segment,
     SegmentKind, SegmentTiming, Totals,
 };
 use blend::Circ;
+use chain::Chain;
 
 /// Share of the acceleration arcs keep for the tangential direction until LinuxCNC
 /// finalises them (`BLEND_ACC_RATIO_TANGENTIAL`).
@@ -130,7 +132,7 @@ pub struct Planner {
     overlap: f64,
     totals: Totals,
     /// Straight feed moves held back by the `linuxcnc` model's naive-CAM detector.
-    chain: Vec<Segment>,
+    chain: Chain,
 }
 
 impl Planner {
@@ -161,7 +163,7 @@ impl Planner {
             run_start: 0.0,
             overlap: 0.0,
             totals: Totals::default(),
-            chain: Vec::new(),
+            chain: Chain::default(),
         }
     }
 
@@ -175,7 +177,7 @@ impl Planner {
         match ev {
             Event::Motion(seg) => {
                 if self.lcnc() && chainable(&seg) {
-                    if !self.chain.is_empty() && !self.linkable(&seg) {
+                    if !self.chain.is_empty() && !self.chain.linkable(&seg) {
                         self.flush_chain(out);
                     }
                     self.chain.push(seg);
@@ -223,43 +225,11 @@ impl Planner {
         }
     }
 
-    /// LinuxCNC's canonical layer joins consecutive G64 P… straight moves into one
-    /// while every intermediate point stays within the tolerance (its "naive CAM
-    /// detector", Q defaulting to P), up to 100 points.
-    fn linkable(&self, seg: &Segment) -> bool {
-        let Some(first) = self.chain.first() else {
-            return false;
-        };
-        let last = &self.chain[self.chain.len() - 1];
-        if self.chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
-            return false;
-        }
-        let PathMode::Blend { tolerance } = seg.mode else {
-            return false;
-        };
-        let b = [first.start[0], first.start[1], first.start[2]];
-        let e = [seg.end[0], seg.end[1], seg.end[2]];
-        if b == e {
-            return false;
-        }
-        let m = sub3(&e, &b);
-        let mm = dot3(&m, &m);
-        self.chain.iter().all(|p| {
-            let pt = [p.end[0], p.end[1], p.end[2]];
-            let t0 = (dot3(&m, &sub3(&pt, &b)) / mm).clamp(0.0, 1.0);
-            let q = [b[0] + t0 * m[0], b[1] + t0 * m[1], b[2] + t0 * m[2]];
-            norm3(&sub3(&pt, &q)) <= tolerance
-        })
-    }
-
     /// Sends the held-back moves on as one straight move.
     fn flush_chain(&mut self, out: &mut dyn FnMut(SegmentTiming)) {
-        if self.chain.is_empty() {
+        let Some((first, last)) = self.chain.take() else {
             return;
-        }
-        let first = self.chain[0];
-        let last = self.chain[self.chain.len() - 1];
-        self.chain.clear();
+        };
         let mut seg = last;
         seg.start = first.start;
         let b = [first.start[0], first.start[1], first.start[2]];

@@ -80,6 +80,13 @@ pub(super) fn update_cycle(r: &mut Run, v: &View, next_target: Option<f64>, cycl
         let half = a * r.cycle_time * 0.5;
         let d3 = half * half;
         let disc = d1 + d2 + d3;
+        if cruising(disc, d3, half, v.v_target, r.currentvel) {
+            // The root would exceed the target speed, which caps it, and the speed
+            // does not fall, so the root is not needed: the deceleration flag it
+            // feeds is only raised when the speed falls.
+            let dt = r.cycle_time.max(TIME_EPS);
+            return (saturate((v.v_target - r.currentvel) / dt, a), f64::NAN);
+        }
         let mut maxnewvel = -half;
         if disc > d3 {
             maxnewvel += disc.sqrt();
@@ -122,6 +129,9 @@ fn check_end(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64) {
     }
     let mut v_f = final_vel(v, next_target);
     let v_avg = (r.currentvel + v_f) / 2.0;
+    if far_from_end(dx, v_avg, r.currentvel, v_f, v.accel, cycle) {
+        return;
+    }
     let mut dt = TIME_EPS / 2.0;
     if v_avg > VEL_EPS {
         dt = dt.max(dx / v_avg);
@@ -153,6 +163,36 @@ fn check_end(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64) {
     }
 }
 
+/// Relative margin of the shortcuts below: far above the rounding of the few
+/// operations they stand in for (2^-52 each), far below anything that matters.
+const MARGIN: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// Whether the trapezoid update's `-half + sqrt(disc)` is certain to round to at
+/// least `v_target` (so the target speed is the new speed) while the speed is not
+/// above it: the common cruising period, which then needs no square root.
+fn cruising(disc: f64, d3: f64, half: f64, v_target: f64, currentvel: f64) -> bool {
+    let need = v_target + half;
+    // `need² (1 + m)` under the discriminant puts its root `(1 + m/2)` above
+    // `need`, which no rounding of the root or of the subtraction undoes. NaN or
+    // infinite terms fail a comparison and take the full update.
+    currentvel <= v_target
+        && half >= 0.0
+        && v_target >= 0.0
+        && disc > d3
+        && disc >= need * need * (1.0 + MARGIN)
+}
+
+/// Whether `check_end` is certain to change nothing: the element ends more than
+/// one period ahead (`dx / v_avg ≥ cycle`, so no split) and reaching the final
+/// speed over that time needs less than the acceleration limit (so no
+/// saturation), decided with multiplications instead of its two divisions.
+fn far_from_end(dx: f64, v_avg: f64, currentvel: f64, v_f: f64, accel: f64, cycle: f64) -> bool {
+    v_avg > VEL_EPS
+        && cycle >= TIME_EPS
+        && dx >= cycle * v_avg * (1.0 + MARGIN)
+        && (v_f - currentvel).abs() * v_avg <= accel * dx * (1.0 - MARGIN)
+}
+
 fn set_split(r: &mut Run, split_time: f64, v_f: f64) {
     if r.splitting && split_time > 0.0 {
         return;
@@ -160,4 +200,236 @@ fn set_split(r: &mut Run, split_time: f64, v_f: f64) {
     r.splitting = true;
     r.cycle_time = split_time;
     r.term_vel = v_f;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reference_update_cycle(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64) {
+        let vf = final_vel(v, next_target);
+        let dx = v.target - r.progress;
+        let mut acc_vel: Option<(f64, f64)> = None;
+        if r.ramp && v.tangent && vf >= VEL_EPS {
+            // Linear velocity ramp to the final speed over the remaining distance.
+            let v_avg = (r.currentvel + vf) / 2.0;
+            let mut dt = 1e-16;
+            if v_avg > VEL_EPS {
+                dt = (dx / v_avg).max(1e-16);
+            }
+            let acc = saturate((vf - r.currentvel) / dt, v.accel);
+            acc_vel = Some((acc, vf));
+        }
+        let (acc, vel_desired) = acc_vel.unwrap_or_else(|| {
+            // Trapezoid: the highest speed from which the final speed is still reachable,
+            // accounting for the one-period delay of the update.
+            let a = v.accel;
+            let d1 = vf * vf;
+            let d2 = a * (2.0 * dx - r.currentvel * r.cycle_time);
+            let half = a * r.cycle_time * 0.5;
+            let d3 = half * half;
+            let disc = d1 + d2 + d3;
+            let mut maxnewvel = -half;
+            if disc > d3 {
+                maxnewvel += disc.sqrt();
+            }
+            let newvel = saturate(maxnewvel, v.v_target);
+            let dt = r.cycle_time.max(TIME_EPS);
+            (saturate((newvel - r.currentvel) / dt, a), maxnewvel)
+        });
+        // tcUpdateDistFromAccel
+        let mut v_next = r.currentvel + acc * r.cycle_time;
+        if v_next < 0.0 {
+            v_next = 0.0;
+            if v.target - r.progress < r.currentvel * r.cycle_time {
+                r.progress = v.target;
+            }
+        } else {
+            r.progress += (v_next + r.currentvel) * 0.5 * r.cycle_time;
+            r.progress = r.progress.clamp(0.0, v.target);
+        }
+        r.currentvel = v_next;
+        r.peak = r.peak.max(v_next);
+        r.on_final_decel = (vel_desired - v_next).abs() < VEL_EPS && acc < 0.0;
+        reference_check_end(r, v, next_target, cycle);
+    }
+
+    /// The end check before the shortcut, as the reference.
+    fn reference_check_end(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64) {
+        r.cycle_time = cycle;
+        let dx = v.target - r.progress;
+        if dx <= POS_EPS {
+            r.progress = v.target;
+            set_split(r, 0.0, r.currentvel);
+            if v.stop {
+                r.remove = true;
+            }
+            return;
+        }
+        if v.stop {
+            return;
+        }
+        let mut v_f = final_vel(v, next_target);
+        let v_avg = (r.currentvel + v_f) / 2.0;
+        let mut dt = TIME_EPS / 2.0;
+        if v_avg > VEL_EPS {
+            dt = dt.max(dx / v_avg);
+        } else if dx > v_avg * cycle && dx > POS_EPS {
+            return;
+        }
+        let a_f = (v_f - r.currentvel) / dt;
+        let a_max = v.accel;
+        let a = saturate(a_f, a_max);
+        if a != a_f {
+            let disc = (r.currentvel / a).powi(2) + 2.0 / a * dx;
+            if disc < 0.0 {
+                return;
+            }
+            dt = if disc < TIME_EPS * TIME_EPS {
+                -r.currentvel / a
+            } else if a > 0.0 {
+                -r.currentvel / a + disc.sqrt()
+            } else {
+                -r.currentvel / a - disc.sqrt()
+            };
+            v_f = r.currentvel + dt * a;
+        }
+        if dt < TIME_EPS {
+            r.progress = v.target;
+            set_split(r, 0.0, v_f);
+        } else if dt < cycle {
+            set_split(r, dt, v_f);
+        }
+    }
+
+    /// A small deterministic generator (xorshift64*), so failures reproduce.
+    struct Rng(u64);
+
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+            xs[(self.next() * xs.len() as f64) as usize % xs.len()]
+        }
+    }
+
+    fn bits(r: &Run) -> [u64; 11] {
+        [
+            r.progress.to_bits(),
+            r.currentvel.to_bits(),
+            r.cycle_time.to_bits(),
+            r.term_vel.to_bits(),
+            r.peak.to_bits(),
+            r.splitting as u64,
+            r.active as u64,
+            r.ramp as u64,
+            r.remove as u64,
+            r.on_final_decel as u64,
+            r.blending_next as u64,
+        ]
+    }
+
+    /// Elements run period by period from a random entry speed to their end, with
+    /// the shortcuts and with the reference update: every state after every period
+    /// is bit for bit the same, and the shortcuts are taken in most periods.
+    #[test]
+    fn shortcuts_change_no_bit() {
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        let cycle = 0.001;
+        let (mut periods, mut cruising_periods, mut far_periods) = (0u64, 0u64, 0u64);
+        for case in 0..3000 {
+            let x = rng.next();
+            let v_target = rng.pick(&[0.5, 5.0, 33.333_333_333_333_336, 250.0]) * (0.5 + x);
+            let v = View {
+                target: rng.pick(&[1e-9, 0.05, 0.3, 2.4, 40.0]) * (0.5 + x),
+                v_target,
+                finalvel: rng.pick(&[0.0, v_target, v_target * x, v_target * 2.0]),
+                tangent: case % 3 != 0,
+                stop: case % 5 == 0,
+                accel: rng.pick(&[1.0, 10.0, 500.0, 1000.0, 20000.0]) * (0.5 + x),
+            };
+            let next_target = rng.pick(&[None, Some(v_target), Some(v_target * x), Some(0.0)]);
+            let mut a = Run {
+                currentvel: rng.pick(&[0.0, v_target, v_target * x, v_target * 1.5]),
+                cycle_time: cycle,
+                ramp: case % 7 == 0,
+                ..Run::default()
+            };
+            let mut b = a;
+            for _ in 0..5_000 {
+                let disc_case = {
+                    let vf = final_vel(&v, next_target);
+                    let dx = v.target - a.progress;
+                    let half = v.accel * a.cycle_time * 0.5;
+                    let disc =
+                        vf * vf + v.accel * (2.0 * dx - a.currentvel * a.cycle_time) + half * half;
+                    cruising(disc, half * half, half, v.v_target, a.currentvel)
+                };
+                update_cycle(&mut a, &v, next_target, cycle);
+                reference_update_cycle(&mut b, &v, next_target, cycle);
+                assert_eq!(bits(&a), bits(&b), "case {case}: {v:?}");
+                periods += 1;
+                cruising_periods += disc_case as u64;
+                let dx = v.target - a.progress;
+                let vf = final_vel(&v, next_target);
+                far_periods += far_from_end(
+                    dx,
+                    (a.currentvel + vf) / 2.0,
+                    a.currentvel,
+                    vf,
+                    v.accel,
+                    cycle,
+                ) as u64;
+                if a.remove || a.splitting {
+                    break;
+                }
+            }
+        }
+        assert!(periods > 300_000, "{periods} periods");
+        assert!(
+            cruising_periods > periods / 2,
+            "{cruising_periods} of {periods} cruising"
+        );
+        assert!(
+            far_periods > periods / 2,
+            "{far_periods} of {periods} far from the end"
+        );
+    }
+
+    /// Single updates from random states, including states no run reaches (speed
+    /// above the target, zero or huge values).
+    #[test]
+    fn shortcuts_change_no_bit_from_any_state() {
+        let mut rng = Rng(42);
+        let cycle = 0.001;
+        for case in 0..500_000 {
+            let x = rng.next();
+            let scale = rng.pick(&[0.0, 1e-12, 1e-6, 1.0, 1e3, 1e9]);
+            let v = View {
+                target: rng.next() * scale * 10.0,
+                v_target: rng.next() * scale,
+                finalvel: rng.next() * scale,
+                tangent: case % 2 == 0,
+                stop: case % 3 == 0,
+                accel: (rng.next() * scale).max(1e-9),
+            };
+            let next_target = rng.pick(&[None, Some(x * scale)]);
+            let mut a = Run {
+                progress: v.target * rng.next(),
+                currentvel: rng.next() * scale * 1.2,
+                cycle_time: rng.pick(&[0.0, cycle, cycle * x]),
+                ramp: case % 4 == 0,
+                ..Run::default()
+            };
+            let mut b = a;
+            update_cycle(&mut a, &v, next_target, cycle);
+            reference_update_cycle(&mut b, &v, next_target, cycle);
+            assert_eq!(bits(&a), bits(&b), "case {case}: {v:?}");
+        }
+    }
 }
