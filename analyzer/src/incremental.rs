@@ -642,14 +642,18 @@ impl Shift {
     }
 
     fn block(&self, b: &Block, lines: i64) -> Block {
-        Block {
+        let mut block = Block {
             span: self.span(b.span),
-            end: self.span(b.end),
+            term_end: self.span(b.end()).end,
             line: add(b.line, lines),
             kind: b.kind,
-            skip: b.skip.map(|(s, n)| (self.span(s), n)),
+            skip_level: 0,
+            skip_len: 0,
+            skip_at: 0,
             items: (add(b.items.0, self.items), add(b.items.1, self.items)),
-        }
+        };
+        block.set_skip(b.skip().map(|(s, n)| (self.span(s), n)));
+        block
     }
 
     fn id(&self, e: ExprId) -> ExprId {

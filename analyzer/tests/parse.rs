@@ -145,7 +145,7 @@ fn servoworks_lexical_rules() {
     let prog = p(Dialect::Servoworks, "%\n% This is a line of block delete code\n/N10 G01 X1.0 F100.\nM98 PMoveXY R5\nS2_1500\nOMoveXY\n#101 = #101 + 1.0 (count)\nG80; then prose\n");
     assert_eq!(prog.blocks[0].kind, BlockKind::Percent);
     assert_eq!(prog.blocks[1].kind, BlockKind::Deleted);
-    assert!(prog.blocks[2].skip.is_some());
+    assert!(prog.blocks[2].skip().is_some());
     let (_, p98) = prog
         .words(&prog.blocks[3])
         .find(|(_, w)| w.letter == b'P')
@@ -207,7 +207,7 @@ fn fanuc_blocks_and_macro_b() {
     assert!(matches!(stmts[1], MacroStmt::End { .. }));
     assert!(matches!(stmts[2], MacroStmt::IfGoto { .. }));
     assert!(matches!(stmts[3], MacroStmt::IfThen { .. }));
-    assert_eq!(prog.blocks[11].skip.map(|s| s.1), Some(2));
+    assert_eq!(prog.blocks[11].skip().map(|s| s.1), Some(2));
     assert_eq!(prog.blocks[14].kind, BlockKind::Percent);
     let (_, c) = prog.words(&prog.blocks[12]).next().unwrap();
     assert!(c.comma && c.letter == b'C');

@@ -24,7 +24,7 @@ fn check_lossless(program: &Program, input: &[u8]) {
         );
     }
     for b in &program.blocks {
-        assert!(b.span.start <= b.span.end && b.span.end <= b.end.end);
+        assert!(b.span.start <= b.span.end && b.span.end <= b.end().end);
         for it in program.items_of(b) {
             assert!(
                 it.span.start >= b.span.start && it.span.end <= b.span.end,

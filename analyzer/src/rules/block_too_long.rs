@@ -71,7 +71,7 @@ impl Rule for BlockTooLong {
             .iter()
             .filter(|s| s.plain)
             .filter_map(|s| Some((p.blocks.get(s.first)?, p.blocks.get(s.last())?)))
-            .map(|(a, z)| (a.span.start as usize, z.end.end as usize))
+            .map(|(a, z)| (a.span.start as usize, z.end().end as usize))
             .collect();
         let mut next_run = 0;
         let mut start = 0usize;

@@ -210,7 +210,7 @@ pub struct AxisFeedWords {
 /// pass over the items.
 pub fn axis_feed_words(program: &Program, block: &Block) -> Option<AxisFeedWords> {
     let items = program.items_of(block);
-    if items.is_empty() || block.skip.is_some() {
+    if items.is_empty() || block.skip().is_some() {
         return None;
     }
     let mut s = AxisFeedWords::default();
@@ -244,7 +244,7 @@ pub fn axis_feed_words(program: &Program, block: &Block) -> Option<AxisFeedWords
 pub fn is_axis_feed_block(program: &Program, block: &Block) -> bool {
     let items = program.items_of(block);
     !items.is_empty()
-        && block.skip.is_none()
+        && block.skip().is_none()
         && items.iter().all(|it| match &it.kind {
             ItemKind::Word(w) => {
                 !w.comma

@@ -174,7 +174,7 @@ fn split_fix(cx: &BlockCx<'_>, item: usize) -> Option<TextEdit> {
         ItemKind::Comment(_) => true,
         _ => false,
     });
-    if !clean || cx.block.skip.is_some() {
+    if !clean || cx.block.skip().is_some() {
         return None;
     }
     let at = items.get(item)?.span.start;

@@ -201,11 +201,11 @@ pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::
 /// whole-file rules visit a run of them once ([`super::ProgramCx::segments`]).
 pub fn is_plain(program: &Program, b: &Block) -> bool {
     if b.kind != crate::syntax::BlockKind::Normal
-        || b.skip.is_some()
-        || b.end.end.saturating_sub(b.span.start) > 80
+        || b.skip().is_some()
+        || b.end().end.saturating_sub(b.span.start) > 80
         // Ends its line, so no line holds two blocks.
-        || b.end.end == 0
-        || program.text.get(b.end.end as usize - 1) != Some(&b'\n')
+        || b.end().end == 0
+        || program.text.get(b.end().end as usize - 1) != Some(&b'\n')
     {
         return false;
     }

@@ -443,20 +443,60 @@ pub enum BlockKind {
 pub struct Block {
     /// The block's content, without its terminator.
     pub span: Span,
-    /// The terminator: newline, `;`, `;` + newline, or empty at end of file.
-    pub end: Span,
+    /// Where the terminator (newline, `;`, `;` + newline, or nothing at end of file)
+    /// ends; it starts at `span.end` ([`Block::end`]).
+    pub term_end: u32,
     /// 0-based physical line of the block's first byte.
     pub line: u32,
     pub kind: BlockKind,
-    /// Block skip `/` or `/n`: its span and switch number (1 for a bare `/`).
-    pub skip: Option<(Span, u8)>,
+    /// Block skip switch number (1 for a bare `/`), 0 when the block has none
+    /// ([`Block::skip`]).
+    pub skip_level: u8,
+    /// Length of the block skip mark (`/` or `/n`).
+    pub skip_len: u8,
+    /// Where the block skip mark starts.
+    pub skip_at: u32,
     /// Range into [`Program::items`].
     pub items: (u32, u32),
 }
 
+// One `Block` per line: kept to 32 bytes (spans as offsets, the skip mark unboxed).
+const _: () = assert!(std::mem::size_of::<Block>() <= 32);
+
 impl Block {
+    /// The terminator: newline, `;`, `;` + newline, or empty at end of file.
+    pub fn end(&self) -> Span {
+        Span::new(self.span.end, self.term_end.max(self.span.end))
+    }
+
+    /// Block skip `/` or `/n`: its span and switch number (1 for a bare `/`).
+    pub fn skip(&self) -> Option<(Span, u8)> {
+        (self.skip_level > 0).then(|| {
+            (
+                Span::new(self.skip_at, self.skip_at + u32::from(self.skip_len)),
+                self.skip_level,
+            )
+        })
+    }
+
+    /// Sets or clears the block skip mark.
+    pub fn set_skip(&mut self, skip: Option<(Span, u8)>) {
+        match skip {
+            Some((s, level)) => {
+                self.skip_at = s.start;
+                self.skip_len = s.len().min(u32::from(u8::MAX)) as u8;
+                self.skip_level = level.max(1);
+            }
+            None => {
+                self.skip_at = 0;
+                self.skip_len = 0;
+                self.skip_level = 0;
+            }
+        }
+    }
+
     pub fn full_span(&self) -> Span {
-        self.span.cover(self.end)
+        self.span.cover(self.end())
     }
 }
 

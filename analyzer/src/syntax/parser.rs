@@ -569,14 +569,18 @@ impl Parser {
             }
         }
         let item_end = cx.p.items.len() as u32;
-        p.blocks.push(Block {
+        let mut block = Block {
             span: Span::new(start as u32, content_end as u32),
-            end: Span::new(content_end as u32, end as u32),
+            term_end: end as u32,
             line,
             kind,
-            skip,
+            skip_level: 0,
+            skip_len: 0,
+            skip_at: 0,
             items: (item_start, item_end),
-        });
+        };
+        block.set_skip(skip);
+        p.blocks.push(block);
         if newline {
             self.line += 1;
         }

@@ -1192,7 +1192,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             BlockKind::Deleted | BlockKind::Ignored => return Ok(Flow::Next),
         }
-        if block.skip.is_some() && self.cfg.block_skip {
+        if block.skip().is_some() && self.cfg.block_skip {
             return Ok(Flow::Next);
         }
         // RS274/NGC and FANUC stop at a block they cannot read; the parser
