@@ -318,3 +318,21 @@ fn tv_p15_unary_minus_before_parameter_ngc033() {
     assert_eq!(ngc("#1=2\nG0 X-#1\nM2\n"), vec![]);
     assert_eq!(emc2("#1=2\nG0 X-#1\nM2\n"), vec![(2, "W017", "error")]);
 }
+
+/// TV-52's note (SW106, rule W023, off by default): the second `G51` gives I only, so
+/// J keeps the 0.5 of the first.
+#[test]
+fn tv52_partial_scaling_factors_note_sw106() {
+    let text = "G51 X0 Y0 I2. J0.5\nG01 X10. Y10. F100\nG50\nG51 X0 Y0 I3.\nG01 X10. Y10.\nM30\n";
+    let mut settings = Settings::new(Dialect::Servoworks);
+    settings.select = vec!["W023".into()];
+    let a = analyze(text.as_bytes().to_vec(), &settings);
+    let index = LineIndex::new(text.as_bytes());
+    let found: Vec<(u32, &str)> = a
+        .diagnostics
+        .iter()
+        .map(|d| (index.line_col(d.span.start).0 + 1, d.code))
+        .collect();
+    assert_eq!(found, vec![(1, "W023"), (4, "W023")]);
+    assert!(sw(text).is_empty(), "off by default");
+}

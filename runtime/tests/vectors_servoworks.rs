@@ -282,8 +282,13 @@ fn tv51_scaling() {
 
 #[test]
 fn tv52_per_axis_scaling() {
-    let out = run_sw("G51 X0 Y0 I2. J0.5\nG01 X10. Y10. F100\nM30\n", "");
+    let out = run_sw(
+        "G51 X0 Y0 I2. J0.5\nG01 X10. Y10. F100\nG50\nG51 X0 Y0 I3.\nG01 X10. Y10.\nM30\n",
+        "",
+    );
     assert_pt(out.motions[0].end, &[20.0, 5.0], 1e-12);
+    // J is left out of the second G51, so it keeps 0.5 (SW106).
+    assert_pt(out.motions[1].end, &[30.0, 5.0], 1e-12);
 }
 
 fn cycle_stats(out: &runtime::RunOutput) -> (f64, f64, usize) {

@@ -2966,11 +2966,20 @@ impl<'a, 'i> Interp<'a, 'i> {
                     };
                     [p; 3]
                 }
-                None => [
-                    w.get(b'I').unwrap_or(1.0),
-                    w.get(b'J').unwrap_or(1.0),
-                    w.get(b'K').unwrap_or(1.0),
-                ],
+                None => {
+                    // ServoWorks (§6.3.19, SW106): a factor left out keeps its value from
+                    // the previous G51; elsewhere it is 1.
+                    let kept = if self.dialect == Dialect::Servoworks {
+                        self.st.scale.1
+                    } else {
+                        [1.0; 3]
+                    };
+                    [
+                        w.get(b'I').unwrap_or(kept[0]),
+                        w.get(b'J').unwrap_or(kept[1]),
+                        w.get(b'K').unwrap_or(kept[2]),
+                    ]
+                }
             };
             self.st.scale = (c, f);
             self.st.modal.scaling = true;
