@@ -11,9 +11,13 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_in_two, parse_lean, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, parse_lean, parse_lean_in_two, ParseOptions};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+
+// The allocator the `partscope` binary installs, so the figures are the product's.
+#[global_allocator]
+static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;
 
 const LINES: usize = 1_000_000;
 
@@ -116,6 +120,21 @@ fn bench_parse(c: &mut Criterion) {
         group.bench_function(dialect.as_str(), |b| {
             b.iter(|| {
                 let program = parse_in_two(ParseOptions::new(dialect), text.clone());
+                black_box(program.blocks.len())
+            })
+        });
+    }
+    group.finish();
+
+    // The same without tokens.
+    let mut group = c.benchmark_group("parse_lean_in_two_1M_lines");
+    short(&mut group);
+    for dialect in Dialect::ALL {
+        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
+        group.throughput(Throughput::Bytes(text.len() as u64));
+        group.bench_function(dialect.as_str(), |b| {
+            b.iter(|| {
+                let program = parse_lean_in_two(ParseOptions::new(dialect), text.clone());
                 black_box(program.blocks.len())
             })
         });

@@ -1,9 +1,13 @@
 //! Partscope analyzer: text → lossless syntax → blocks; dialect tables; static
-//! rules; the [`Diagnostic`] type. Pure: no IO, no LSP, no global state.
+//! rules; the [`Diagnostic`] type. Pure: no IO, no LSP, no global state. ([`memory`]
+//! holds an allocator type that hosts may install; the library itself never does.)
+
+#![deny(unsafe_code)]
 
 pub mod diagnostic;
 pub mod dialect;
 pub mod incremental;
+pub mod memory;
 pub mod rules;
 pub mod settings;
 pub mod span;

@@ -3,7 +3,9 @@
 //! whether the guessed state at the split holds or not.
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse_in_two, parse_serial, ParseOptions, Program};
+use analyzer::syntax::{
+    parse_in_two, parse_lean, parse_lean_in_two, parse_serial, ParseOptions, Program,
+};
 use proptest::prelude::*;
 
 fn assert_same(a: &Program, b: &Program, what: &str) {
@@ -33,6 +35,15 @@ fn check(dialect: Dialect, text: &str) {
         &serial,
         &two,
         &format!("{dialect:?}: {:?}", &text[..text.len().min(80)]),
+    );
+    // The lean two-thread parse gives the lean serial tree (no tokens).
+    let lean = parse_lean(opts, text.as_bytes().to_vec());
+    let lean_two = parse_lean_in_two(opts, text.as_bytes().to_vec());
+    assert!(lean_two.tokens.is_empty());
+    assert_same(
+        &lean,
+        &lean_two,
+        &format!("lean, {dialect:?}: {:?}", &text[..text.len().min(80)]),
     );
 }
 
@@ -106,5 +117,8 @@ proptest! {
         let serial = parse_serial(opts, bytes.clone());
         let two = parse_in_two(opts, bytes.clone());
         assert_same(&serial, &two, &format!("{dialect:?}: {:?}", String::from_utf8_lossy(&bytes)));
+        let lean = parse_lean(opts, bytes.clone());
+        let lean_two = parse_lean_in_two(opts, bytes.clone());
+        assert_same(&lean, &lean_two, &format!("lean, {dialect:?}: {:?}", String::from_utf8_lossy(&bytes)));
     }
 }

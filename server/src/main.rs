@@ -8,6 +8,11 @@ mod rules;
 
 use std::process::ExitCode;
 
+// Large files parse into a few large vectors; huge pages spare the kernel most of
+// their page faults (analyzer::memory).
+#[global_allocator]
+static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;
+
 fn main() -> ExitCode {
     cli::main()
 }

@@ -139,11 +139,28 @@ pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
 /// in another state, that guess is thrown away and the first parser simply
 /// continues through the second half.
 pub fn parse_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
-    let text: Arc<[u8]> = text.into();
+    two_halves(opts, text.into(), false)
+}
+
+/// [`parse_in_two`] without tokens: the tree of [`parse_lean`]. The halves parse in
+/// parallel but are then joined by a copy, so the wall time falls by a fifth to a
+/// quarter, not by half (BENCHMARKS.md, session 6); no host uses it by default.
+pub fn parse_lean_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
+    two_halves(opts, text.into(), true)
+}
+
+fn two_halves(opts: ParseOptions, text: Arc<[u8]>, lean: bool) -> Program {
+    let serial = |text: Arc<[u8]>| {
+        if lean {
+            parse_lean(opts, text)
+        } else {
+            parse_serial(opts, text)
+        }
+    };
     let mid = text.len() / 2;
     let split = memchr::memchr(b'\n', &text[mid..]).map(|k| mid + k + 1);
     let Some(split) = split.filter(|s| *s < text.len()) else {
-        return parse_serial(opts, text);
+        return serial(text);
     };
     let first_byte = text
         .iter()
@@ -160,11 +177,19 @@ pub fn parse_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
         let handle = std::thread::Builder::new().spawn_scoped(s, move || {
             let mut p = with_capacity(opts.dialect, t2.clone(), t2.len() - split);
             let mut parser = Parser::resume(opts, t2, split, 0, guess);
+            if lean {
+                p.tokens = Vec::new();
+                parser = parser.without_tokens();
+            }
             parser.parse_blocks(&mut p, usize::MAX);
             p
         });
         let mut program = with_capacity(opts.dialect, text.clone(), text.len());
         let mut parser = Parser::new(opts, text.clone());
+        if lean {
+            program.tokens = Vec::new();
+            parser = parser.without_tokens();
+        }
         let all = text.clone();
         while parser.pos < split && parser.pos < all.len() {
             parser.parse_block(&mut program, &all);

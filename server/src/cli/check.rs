@@ -105,7 +105,7 @@ fn check_file(
             Ok(s) => s,
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
-    let text: Arc<[u8]> = bytes.into();
+    let text: Arc<[u8]> = bytes;
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
     // view: ServoWorks `O<name>.dat` files, and FANUC/ServoWorks files that return

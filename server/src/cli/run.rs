@@ -232,7 +232,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
 
-    let text: Arc<[u8]> = bytes.into();
+    let text: Arc<[u8]> = bytes;
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     let resolver = crate::resolve::FsResolver::new(&args.file, config_dir.as_deref(), dialect);
     let emit_canon = args.emit == Some(Emit::Canon);

@@ -20,7 +20,7 @@ pub const DEFAULT_MAX_FILE_MB: u64 = 128;
 /// Reads a program, refusing files above `max_mb` megabytes: by their size
 /// before reading, and by reading at most one byte more than the limit, so a
 /// device or pipe without a size (`/dev/zero`) cannot exhaust memory either.
-pub fn read_program(path: &Path, max_mb: u64) -> Result<Vec<u8>, String> {
+pub fn read_program(path: &Path, max_mb: u64) -> Result<Arc<[u8]>, String> {
     use std::io::Read;
     let limit = max_mb.saturating_mul(1024 * 1024);
     let too_large = |len: u64| {
@@ -30,19 +30,41 @@ pub fn read_program(path: &Path, max_mb: u64) -> Result<Vec<u8>, String> {
             len.div_ceil(1024 * 1024)
         )
     };
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut file = std::fs::File::open(path).map_err(|e| e.to_string())?;
     let len = file.metadata().map_err(|e| e.to_string())?.len();
     if len > limit {
         return Err(too_large(len));
     }
-    let mut bytes = Vec::with_capacity(usize::try_from(len).unwrap_or(0));
-    file.take(limit.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(|e| e.to_string())?;
-    if bytes.len() as u64 > limit {
-        return Err(too_large(bytes.len() as u64));
+    // The syntax tree shares the text as an `Arc<[u8]>`: reading straight into one
+    // spares a copy of the whole file (and, for a large file, as many fresh pages).
+    let size = usize::try_from(len).unwrap_or(0);
+    let mut text: Arc<[u8]> = (0..size).map(|_| 0u8).collect();
+    let mut filled = 0;
+    if let Some(buf) = Arc::get_mut(&mut text) {
+        while filled < buf.len() {
+            match file.read(&mut buf[filled..]) {
+                Ok(0) => break,
+                Ok(n) => filled += n,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(e) => return Err(e.to_string()),
+            }
+        }
     }
-    Ok(bytes)
+    // The file may have changed size since its length was read: whatever is shorter
+    // or longer than expected is read the ordinary way.
+    let mut rest = Vec::new();
+    file.take(limit.saturating_add(1).saturating_sub(filled as u64))
+        .read_to_end(&mut rest)
+        .map_err(|e| e.to_string())?;
+    if filled < size || !rest.is_empty() {
+        let mut all = text.get(..filled).unwrap_or(&[]).to_vec();
+        all.extend_from_slice(&rest);
+        if all.len() as u64 > limit {
+            return Err(too_large(all.len() as u64));
+        }
+        text = all.into();
+    }
+    Ok(text)
 }
 
 /// A loaded config and where it came from.

@@ -1,0 +1,277 @@
+//! A global allocator for hosts that parse large files: [`LargePages`].
+//!
+//! A parsed program is a handful of large vectors (items, blocks, the text), written
+//! once from front to back. With the default allocator each of their 4 KiB pages
+//! costs the kernel a page fault when it is first written; on the real-time kernels
+//! that drive machine tools a fault costs several microseconds, and for a 500 000-line
+//! program the faults took longer than the parse itself (BENCHMARKS.md, session 6).
+//! `LargePages` maps every allocation of at least [`LARGE`] bytes itself, aligned to
+//! 2 MiB and marked for transparent huge pages, so the kernel backs it with 2 MiB
+//! pages where it can: one fault per 2 MiB instead of 512. Everything smaller goes to
+//! the system allocator.
+//!
+//! The cost is memory: a huge page is resident as soon as one byte of it is written,
+//! so each large allocation may hold up to 2 MiB more than the 4 KiB pages would.
+//! Where the kernel has transparent huge pages switched off, or cannot find a free
+//! 2 MiB page, the mapping simply gets 4 KiB pages. On other systems than Linux the
+//! type is the system allocator.
+//!
+//! A host installs it with
+//! `#[global_allocator] static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;`.
+
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
+
+/// Allocations of at least this many bytes are mapped with huge pages.
+pub const LARGE: usize = 4 << 20;
+
+/// The allocator (see the module documentation).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct LargePages;
+
+#[cfg(target_os = "linux")]
+mod large {
+    /// The huge page size of x86-64 and of most aarch64 kernels; on others the
+    /// alignment is merely generous.
+    const HUGE: usize = 2 << 20;
+
+    pub fn round(len: usize) -> Option<usize> {
+        len.checked_add(HUGE - 1).map(|l| l & !(HUGE - 1))
+    }
+
+    /// Maps `len` (a multiple of [`HUGE`]) zeroed bytes at a 2 MiB boundary, or
+    /// returns null.
+    ///
+    /// # Safety
+    /// Plain system calls; the caller owns the returned mapping.
+    pub unsafe fn map(len: usize) -> *mut u8 {
+        let Some(span) = len.checked_add(HUGE) else {
+            return std::ptr::null_mut();
+        };
+        // SAFETY: an anonymous private mapping at an address the kernel chooses.
+        let raw = unsafe {
+            libc::mmap(
+                std::ptr::null_mut(),
+                span,
+                libc::PROT_READ | libc::PROT_WRITE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS | libc::MAP_NORESERVE,
+                -1,
+                0,
+            )
+        };
+        if raw == libc::MAP_FAILED {
+            return std::ptr::null_mut();
+        }
+        // Over-map by one huge page and give back the unaligned head and tail, so
+        // the kernel can back the whole range with huge pages.
+        let addr = raw as usize;
+        let start = (addr + HUGE - 1) & !(HUGE - 1);
+        let head = start - addr;
+        let tail = span - head - len;
+        // SAFETY: both ranges lie inside the mapping just made and are not used.
+        unsafe {
+            if head > 0 {
+                libc::munmap(raw, head);
+            }
+            if tail > 0 {
+                libc::munmap((start + len) as *mut libc::c_void, tail);
+            }
+            // Advice only: a kernel without transparent huge pages ignores it.
+            libc::madvise(start as *mut libc::c_void, len, libc::MADV_HUGEPAGE);
+        }
+        start as *mut u8
+    }
+
+    /// # Safety
+    /// `ptr`/`len` must be a mapping made by [`map`] with this (rounded) length.
+    pub unsafe fn unmap(ptr: *mut u8, len: usize) {
+        // SAFETY: the caller passes a whole mapping of ours.
+        unsafe {
+            libc::munmap(ptr as *mut libc::c_void, len);
+        }
+    }
+
+    /// Grows or shrinks a mapping of ours, moving it if needed (the kernel moves the
+    /// page tables, not the bytes); null when it cannot.
+    ///
+    /// # Safety
+    /// `ptr`/`old` must be a mapping made by [`map`]; `new` is rounded.
+    pub unsafe fn remap(ptr: *mut u8, old: usize, new: usize) -> *mut u8 {
+        // SAFETY: the caller passes a whole mapping of ours.
+        let p = unsafe { libc::mremap(ptr as *mut libc::c_void, old, new, libc::MREMAP_MAYMOVE) };
+        if p == libc::MAP_FAILED {
+            return std::ptr::null_mut();
+        }
+        // SAFETY: advice on the mapping just returned.
+        unsafe {
+            libc::madvise(p, new, libc::MADV_HUGEPAGE);
+        }
+        p as *mut u8
+    }
+}
+
+#[cfg(target_os = "linux")]
+fn is_large(layout: &Layout) -> bool {
+    // Larger alignments than a page are left to the system allocator, which honours
+    // them; a mapping only guarantees page alignment after `mremap`.
+    layout.size() >= LARGE && layout.align() <= 4096
+}
+
+#[cfg(target_os = "linux")]
+// SAFETY: large blocks are private anonymous mappings of at least the requested
+// size, page aligned (which covers the alignments `is_large` admits), zeroed, and
+// released with the same rounded length; everything else is `System`'s.
+unsafe impl GlobalAlloc for LargePages {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if !is_large(&layout) {
+            // SAFETY: forwarded with the caller's guarantees.
+            return unsafe { System.alloc(layout) };
+        }
+        match large::round(layout.size()) {
+            // SAFETY: a fresh mapping.
+            Some(len) => unsafe { large::map(len) },
+            None => std::ptr::null_mut(),
+        }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if !is_large(&layout) {
+            // SAFETY: forwarded with the caller's guarantees.
+            return unsafe { System.alloc_zeroed(layout) };
+        }
+        // SAFETY: anonymous mappings are zeroed by the kernel.
+        unsafe { self.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        if !is_large(&layout) {
+            // SAFETY: the block came from `System` with this layout.
+            return unsafe { System.dealloc(ptr, layout) };
+        }
+        if let Some(len) = large::round(layout.size()) {
+            // SAFETY: the block is one of our mappings of this rounded length.
+            unsafe { large::unmap(ptr, len) }
+        }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        let Ok(new_layout) = Layout::from_size_align(new_size, layout.align()) else {
+            return std::ptr::null_mut();
+        };
+        match (is_large(&layout), is_large(&new_layout)) {
+            // SAFETY: a `System` block resized by `System`.
+            (false, false) => unsafe { System.realloc(ptr, layout, new_size) },
+            (true, true) => match (large::round(layout.size()), large::round(new_size)) {
+                (Some(old), Some(new)) if old == new => ptr,
+                // SAFETY: one of our mappings, resized whole.
+                (Some(old), Some(new)) => unsafe { large::remap(ptr, old, new) },
+                _ => std::ptr::null_mut(),
+            },
+            _ => {
+                // Crossing the threshold: a new block of the other kind and a copy.
+                // SAFETY: `new_layout` is valid; the copy stays within both blocks;
+                // the old block is released with its own layout.
+                unsafe {
+                    let new = self.alloc(new_layout);
+                    if !new.is_null() {
+                        std::ptr::copy_nonoverlapping(ptr, new, layout.size().min(new_size));
+                        self.dealloc(ptr, layout);
+                    }
+                    new
+                }
+            }
+        }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+// SAFETY: every call is forwarded to `System` unchanged.
+unsafe impl GlobalAlloc for LargePages {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        unsafe { System.alloc_zeroed(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Blocks of every kind keep their contents through growth and shrinking
+    /// across the threshold, and come back zeroed when asked.
+    #[test]
+    fn blocks_survive_resizing_across_the_threshold() {
+        let a = LargePages;
+        let sizes = [
+            64,
+            LARGE - 1,
+            LARGE,
+            LARGE + 1,
+            3 * LARGE + 12345,
+            LARGE,
+            100,
+        ];
+        unsafe {
+            let mut layout = Layout::from_size_align(sizes[0], 8).unwrap();
+            let mut p = a.alloc(layout);
+            assert!(!p.is_null());
+            for i in 0..layout.size() {
+                *p.add(i) = (i % 251) as u8;
+            }
+            for &s in &sizes[1..] {
+                let q = a.realloc(p, layout, s);
+                assert!(!q.is_null());
+                let kept = layout.size().min(s);
+                for i in 0..kept {
+                    assert_eq!(*q.add(i), (i % 251) as u8, "byte {i} after resizing to {s}");
+                }
+                for i in kept..s {
+                    *q.add(i) = (i % 251) as u8;
+                }
+                layout = Layout::from_size_align(s, 8).unwrap();
+                p = q;
+            }
+            a.dealloc(p, layout);
+
+            let big = Layout::from_size_align(LARGE + 4096, 64).unwrap();
+            let z = a.alloc_zeroed(big);
+            assert!(!z.is_null());
+            assert_eq!(z as usize % 64, 0);
+            assert!((0..big.size()).step_by(997).all(|i| *z.add(i) == 0));
+            a.dealloc(z, big);
+        }
+    }
+
+    /// A vector that grows past the threshold by doubling, as the parser's do.
+    #[test]
+    fn vectors_grow_through_the_allocator() {
+        let a = LargePages;
+        unsafe {
+            let mut layout = Layout::array::<u64>(1).unwrap();
+            let mut p = a.alloc(layout) as *mut u64;
+            *p = 7;
+            let mut n = 1usize;
+            while n * 8 < 4 * LARGE {
+                let grown = Layout::array::<u64>(2 * n).unwrap();
+                p = a.realloc(p as *mut u8, layout, grown.size()) as *mut u64;
+                assert!(!p.is_null());
+                for i in n..2 * n {
+                    *p.add(i) = 7 + i as u64;
+                }
+                layout = grown;
+                n *= 2;
+            }
+            assert!((0..n).all(|i| *p.add(i) == 7 + i as u64));
+            a.dealloc(p as *mut u8, layout);
+        }
+    }
+}
