@@ -384,6 +384,10 @@ struct Interp<'a, 'i> {
     inv_rate_set: bool,
     /// Plain motion blocks take `fast::fast_motion_block` (off only to test it).
     fast_path: bool,
+    /// The fast path's words, kept between blocks: a `Words` is several hundred
+    /// bytes, and clearing the four letters the fast path writes is cheaper than
+    /// building a new one for every line.
+    fast_words: Option<Box<Words>>,
     /// RS274/NGC: the state saved by M70 outside any subroutine.
     top_context: Option<context::SavedContext>,
     /// G64 Q (naive CAM tolerance) as written; M70 saves it.
@@ -524,6 +528,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             feed_override_off: false,
             inv_rate_set: false,
             fast_path: true,
+            fast_words: Some(Box::default()),
             top_context: None,
             naive_tol: 0.0,
             pending_break: false,
@@ -650,10 +655,19 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             5201 + 20 * origin
         };
+        // Every move asks for this: one slice of the parameters, one unit factor.
         let mut o = [0.0; 6];
-        for (k, v) in o.iter_mut().enumerate() {
-            let raw = self.param(base + k);
-            *v = if k < 3 { raw * self.pfac() } else { raw };
+        if let Some(raw) = self.st.params.get(base..base + 6) {
+            let f = self.pfac();
+            for (k, (v, r)) in o.iter_mut().zip(raw).enumerate() {
+                let r = r.unwrap_or(0.0);
+                *v = if k < 3 { r * f } else { r };
+            }
+        } else {
+            for (k, v) in o.iter_mut().enumerate() {
+                let raw = self.param(base + k);
+                *v = if k < 3 { raw * self.pfac() } else { raw };
+            }
         }
         o
     }

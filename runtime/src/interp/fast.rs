@@ -34,36 +34,23 @@ impl Interp<'_, '_> {
         {
             return None;
         }
-        let mut w = Words::default();
-        let mut axes = false;
-        for it in items {
-            let ItemKind::Word(word) = &it.kind else {
-                return None;
-            };
-            let WordValue::Num(n) = word.value else {
-                return None;
-            };
-            if word.comma {
-                return None;
-            }
-            let c = word.letter;
-            if !matches!(c, b'X' | b'Y' | b'Z' | b'F') {
-                return None;
-            }
+        // Taken out of `self` for the call (an `Option` move, no allocation).
+        let mut w = self.fast_words.take().unwrap_or_default();
+        let r = if fill_plain_words(&mut w, items) {
+            Some(self.fast_motion(&w, bspan))
+        } else {
+            None
+        };
+        // Only these four letters are ever written here; everything else in the
+        // kept words stays as `Words::default()` left it.
+        for c in [b'X', b'Y', b'Z', b'F'] {
             let i = (c - b'A') as usize;
-            // A repeated letter: the general path decides which one counts.
-            if w.v[i].is_some() {
-                return None;
-            }
-            axes |= c != b'F';
-            w.v[i] = Some(n.value);
-            w.span[i] = it.span;
-            w.point[i] = n.has_point;
+            w.v[i] = None;
+            w.span[i] = Span::default();
+            w.point[i] = false;
         }
-        if !axes {
-            return None;
-        }
-        Some(self.fast_motion(&w, bspan))
+        self.fast_words = Some(w);
+        r
     }
 
     /// What `exec_block` and `exec_words` do with a qualifying line, in their order.
@@ -82,4 +69,36 @@ impl Interp<'_, '_> {
         }
         Ok(Flow::Next)
     }
+}
+
+/// Reads a plain motion line's words into `w` (whose X, Y, Z and F are empty):
+/// false when the line is not one (another item or letter, a repeated letter, an
+/// expression, no axis word), with possibly some of the four letters written.
+fn fill_plain_words(w: &mut Words, items: &[Item]) -> bool {
+    let mut axes = false;
+    for it in items {
+        let ItemKind::Word(word) = &it.kind else {
+            return false;
+        };
+        let WordValue::Num(n) = word.value else {
+            return false;
+        };
+        if word.comma {
+            return false;
+        }
+        let c = word.letter;
+        if !matches!(c, b'X' | b'Y' | b'Z' | b'F') {
+            return false;
+        }
+        let i = (c - b'A') as usize;
+        // A repeated letter: the general path decides which one counts.
+        if w.v[i].is_some() {
+            return false;
+        }
+        axes |= c != b'F';
+        w.v[i] = Some(n.value);
+        w.span[i] = it.span;
+        w.point[i] = n.has_point;
+    }
+    axes
 }
