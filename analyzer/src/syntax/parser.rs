@@ -226,6 +226,13 @@ fn append_rebased(program: &mut Program, second: Program, lines: u32) {
         ),
         ..*b
     }));
+    // Without expressions or argument lists on either side (plain CAM output) no
+    // item holds an id to move, and the items are copied as they are.
+    if second.exprs.is_empty() && second.expr_lists.is_empty() && lists == 0 {
+        program.items.extend_from_slice(&second.items);
+        program.diagnostics.extend(second.diagnostics);
+        return;
+    }
     program.items.extend(second.items.iter().map(|it| {
         let kind = match it.kind {
             ItemKind::Word(mut w) => {
