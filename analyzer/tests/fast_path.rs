@@ -8,12 +8,17 @@ use analyzer::dialect::Dialect;
 use analyzer::syntax::{ParseOptions, Parser, Program};
 use proptest::prelude::*;
 
-fn parse_with(dialect: Dialect, text: &[u8], fast: bool) -> Program {
+fn parse_with(dialect: Dialect, text: &[u8], fast: bool, lean: bool) -> Program {
     let opts = ParseOptions::new(dialect);
     let text: Arc<[u8]> = text.into();
     let mut program = analyzer::syntax::parse(opts, Arc::<[u8]>::from(&b""[..]));
     program.text = text.clone();
     let parser = Parser::new(opts, text);
+    let parser = if lean {
+        parser.without_tokens()
+    } else {
+        parser
+    };
     let mut parser = if fast {
         parser
     } else {
@@ -24,10 +29,25 @@ fn parse_with(dialect: Dialect, text: &[u8], fast: bool) -> Program {
 }
 
 fn assert_same(dialect: Dialect, text: &[u8]) {
-    let fast = parse_with(dialect, text, true);
-    let general = parse_with(dialect, text, false);
-    let what = format!("{dialect:?}: {:?}", String::from_utf8_lossy(text));
-    assert_eq!(fast.tokens, general.tokens, "tokens: {what}");
+    let general = parse_with(dialect, text, false, false);
+    // With tokens (editors) and without them (the command line, whose lean parse
+    // also skips the general block bookkeeping for plain lines).
+    for lean in [false, true] {
+        let fast = parse_with(dialect, text, true, lean);
+        same_tree(&fast, &general, dialect, text, lean);
+    }
+}
+
+fn same_tree(fast: &Program, general: &Program, dialect: Dialect, text: &[u8], lean: bool) {
+    let what = format!(
+        "{dialect:?}, lean {lean}: {:?}",
+        String::from_utf8_lossy(text)
+    );
+    if lean {
+        assert!(fast.tokens.is_empty(), "tokens: {what}");
+    } else {
+        assert_eq!(fast.tokens, general.tokens, "tokens: {what}");
+    }
     assert_eq!(fast.blocks, general.blocks, "blocks: {what}");
     // Debug text: a malformed number's NaN is never equal to itself.
     assert_eq!(

@@ -428,11 +428,48 @@ impl Parser {
         // cost two atomic operations per line.
         let text = self.text.clone();
         let mut n = 0;
+        let quick = self.plain_fast && !self.tokens;
         while n < max_blocks && self.pos < text.len() {
-            self.parse_block(program, &text);
+            if !(quick && self.plain_block(program, &text)) {
+                self.parse_block(program, &text);
+            }
             n += 1;
         }
         n
+    }
+
+    /// [`Parser::parse_block`] for a line [`plain_line`] accepts, in a lean parse:
+    /// such a line starts with its first word's letter, so it is a normal, non-blank
+    /// block without a block-skip mark or tokens to record, and none of the general
+    /// bookkeeping applies. Returns `false`, having changed nothing, for any other
+    /// line.
+    fn plain_block(&mut self, p: &mut Program, text: &[u8]) -> bool {
+        let start = self.pos;
+        if self.after_end || !text.get(start).is_some_and(u8::is_ascii_uppercase) {
+            return false;
+        }
+        let (content_end, end, newline) = self.block_bounds();
+        let item_start = p.items.len() as u32;
+        if !plain_line(p, text, start, content_end, self.opts.dialect, false) {
+            return false;
+        }
+        self.seen_content = true;
+        p.blocks.push(Block {
+            span: Span::new(start as u32, content_end as u32),
+            term_end: end as u32,
+            line: self.line,
+            kind: BlockKind::Normal,
+            skip_level: 0,
+            skip_len: 0,
+            skip_at: 0,
+            items: (item_start, p.items.len() as u32),
+        });
+        if newline {
+            self.line += 1;
+        }
+        // The line starts with a letter, so `end > start`.
+        self.pos = end.min(text.len());
+        true
     }
 
     /// Finds the end of the current block's content and of its terminator.
