@@ -18,10 +18,39 @@
 //!
 //! A host installs it with
 //! `#[global_allocator] static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;`.
+//!
+//! It suits one-shot work (the command line, benchmarks). A long-running host that
+//! allocates and frees large blocks over and over (the language server) does better
+//! with the system allocator, which keeps freed memory for reuse instead of handing
+//! it back to the kernel: such a host calls [`LargePages::disable`] first thing.
 
 #![allow(unsafe_code)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicU8, Ordering};
+
+/// 0: large blocks are mapped (the default); 1: a large block has been mapped, so it
+/// can no longer be switched off; 2: switched off, everything goes to `System`.
+static STATE: AtomicU8 = AtomicU8::new(0);
+const ON: u8 = 0;
+const USED: u8 = 1;
+const OFF: u8 = 2;
+
+impl LargePages {
+    /// Sends every allocation to the system allocator from now on. Only possible
+    /// before the first large block is mapped (a block must be freed the way it was
+    /// made); returns whether it took effect.
+    pub fn disable() -> bool {
+        match STATE.compare_exchange(ON, OFF, Ordering::SeqCst, Ordering::SeqCst) {
+            Ok(_) => true,
+            Err(state) => state == OFF,
+        }
+    }
+
+    fn enabled() -> bool {
+        STATE.load(Ordering::Relaxed) != OFF
+    }
+}
 
 /// Allocations of at least this many bytes are mapped with huge pages.
 pub const LARGE: usize = 4 << 20;
@@ -115,7 +144,7 @@ mod large {
 fn is_large(layout: &Layout) -> bool {
     // Larger alignments than a page are left to the system allocator, which honours
     // them; a mapping only guarantees page alignment after `mremap`.
-    layout.size() >= LARGE && layout.align() <= 4096
+    layout.size() >= LARGE && layout.align() <= 4096 && LargePages::enabled()
 }
 
 #[cfg(target_os = "linux")]
@@ -127,6 +156,15 @@ unsafe impl GlobalAlloc for LargePages {
         if !is_large(&layout) {
             // SAFETY: forwarded with the caller's guarantees.
             return unsafe { System.alloc(layout) };
+        }
+        // From here on the switch stays on: this block must be unmapped when freed.
+        // The claim comes before the mapping, so a `disable` racing with it fails.
+        if STATE.load(Ordering::Relaxed) != USED {
+            match STATE.compare_exchange(ON, USED, Ordering::SeqCst, Ordering::SeqCst) {
+                Ok(_) | Err(USED) => {}
+                // SAFETY: switched off meanwhile: a `System` block like any other.
+                Err(_) => return unsafe { System.alloc(layout) },
+            }
         }
         match large::round(layout.size()) {
             // SAFETY: a fresh mapping.
@@ -248,6 +286,21 @@ mod tests {
             assert_eq!(z as usize % 64, 0);
             assert!((0..big.size()).step_by(997).all(|i| *z.add(i) == 0));
             a.dealloc(z, big);
+        }
+    }
+
+    /// Once a large block has been mapped the allocator cannot be switched off
+    /// (the block must be unmapped when freed); the tests above map blocks first.
+    #[test]
+    fn cannot_be_switched_off_after_mapping() {
+        let a = LargePages;
+        unsafe {
+            let layout = Layout::from_size_align(LARGE, 8).unwrap();
+            let p = a.alloc(layout);
+            assert!(!p.is_null());
+            assert!(!LargePages::disable());
+            *p.add(LARGE - 1) = 1;
+            a.dealloc(p, layout);
         }
     }
 
