@@ -240,6 +240,116 @@ unsafe impl GlobalAlloc for LargePages {
     }
 }
 
+/// Faults in the pages of large buffers on a second thread while the calling thread
+/// fills them from the front: the kernel's zeroing of fresh pages (in a virtual machine
+/// also the host's backing of them) then happens beside the parse instead of inside it.
+///
+/// `buffers` are `(address, capacity in bytes)` of buffers that are not reallocated
+/// while `work` runs. `work` reports its progress through [`Progress::report`]: how
+/// many bytes of each buffer are filled and what fraction of the input is done. The
+/// helper keeps each buffer populated up to [`AHEAD`] bytes past its filled part, but
+/// not past the size the progress so far predicts for the whole input (plus 3 %), so
+/// the memory it adds beyond what the work will use stays small.
+///
+/// Only populating (`MADV_POPULATE_WRITE`, Linux 5.14) is asked of the kernel: it
+/// never changes what the buffers hold. Where it is not available, or where threads
+/// cannot be started, `work` simply runs alone.
+pub fn prefault_while<R>(buffers: &[(usize, usize)], work: impl FnOnce(&Progress) -> R) -> R {
+    let progress = Progress {
+        filled: buffers.iter().map(|_| AtomicUsize::new(0)).collect(),
+        done_per_mille: AtomicUsize::new(0),
+        finished: std::sync::atomic::AtomicBool::new(false),
+    };
+    if !cfg!(target_os = "linux") || buffers.is_empty() {
+        return work(&progress);
+    }
+    std::thread::scope(|s| {
+        let p = &progress;
+        let helper =
+            std::thread::Builder::new().spawn_scoped(s, move || populate_ahead(buffers, p));
+        let r = work(p);
+        p.finished.store(true, Ordering::Release);
+        if let Ok(h) = helper {
+            let _ = h.join();
+        }
+        r
+    })
+}
+
+/// How far ahead of the filled part [`prefault_while`] populates a buffer.
+pub const AHEAD: usize = 8 << 20;
+
+/// Progress of the work in [`prefault_while`].
+#[derive(Debug)]
+pub struct Progress {
+    filled: Vec<AtomicUsize>,
+    done_per_mille: AtomicUsize,
+    finished: std::sync::atomic::AtomicBool,
+}
+
+impl Progress {
+    /// `filled[k]`: bytes of buffer `k` written so far; `done`: fraction of the input
+    /// consumed (0 to 1).
+    pub fn report(&self, filled: &[usize], done: f64) {
+        for (a, f) in self.filled.iter().zip(filled) {
+            a.store(*f, Ordering::Relaxed);
+        }
+        let pm = (done.clamp(0.0, 1.0) * 1000.0) as usize;
+        self.done_per_mille.store(pm, Ordering::Release);
+    }
+}
+
+use std::sync::atomic::AtomicUsize;
+
+fn populate_ahead(buffers: &[(usize, usize)], p: &Progress) {
+    const STEP: usize = 2 << 20;
+    let mut populated: Vec<usize> = vec![0; buffers.len()];
+    while !p.finished.load(Ordering::Acquire) {
+        let done = p.done_per_mille.load(Ordering::Acquire);
+        let mut worked = false;
+        for (k, &(addr, cap)) in buffers.iter().enumerate() {
+            let filled = p.filled[k].load(Ordering::Relaxed);
+            // The whole buffer's likely size from the progress so far.
+            let predicted = if done >= 20 {
+                filled.saturating_mul(1030) / done
+            } else {
+                usize::MAX
+            };
+            let target = cap.min(filled.saturating_add(AHEAD)).min(predicted);
+            let from = populated[k].max(filled);
+            if from < target {
+                let to = target.min(from + STEP);
+                populate(addr + from, to - from);
+                populated[k] = to;
+                worked = true;
+            }
+        }
+        if !worked {
+            std::thread::sleep(std::time::Duration::from_micros(200));
+        }
+    }
+}
+
+/// Asks the kernel to fault in the pages of `[addr, addr + len)` for writing.
+#[cfg(target_os = "linux")]
+fn populate(addr: usize, len: usize) {
+    let start = addr & !4095;
+    let end = (addr + len + 4095) & !4095;
+    // SAFETY: `MADV_POPULATE_WRITE` only faults pages in, as a write would, without
+    // changing their contents; on a range that is no longer mapped it fails, which is
+    // ignored.
+    unsafe {
+        libc::madvise(
+            start as *mut libc::c_void,
+            end - start,
+            libc::MADV_POPULATE_WRITE,
+        );
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn populate(_addr: usize, _len: usize) {}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -86,6 +86,29 @@ fn two_halves_equal_serial_parse() {
     }
 }
 
+/// Texts of 4 MiB and more are parsed leanly with their tree prefaulted on a second
+/// thread (`memory::prefault_while`); the tree is the serial parse's all the same.
+#[test]
+fn large_lean_parse_equals_serial_parse() {
+    let mut text = String::new();
+    let mut i = 0;
+    while text.len() < (4 << 20) + 65536 {
+        if i % 97 == 0 {
+            text.push_str(BODY);
+        }
+        text.push_str(&format!("X{}.{} Z-{}\n", i % 1000, i % 7, i % 13));
+        i += 1;
+    }
+    for dialect in Dialect::ALL {
+        let opts = ParseOptions::new(dialect);
+        let serial = parse_serial(opts, text.as_bytes().to_vec());
+        let mut lean = parse_lean(opts, text.as_bytes().to_vec());
+        assert!(lean.tokens.is_empty());
+        lean.tokens = serial.tokens.clone();
+        assert_same(&serial, &lean, &format!("large lean parse, {dialect:?}"));
+    }
+}
+
 #[test]
 fn tiny_inputs() {
     for dialect in Dialect::ALL {

@@ -87,10 +87,43 @@ pub fn parse_lean(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let text: Arc<[u8]> = text.into();
     let mut program = with_capacity(opts.dialect, text.clone(), text.len());
     program.tokens = Vec::new();
-    let mut parser = Parser::new(opts, text).without_tokens();
-    parser.parse_blocks(&mut program, usize::MAX);
+    let mut parser = Parser::new(opts, text.clone()).without_tokens();
+    if text.len() < PREFAULT_FROM {
+        parser.parse_blocks(&mut program, usize::MAX);
+        return program;
+    }
+    // A large file: a second thread faults in the item and block vectors ahead of
+    // the parse (`memory::prefault_while`); the vectors were sized for the whole
+    // text, so they do not move while it works.
+    let buffers = [
+        (
+            program.items.as_ptr() as usize,
+            program.items.capacity() * std::mem::size_of::<Item>(),
+        ),
+        (
+            program.blocks.as_ptr() as usize,
+            program.blocks.capacity() * std::mem::size_of::<Block>(),
+        ),
+    ];
+    let total = text.len().max(1) as f64;
+    crate::memory::prefault_while(&buffers, |progress| {
+        while !parser.is_done() {
+            parser.parse_blocks(&mut program, 4096);
+            progress.report(
+                &[
+                    program.items.len() * std::mem::size_of::<Item>(),
+                    program.blocks.len() * std::mem::size_of::<Block>(),
+                ],
+                parser.pos as f64 / total,
+            );
+        }
+    });
     program
 }
+
+/// Texts from this size on are parsed with their tree's pages faulted in beside the
+/// parse ([`parse_lean`]).
+const PREFAULT_FROM: usize = 4 << 20;
 
 /// The tokens of one block, read again from the text: for programs parsed by
 /// [`parse_lean`], or to look at one block without walking the token list. Equal to
