@@ -150,6 +150,20 @@ fn tv50_g54_1_range_and_g54_words_sw110_sw109() {
     );
 }
 
+/// TV-51's word errors: P with I/J/K (SW100), no factor at all (SW101), a factor
+/// out of 0.001–999.999 (SW102).
+#[test]
+fn tv51_scaling_word_errors_sw100_sw101_sw102() {
+    assert_eq!(
+        sw("G51 P2. I2.\nG50\nG51 X0 Y0\nG50\nG51 P1000.\nG50\nM30\n"),
+        vec![
+            (1, "W002", "error"),
+            (3, "W003", "error"),
+            (5, "W007", "error")
+        ]
+    );
+}
+
 #[test]
 fn tv63_group01_code_in_cycle_block_sw116() {
     let text = "G90 G0 Z50\nM3 S100\nG81 G01 X10. Y10. Z-5. R1. F100\nG80\nM30\n";

@@ -272,6 +272,21 @@ fn tv49_local_coordinate_system() {
     );
     assert_pt(out.motions[0].end, &[5.6, 0.0, 8.6], 1e-12);
     assert_pt(out.motions[1].end, &[0.0, 0.0, 0.0], 1e-12);
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+
+    // `G91 G52 X5.` is ignored (SW107): the local system stays at (5.6, 8.6).
+    let out = run_sw(
+        "G90 G52 X5.6 Z8.6\nG00 X0 Z0\nG91 G52 X5.\nG90 G00 X1. Z0\nG52 X0 Z0\nM30\n",
+        "",
+    );
+    assert_eq!(codes(&out), vec!["K003"], "{:?}", out.diagnostics);
+    assert_eq!(out.diagnostics[0].severity, analyzer::Severity::Warning);
+    let ends: Vec<[f64; 3]> = out
+        .motions
+        .iter()
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect();
+    assert_eq!(ends.last().copied(), Some([6.6, 0.0, 8.6]), "{ends:?}");
 }
 
 #[test]

@@ -3437,6 +3437,10 @@ impl<'a, 'i> Interp<'a, 'i> {
             return Ok(true);
         }
         if w.has_g(520) && !self.ngc() {
+            // ServoWorks ignores a G52 given in incremental mode (SW107; K003 says so).
+            if self.dialect == Dialect::Servoworks && self.st.modal.incremental {
+                return Ok(true);
+            }
             if self.st.modal.rotation {
                 self.diag(
                     codes::COORD_DURING_ROTATION,
