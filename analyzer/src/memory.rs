@@ -1,10 +1,13 @@
-//! A global allocator for hosts that parse large files: [`LargePages`].
+//! Memory for large syntax trees: a global allocator for hosts that parse large
+//! files ([`LargePages`]), and faulting a tree's pages in on a second thread while it
+//! is built ([`prefault_while`]).
 //!
 //! A parsed program is a handful of large vectors (items, blocks, the text), written
 //! once from front to back. With the default allocator each of their 4 KiB pages
-//! costs the kernel a page fault when it is first written; on the real-time kernels
-//! that drive machine tools a fault costs several microseconds, and for a 500 000-line
-//! program the faults took longer than the parse itself (BENCHMARKS.md, session 6).
+//! costs the kernel a page fault when it is first written; on the real-time kernel of
+//! the virtual machine where BENCHMARKS.md was measured a fault costs several
+//! microseconds, and for a 500 000-line program the faults took longer than the parse
+//! itself (BENCHMARKS.md, session 6).
 //! `LargePages` maps every allocation of at least [`LARGE`] bytes itself, aligned to
 //! 2 MiB and marked for transparent huge pages, so the kernel backs it with 2 MiB
 //! pages where it can: one fault per 2 MiB instead of 512. Everything smaller goes to
