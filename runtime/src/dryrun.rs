@@ -20,6 +20,7 @@ const INTERPRETER_KEYS: &[&str] = &[
     "machine_units",
     "tools",
     "work_offsets",
+    "reference_positions",
     "integer_machine_unit",
     "machine_unit",
     "block_skip",

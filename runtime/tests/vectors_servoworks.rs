@@ -439,6 +439,33 @@ fn tv53_reference_return_and_g29() {
         xz,
         vec![[3.0, 4.0], [0.5, 7.8], [0.0, 0.0], [0.5, 7.8], [7.5, 2.1]]
     );
+
+    // `G30 P3 X0.5 Z7.8`: via (0.5, 7.8) to the third reference position (from the
+    // machine profile), only the named axes; G29 then returns through (0.5, 7.8).
+    // Without P, G30 goes to the second.
+    let machine = "reference_positions = { 2 = [-1.0, -2.0, -3.0], 3 = [10.0, 20.0, 30.0] }";
+    let out = run_sw(
+        "G00 X3. Y4. Z5.\nG30 P3 X0.5 Z7.8\nG29 X7.5 Z2.1\nG30 X1. Y1. Z1.\nM30\n",
+        machine,
+    );
+    assert!(out.diagnostics.is_empty(), "{:?}", out.diagnostics);
+    let xyz: Vec<[f64; 3]> = out
+        .motions
+        .iter()
+        .map(|m| [m.end[0], m.end[1], m.end[2]])
+        .collect();
+    assert_eq!(
+        xyz,
+        vec![
+            [3.0, 4.0, 5.0],
+            [0.5, 4.0, 7.8],
+            [10.0, 4.0, 30.0],
+            [0.5, 4.0, 7.8],
+            [7.5, 4.0, 2.1],
+            [1.0, 1.0, 1.0],
+            [-1.0, -2.0, -3.0],
+        ]
+    );
 }
 
 /// TV-61: G76 feeds to Z, dwells, shifts Q opposite the tool tip at rapid, rapids

@@ -3405,6 +3405,16 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.rapid_to(mid);
             self.st.g28_mid = Some(mid);
             let home_base = if g30 { 5181 } else { 5161 };
+            // FANUC/ServoWorks: reference position 1 for G28, P2 (default), P3 or P4 for
+            // G30, from the machine profile (a P outside 2-4 is W007; the second is used).
+            let reference = if g30 {
+                w.get(b'P')
+                    .map(f64::round)
+                    .filter(|p| (2.0..=4.0).contains(p))
+                    .map_or(1, |p| p as usize - 1)
+            } else {
+                0
+            };
             let mut home_m = self.st.mpos;
             let all = !w.any_axis() || self.ngc() && !w.any_axis();
             for (i, h) in home_m.iter_mut().enumerate() {
@@ -3412,7 +3422,7 @@ impl<'a, 'i> Interp<'a, 'i> {
                     let raw = if self.ngc() {
                         self.param(home_base + i)
                     } else {
-                        0.0
+                        self.cfg.reference_positions[reference][i] / self.cfg.param_unit
                     };
                     *h = if i < 3 { raw * self.pfac() } else { raw };
                 }

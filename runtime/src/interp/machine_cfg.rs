@@ -40,6 +40,10 @@ pub struct MachineCfg {
     pub tool_order: Vec<u32>,
     /// Work offsets from the profile: (origin index 1..=9, values in mm).
     pub work_offsets: Vec<(usize, [f64; 6])>,
+    /// FANUC/ServoWorks reference positions 1-4 in machine coordinates, mm (G28 goes to
+    /// the first, G30 P2-P4 to the others; FANUC parameters No. 1240-1243). Key
+    /// `reference_positions = { 2 = [x, y, z, a, b, c], … }`; machine zero by default.
+    pub reference_positions: [[f64; 6]; 4],
     /// Maximum subprogram/macro nesting.
     pub max_depth: usize,
     /// Travel limits per axis index (X Y Z A B C), machine frame.
@@ -147,6 +151,25 @@ impl MachineCfg {
                 work_offsets.push((idx, vals));
             }
         }
+        let mut reference_positions = [[0.0; 6]; 4];
+        if let Some(toml::Value::Table(r)) = t.get("reference_positions") {
+            for (k, v) in r {
+                let Some(slot) = k
+                    .trim()
+                    .parse::<usize>()
+                    .ok()
+                    .and_then(|n| n.checked_sub(1))
+                    .and_then(|i| reference_positions.get_mut(i))
+                else {
+                    continue;
+                };
+                if let Some(arr) = v.as_array() {
+                    for (i, x) in arr.iter().take(6).enumerate() {
+                        slot[i] = num(x).unwrap_or(0.0);
+                    }
+                }
+            }
+        }
         let max_default = match dialect {
             Dialect::Servoworks => 8,
             Dialect::Fanuc => 15,
@@ -204,6 +227,7 @@ impl MachineCfg {
             tools,
             tool_order: Vec::new(),
             work_offsets,
+            reference_positions,
             max_depth: t
                 .get("max_call_depth")
                 .and_then(|v| v.as_integer())
