@@ -256,6 +256,55 @@ fn tv47_rotation() {
             m.end
         );
     }
+
+    // The same subprogram unrotated, and at R90.
+    let cases: [(&str, [[f64; 2]; 6]); 2] = [
+        (
+            "M98 P100\nM30\n",
+            [
+                [0.0, 0.0],
+                [10.0, 40.0],
+                [10.0, 110.0],
+                [-10.0, 110.0],
+                [-10.0, 40.0],
+                [10.0, 40.0],
+            ],
+        ),
+        (
+            "G68 X0. Y0. R90\nM98 P100\nM30\n",
+            [
+                [0.0, 0.0],
+                [-40.0, 10.0],
+                [-110.0, 10.0],
+                [-110.0, -10.0],
+                [-40.0, -10.0],
+                [-40.0, 10.0],
+            ],
+        ),
+    ];
+    // The manual's literal `G18` before `G68 X0. Y0.`: Y is not in the ZX plane (SW112).
+    let out = run_with(
+        Dialect::Servoworks,
+        "G18\nG68 X0. Y0. R45\nM98 P100\nM30\n",
+        "",
+        &[("100", sub)],
+        None,
+    );
+    // F017 (info) is the vector's other note: `%O100` in column 1 is a ServoWorks
+    // block-delete line, so the subprogram file has no `O100` line.
+    assert_eq!(codes(&out), vec!["K003", "F017"], "{:?}", out.diagnostics);
+    assert_eq!(out.diagnostics[0].span, analyzer::Span::new(12, 15));
+    for (main, want) in cases {
+        let out = run_with(Dialect::Servoworks, main, "", &[("100", sub)], None);
+        assert_eq!(out.motions.len(), 6, "{main}");
+        for (m, w) in out.motions.iter().zip(want.iter()) {
+            assert!(
+                close(m.end[0], w[0], 1e-9) && close(m.end[1], w[1], 1e-9),
+                "{main}: {:?} for {w:?}",
+                m.end
+            );
+        }
+    }
 }
 
 #[test]
