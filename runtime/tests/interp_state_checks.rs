@@ -58,6 +58,33 @@ fn cycle_spindle_vectors() {
     assert!(found(&ok, "C005").is_empty(), "{:?}", ok.diagnostics);
     let bad = run_sw(&format!("M3 S500\n{cyc}"), "");
     assert_eq!(found(&bad, "C005"), vec![Severity::Warning]);
+    // The sequence: feed down turning CCW, dwell 500 ms, CW, feed up, back to CCW.
+    let seq: Vec<String> = {
+        let mut v = Vec::new();
+        let mut e = ok.events.iter().peekable();
+        for (i, m) in ok.motions.iter().enumerate() {
+            while let Some(ev) = e.next_if(|ev| ev.motion_index <= i) {
+                v.push(format!("{:?}", ev.kind));
+            }
+            v.push(format!("{:?} to Z{}", m.kind, m.end[2]));
+        }
+        v.extend(e.map(|ev| format!("{:?}", ev.kind)));
+        v
+    };
+    assert_eq!(
+        seq,
+        vec![
+            "Spindle { rpm: 500.0, dir: -1 }",
+            "Rapid to Z0",
+            "Rapid to Z-20",
+            "Feed to Z-100",
+            "Dwell(0.5)",
+            "Spindle { rpm: 500.0, dir: 1 }",
+            "Feed to Z-20",
+            "Spindle { rpm: 500.0, dir: -1 }",
+            "ProgramEnd",
+        ]
+    );
     // SW119 / FAN077: no spindle at all; FAN078: G84 with M04.
     let none = run_fanuc("G90 G99 G81 X10 Y10 Z-5 R2 F100\nG80\nM30\n", "");
     assert_eq!(found(&none, "C005"), vec![Severity::Warning]);

@@ -5839,10 +5839,19 @@ impl<'a, 'i> Interp<'a, 'i> {
             740 | 840 => {
                 self.feed_to(at(self, bottom), span)?;
                 dwell_ev(self);
+                // The spindle reverses to back the tap out and turns the original way
+                // again at R (ServoWorks §6.3.29: "dwell, CW, feed up, back to CCW").
+                let (rpm, dir) = (self.st.spindle, self.st.spindle_dir);
+                if dir != 0 {
+                    self.event(EventKind::Spindle { rpm, dir: -dir });
+                }
                 self.feed_to(at(self, r), span)?;
                 // ServoWorks rigid tapping dwells P again at R (§6.3.30, §6.3.37).
                 if self.dialect == Dialect::Servoworks && self.st.modal.rigid_tap {
                     dwell_ev(self);
+                }
+                if dir != 0 {
+                    self.event(EventKind::Spindle { rpm, dir });
                 }
                 if ret > r {
                     self.rapid_to(at(self, ret));
