@@ -11,7 +11,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_in_two, parse_lean, parse_lean_in_two, ParseOptions};
+use analyzer::syntax::{parse, parse_in_two, parse_lean, parse_lean_in_two, ParseOptions, Program};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
@@ -81,8 +81,9 @@ fn short(group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallT
     group.measurement_time(Duration::from_secs(3));
 }
 
-fn bench_parse(c: &mut Criterion) {
-    let mut group = c.benchmark_group("parse_1M_lines");
+/// One criterion group timing `parse` on the surfacing program of every dialect.
+fn parse_group(c: &mut Criterion, name: &str, parse: fn(ParseOptions, Arc<[u8]>) -> Program) {
+    let mut group = c.benchmark_group(name);
     short(&mut group);
     for dialect in Dialect::ALL {
         let text: Arc<[u8]> = surfacing(dialect, LINES).into();
@@ -95,51 +96,17 @@ fn bench_parse(c: &mut Criterion) {
         });
     }
     group.finish();
+}
 
+fn bench_parse(c: &mut Criterion) {
+    parse_group(c, "parse_1M_lines", parse);
     // Without tokens, as the command line parses.
-    let mut group = c.benchmark_group("parse_lean_1M_lines");
-    short(&mut group);
-    for dialect in Dialect::ALL {
-        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
-        group.throughput(Throughput::Bytes(text.len() as u64));
-        group.bench_function(dialect.as_str(), |b| {
-            b.iter(|| {
-                let program = parse_lean(ParseOptions::new(dialect), text.clone());
-                black_box(program.blocks.len())
-            })
-        });
-    }
-    group.finish();
-
-    // The opt-in two-thread parse.
-    let mut group = c.benchmark_group("parse_in_two_1M_lines");
-    short(&mut group);
-    for dialect in Dialect::ALL {
-        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
-        group.throughput(Throughput::Bytes(text.len() as u64));
-        group.bench_function(dialect.as_str(), |b| {
-            b.iter(|| {
-                let program = parse_in_two(ParseOptions::new(dialect), text.clone());
-                black_box(program.blocks.len())
-            })
-        });
-    }
-    group.finish();
-
-    // The same without tokens.
-    let mut group = c.benchmark_group("parse_lean_in_two_1M_lines");
-    short(&mut group);
-    for dialect in Dialect::ALL {
-        let text: Arc<[u8]> = surfacing(dialect, LINES).into();
-        group.throughput(Throughput::Bytes(text.len() as u64));
-        group.bench_function(dialect.as_str(), |b| {
-            b.iter(|| {
-                let program = parse_lean_in_two(ParseOptions::new(dialect), text.clone());
-                black_box(program.blocks.len())
-            })
-        });
-    }
-    group.finish();
+    parse_group(c, "parse_lean_1M_lines", parse_lean);
+    // The opt-in two-thread parse, with and without tokens.
+    parse_group(c, "parse_in_two_1M_lines", parse_in_two);
+    parse_group(c, "parse_lean_in_two_1M_lines", |o, t| {
+        parse_lean_in_two(o, t)
+    });
 
     // Parse and static rules, as `analyze` runs them.
     let mut group = c.benchmark_group("analyze_1M_lines");

@@ -37,61 +37,46 @@ fn main() {
     let settings = Settings::new(dialect);
     let mb = text.len() as f64 / 1e6;
 
-    let mut best_parse = f64::INFINITY;
     let mut blocks = 0;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let p = parse(ParseOptions::new(dialect), text.clone());
-        best_parse = best_parse.min(t.elapsed().as_secs_f64());
-        blocks = p.blocks.len();
-    }
-
+    let best_parse = best_of(
+        runs,
+        || parse(ParseOptions::new(dialect), text.clone()),
+        |p| blocks = p.blocks.len(),
+    );
     // The same parse in two halves on two threads.
-    let mut best_two = f64::INFINITY;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let p = parse_in_two(ParseOptions::new(dialect), text.clone());
-        best_two = best_two.min(t.elapsed().as_secs_f64());
-        drop(p);
-    }
-
+    let best_two = best_of(
+        runs,
+        || parse_in_two(ParseOptions::new(dialect), text.clone()),
+        drop,
+    );
     // Without tokens, as the command line parses.
-    let mut best_lean = f64::INFINITY;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let p = analyzer::syntax::parse_lean(ParseOptions::new(dialect), text.clone());
-        best_lean = best_lean.min(t.elapsed().as_secs_f64());
-        drop(p);
-    }
-
-    // Lean, in two halves, as `partscope check` parses large files.
-    let mut best_lean_two = f64::INFINITY;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let p = analyzer::syntax::parse_lean_in_two(ParseOptions::new(dialect), text.clone());
-        best_lean_two = best_lean_two.min(t.elapsed().as_secs_f64());
-        drop(p);
-    }
+    let best_lean = best_of(
+        runs,
+        || analyzer::syntax::parse_lean(ParseOptions::new(dialect), text.clone()),
+        drop,
+    );
+    // Lean, in two halves (opt-in; the command line parses serially).
+    let best_lean_two = best_of(
+        runs,
+        || analyzer::syntax::parse_lean_in_two(ParseOptions::new(dialect), text.clone()),
+        drop,
+    );
 
     // The static rules alone, on one parsed program.
     let parsed = analyzer::parse_text(text.clone(), &settings);
-    let mut best_lint = f64::INFINITY;
     let mut diags = 0;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let d = analyzer::lint(&parsed, &settings);
-        best_lint = best_lint.min(t.elapsed().as_secs_f64());
-        diags = d.len();
-    }
+    let best_lint = best_of(
+        runs,
+        || analyzer::lint(&parsed, &settings),
+        |d| diags = d.len(),
+    );
     drop(parsed);
 
-    let mut best_both = f64::INFINITY;
-    for _ in 0..runs {
-        let t = Instant::now();
-        let a = analyzer::analyze(text.clone(), &settings);
-        best_both = best_both.min(t.elapsed().as_secs_f64());
-        diags = a.diagnostics.len();
-    }
+    let best_both = best_of(
+        runs,
+        || analyzer::analyze(text.clone(), &settings),
+        |a| diags = a.diagnostics.len(),
+    );
     println!(
         "{} {blocks} blocks, {mb:.1} MB, {diags} diagnostics, best of {runs}: parse {:.1} ms {:.0} MB/s | lean parse {:.1} ms {:.0} MB/s | two-thread parse {:.1} ms {:.0} MB/s | lean two-thread {:.1} ms {:.0} MB/s | lint {:.1} ms {:.0} MB/s | parse+lint {:.1} ms {:.0} MB/s",
         dialect.as_str(),
@@ -108,4 +93,17 @@ fn main() {
         best_both * 1e3,
         mb / best_both
     );
+}
+
+/// The shortest of `runs` timings of `f`, in seconds; each result is handed to
+/// `after` once its time is taken (so dropping a tree is not timed).
+fn best_of<T>(runs: usize, mut f: impl FnMut() -> T, mut after: impl FnMut(T)) -> f64 {
+    let mut best = f64::INFINITY;
+    for _ in 0..runs {
+        let t = Instant::now();
+        let r = f();
+        best = best.min(t.elapsed().as_secs_f64());
+        after(r);
+    }
+    best
 }

@@ -30,7 +30,7 @@
 #![allow(unsafe_code)]
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, AtomicUsize, Ordering};
 
 /// 0: large blocks are mapped (the default); 1: a large block has been mapped, so it
 /// can no longer be switched off; 2: switched off, everything goes to `System`.
@@ -261,7 +261,7 @@ pub fn prefault_while<R>(buffers: &[(usize, usize)], work: impl FnOnce(&Progress
     let progress = Progress {
         filled: buffers.iter().map(|_| AtomicUsize::new(0)).collect(),
         done_per_mille: AtomicUsize::new(0),
-        finished: std::sync::atomic::AtomicBool::new(false),
+        finished: AtomicBool::new(false),
     };
     if !cfg!(target_os = "linux") || buffers.is_empty() {
         return work(&progress);
@@ -287,7 +287,7 @@ pub const AHEAD: usize = 8 << 20;
 pub struct Progress {
     filled: Vec<AtomicUsize>,
     done_per_mille: AtomicUsize,
-    finished: std::sync::atomic::AtomicBool,
+    finished: AtomicBool,
 }
 
 impl Progress {
@@ -301,8 +301,6 @@ impl Progress {
         self.done_per_mille.store(pm, Ordering::Release);
     }
 }
-
-use std::sync::atomic::AtomicUsize;
 
 fn populate_ahead(buffers: &[(usize, usize)], p: &Progress) {
     const STEP: usize = 2 << 20;

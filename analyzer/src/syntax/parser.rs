@@ -56,12 +56,17 @@ pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
 }
 
 /// An empty program with room for the tree of `len` bytes of typical text, so the
-/// vectors do not grow (and copy) while a large file is read.
-fn with_capacity(dialect: Dialect, text: Arc<[u8]>, len: usize) -> Program {
+/// vectors do not grow (and copy) while a large file is read; room for tokens only
+/// when they are recorded.
+fn with_capacity(dialect: Dialect, text: Arc<[u8]>, len: usize, tokens: bool) -> Program {
     Program {
         dialect,
         text,
-        tokens: Vec::with_capacity(len / 2 + 1),
+        tokens: if tokens {
+            Vec::with_capacity(len / 2 + 1)
+        } else {
+            Vec::new()
+        },
         blocks: Vec::with_capacity(len / 16 + 1),
         items: Vec::with_capacity(len / 5 + 1),
         exprs: Vec::new(),
@@ -73,7 +78,7 @@ fn with_capacity(dialect: Dialect, text: Arc<[u8]>, len: usize) -> Program {
 /// Parses a whole file on the calling thread.
 pub fn parse_serial(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let text: Arc<[u8]> = text.into();
-    let mut program = with_capacity(opts.dialect, text.clone(), text.len());
+    let mut program = with_capacity(opts.dialect, text.clone(), text.len(), true);
     let mut parser = Parser::new(opts, text);
     parser.parse_blocks(&mut program, usize::MAX);
     program
@@ -85,8 +90,7 @@ pub fn parse_serial(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
 /// look at tokens; it saves their time and about a quarter of the tree's memory.
 pub fn parse_lean(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let text: Arc<[u8]> = text.into();
-    let mut program = with_capacity(opts.dialect, text.clone(), text.len());
-    program.tokens = Vec::new();
+    let mut program = with_capacity(opts.dialect, text.clone(), text.len(), false);
     let mut parser = Parser::new(opts, text.clone()).without_tokens();
     if text.len() < PREFAULT_FROM {
         parser.parse_blocks(&mut program, usize::MAX);
@@ -208,19 +212,17 @@ fn two_halves(opts: ParseOptions, text: Arc<[u8]>, lean: bool) -> Program {
     let (mut program, mut parser, second) = std::thread::scope(|s| {
         let t2 = text.clone();
         let handle = std::thread::Builder::new().spawn_scoped(s, move || {
-            let mut p = with_capacity(opts.dialect, t2.clone(), t2.len() - split);
+            let mut p = with_capacity(opts.dialect, t2.clone(), t2.len() - split, !lean);
             let mut parser = Parser::resume(opts, t2, split, 0, guess);
             if lean {
-                p.tokens = Vec::new();
                 parser = parser.without_tokens();
             }
             parser.parse_blocks(&mut p, usize::MAX);
             p
         });
-        let mut program = with_capacity(opts.dialect, text.clone(), text.len());
+        let mut program = with_capacity(opts.dialect, text.clone(), text.len(), !lean);
         let mut parser = Parser::new(opts, text.clone());
         if lean {
-            program.tokens = Vec::new();
             parser = parser.without_tokens();
         }
         let all = text.clone();

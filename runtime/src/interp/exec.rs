@@ -655,19 +655,15 @@ impl<'a, 'i> Interp<'a, 'i> {
         } else {
             5201 + 20 * origin
         };
-        // Every move asks for this: one slice of the parameters, one unit factor.
+        // Every move asks for this: one slice of the parameters, one unit factor. The
+        // highest origin (G54.1 P300) ends far below `NUM_PARAMS`; an unset or missing
+        // parameter reads 0, as `param` reads it.
+        let raw = self.st.params.get(base..base + 6).unwrap_or(&[None; 6]);
+        let f = self.pfac();
         let mut o = [0.0; 6];
-        if let Some(raw) = self.st.params.get(base..base + 6) {
-            let f = self.pfac();
-            for (k, (v, r)) in o.iter_mut().zip(raw).enumerate() {
-                let r = r.unwrap_or(0.0);
-                *v = if k < 3 { r * f } else { r };
-            }
-        } else {
-            for (k, v) in o.iter_mut().enumerate() {
-                let raw = self.param(base + k);
-                *v = if k < 3 { raw * self.pfac() } else { raw };
-            }
+        for (k, (v, r)) in o.iter_mut().zip(raw).enumerate() {
+            let r = r.unwrap_or(0.0);
+            *v = if k < 3 { r * f } else { r };
         }
         o
     }

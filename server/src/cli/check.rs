@@ -72,7 +72,7 @@ fn check_file(
     cache: &ConfigCache,
 ) -> FileReport {
     let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let bytes = match workspace::read_program(path, max_mb) {
+    let text = match workspace::read_program(path, max_mb) {
         Ok(b) => b,
         Err(e) => return FileReport::io_error(path.to_path_buf(), e),
     };
@@ -98,14 +98,13 @@ fn check_file(
         args.dialect.map(|d| d.dialect()),
         &loaded.config,
         path,
-        &bytes,
+        &text,
     );
     let settings =
         match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
             Ok(s) => s,
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
-    let text: Arc<[u8]> = bytes;
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
     // view: ServoWorks `O<name>.dat` files, and FANUC/ServoWorks files that return

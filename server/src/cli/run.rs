@@ -3,7 +3,6 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Arc;
 
 use analyzer::{Diagnostic, Severity};
 use runtime::dryrun::{self, DryRun};
@@ -79,7 +78,7 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
 
 pub fn run(args: RunArgs) -> ExitCode {
     let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let bytes = match workspace::read_program(&args.file, max_mb) {
+    let text = match workspace::read_program(&args.file, max_mb) {
         Ok(b) => b,
         Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
     };
@@ -103,7 +102,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         args.dialect.map(|d| d.dialect()),
         &loaded.config,
         &args.file,
-        &bytes,
+        &text,
     );
     let settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
         Ok(s) => s,
@@ -120,7 +119,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let mut tool_table_path = args.tool_table.clone();
     let mut var_path = args.var_file.clone();
     if let Some(m) = &args.machine {
-        let text = match std::fs::read_to_string(m) {
+        let machine_text = match std::fs::read_to_string(m) {
             Ok(t) => t,
             Err(e) => return fail(format_args!("{}: {e}", m.display())),
         };
@@ -129,7 +128,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             .and_then(|e| e.to_str())
             .is_some_and(|e| e.eq_ignore_ascii_case("ini"));
         if is_ini {
-            match MachineProfile::from_linuxcnc_ini(&text) {
+            match MachineProfile::from_linuxcnc_ini(&machine_text) {
                 Ok((p, extras)) => {
                     let base = m.parent().unwrap_or(Path::new("."));
                     if tool_table_path.is_none() {
@@ -143,7 +142,7 @@ pub fn run(args: RunArgs) -> ExitCode {
                 Err(e) => return fail(format_args!("{}: {e}", m.display())),
             }
         } else {
-            match toml::from_str::<toml::Table>(&text) {
+            match toml::from_str::<toml::Table>(&machine_text) {
                 Ok(t) => {
                     machine_table = match t.get("machine") {
                         Some(toml::Value::Table(mt)) => mt.clone(),
@@ -232,7 +231,6 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
 
-    let text: Arc<[u8]> = bytes;
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     let resolver = crate::resolve::FsResolver::new(&args.file, config_dir.as_deref(), dialect);
     let emit_canon = args.emit == Some(Emit::Canon);
