@@ -344,7 +344,7 @@ pub struct Parser {
     after_end: bool,
     /// At least one non-blank line has been seen (RS274/NGC opening `%` rule).
     seen_content: bool,
-    /// Plain lines take [`plain_line`] (off only to test it against the general path).
+    /// Plain lines take [`plain_words`] (off only to test it against the general path).
     plain_fast: bool,
     /// Whether tokens are recorded (see [`parse_lean`]).
     tokens: bool,
@@ -473,7 +473,7 @@ impl Parser {
         n
     }
 
-    /// [`Parser::parse_block`] for a line [`plain_line`] accepts, in a lean parse:
+    /// [`Parser::parse_block`] for a line [`plain_words`] accepts, in a lean parse:
     /// such a line starts with its first word's letter, so it is a normal, non-blank
     /// block without a block-skip mark or tokens to record, and none of the general
     /// bookkeeping applies. Returns `false`, having changed nothing, for any other
@@ -483,11 +483,11 @@ impl Parser {
         if self.after_end || !text.get(start).is_some_and(u8::is_ascii_uppercase) {
             return false;
         }
-        let (content_end, end, newline) = self.block_bounds();
         let item_start = p.items.len() as u32;
-        if !plain_line(p, text, start, content_end, self.opts.dialect, false) {
+        let Some(content_end) = plain_words::<false>(p, text, start, self.opts.dialect) else {
             return false;
-        }
+        };
+        let (end, newline) = terminator(text, content_end);
         self.seen_content = true;
         p.blocks.push(Block {
             span: Span::new(start as u32, content_end as u32),
@@ -534,31 +534,8 @@ impl Parser {
                 i += 1;
             }
         }
-        let content_end = i;
-        let mut end = i;
-        let mut newline = false;
-        if end < t.len() && t[end] == b';' {
-            end += 1;
-            // `;` directly followed by (blanks and) a newline is one end of block.
-            let mut j = end;
-            while j < t.len() && is_ws(t[j]) {
-                j += 1;
-            }
-            if j < t.len() && (t[j] == b'\n' || t[j] == b'\r') {
-                end = j;
-            }
-        }
-        if end < t.len() && t[end] == b'\r' {
-            end += 1;
-            newline = true;
-            if end < t.len() && t[end] == b'\n' {
-                end += 1;
-            }
-        } else if end < t.len() && t[end] == b'\n' {
-            end += 1;
-            newline = true;
-        }
-        (content_end, end, newline)
+        let (end, newline) = terminator(t, i);
+        (i, end, newline)
     }
 
     fn parse_block(&mut self, p: &mut Program, text: &[u8]) {
@@ -643,7 +620,7 @@ impl Parser {
                 self.seen_content = true;
             }
             if !(self.plain_fast
-                && plain_line(cx.p, text, start, content_end, dialect, self.tokens))
+                && plain_words_to(cx.p, text, start, content_end, dialect, self.tokens))
             {
                 skip = cx.block_start(start);
                 cx.items();
@@ -696,6 +673,63 @@ impl Parser {
     }
 }
 
+/// The end of the terminator of a block whose content ends at `content_end` (a
+/// line break, `;`, `;` and blanks before a line break, or nothing at the end of
+/// the text), and whether it holds a line break.
+fn terminator(t: &[u8], content_end: usize) -> (usize, bool) {
+    let mut end = content_end;
+    let mut newline = false;
+    if end < t.len() && t[end] == b';' {
+        end += 1;
+        // `;` directly followed by (blanks and) a newline is one end of block.
+        let mut j = end;
+        while j < t.len() && is_ws(t[j]) {
+            j += 1;
+        }
+        if j < t.len() && (t[j] == b'\n' || t[j] == b'\r') {
+            end = j;
+        }
+    }
+    if end < t.len() && t[end] == b'\r' {
+        end += 1;
+        newline = true;
+        if end < t.len() && t[end] == b'\n' {
+            end += 1;
+        }
+    } else if end < t.len() && t[end] == b'\n' {
+        end += 1;
+        newline = true;
+    }
+    (end, newline)
+}
+
+/// [`plain_words`] over a block whose content end is known: `false`, leaving `p`
+/// as it was, unless the block is plain and its content ends there.
+fn plain_words_to(
+    p: &mut Program,
+    text: &[u8],
+    start: usize,
+    content_end: usize,
+    dialect: Dialect,
+    tokens: bool,
+) -> bool {
+    let (tokens_before, items_before) = (p.tokens.len(), p.items.len());
+    let end = if tokens {
+        plain_words::<true>(p, text, start, dialect)
+    } else {
+        plain_words::<false>(p, text, start, dialect)
+    };
+    match end {
+        Some(end) if end == content_end => true,
+        Some(_) => {
+            p.tokens.truncate(tokens_before);
+            p.items.truncate(items_before);
+            false
+        }
+        None => false,
+    }
+}
+
 /// The fast path for plain lines: address letters each followed directly by a
 /// literal number (`X1.25 Y-0.5 F300`), separated by blanks. Such lines are most of
 /// what CAM systems write, and for them the general path (keywords, program heads,
@@ -703,37 +737,51 @@ impl Parser {
 /// word items built here, identical to what it would build (the differential test
 /// `plain_lines_parse_as_the_general_path_does` compares the two).
 ///
-/// Returns `false`, leaving `p` as it was, when the line holds anything else; the
-/// general path then reads it.
-fn plain_line(
+/// Reads from `start` to the end of the block's content, which it finds on the way
+/// (a line break, a FANUC `;`, or the end of the text), so a plain line's bytes are
+/// read once. Returns that end, or `None`, leaving `p` as it was, when the line
+/// holds anything else; the general path then reads it.
+fn plain_words<const TOKENS: bool>(
     p: &mut Program,
     text: &[u8],
     start: usize,
-    end: usize,
     dialect: Dialect,
-    tokens: bool,
-) -> bool {
+) -> Option<usize> {
+    let (tokens_before, items_before) = (p.tokens.len(), p.items.len());
+    let end = plain_words_inner::<TOKENS>(p, text, start, dialect);
+    if end.is_none() {
+        p.tokens.truncate(tokens_before);
+        p.items.truncate(items_before);
+    }
+    end
+}
+
+fn plain_words_inner<const TOKENS: bool>(
+    p: &mut Program,
+    text: &[u8],
+    start: usize,
+    dialect: Dialect,
+) -> Option<usize> {
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
     ];
-    let Some(line) = text.get(start..end) else {
-        return false;
-    };
-    let (tokens_before, items_before) = (p.tokens.len(), p.items.len());
-    let base = start;
-    let n = line.len();
-    let mut i = 0;
-    let mut failed = false;
-    while i < n {
-        let b = line[i];
+    let semicolon_ends = dialect == Dialect::Fanuc;
+    let mut i = start;
+    loop {
+        let Some(&b) = text.get(i) else {
+            return Some(i);
+        };
+        if b == b'\n' || b == b'\r' || (b == b';' && semicolon_ends) {
+            return Some(i);
+        }
         if is_ws(b) {
             let s = i;
-            while i < n && is_ws(line[i]) {
+            while text.get(i).is_some_and(|c| is_ws(*c)) {
                 i += 1;
             }
-            if tokens {
+            if TOKENS {
                 p.tokens.push(Token {
-                    start: (base + s) as u32,
+                    start: s as u32,
                     kind: TokenKind::Whitespace,
                 });
             }
@@ -741,74 +789,63 @@ fn plain_line(
         }
         // `O` starts program heads and O-words; a ServoWorks `P` may be a name.
         if !b.is_ascii_uppercase() || b == b'O' || (b == b'P' && dialect == Dialect::Servoworks) {
-            failed = true;
-            break;
+            return None;
         }
         let ls = i;
         i += 1;
         let ns = i;
-        let mut signed = false;
-        let mut negative = false;
-        if i < n && (line[i] == b'-' || line[i] == b'+') {
-            signed = true;
-            negative = line[i] == b'-';
+        let sign = text.get(i).copied();
+        let signed = sign == Some(b'-') || sign == Some(b'+');
+        if signed {
             i += 1;
         }
-        let mut mant: u64 = 0;
-        let mut digits = 0u32;
-        while i < n && line[i].is_ascii_digit() {
-            mant = mant
-                .wrapping_mul(10)
-                .wrapping_add(u64::from(line[i] - b'0'));
-            digits += 1;
-            i += 1;
-        }
-        let mut frac = 0usize;
-        let has_point = i < n && line[i] == b'.';
-        if has_point {
-            i += 1;
-            while i < n && line[i].is_ascii_digit() {
-                mant = mant
-                    .wrapping_mul(10)
-                    .wrapping_add(u64::from(line[i] - b'0'));
-                digits += 1;
-                frac += 1;
-                i += 1;
-            }
-        }
+        let (int, int_digits, after) = digit_run(text, i);
+        i = after;
+        let has_point = text.get(i) == Some(&b'.');
+        let (frac, frac_digits) = if has_point {
+            let (frac, frac_digits, after) = digit_run(text, i + 1);
+            i = after;
+            (frac, frac_digits)
+        } else {
+            (0, 0)
+        };
+        let digits = int_digits + frac_digits;
         if digits == 0 || digits > 15 {
-            failed = true;
-            break;
+            return None;
         }
         // The number must end here: at the end of the line, before a letter, or before
         // blanks that do not continue it (RS274/NGC and FANUC read `X1 5` as `X15`).
-        if i < n {
-            let c = line[i];
-            if is_ws(c) {
+        match text.get(i) {
+            None | Some(b'\n' | b'\r') => {}
+            Some(b';') if semicolon_ends => {}
+            Some(c) if c.is_ascii_uppercase() => {}
+            Some(c) if is_ws(*c) => {
                 if dialect != Dialect::Servoworks {
                     let mut j = i;
-                    while j < n && is_ws(line[j]) {
+                    while text.get(j).is_some_and(|c| is_ws(*c)) {
                         j += 1;
                     }
-                    if j < n && (line[j].is_ascii_digit() || line[j] == b'.') {
-                        failed = true;
-                        break;
+                    if text
+                        .get(j)
+                        .is_some_and(|c| c.is_ascii_digit() || *c == b'.')
+                    {
+                        return None;
                     }
                 }
-            } else if !c.is_ascii_uppercase() {
-                failed = true;
-                break;
             }
+            Some(_) => return None,
         }
-        let v = mant as f64 / POW10[frac];
-        let span = |a: usize, b: usize| Span::new((base + a) as u32, (base + b) as u32);
-        if tokens {
+        // At most 15 digits, so the mantissa is exact and `frac_digits` indexes the tables.
+        // Below 2^63, so the signed conversion (one instruction) is exact.
+        let mant = (int * POW10_U64[frac_digits] + frac) as i64;
+        let v = mant as f64 / POW10[frac_digits];
+        if TOKENS {
             p.tokens.push(Token {
-                start: (base + ls) as u32,
+                start: ls as u32,
                 kind: TokenKind::Letter,
             });
             p.tokens.push(Token {
-                start: (base + ns) as u32,
+                start: ns as u32,
                 kind: TokenKind::Number,
             });
         }
@@ -818,22 +855,88 @@ fn plain_line(
                 comma: false,
                 spindle: None,
                 value: WordValue::Num(Num {
-                    value: if negative { -v } else { v },
-                    span: span(ns, i),
+                    value: if sign == Some(b'-') { -v } else { v },
+                    span: Span::new(ns as u32, i as u32),
                     has_point,
                     signed,
                     digits: digits as u16,
                 }),
             }),
-            span: span(ls, i),
+            span: Span::new(ls as u32, i as u32),
         });
     }
-    if failed {
-        p.tokens.truncate(tokens_before);
-        p.items.truncate(items_before);
-        return false;
+}
+
+const POW10_U64: [u64; 16] = [
+    1,
+    10,
+    100,
+    1_000,
+    10_000,
+    100_000,
+    1_000_000,
+    10_000_000,
+    100_000_000,
+    1_000_000_000,
+    10_000_000_000,
+    100_000_000_000,
+    1_000_000_000_000,
+    10_000_000_000_000,
+    100_000_000_000_000,
+    1_000_000_000_000_000,
+];
+
+/// The decimal digits from `i` on: their value (wrapping past 19 digits, which
+/// callers reject), their count, and where they end. Eight bytes at a time where the
+/// text has them: a number's length varies from word to word, and a loop per digit
+/// pays a mispredicted exit branch on most of them.
+fn digit_run(text: &[u8], mut i: usize) -> (u64, usize, usize) {
+    let mut value = 0u64;
+    let mut count = 0usize;
+    while let Some(chunk) = text.get(i..).and_then(|s| s.first_chunk::<8>()) {
+        let word = u64::from_le_bytes(*chunk);
+        let k = leading_digits(word);
+        if k > 0 {
+            value = value
+                .wrapping_mul(POW10_U64[k])
+                .wrapping_add(eight_digits_value(word << (8 * (8 - k))));
+        }
+        count += k;
+        i += k;
+        if k < 8 {
+            return (value, count, i);
+        }
     }
-    true
+    while let Some(d) = text.get(i).filter(|c| c.is_ascii_digit()) {
+        value = value.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
+        count += 1;
+        i += 1;
+    }
+    (value, count, i)
+}
+
+/// How many of the eight bytes of `word` (first byte lowest) are ASCII digits
+/// before the first that is not.
+fn leading_digits(word: u64) -> usize {
+    const LO: u64 = 0x0F0F_0F0F_0F0F_0F0F;
+    const HI: u64 = 0xF0F0_F0F0_F0F0_F0F0;
+    const LOW7: u64 = 0x7F7F_7F7F_7F7F_7F7F;
+    // A byte is a digit when its high nibble is 3 and its low nibble at most 9; both
+    // tests stay inside the byte (0x0F + 0x06 carries into bit 4, never further).
+    let not_digit = ((word & HI) ^ 0x3030_3030_3030_3030)
+        | ((word & LO) + 0x0606_0606_0606_0606) & 0x1010_1010_1010_1010;
+    // Bit 7 of each byte set when the byte is non-zero, again without carries.
+    let flags = (((not_digit & LOW7) + LOW7) | not_digit) & !LOW7;
+    (flags.trailing_zeros() / 8) as usize
+}
+
+/// The value of eight ASCII digits (first byte lowest, most significant); bytes
+/// that are zero count as leading zeros.
+fn eight_digits_value(word: u64) -> u64 {
+    let d = word & 0x0F0F_0F0F_0F0F_0F0F;
+    let d = (d.wrapping_mul(10) + (d >> 8)) & 0x00FF_00FF_00FF_00FF;
+    let d = (d.wrapping_mul(100) + (d >> 16)) & 0x0000_FFFF_0000_FFFF;
+    (d.wrapping_mul(10_000) + (d >> 32)) & 0xFFFF_FFFF
 }
 
 impl<'p> Cx<'p> {
@@ -2272,7 +2375,44 @@ fn printable(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::parse_f64;
+    use super::{digit_run, leading_digits, parse_f64};
+
+    /// The eight-byte digit reader against a byte-by-byte reading, on every mix of
+    /// digits and the bytes next to them in ASCII, at every offset and length.
+    #[test]
+    fn digit_runs_read_as_byte_by_byte() {
+        let alphabet = b"0123456789/:. X\n\0\xff";
+        let mut x: u64 = 99;
+        for _ in 0..20000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let len = (x >> 59) as usize + 1;
+            let text: Vec<u8> = (0..len)
+                .map(|k| {
+                    let r = (x >> (k % 24 * 2)) as usize;
+                    // Mostly digits, so that long runs occur.
+                    if r % 5 == 0 {
+                        alphabet[10 + (r / 5) % (alphabet.len() - 10)]
+                    } else {
+                        alphabet[r % 10]
+                    }
+                })
+                .collect();
+            for start in 0..=text.len() {
+                let n = text[start..].iter().take_while(|c| c.is_ascii_digit()).count();
+                let want = text[start..start + n]
+                    .iter()
+                    .fold(0u64, |v, d| v.wrapping_mul(10).wrapping_add(u64::from(d - b'0')));
+                assert_eq!(digit_run(&text, start), (want, n, start + n), "{text:?} at {start}");
+            }
+        }
+        for b in 0..=255u8 {
+            let word = u64::from_le_bytes([b'1', b'2', b, b'3', b'4', b'5', b'6', b'7']);
+            let want = if b.is_ascii_digit() { 8 } else { 2 };
+            assert_eq!(leading_digits(word), want, "byte {b}");
+        }
+    }
 
     #[test]
     fn fast_number_path_agrees_with_std() {
