@@ -2392,7 +2392,7 @@ mod tests {
                 .map(|k| {
                     let r = (x >> (k % 24 * 2)) as usize;
                     // Mostly digits, so that long runs occur.
-                    if r % 5 == 0 {
+                    if r.is_multiple_of(5) {
                         alphabet[10 + (r / 5) % (alphabet.len() - 10)]
                     } else {
                         alphabet[r % 10]
