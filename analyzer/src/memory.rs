@@ -22,10 +22,16 @@
 //! A host installs it with
 //! `#[global_allocator] static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;`.
 //!
-//! It suits one-shot work (the command line, benchmarks). A long-running host that
-//! allocates and frees large blocks over and over (the language server) does better
-//! with the system allocator, which keeps freed memory for reuse instead of handing
-//! it back to the kernel: such a host calls [`LargePages::disable`] first thing.
+//! A freed large block is kept (up to 512 MiB in eight blocks) and handed out again
+//! by the next large allocation, resized to fit: its pages are already faulted in,
+//! so a host that parses file after file pays the faults once. Every large
+//! allocation takes a kept block first, so keeping them never raises a process's
+//! peak memory above what it held before the free.
+//!
+//! It suits work that parses large files (the command line, benchmarks). A
+//! long-running host whose large blocks vary in size and number (the language
+//! server) does better with the system allocator, which reuses freed memory at a
+//! finer grain: such a host calls [`LargePages::disable`] first thing.
 
 #![allow(unsafe_code)]
 
@@ -143,6 +149,78 @@ mod large {
     }
 }
 
+/// Freed large blocks kept for the next large allocation, up to [`RETAIN`] bytes
+/// in [`SLOTS`] blocks.
+///
+/// A freed mapping's pages stay faulted in, so a block made from it costs no page
+/// faults or zeroing: a host that parses file after file (the command line on a
+/// directory, a benchmark) pays those once. Every large allocation takes one back
+/// if there is one (resized to fit), so keeping them never raises the peak memory
+/// of a process above what it held before the free.
+#[cfg(target_os = "linux")]
+mod retained {
+    use std::sync::Mutex;
+
+    pub const SLOTS: usize = 8;
+    pub const RETAIN: usize = 512 << 20;
+
+    /// `(address, rounded length)`; length 0 marks a free slot. A `Mutex` from
+    /// `std` never allocates, so the allocator may use it.
+    static KEPT: Mutex<[(usize, usize); SLOTS]> = Mutex::new([(0, 0); SLOTS]);
+
+    /// Keeps a freed mapping if there is room; `false` when the caller must unmap it.
+    pub fn keep(addr: usize, len: usize) -> bool {
+        let Ok(mut kept) = KEPT.lock() else {
+            return false;
+        };
+        let total: usize = kept.iter().map(|k| k.1).sum();
+        if total.saturating_add(len) > RETAIN {
+            return false;
+        }
+        match kept.iter_mut().find(|k| k.1 == 0) {
+            Some(slot) => {
+                *slot = (addr, len);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Takes the kept mapping that best fits `len` bytes: the smallest at least as
+    /// long, otherwise the longest. Returns `(address, its length)`.
+    pub fn take(len: usize) -> Option<(usize, usize)> {
+        let mut kept = KEPT.lock().ok()?;
+        let fits = kept
+            .iter()
+            .enumerate()
+            .filter(|(_, k)| k.1 >= len)
+            .min_by_key(|(_, k)| k.1)
+            .map(|(i, _)| i);
+        let i = fits.or_else(|| {
+            kept.iter()
+                .enumerate()
+                .filter(|(_, k)| k.1 > 0)
+                .max_by_key(|(_, k)| k.1)
+                .map(|(i, _)| i)
+        })?;
+        let taken = kept[i];
+        kept[i] = (0, 0);
+        Some(taken)
+    }
+}
+
+/// Keeps the switch on from now on, because a large block is about to be mapped
+/// (it must be unmapped when freed); `false` if it was switched off meanwhile. The
+/// claim comes before the mapping, so a `disable` racing with it fails.
+#[cfg(target_os = "linux")]
+fn claim() -> bool {
+    STATE.load(Ordering::Relaxed) == USED
+        || matches!(
+            STATE.compare_exchange(ON, USED, Ordering::SeqCst, Ordering::SeqCst),
+            Ok(_) | Err(USED)
+        )
+}
+
 #[cfg(target_os = "linux")]
 fn is_large(layout: &Layout) -> bool {
     // Larger alignments than a page are left to the system allocator, which honours
@@ -160,14 +238,39 @@ unsafe impl GlobalAlloc for LargePages {
             // SAFETY: forwarded with the caller's guarantees.
             return unsafe { System.alloc(layout) };
         }
-        // From here on the switch stays on: this block must be unmapped when freed.
-        // The claim comes before the mapping, so a `disable` racing with it fails.
-        if STATE.load(Ordering::Relaxed) != USED {
-            match STATE.compare_exchange(ON, USED, Ordering::SeqCst, Ordering::SeqCst) {
-                Ok(_) | Err(USED) => {}
-                // SAFETY: switched off meanwhile: a `System` block like any other.
-                Err(_) => return unsafe { System.alloc(layout) },
+        if !claim() {
+            // SAFETY: switched off meanwhile: a `System` block like any other.
+            return unsafe { System.alloc(layout) };
+        }
+        let Some(len) = large::round(layout.size()) else {
+            return std::ptr::null_mut();
+        };
+        if let Some((addr, kept)) = retained::take(len) {
+            if kept == len {
+                return addr as *mut u8;
             }
+            // SAFETY: a whole mapping of ours, no longer in use, resized whole.
+            let p = unsafe { large::remap(addr as *mut u8, kept, len) };
+            if !p.is_null() {
+                return p;
+            }
+            // SAFETY: as above; it could not be resized, so it is released.
+            unsafe { large::unmap(addr as *mut u8, kept) };
+        }
+        // SAFETY: a fresh mapping.
+        unsafe { large::map(len) }
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        if !is_large(&layout) {
+            // SAFETY: forwarded with the caller's guarantees.
+            return unsafe { System.alloc_zeroed(layout) };
+        }
+        // A kept mapping holds old bytes: zeroed blocks are always fresh mappings,
+        // which the kernel zeroes.
+        if !claim() {
+            // SAFETY: switched off meanwhile: a `System` block like any other.
+            return unsafe { System.alloc_zeroed(layout) };
         }
         match large::round(layout.size()) {
             // SAFETY: a fresh mapping.
@@ -176,23 +279,16 @@ unsafe impl GlobalAlloc for LargePages {
         }
     }
 
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        if !is_large(&layout) {
-            // SAFETY: forwarded with the caller's guarantees.
-            return unsafe { System.alloc_zeroed(layout) };
-        }
-        // SAFETY: anonymous mappings are zeroed by the kernel.
-        unsafe { self.alloc(layout) }
-    }
-
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         if !is_large(&layout) {
             // SAFETY: the block came from `System` with this layout.
             return unsafe { System.dealloc(ptr, layout) };
         }
         if let Some(len) = large::round(layout.size()) {
-            // SAFETY: the block is one of our mappings of this rounded length.
-            unsafe { large::unmap(ptr, len) }
+            if !retained::keep(ptr as usize, len) {
+                // SAFETY: the block is one of our mappings of this rounded length.
+                unsafe { large::unmap(ptr, len) }
+            }
         }
     }
 
@@ -412,6 +508,32 @@ mod tests {
             assert!(!LargePages::disable());
             *p.add(LARGE - 1) = 1;
             a.dealloc(p, layout);
+        }
+    }
+
+    /// A freed large block is kept and handed out again, whole and writable, at
+    /// any size; zeroed blocks are zero even right after a block was freed.
+    #[test]
+    fn freed_blocks_come_back() {
+        let a = LargePages;
+        unsafe {
+            for (first, second) in [(LARGE, LARGE), (3 * LARGE, LARGE + 1), (LARGE, 5 * LARGE)] {
+                let l1 = Layout::from_size_align(first, 8).unwrap();
+                let p = a.alloc(l1);
+                assert!(!p.is_null());
+                std::ptr::write_bytes(p, 0xAB, first);
+                a.dealloc(p, l1);
+                let l2 = Layout::from_size_align(second, 8).unwrap();
+                let q = a.alloc(l2);
+                assert!(!q.is_null());
+                std::ptr::write_bytes(q, 0x11, second);
+                assert!((0..second).step_by(4093).all(|i| *q.add(i) == 0x11));
+                a.dealloc(q, l2);
+                let z = a.alloc_zeroed(l2);
+                assert!(!z.is_null());
+                assert!((0..second).step_by(4093).all(|i| *z.add(i) == 0));
+                a.dealloc(z, l2);
+            }
         }
     }
 

@@ -225,10 +225,7 @@ fn two_halves(opts: ParseOptions, text: Arc<[u8]>, lean: bool) -> Program {
         if lean {
             parser = parser.without_tokens();
         }
-        let all = text.clone();
-        while parser.pos < split && parser.pos < all.len() {
-            parser.parse_block(&mut program, &all);
-        }
+        parser.parse_blocks_before(&mut program, usize::MAX, split);
         // A thread that could not start or that failed leaves the work to this one.
         let second = handle.ok().and_then(|h| h.join().ok());
         (program, parser, second)
@@ -459,15 +456,43 @@ impl Parser {
     /// Parses up to `max_blocks` blocks into `program`, appending. Returns the
     /// number of blocks parsed (0 at end of input).
     pub fn parse_blocks(&mut self, program: &mut Program, max_blocks: usize) -> usize {
+        self.parse_blocks_before(program, max_blocks, usize::MAX)
+    }
+
+    /// [`Parser::parse_blocks`], stopping also at the first block that starts at or
+    /// after byte `limit`.
+    fn parse_blocks_before(
+        &mut self,
+        program: &mut Program,
+        max_blocks: usize,
+        limit: usize,
+    ) -> usize {
         // One handle on the text for the whole run: cloning the `Arc` per block
         // cost two atomic operations per line.
         let text = self.text.clone();
+        let limit = limit.min(text.len());
         let mut n = 0;
         let quick = self.plain_fast && !self.tokens;
-        while n < max_blocks && self.pos < text.len() {
-            if !(quick && self.plain_block(program, &text)) {
-                self.parse_block(program, &text);
+        while n < max_blocks && self.pos < limit {
+            if quick {
+                n += self.plain_blocks(program, &text, max_blocks - n, limit);
+                if n >= max_blocks || self.pos >= limit {
+                    break;
+                }
             }
+            self.parse_block(program, &text);
+            n += 1;
+        }
+        n
+    }
+
+    /// [`Parser::plain_block`] over the plain lines from here on, up to `max` of
+    /// them and before byte `limit`: one call per run of CAM output rather than per
+    /// line. Returns how many it parsed; unless a bound stopped it, the line after
+    /// them is not plain.
+    fn plain_blocks(&mut self, p: &mut Program, text: &[u8], max: usize, limit: usize) -> usize {
+        let mut n = 0;
+        while n < max && self.pos < limit && self.plain_block(p, text) {
             n += 1;
         }
         n
@@ -478,6 +503,7 @@ impl Parser {
     /// block without a block-skip mark or tokens to record, and none of the general
     /// bookkeeping applies. Returns `false`, having changed nothing, for any other
     /// line.
+    #[inline(always)]
     fn plain_block(&mut self, p: &mut Program, text: &[u8]) -> bool {
         let start = self.pos;
         if self.after_end || !text.get(start).is_some_and(u8::is_ascii_uppercase) {
@@ -741,6 +767,7 @@ fn plain_words_to(
 /// (a line break, a FANUC `;`, or the end of the text), so a plain line's bytes are
 /// read once. Returns that end, or `None`, leaving `p` as it was, when the line
 /// holds anything else; the general path then reads it.
+#[inline(always)]
 fn plain_words<const TOKENS: bool>(
     p: &mut Program,
     text: &[u8],
@@ -799,17 +826,8 @@ fn plain_words_inner<const TOKENS: bool>(
         if signed {
             i += 1;
         }
-        let (int, int_digits, after) = digit_run(text, i);
+        let (mant, digits, frac_digits, has_point, after) = decimal(text, i);
         i = after;
-        let has_point = text.get(i) == Some(&b'.');
-        let (frac, frac_digits) = if has_point {
-            let (frac, frac_digits, after) = digit_run(text, i + 1);
-            i = after;
-            (frac, frac_digits)
-        } else {
-            (0, 0)
-        };
-        let digits = int_digits + frac_digits;
         if digits == 0 || digits > 15 {
             return None;
         }
@@ -835,10 +853,9 @@ fn plain_words_inner<const TOKENS: bool>(
             }
             Some(_) => return None,
         }
-        // At most 15 digits, so the mantissa is exact and `frac_digits` indexes the tables.
-        // Below 2^63, so the signed conversion (one instruction) is exact.
-        let mant = (int * POW10_U64[frac_digits] + frac) as i64;
-        let v = mant as f64 / POW10[frac_digits];
+        // At most 15 digits: the mantissa is exact, below 2^63 (so the signed
+        // conversion, one instruction, is exact too), and `frac_digits` indexes the table.
+        let v = mant as i64 as f64 / POW10[frac_digits];
         if TOKENS {
             p.tokens.push(Token {
                 start: ls as u32,
@@ -886,6 +903,48 @@ const POW10_U64: [u64; 16] = [
     1_000_000_000_000_000,
 ];
 
+/// The unsigned decimal number from `i` on (`12`, `12.5`, `.5`, `12.`): the value of
+/// its digits without the point (wrapping past 19 digits, which callers reject), the
+/// number of digits, how many follow the point, whether there is a point, and where
+/// it ends. A number that ends within the next eight bytes (most of what CAM output
+/// writes) is read from one load with one conversion.
+#[inline(always)]
+fn decimal(text: &[u8], i: usize) -> (u64, usize, usize, bool, usize) {
+    if let Some(chunk) = text.get(i..).and_then(|s| s.first_chunk::<8>()) {
+        let word = u64::from_le_bytes(*chunk);
+        let flags = non_digit_flags(word);
+        let int = (flags.trailing_zeros() / 8) as usize;
+        if int < 7 && (word >> (8 * int)) as u8 == b'.' {
+            // Digits after the point within the load (the count is 8 past the end).
+            let frac = ((flags >> (8 * (int + 1))).trailing_zeros() / 8) as usize;
+            let frac = frac.min(7 - int);
+            let digits = int + frac;
+            let end = i + int + 1 + frac;
+            let ends = int + 1 + frac < 8 || !text.get(end).is_some_and(u8::is_ascii_digit);
+            if ends && digits > 0 {
+                // The digits before the point, then those after it, in the low bytes.
+                let low = |n: usize| (1u64 << (8 * n)) - 1;
+                let joined =
+                    (word & low(int)) | (((word >> (8 * (int + 1))) & low(frac)) << (8 * int));
+                let value = eight_digits_value(joined << (8 * (8 - digits)));
+                return (value, digits, frac, true, end);
+            }
+        } else if (1..8).contains(&int) && (word >> (8 * int)) as u8 != b'.' {
+            let value = eight_digits_value(word << (8 * (8 - int)));
+            return (value, int, 0, false, i + int);
+        }
+    }
+    let (int, int_digits, end) = digit_run(text, i);
+    if text.get(end) != Some(&b'.') {
+        return (int, int_digits, 0, false, end);
+    }
+    let (frac, frac_digits, end) = digit_run(text, end + 1);
+    let value = int
+        .wrapping_mul(POW10_U64.get(frac_digits).copied().unwrap_or(0))
+        .wrapping_add(frac);
+    (value, int_digits + frac_digits, frac_digits, true, end)
+}
+
 /// The decimal digits from `i` on: their value (wrapping past 19 digits, which
 /// callers reject), their count, and where they end. Eight bytes at a time where the
 /// text has them: a number's length varies from word to word, and a loop per digit
@@ -918,6 +977,12 @@ fn digit_run(text: &[u8], mut i: usize) -> (u64, usize, usize) {
 /// How many of the eight bytes of `word` (first byte lowest) are ASCII digits
 /// before the first that is not.
 fn leading_digits(word: u64) -> usize {
+    (non_digit_flags(word).trailing_zeros() / 8) as usize
+}
+
+/// Bit 7 of each byte of `word` set where the byte is not an ASCII digit, all other
+/// bits clear.
+fn non_digit_flags(word: u64) -> u64 {
     const LO: u64 = 0x0F0F_0F0F_0F0F_0F0F;
     const HI: u64 = 0xF0F0_F0F0_F0F0_F0F0;
     const LOW7: u64 = 0x7F7F_7F7F_7F7F_7F7F;
@@ -926,8 +991,7 @@ fn leading_digits(word: u64) -> usize {
     let not_digit = ((word & HI) ^ 0x3030_3030_3030_3030)
         | ((word & LO) + 0x0606_0606_0606_0606) & 0x1010_1010_1010_1010;
     // Bit 7 of each byte set when the byte is non-zero, again without carries.
-    let flags = (((not_digit & LOW7) + LOW7) | not_digit) & !LOW7;
-    (flags.trailing_zeros() / 8) as usize
+    (((not_digit & LOW7) + LOW7) | not_digit) & !LOW7
 }
 
 /// The value of eight ASCII digits (first byte lowest, most significant); bytes
@@ -2375,7 +2439,7 @@ fn printable(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{digit_run, leading_digits, parse_f64};
+    use super::{decimal, digit_run, leading_digits, parse_f64};
 
     /// The eight-byte digit reader against a byte-by-byte reading, on every mix of
     /// digits and the bytes next to them in ASCII, at every offset and length.
@@ -2400,13 +2464,77 @@ mod tests {
                 })
                 .collect();
             for start in 0..=text.len() {
-                let n = text[start..].iter().take_while(|c| c.is_ascii_digit()).count();
-                let want = text[start..start + n]
+                let n = text[start..]
                     .iter()
-                    .fold(0u64, |v, d| v.wrapping_mul(10).wrapping_add(u64::from(d - b'0')));
-                assert_eq!(digit_run(&text, start), (want, n, start + n), "{text:?} at {start}");
+                    .take_while(|c| c.is_ascii_digit())
+                    .count();
+                let want = text[start..start + n].iter().fold(0u64, |v, d| {
+                    v.wrapping_mul(10).wrapping_add(u64::from(d - b'0'))
+                });
+                assert_eq!(
+                    digit_run(&text, start),
+                    (want, n, start + n),
+                    "{text:?} at {start}"
+                );
             }
         }
+        for b in 0..=255u8 {
+            let word = u64::from_le_bytes([b'1', b'2', b, b'3', b'4', b'5', b'6', b'7']);
+            let want = if b.is_ascii_digit() { 8 } else { 2 };
+            assert_eq!(leading_digits(word), want, "byte {b}");
+        }
+    }
+
+    /// The one-load decimal reader against two digit runs around the point.
+    #[test]
+    fn decimals_read_as_digit_runs() {
+        let alphabet = b"0123456789..-X \n";
+        let mut x: u64 = 7;
+        for _ in 0..50000 {
+            x = x
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let len = (x >> 60) as usize + 1;
+            let text: Vec<u8> = (0..len)
+                .map(|k| {
+                    let r = (x >> (k * 3 % 48)) as usize;
+                    if r.is_multiple_of(4) {
+                        alphabet[10 + (r / 4) % (alphabet.len() - 10)]
+                    } else {
+                        alphabet[r % 10]
+                    }
+                })
+                .collect();
+            for start in 0..=text.len() {
+                let (int, n, end) = digit_run(&text, start);
+                let want = if text.get(end) == Some(&b'.') {
+                    let (frac, f, end) = digit_run(&text, end + 1);
+                    let scale = 10u64.checked_pow(f as u32).unwrap_or(0);
+                    (
+                        int.wrapping_mul(scale).wrapping_add(frac),
+                        n + f,
+                        f,
+                        true,
+                        end,
+                    )
+                } else {
+                    (int, n, 0, false, end)
+                };
+                let got = decimal(&text, start);
+                if want.1 <= 15 {
+                    assert_eq!(got, want, "{:?} at {start}", String::from_utf8_lossy(&text));
+                } else {
+                    assert_eq!(
+                        (got.1, got.2, got.3, got.4),
+                        (want.1, want.2, want.3, want.4)
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn leading_digit_counts() {
         for b in 0..=255u8 {
             let word = u64::from_le_bytes([b'1', b'2', b, b'3', b'4', b'5', b'6', b'7']);
             let want = if b.is_ascii_digit() { 8 } else { 2 };
