@@ -795,31 +795,29 @@ fn plain_words_inner<const TOKENS: bool>(
     const POW10: [f64; 16] = [
         1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
     ];
-    let semicolon_ends = dialect == Dialect::Fanuc;
+    let classes = plain_classes(dialect);
     let mut i = start;
     loop {
         let Some(&b) = text.get(i) else {
             return Some(i);
         };
-        if b == b'\n' || b == b'\r' || (b == b';' && semicolon_ends) {
-            return Some(i);
-        }
-        if is_ws(b) {
-            let s = i;
-            while text.get(i).is_some_and(|c| is_ws(*c)) {
-                i += 1;
+        match classes[usize::from(b)] {
+            PlainClass::Letter => {}
+            PlainClass::End => return Some(i),
+            PlainClass::Blank => {
+                let s = i;
+                while text.get(i).is_some_and(|c| is_ws(*c)) {
+                    i += 1;
+                }
+                if TOKENS {
+                    p.tokens.push(Token {
+                        start: s as u32,
+                        kind: TokenKind::Whitespace,
+                    });
+                }
+                continue;
             }
-            if TOKENS {
-                p.tokens.push(Token {
-                    start: s as u32,
-                    kind: TokenKind::Whitespace,
-                });
-            }
-            continue;
-        }
-        // `O` starts program heads and O-words; a ServoWorks `P` may be a name.
-        if !b.is_ascii_uppercase() || b == b'O' || (b == b'P' && dialect == Dialect::Servoworks) {
-            return None;
+            PlainClass::Other => return None,
         }
         let ls = i;
         i += 1;
@@ -836,25 +834,25 @@ fn plain_words_inner<const TOKENS: bool>(
         }
         // The number must end here: at the end of the line, before a letter, or before
         // blanks that do not continue it (RS274/NGC and FANUC read `X1 5` as `X15`).
-        match text.get(i) {
-            None | Some(b'\n' | b'\r') => {}
-            Some(b';') if semicolon_ends => {}
-            Some(c) if c.is_ascii_uppercase() => {}
-            Some(c) if is_ws(*c) => {
-                if dialect != Dialect::Servoworks {
-                    let mut j = i;
-                    while text.get(j).is_some_and(|c| is_ws(*c)) {
-                        j += 1;
-                    }
-                    if text
-                        .get(j)
+        // Those blanks are read here, once, and stepped over below.
+        // (A letter that cannot start a plain word, `O`, fails the line here rather
+        // than at the top of the loop.)
+        let mut next = i;
+        match text.get(i).map(|c| classes[usize::from(*c)]) {
+            None | Some(PlainClass::End | PlainClass::Letter) => {}
+            Some(PlainClass::Blank) => {
+                while text.get(next).is_some_and(|c| is_ws(*c)) {
+                    next += 1;
+                }
+                if dialect != Dialect::Servoworks
+                    && text
+                        .get(next)
                         .is_some_and(|c| c.is_ascii_digit() || *c == b'.')
-                    {
-                        return None;
-                    }
+                {
+                    return None;
                 }
             }
-            Some(_) => return None,
+            Some(PlainClass::Other) => return None,
         }
         // At most 15 digits: the mantissa is exact, below 2^63 (so the signed
         // conversion, one instruction, is exact too), and `frac_digits` indexes the table.
@@ -884,6 +882,66 @@ fn plain_words_inner<const TOKENS: bool>(
             }),
             span: Span::new(ls as u32, i as u32),
         });
+        if next > i {
+            if TOKENS {
+                p.tokens.push(Token {
+                    start: i as u32,
+                    kind: TokenKind::Whitespace,
+                });
+            }
+            i = next;
+        }
+    }
+}
+
+/// What a byte is where a plain line may have a word ([`plain_words`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum PlainClass {
+    /// An address letter that a plain word may start with.
+    Letter,
+    /// The end of the block's content: a line break, or `;` in FANUC.
+    End,
+    /// A blank.
+    Blank,
+    /// Anything else: the line is not plain.
+    Other,
+}
+
+/// [`PlainClass`] of every byte, per dialect: one load decides what the next byte
+/// starts instead of a chain of comparisons.
+const fn plain_class_table(dialect: Dialect) -> [PlainClass; 256] {
+    let mut t = [PlainClass::Other; 256];
+    let mut b = b'A';
+    while b <= b'Z' {
+        t[b as usize] = PlainClass::Letter;
+        b += 1;
+    }
+    // `O` starts program heads and O-words; a ServoWorks `P` may be a name.
+    t[b'O' as usize] = PlainClass::Other;
+    if matches!(dialect, Dialect::Servoworks) {
+        t[b'P' as usize] = PlainClass::Other;
+    }
+    t[b'\n' as usize] = PlainClass::End;
+    t[b'\r' as usize] = PlainClass::End;
+    if matches!(dialect, Dialect::Fanuc) {
+        t[b';' as usize] = PlainClass::End;
+    }
+    // The blanks of `is_ws`.
+    t[b' ' as usize] = PlainClass::Blank;
+    t[b'\t' as usize] = PlainClass::Blank;
+    t[0x0b] = PlainClass::Blank;
+    t[0x0c] = PlainClass::Blank;
+    t
+}
+
+fn plain_classes(dialect: Dialect) -> &'static [PlainClass; 256] {
+    static SERVOWORKS: [PlainClass; 256] = plain_class_table(Dialect::Servoworks);
+    static RS274NGC: [PlainClass; 256] = plain_class_table(Dialect::Rs274ngc);
+    static FANUC: [PlainClass; 256] = plain_class_table(Dialect::Fanuc);
+    match dialect {
+        Dialect::Servoworks => &SERVOWORKS,
+        Dialect::Rs274ngc => &RS274NGC,
+        Dialect::Fanuc => &FANUC,
     }
 }
 
