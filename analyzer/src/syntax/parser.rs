@@ -181,7 +181,7 @@ pub fn parse_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
 
 /// [`parse_in_two`] without tokens: the tree of [`parse_lean`]. The halves parse in
 /// parallel and are then joined by a copy, so where memory is reused (repeated
-/// parses) the wall time falls by about 40 %, not by half; a process's first parse
+/// parses) the wall time falls by a quarter to a third, not by half; a process's first parse
 /// gains nothing, because it faults in a third more memory (the second half's own
 /// vectors), and its peak memory is a third higher (BENCHMARKS.md, session 7). No
 /// host uses it by default.
