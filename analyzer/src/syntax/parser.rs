@@ -786,6 +786,8 @@ fn plain_words<const TOKENS: bool>(
     end
 }
 
+/// [`plain_words`] without the clean-up on failure: it may leave some of the line's
+/// words behind when it returns `None`.
 fn plain_words_inner<const TOKENS: bool>(
     p: &mut Program,
     text: &[u8],
@@ -835,8 +837,8 @@ fn plain_words_inner<const TOKENS: bool>(
         // The number must end here: at the end of the line, before a letter, or before
         // blanks that do not continue it (RS274/NGC and FANUC read `X1 5` as `X15`).
         // Those blanks are read here, once, and stepped over below.
-        // (A letter that cannot start a plain word, `O`, fails the line here rather
-        // than at the top of the loop.)
+        // (A letter that cannot start a plain word, `O` or a ServoWorks `P`, fails the
+        // line here rather than at the top of the loop.)
         let mut next = i;
         match text.get(i).map(|c| classes[usize::from(*c)]) {
             None | Some(PlainClass::End | PlainClass::Letter) => {}
