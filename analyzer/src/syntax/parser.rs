@@ -794,9 +794,6 @@ fn plain_words_inner<const TOKENS: bool>(
     start: usize,
     dialect: Dialect,
 ) -> Option<usize> {
-    const POW10: [f64; 16] = [
-        1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-    ];
     let classes = plain_classes(dialect);
     let mut i = start;
     loop {
@@ -946,6 +943,12 @@ fn plain_classes(dialect: Dialect) -> &'static [PlainClass; 256] {
         Dialect::Fanuc => &FANUC,
     }
 }
+
+/// Exact powers of ten: a mantissa of at most 15 digits divided by one of them is
+/// the correctly rounded value of the decimal.
+const POW10: [f64; 16] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+];
 
 const POW10_U64: [u64; 16] = [
     1,
@@ -1525,10 +1528,6 @@ impl<'p> Cx<'p> {
         let value = if digits == 0 || bad {
             None
         } else if digits <= 15 {
-            const POW10: [f64; 16] = [
-                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
-                1e15,
-            ];
             let v = mant as f64 / POW10[frac_digits as usize];
             Some(if negative { -v } else { v })
         } else {
@@ -2477,10 +2476,6 @@ fn parse_f64(raw: &[u8]) -> Option<f64> {
             }
         }
         if n <= 15 {
-            const POW10: [f64; 16] = [
-                1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14,
-                1e15,
-            ];
             let v = mant as f64 / POW10[frac_digits.max(0) as usize];
             return Some(if neg { -v } else { v });
         }
@@ -2504,28 +2499,48 @@ fn printable(s: &str) -> String {
 mod tests {
     use super::{decimal, digit_run, leading_digits, parse_f64};
 
+    /// One step of the fixed-seed generator the tests below draw from.
+    fn lcg(x: &mut u64) -> u64 {
+        *x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        *x
+    }
+
+    /// `count` deterministic texts of 1 to 16 (`long`: 32) bytes for the number
+    /// readers: mostly digits, so that long runs occur, and one byte in `every` from
+    /// `others`.
+    fn digit_texts(
+        seed: u64,
+        count: usize,
+        long: bool,
+        others: &[u8],
+        every: usize,
+    ) -> Vec<Vec<u8>> {
+        let mut x = seed;
+        (0..count)
+            .map(|_| {
+                let x = lcg(&mut x);
+                let len = (x >> if long { 59 } else { 60 }) as usize + 1;
+                (0..len)
+                    .map(|k| {
+                        let r = (x >> (k * 3 % 48)) as usize;
+                        if r.is_multiple_of(every) {
+                            others[(r / every) % others.len()]
+                        } else {
+                            b'0' + (r % 10) as u8
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     /// The eight-byte digit reader against a byte-by-byte reading, on every mix of
     /// digits and the bytes next to them in ASCII, at every offset and length.
     #[test]
     fn digit_runs_read_as_byte_by_byte() {
-        let alphabet = b"0123456789/:. X\n\0\xff";
-        let mut x: u64 = 99;
-        for _ in 0..20000 {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let len = (x >> 59) as usize + 1;
-            let text: Vec<u8> = (0..len)
-                .map(|k| {
-                    let r = (x >> (k % 24 * 2)) as usize;
-                    // Mostly digits, so that long runs occur.
-                    if r.is_multiple_of(5) {
-                        alphabet[10 + (r / 5) % (alphabet.len() - 10)]
-                    } else {
-                        alphabet[r % 10]
-                    }
-                })
-                .collect();
+        for text in digit_texts(99, 20000, true, b"/:. X\n\0\xff", 5) {
             for start in 0..=text.len() {
                 let n = text[start..]
                     .iter()
@@ -2541,33 +2556,12 @@ mod tests {
                 );
             }
         }
-        for b in 0..=255u8 {
-            let word = u64::from_le_bytes([b'1', b'2', b, b'3', b'4', b'5', b'6', b'7']);
-            let want = if b.is_ascii_digit() { 8 } else { 2 };
-            assert_eq!(leading_digits(word), want, "byte {b}");
-        }
     }
 
     /// The one-load decimal reader against two digit runs around the point.
     #[test]
     fn decimals_read_as_digit_runs() {
-        let alphabet = b"0123456789..-X \n";
-        let mut x: u64 = 7;
-        for _ in 0..50000 {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let len = (x >> 60) as usize + 1;
-            let text: Vec<u8> = (0..len)
-                .map(|k| {
-                    let r = (x >> (k * 3 % 48)) as usize;
-                    if r.is_multiple_of(4) {
-                        alphabet[10 + (r / 4) % (alphabet.len() - 10)]
-                    } else {
-                        alphabet[r % 10]
-                    }
-                })
-                .collect();
+        for text in digit_texts(7, 50000, false, b"..-X \n", 4) {
             for start in 0..=text.len() {
                 let (int, n, end) = digit_run(&text, start);
                 let want = if text.get(end) == Some(&b'.') {
@@ -2596,6 +2590,7 @@ mod tests {
         }
     }
 
+    /// The digit mask stops at the first byte of any value that is not a digit.
     #[test]
     fn leading_digit_counts() {
         for b in 0..=255u8 {
@@ -2637,9 +2632,7 @@ mod tests {
         // A deterministic sweep of short decimals.
         let mut x: u64 = 12345;
         for _ in 0..20000 {
-            x = x
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
+            let x = lcg(&mut x);
             let int = (x >> 40) % 100000;
             let frac = (x >> 10) % 10000;
             let s = format!("{int}.{frac:04}");
