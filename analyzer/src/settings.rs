@@ -334,25 +334,161 @@ pub fn dialect_directive(text: &[u8]) -> Option<Dialect> {
 /// Guesses the dialect from a file's extension and content, when neither a
 /// config nor a directive says.
 pub fn sniff_dialect(path_ext: Option<&str>, text: &[u8]) -> Option<Dialect> {
+    sniff_dialect_why(path_ext, text).map(|(d, _)| d)
+}
+
+/// [`sniff_dialect`] with the evidence that decided it, in words a user can
+/// check ("program number O1000 on line 2"), so a wrong guess is visible.
+pub fn sniff_dialect_why(path_ext: Option<&str>, text: &[u8]) -> Option<(Dialect, String)> {
     if let Some(d) = dialect_directive(text) {
-        return Some(d);
+        return Some((d, "the first-line `(partscope: dialect=…)` comment".into()));
     }
-    match path_ext.map(|e| e.to_ascii_lowercase()).as_deref() {
-        Some("ngc") => return Some(Dialect::Rs274ngc),
-        Some("dat" | "sw") => return Some(Dialect::Servoworks),
-        Some("fnc") => return Some(Dialect::Fanuc),
-        _ => {}
+    let ext = path_ext.map(|e| e.to_ascii_lowercase());
+    let by_ext = match ext.as_deref() {
+        Some("ngc") => Some(Dialect::Rs274ngc),
+        Some("dat" | "sw") => Some(Dialect::Servoworks),
+        Some("fnc") => Some(Dialect::Fanuc),
+        _ => None,
+    };
+    if let (Some(d), Some(e)) = (by_ext, ext.as_deref()) {
+        return Some((d, format!("the `.{e}` extension")));
     }
-    let head = &text[..text.len().min(64 * 1024)];
-    let up = String::from_utf8_lossy(head).to_ascii_uppercase();
-    if up.contains(" SUB") && up.contains("O<") || up.contains("#<") || up.contains("ENDSUB") {
-        return Some(Dialect::Rs274ngc);
+    content_dialect(&text[..text.len().min(64 * 1024)])
+}
+
+/// The dialect that the text's own syntax proves. RS274/NGC O-word and named
+/// parameter syntax exists in no FANUC program; FANUC macro statements, GOTO,
+/// G65/G66 calls, `;` block ends and an `O` program number on a line of its
+/// own (rs274 rejects an O-word without a keyword) exist in no LinuxCNC one.
+fn content_dialect(head: &[u8]) -> Option<(Dialect, String)> {
+    let mut fanuc: Option<String> = None;
+    let mut percent_line = None;
+    for (i, raw) in head.split(|b| *b == b'\n').enumerate() {
+        let n = i + 1;
+        let line = raw.trim_ascii();
+        if line == b"%" {
+            percent_line.get_or_insert(n);
+            continue;
+        }
+        let code = code_of_line(line);
+        let words = code.split(|b| *b == b' ').filter(|w| !w.is_empty());
+        let first = code.split(|b| *b == b' ').find(|w| !w.is_empty());
+        if let Some(e) = ngc_evidence(&code, first) {
+            return Some((Dialect::Rs274ngc, format!("{e} on line {n}")));
+        }
+        if fanuc.is_some() {
+            continue;
+        }
+        let mut it = words.peekable();
+        // A leading N number does not change what the block is.
+        if it.peek().is_some_and(|w| is_word(w, b'N')) {
+            it.next();
+        }
+        let lead = it.next().unwrap_or_default();
+        if lead == b"WHILE" || lead.starts_with(b"WHILE[") {
+            fanuc = Some(format!("a `WHILE` statement on line {n}"));
+        } else if lead == b"IF" || lead.starts_with(b"IF[") {
+            fanuc = Some(format!("an `IF` statement on line {n}"));
+        } else if contains(&code, b"GOTO") {
+            fanuc = Some(format!("a `GOTO` on line {n}"));
+        } else if code.windows(4).any(|w| w == b"G65P" || w == b"G66P")
+            || code.windows(5).any(|w| w == b"G65 P" || w == b"G66 P")
+        {
+            fanuc = Some(format!("a G65/G66 macro call on line {n}"));
+        } else if line.ends_with(b";") && code.len() > 1 {
+            fanuc = Some(format!("blocks ending in `;` (line {n})"));
+        } else if let Some(head) = program_number(&code) {
+            fanuc = Some(match percent_line {
+                Some(p) => format!("the `%` line {p} and program number {head} on line {n}"),
+                None => format!("program number {head} on line {n}"),
+            });
+        }
     }
-    if up.contains("WHILE[") || up.contains("WHILE [") || up.contains("GOTO") || up.contains(";\n")
-    {
-        return Some(Dialect::Fanuc);
+    fanuc.map(|e| (Dialect::Fanuc, e))
+}
+
+/// A line upper-cased, without `( )` comments, with blanks folded to one.
+fn code_of_line(line: &[u8]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(line.len());
+    let mut depth = 0u32;
+    for &b in line {
+        match b {
+            b'(' => depth += 1,
+            b')' if depth > 0 => depth -= 1,
+            _ if depth > 0 => {}
+            b' ' | b'\t' | b'\r' => {
+                if out.last().is_some_and(|l| *l != b' ') {
+                    out.push(b' ');
+                }
+            }
+            _ => out.push(b.to_ascii_uppercase()),
+        }
+    }
+    while out.last() == Some(&b' ') {
+        out.pop();
+    }
+    out
+}
+
+fn contains(hay: &[u8], needle: &[u8]) -> bool {
+    hay.windows(needle.len()).any(|w| w == needle)
+}
+
+/// `X12` style word: the letter, then digits.
+fn is_word(w: &[u8], letter: u8) -> bool {
+    w.len() > 1 && w[0] == letter && w[1..].iter().all(u8::is_ascii_digit)
+}
+
+/// What in a line only RS274/NGC writes: `o<name>`, `#<name>`, or a numbered
+/// O-word followed by its keyword (`o100 sub`, `O110 if [...]`).
+fn ngc_evidence(code: &[u8], first: Option<&[u8]>) -> Option<&'static str> {
+    if contains(code, b"#<") {
+        return Some("a named parameter `#<…>`");
+    }
+    let first = first?;
+    if first.starts_with(b"O<") {
+        return Some("an O-word `o<…>`");
+    }
+    const KEYWORDS: &[&[u8]] = &[
+        b"SUB",
+        b"ENDSUB",
+        b"CALL",
+        b"IF",
+        b"ELSEIF",
+        b"ELSE",
+        b"ENDIF",
+        b"WHILE",
+        b"ENDWHILE",
+        b"DO",
+        b"REPEAT",
+        b"ENDREPEAT",
+        b"RETURN",
+        b"BREAK",
+        b"CONTINUE",
+    ];
+    if is_word(first, b'O') {
+        let rest = &code[first.len()..];
+        let rest = rest.strip_prefix(b" ").unwrap_or(rest);
+        let kw: &[u8] = rest
+            .split(|b| !b.is_ascii_alphabetic())
+            .next()
+            .unwrap_or_default();
+        if KEYWORDS.contains(&kw) {
+            return Some("a numbered O-word with its keyword");
+        }
     }
     None
+}
+
+/// `O1000` or `:1000` alone on its line (a comment or `;` may follow): a
+/// FANUC program number. Returns it as written.
+fn program_number(code: &[u8]) -> Option<String> {
+    let code = code.strip_suffix(b";").unwrap_or(code).trim_ascii();
+    let (letter, digits) = code.split_first()?;
+    let ok = matches!(letter, b'O' | b':')
+        && (1..=8).contains(&digits.len())
+        && digits.iter().all(u8::is_ascii_digit);
+    ok.then(|| String::from_utf8_lossy(code).into_owned())
 }
 
 /// Severity threshold helper for exit codes.
@@ -384,6 +520,62 @@ mod tests {
         assert_eq!(
             sniff_dialect(Some("fnc"), b"(partscope: dialect=rs274ngc)\nG0 X1\n"),
             Some(Dialect::Rs274ngc)
+        );
+    }
+
+    /// Content decides for files whose extension does not (`.nc`, `.tap`, …):
+    /// the shapes real posts and hand-written programs have.
+    #[test]
+    fn content_picks_the_dialect_with_its_evidence() {
+        let why = |t: &str| sniff_dialect_why(Some("nc"), t.as_bytes());
+        // A FANUC post's program: `%`, `O1000 (…)`, blocks, `M30`, `%`.
+        assert_eq!(
+            why("%\nO1000 (PART 12)\nG90 G54 G0 X10. Y10.\nG4 P500\nM30\n%\n"),
+            Some((
+                Dialect::Fanuc,
+                "the `%` line 1 and program number O1000 on line 2".into()
+            ))
+        );
+        assert_eq!(
+            why("O01000\nN10 G0 X0 Y0\nM30\n"),
+            Some((Dialect::Fanuc, "program number O01000 on line 1".into()))
+        );
+        assert_eq!(
+            why("#1=0\nN20 WHILE [#1 LT 3] DO1\n#1=#1+1\nEND1\nM30\n"),
+            Some((Dialect::Fanuc, "a `WHILE` statement on line 2".into()))
+        );
+        assert_eq!(
+            why("G90\nG65 P9010 A1. B2.\nM30\n"),
+            Some((Dialect::Fanuc, "a G65/G66 macro call on line 2".into()))
+        );
+        assert_eq!(
+            why("G0 X1;\nM30;\n"),
+            Some((Dialect::Fanuc, "blocks ending in `;` (line 1)".into()))
+        );
+        // LinuxCNC: numbered O-words with keywords, named O-words and parameters.
+        assert_eq!(
+            why("%\no100 while [#1 lt 3]\n#1=[#1+1]\no100 endwhile\nM2\n%\n"),
+            Some((
+                Dialect::Rs274ngc,
+                "a numbered O-word with its keyword on line 2".into()
+            ))
+        );
+        assert_eq!(
+            why("(GOTO is only a word here)\no<probe> sub\no<probe> endsub\n"),
+            Some((Dialect::Rs274ngc, "an O-word `o<…>` on line 2".into()))
+        );
+        assert_eq!(
+            why("#<depth> = 2\nG1 Z-#<depth>\n"),
+            Some((
+                Dialect::Rs274ngc,
+                "a named parameter `#<…>` on line 1".into()
+            ))
+        );
+        // Nothing that only one dialect writes: the caller's default applies.
+        assert_eq!(why("%\nG21 G90\nG1 X1 F100 (O1000)\nM2\n%\n"), None);
+        assert_eq!(
+            sniff_dialect_why(Some("NGC"), b"O1000\n"),
+            Some((Dialect::Rs274ngc, "the `.ngc` extension".into()))
         );
     }
 

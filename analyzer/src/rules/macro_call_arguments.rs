@@ -10,9 +10,10 @@ use super::{BlockCx, Rule, RuleMeta};
 declare_rule! {
     /// ## What it does
     /// Checks the words of a `G65` (and FANUC `G66`) macro call: on ServoWorks `G65` must
-    /// come before its arguments; on FANUC the letters G and N cannot be arguments,
+    /// come before its arguments; on FANUC the letters G and N cannot be arguments (a G
+    /// code *before* the call is the block's own code, not an argument),
     /// argument specification I (letters) and II (repeated I/J/K) should not be mixed, and
-    /// argument values should have a decimal point.
+    /// argument values other than zero should have a decimal point.
     ///
     /// ## Why is this bad?
     /// ServoWorks requires `G65` first in the block. FANUC raises PS0129 for a G word
@@ -90,7 +91,10 @@ impl Rule for MacroCallArguments {
                 for (i, w) in &words {
                     let text = cx.program.str_of(i.span).into_owned();
                     match w.letter {
-                        b'G' if !every_block && i.span != call.span => out.push(Diagnostic::error(
+                        // G codes before G65 are the block's own codes, not arguments:
+                        // arguments follow the call (FANUC: "G65 must precede its
+                        // arguments"), and no manual page forbids a G code before it.
+                        b'G' if !every_block && i.span.start > call.span.start => out.push(Diagnostic::error(
                             "W012",
                             i.span,
                             format!("`{text}` in a macro call: G cannot be an argument (alarm PS0129; only G66.1 passes G words). Put the G code in its own block."),
@@ -102,7 +106,8 @@ impl Rule for MacroCallArguments {
                         )),
                         b'G' | b'N' | b'P' | b'L' | b'O' => {}
                         _ => {
-                            if w.num().is_some_and(|n| !n.has_point) {
+                            // Zero is zero in every increment.
+                            if w.num().is_some_and(|n| !n.has_point && n.value != 0.0) {
                                 out.push(Diagnostic::warning(
                                     "W012",
                                     i.span,

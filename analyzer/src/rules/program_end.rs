@@ -161,10 +161,12 @@ impl Rule for ProgramEnd {
                 }
             }
             Dialect::Fanuc => {
+                // Comment lines before the first `%` are tape leader, which the
+                // control skips (a `(partscope: dialect=fanuc)` line, a title).
                 let opens_with_percent = p
                     .blocks
                     .iter()
-                    .find(|b| b.kind != BlockKind::Normal || !p.items_of(b).is_empty())
+                    .find(|b| b.kind != BlockKind::Normal || has_code_items(p, b))
                     .is_some_and(|b| b.kind == BlockKind::Percent);
                 let has_head = p
                     .items

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{BlockKind, ItemKind, MacroStmt, OKeyword};
 
 use super::macro_loop_structure::literal;
-use super::util::{has_code_items, lit};
+use super::util::{fanuc_call_start, has_code_items, lit};
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -210,7 +210,12 @@ impl Rule for UnreachableAfterEnd {
             if d == Dialect::Rs274ngc && sub_depth > 0 {
                 continue;
             }
-            for (_, w) in p.words(b) {
+            let call = fanuc_call_start(p, b);
+            for (i, w) in p.words(b) {
+                // A FANUC macro call's `M2.0` is argument #13, not an end code.
+                if call.is_some_and(|c| i.span.start > c) {
+                    continue;
+                }
                 if w.letter == b'M' && !w.comma {
                     let v = lit(w);
                     if v == Some(2.0) {

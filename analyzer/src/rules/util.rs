@@ -77,6 +77,20 @@ pub fn code_name(dialect: Dialect, letter: char, num: CodeNum) -> String {
     }
 }
 
+/// Where a FANUC G65/G66/G66.1 macro call starts in the block: the words after
+/// it are arguments (`M2.0` is #13, `H14.` is #11), not NC words.
+pub fn fanuc_call_start(program: &Program, b: &Block) -> Option<u32> {
+    if program.dialect != Dialect::Fanuc {
+        return None;
+    }
+    program.words(b).find_map(|(i, w)| {
+        let is_call = w.letter == b'G'
+            && !w.comma
+            && lit(w).is_some_and(|v| [65.0, 66.0, 66.1].iter().any(|c| (v - c).abs() < 1e-9));
+        is_call.then_some(i.span.start)
+    })
+}
+
 /// Whether the block has items other than comments.
 pub fn has_code_items(program: &Program, b: &Block) -> bool {
     program

@@ -5,7 +5,9 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 use crate::syntax::ItemKind;
 
-use super::util::{has, is_drilling_cycle, is_emc2, lit, near_integer, word_item};
+use super::util::{
+    fanuc_call_start, has, is_drilling_cycle, is_emc2, lit, near_integer, word_item,
+};
 use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -434,7 +436,12 @@ impl Rule for WordValueRange {
             Dialect::Fanuc => {
                 let macro_call = has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661);
                 let unsigned: &[u8] = if macro_call { b"NPL" } else { b"NPTMSHDLKF" };
+                let call = fanuc_call_start(cx.program, cx.block);
                 for (item, w) in cx.words() {
+                    // Arguments of a macro call are values for #1–#33, not NC words:
+                    // an address's digit limit does not apply to them.
+                    let argument = call.is_some_and(|c| item.span.start > c)
+                        && !matches!(w.letter, b'P' | b'L' | b'N' | b'O');
                     let Some(n) = w.num().filter(|_| !w.comma) else {
                         continue;
                     };
@@ -448,6 +455,9 @@ impl Rule for WordValueRange {
                             item.span,
                             format!("`{text}`: address {l} takes no minus sign (alarm PS0006)."),
                         ));
+                    }
+                    if argument {
+                        continue;
                     }
                     let max = match w.letter {
                         b'S' => 5,

@@ -94,12 +94,8 @@ fn check_file(
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         },
     };
-    let dialect = workspace::resolve_dialect(
-        args.dialect.map(|d| d.dialect()),
-        &loaded.config,
-        path,
-        &text,
-    );
+    let (dialect, dialect_reason) =
+        workspace::resolve_dialect(args.dialect.map(|d| d.dialect()), &loaded, path, &text);
     let settings =
         match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
             Ok(s) => s,
@@ -171,6 +167,7 @@ fn check_file(
         diagnostics,
         io_error: false,
         extra_files,
+        dialect: Some((dialect, dialect_reason)),
     }
 }
 
@@ -186,6 +183,7 @@ impl FileReport {
             )],
             io_error: true,
             extra_files: Vec::new(),
+            dialect: None,
         }
     }
 }

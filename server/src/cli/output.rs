@@ -18,6 +18,16 @@ pub struct FileReport {
     pub io_error: bool,
     /// Files the interpreter opened (subprograms): `FileId(i)` is `extra_files[i - 1]`.
     pub extra_files: Vec<(PathBuf, Arc<[u8]>)>,
+    /// The dialect the file was read in, and why (`None` for a file not read).
+    pub dialect: Option<(analyzer::Dialect, String)>,
+}
+
+/// The report's dialect name and reason, for the JSON outputs.
+pub fn dialect_fields(r: &FileReport) -> (Option<&'static str>, Option<&str>) {
+    match &r.dialect {
+        Some((d, why)) => (Some(d.as_str()), Some(why.as_str())),
+        None => (None, None),
+    }
 }
 
 /// Reads the subprogram files a run opened, for showing their diagnostics; a file
@@ -45,6 +55,8 @@ pub struct Located<'a> {
     pub end_line: u32,
     pub end_column: u32,
     pub d: &'a Diagnostic,
+    /// Index of the report the diagnostic belongs to.
+    pub report: usize,
 }
 
 /// Remembers the last located offset so that many diagnostics on one long
@@ -80,7 +92,7 @@ impl Columns {
 
 pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
     let mut out = Vec::new();
-    for r in reports {
+    for (ri, r) in reports.iter().enumerate() {
         // A clean file needs no line index (a pass over every byte of it).
         if r.diagnostics.is_empty() {
             continue;
@@ -117,6 +129,7 @@ pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
                 end_line,
                 end_column,
                 d,
+                report: ri,
             });
         }
     }
@@ -129,7 +142,10 @@ pub fn emit(format: Format, reports: &[FileReport]) -> std::io::Result<()> {
     let mut out = std::io::BufWriter::new(stdout.lock());
     match format {
         Format::Json => {
-            let arr: Vec<Value> = located.iter().map(json_of).collect();
+            let arr: Vec<Value> = located
+                .iter()
+                .map(|l| json_of(l, &reports[l.report]))
+                .collect();
             serde_json::to_writer_pretty(&mut out, &Value::Array(arr))?;
             writeln!(out)?;
         }
@@ -166,7 +182,8 @@ fn rule_name(code: &str) -> &'static str {
     crate::rules::lookup(code).map(|r| r.name).unwrap_or("")
 }
 
-fn json_of(l: &Located<'_>) -> Value {
+fn json_of(l: &Located<'_>, r: &FileReport) -> Value {
+    let (dialect, dialect_reason) = dialect_fields(r);
     json!({
         "path": l.path,
         "line": l.line,
@@ -177,6 +194,8 @@ fn json_of(l: &Located<'_>) -> Value {
         "name": rule_name(l.d.code),
         "severity": l.d.severity.as_str(),
         "message": l.d.message,
+        "dialect": dialect,
+        "dialect_reason": dialect_reason,
         "fixes": l.d.fixes.iter().map(|f| json!({
             "title": f.title,
             "edits": f.edits.iter().map(|e| json!({"start": e.span.start, "end": e.span.end, "new_text": e.new_text})).collect::<Vec<_>>(),
@@ -270,7 +289,19 @@ fn human(
     let mut sources: std::collections::HashMap<String, Arc<String>> =
         std::collections::HashMap::new();
     let plain = located.len() > 1000;
+    let mut last_report = None;
     for l in located {
+        if last_report != Some(l.report) {
+            last_report = Some(l.report);
+            if let Some((d, why)) = &reports[l.report].dialect {
+                writeln!(
+                    out,
+                    "{}: checked as {} ({why})",
+                    reports[l.report].path.display(),
+                    d.as_str()
+                )?;
+            }
+        }
         match l.d.severity {
             Severity::Error => errors += 1,
             Severity::Warning => warnings += 1,

@@ -98,9 +98,9 @@ pub fn run(args: RunArgs) -> ExitCode {
         Ok(l) => l,
         Err(e) => return fail(e),
     };
-    let dialect = workspace::resolve_dialect(
+    let (dialect, dialect_reason) = workspace::resolve_dialect(
         args.dialect.map(|d| d.dialect()),
-        &loaded.config,
+        &loaded,
         &args.file,
         &text,
     );
@@ -275,6 +275,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             diagnostics,
             io_error: false,
             extra_files: output::read_extra_files(&out.files),
+            dialect: Some((dialect, dialect_reason.clone())),
         };
         let dry = DryRun {
             totals,
@@ -313,6 +314,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         diagnostics,
         io_error: false,
         extra_files,
+        dialect: Some((dialect, dialect_reason)),
     };
 
     if let Some(svg) = &args.svg {
@@ -470,7 +472,10 @@ fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
                    "code": l.d.code, "severity": l.d.severity.as_str(), "message": l.d.message})
         })
         .collect();
+    let (dialect, dialect_reason) = output::dialect_fields(report);
     json!({
+        "dialect": dialect,
+        "dialect_reason": dialect_reason,
         "cycle_time_s": t.cycle_time_s,
         "motion_s": t.motion_s,
         "rapid_s": t.rapid_s,
@@ -524,6 +529,9 @@ fn human(
 ) -> std::io::Result<()> {
     let t = &dry.totals;
     writeln!(w, "{}", file.display())?;
+    if let Some((d, why)) = &report.dialect {
+        writeln!(w, "  dialect      {:>12}  ({why})", d.as_str())?;
+    }
     writeln!(
         w,
         "  cycle time   {:>12}  ({} s)",

@@ -237,18 +237,33 @@ pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
 }
 
 /// Chooses a file's dialect: command line, then config, then a first-line
-/// directive, then the extension and content, then RS274/NGC.
-pub fn resolve_dialect(cli: Option<Dialect>, config: &Config, path: &Path, text: &[u8]) -> Dialect {
+/// directive, then the extension and content, then RS274/NGC. The reason is
+/// shown with the results, so a wrong guess is visible.
+pub fn resolve_dialect(
+    cli: Option<Dialect>,
+    loaded: &LoadedConfig,
+    path: &Path,
+    text: &[u8],
+) -> (Dialect, String) {
     if let Some(d) = cli {
-        return d;
+        return (d, "--dialect on the command line".into());
     }
-    if let Some(d) = config.dialect.as_deref().and_then(Dialect::parse) {
-        return d;
+    if let Some(d) = loaded.config.dialect.as_deref().and_then(Dialect::parse) {
+        let from = match &loaded.path {
+            Some(p) => format!("`dialect` in {}", p.display()),
+            None => "`dialect` in the configuration".into(),
+        };
+        return (d, from);
     }
     // The directive, then the extension, then the content: the same order as
-    // the language server (`sniff_dialect` is shared).
+    // the language server (`sniff_dialect_why` is shared).
     let ext = path.extension().and_then(|e| e.to_str());
-    analyzer::settings::sniff_dialect(ext, text).unwrap_or(Dialect::Rs274ngc)
+    analyzer::settings::sniff_dialect_why(ext, text).unwrap_or_else(|| {
+        (
+            Dialect::Rs274ngc,
+            "the default: nothing in the file names a dialect".into(),
+        )
+    })
 }
 
 /// Settings for one file.
