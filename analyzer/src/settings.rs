@@ -63,6 +63,10 @@ pub struct Settings {
     pub axes: Vec<char>,
     /// ServoWorks "Integer Programming with Machine Unit Enable".
     pub integer_machine_unit: bool,
+    /// FANUC sequence-number digits: 5, or 8 with the 8-digit sequence number option.
+    pub sequence_number_digits: u8,
+    /// FANUC program-number digits: 4, or 8 with the 8-digit program number option.
+    pub program_number_digits: u8,
 }
 
 impl Settings {
@@ -75,6 +79,8 @@ impl Settings {
             custom_codes: Vec::new(),
             axes: vec!['X', 'Y', 'Z', 'A', 'B', 'C'],
             integer_machine_unit: false,
+            sequence_number_digits: 5,
+            program_number_digits: 4,
         }
     }
 
@@ -127,6 +133,19 @@ impl Settings {
             .and_then(|v| v.as_bool())
         {
             s.integer_machine_unit = v;
+        }
+        // FANUC options that widen the number formats (spec fanuc.md §1.5, §1.6).
+        for (key, standard, slot) in [
+            ("sequence_number_digits", 5, &mut s.sequence_number_digits),
+            ("program_number_digits", 4, &mut s.program_number_digits),
+        ] {
+            match config.machine.get(key) {
+                None => {}
+                Some(toml::Value::Integer(n)) if *n == standard || *n == 8 => *slot = *n as u8,
+                Some(v) => return Err(format!(
+                    "machine.{key} = {v}: the control has {standard} digits, or 8 with the option"
+                )),
+            }
         }
         Ok(s)
     }

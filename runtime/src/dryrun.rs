@@ -22,6 +22,8 @@ const INTERPRETER_KEYS: &[&str] = &[
     "work_offsets",
     "reference_positions",
     "integer_machine_unit",
+    "sequence_number_digits",
+    "program_number_digits",
     "machine_unit",
     "block_skip",
     "decimal_point_input",

@@ -5,14 +5,16 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::syntax::{ItemKind, WordValue};
 
-use super::util::is_emc2;
+use super::util::{branch_targets, is_emc2};
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
     /// Checks sequence numbers: an RS274/NGC `N` must be the first item of its line and
-    /// have at most five digits; a FANUC `N` is 1 to 99999, cannot come from a variable,
-    /// and should be unique within its program because `GOTO` and `M99 P` search for it.
+    /// have at most five digits; a FANUC `N` is 1 to 99999 (8 digits with the option,
+    /// `machine.sequence_number_digits = 8`), cannot come from a variable, and should be
+    /// unique within its program when `GOTO` or `M99 P` search for it. Numbers past the
+    /// format are reported once for the whole program, with their count.
     ///
     /// ## Why is this bad?
     /// LinuxCNC rejects an `N` later in the line. FANUC raises PS0003 for more than five
@@ -25,6 +27,7 @@ declare_rule! {
     /// O1000;
     /// N10 G00 X0;
     /// N10 G00 X1.;
+    /// GOTO 10;
     /// M30;
     /// %
     /// ```
@@ -35,6 +38,7 @@ declare_rule! {
     /// O1000;
     /// N10 G00 X0;
     /// N20 G00 X1.;
+    /// GOTO 20;
     /// M30;
     /// %
     /// ```
@@ -77,6 +81,12 @@ impl Rule for SequenceNumber {
             std::collections::HashMap::new();
         // RS274/NGC line numbers with more than five digits: reported once per file.
         let mut long: Vec<(crate::span::Span, String)> = Vec::new();
+        // FANUC numbers past the format: one report for the whole run of them.
+        let mut too_long: Vec<(crate::span::Span, String)> = Vec::new();
+        // A duplicate matters only where a branch searches for that number.
+        let targets = (d == Dialect::Fanuc).then(|| branch_targets(cx));
+        let max_digits = usize::from(cx.settings.sequence_number_digits);
+        let max_value = 10f64.powi(i32::from(cx.settings.sequence_number_digits)) - 1.0;
         // Plain blocks hold no N word and no program head.
         for b in cx.non_plain_blocks() {
             let items = p.items_of(b);
@@ -130,15 +140,18 @@ impl Rule for SequenceNumber {
                         }
                     }
                     Dialect::Fanuc => {
-                        if int_digits > 5 || n.value > 99_999.0 {
-                            out.push(Diagnostic::error("P007", item.span, format!("`{text}`: sequence numbers have at most five digits, 1 to 99999 (alarm PS0003).")));
+                        if int_digits > max_digits || n.value > max_value {
+                            too_long.push((item.span, text));
                         } else if n.value == 0.0 {
                             out.push(Diagnostic::warning(
                                 "P007",
                                 item.span,
                                 "N0 must not be used as a sequence number. Start numbering at N1.",
                             ));
-                        } else if let Some(first) = seen.get(&n.value.to_bits()) {
+                        } else if let Some(first) = seen
+                            .get(&n.value.to_bits())
+                            .filter(|_| targets.as_ref().is_some_and(|t| t.contains(n.value)))
+                        {
                             out.push(
                                 Diagnostic::warning("P007", item.span, format!("`{text}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number."))
                                     .with_related(*first, "first use"),
@@ -150,6 +163,24 @@ impl Rule for SequenceNumber {
                     Dialect::Servoworks => {}
                 }
             }
+        }
+        if let (Some((span, text)), Some((last, last_text))) = (too_long.first(), too_long.last()) {
+            let digits = cx.settings.sequence_number_digits;
+            let option = if digits == 5 {
+                ", or set machine.sequence_number_digits = 8 for the 8-digit sequence number option"
+            } else {
+                ""
+            };
+            let message = if too_long.len() == 1 {
+                format!("`{text}`: sequence numbers have at most {digits} digits, 1 to {max_value} (alarm PS0003). Renumber the block{option}.")
+            } else {
+                format!("`{text}` and {} more sequence numbers up to `{last_text}` have more than {digits} digits: the control takes 1 to {max_value} (alarm PS0003). Renumber the program{option}.", too_long.len() - 1)
+            };
+            let mut diag = Diagnostic::error("P007", *span, message);
+            if too_long.len() > 1 {
+                diag = diag.with_related(*last, "the last one");
+            }
+            out.push(diag);
         }
         if let Some((span, text)) = long.first() {
             let more = match long.len() {

@@ -91,6 +91,53 @@ pub fn fanuc_call_start(program: &Program, b: &Block) -> Option<u32> {
     })
 }
 
+/// The sequence numbers a FANUC program can branch to: literal `GOTO n` and
+/// `IF […] GOTO n` targets and `M99 Pn`; any number when a target is computed.
+pub struct BranchTargets {
+    numbers: Vec<f64>,
+    computed: bool,
+}
+
+impl BranchTargets {
+    pub fn contains(&self, n: f64) -> bool {
+        self.computed || self.numbers.contains(&n)
+    }
+}
+
+/// The program's [`BranchTargets`], from every item that is not in a plain block
+/// (plain blocks hold literal axis and feed words only).
+pub fn branch_targets(cx: &super::ProgramCx<'_>) -> BranchTargets {
+    use crate::syntax::MacroStmt;
+    let p = cx.program;
+    let mut t = BranchTargets {
+        numbers: Vec::new(),
+        computed: false,
+    };
+    for item in &p.items {
+        match item.kind {
+            ItemKind::Macro(MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. }) => {
+                match super::macro_loop_structure::literal(p, target) {
+                    Some(n) => t.numbers.push(n),
+                    None => t.computed = true,
+                }
+            }
+            _ => {}
+        }
+    }
+    for b in cx.non_plain_blocks() {
+        let words = || p.words(b);
+        if words().any(|(_, w)| w.letter == b'M' && lit(w) == Some(99.0)) {
+            if let Some((_, w)) = words().find(|(_, w)| w.letter == b'P' && !w.comma) {
+                match lit(w) {
+                    Some(n) => t.numbers.push(n),
+                    None => t.computed = true,
+                }
+            }
+        }
+    }
+    t
+}
+
 /// Whether the block has items other than comments.
 pub fn has_code_items(program: &Program, b: &Block) -> bool {
     program

@@ -481,8 +481,14 @@ impl Rule for WordValueRange {
                         number: Some(n), ..
                     } = item.kind
                     {
-                        if !(1..=9999).contains(&n) {
-                            k.out.push(Diagnostic::error("W007", item.span, format!("Program number O{n}: FANUC program numbers are 1 to 9999 (alarm PS0074).")));
+                        let max = 10u32.pow(u32::from(cx.settings.program_number_digits)) - 1;
+                        if !(1..=max).contains(&n) {
+                            let option = if max == 9999 && n > max {
+                                " (or set machine.program_number_digits = 8 for the 8-digit program number option)"
+                            } else {
+                                ""
+                            };
+                            k.out.push(Diagnostic::error("W007", item.span, format!("Program number O{n}: FANUC program numbers are 1 to {max} (alarm PS0074){option}.")));
                         }
                     }
                 }
