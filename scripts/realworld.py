@@ -62,6 +62,17 @@ class Program:
     note: str
 
 
+def check_dialect(p: "Program") -> str:
+    """The partscope dialect a program is checked as: by its manifest dialect,
+    unless the note starts with `[check as <dialect>]` (a derivative of a
+    modelled control, e.g. PathPilot for LinuxCNC)."""
+    if p.note.startswith("[check as "):
+        d = p.note[len("[check as "):].split("]", 1)[0].strip()
+        if d in DIALECTS:
+            return d
+    return CHECK_AS[p.dialect]
+
+
 @dataclass
 class Outcome:
     program: Program
@@ -186,7 +197,7 @@ def measure(p: Program, binary: Path, mirrors: Path, cache: Path) -> Outcome:
     if file is None:
         out.status, out.reason = "skipped", why
         return out
-    check_as = CHECK_AS[p.dialect]
+    check_as = check_dialect(p)
     diags, named, err = run_check(binary, file, check_as)
     if diags is None:
         out.status, out.reason = "failed", err
@@ -214,6 +225,14 @@ def measure(p: Program, binary: Path, mirrors: Path, cache: Path) -> Outcome:
 
 def flagged(diags: list[dict]) -> list[dict]:
     return [d for d in diags if d.get("severity") in FLAGGING]
+
+
+def verdict_of(verdicts: dict, pid: str, d: dict) -> str:
+    """The verdict for one finding: by id, code and line, or by id and code with
+    line `*` (one verdict for every line of a repeated finding)."""
+    code, line = str(d.get("code")), str(d.get("line"))
+    v = verdicts.get((pid, code, line)) or verdicts.get((pid, code, "*"))
+    return v["verdict"] if v else "unclassified"
 
 
 def main() -> int:
@@ -253,8 +272,7 @@ def main() -> int:
         args.findings.parent.mkdir(parents=True, exist_ok=True)
     for o in outcomes:
         for d in flagged(o.diags):
-            key = (o.program.id, str(d.get("code")), str(d.get("line")))
-            v = verdicts.get(key, {}).get("verdict", "unclassified")
+            v = verdict_of(verdicts, o.program.id, d)
             rows.append((o.program.id, str(d.get("code")), str(d.get("line")), d.get("severity"), v, d.get("message", "")))
     if args.findings:
         with args.findings.open("w", encoding="utf-8") as f:
@@ -275,11 +293,11 @@ def main() -> int:
         f = flagged(o.diags)
         if f:
             t["flagged"] += 1
-        kinds = {verdicts.get((o.program.id, str(d.get("code")), str(d.get("line"))), {}).get("verdict", "unclassified") for d in f}
+        kinds = {verdict_of(verdicts, o.program.id, d) for d in f}
         for k in ("false", "true", "mismatch", "unclassified"):
             if k in kinds:
                 t[k] += 1
-        if o.detected != CHECK_AS[o.program.dialect]:
+        if o.detected != check_dialect(o.program):
             t["misdetected"] += 1
             wrong_dialect.append(o)
 
@@ -310,7 +328,7 @@ def main() -> int:
     if wrong_dialect:
         print("\nsniffed as the wrong dialect (without --dialect):")
         for o in wrong_dialect:
-            print(f"  {o.program.id} ({o.program.dialect}, checked as {CHECK_AS[o.program.dialect]}) -> {o.detected}: {o.program.path}")
+            print(f"  {o.program.id} ({o.program.dialect}, checked as {check_dialect(o.program)}) -> {o.detected}: {o.program.path}")
     if args.details:
         print("\nprograms with false or unclassified findings:")
         for o in outcomes:
