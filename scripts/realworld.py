@@ -17,9 +17,11 @@ from __future__ import annotations
 import argparse
 import csv
 import json
-import os
+import re
+import shutil
 import subprocess
 import sys
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -223,6 +225,46 @@ def measure(p: Program, binary: Path, mirrors: Path, cache: Path) -> Outcome:
     return out
 
 
+# rs274 messages that depend on the machine or on the caller, not on the
+# program: a user M code file, the tool table, a caller's named parameters or
+# arguments, a subroutine found only through the machine's search path.
+RS274_CONTEXT = ("Unknown m code used: M1", "Requested tool", "Named parameter", "seeking o-word",
+                 "Probe was not tripped", "must be > 0")
+# Failures of a subroutine run without its caller's arguments and modes.
+RS274_SUB_CONTEXT = ("zero feed rate", "divide by zero", "zero spindle speed")
+
+
+def rs274_check(o: Outcome, script: Path, cache: Path) -> tuple[str, str, list[int]] | None:
+    """Runs LinuxCNC's interpreter on an RS274/NGC program (a subroutine file
+    through `o<name> call`) and returns (kind, message, lines of the offending
+    text) when it rejects it; kind is `program` or `context`."""
+    p = o.program
+    file = cache / p.repo.replace("/", "+") / p.commit[:12] / p.path
+    text = file.read_text(encoding="utf-8", errors="replace")
+    work = Path(tempfile.mkdtemp(prefix="realworld-rs274-"))
+    try:
+        ini = work / "sub.ini"
+        ini.write_text(f"[RS274NGC]\nSUBROUTINE_PATH = {file.parent}:{file.parent.parent}\n", encoding="utf-8")
+        target = file
+        head = re.search(r"^\s*o<\s*([^>]+?)\s*>\s*sub\b", text, re.I | re.M)
+        in_sub = bool(head and head.group(1).lower() == file.stem.lower())
+        if in_sub:
+            target = work / "call.ngc"
+            target.write_text(f"o<{file.stem}> call\nM2\n", encoding="utf-8")
+        res = subprocess.run([str(script), "-i", str(ini), str(target)], capture_output=True,
+                             text=True, errors="replace", timeout=RUN_TIMEOUT_S)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    if res.returncode == 0:
+        return None
+    err = [ln for ln in res.stderr.splitlines() if ln.strip()]
+    msg = err[0] if err else f"exit {res.returncode}"
+    src = err[1].strip() if len(err) > 1 else ""
+    lines = [i for i, ln in enumerate(text.splitlines(), 1) if src and ln.strip() == src]
+    context = any(k in msg for k in RS274_CONTEXT) or (in_sub and any(k in msg for k in RS274_SUB_CONTEXT))
+    return ("context" if context else "program"), msg, lines
+
+
 def flagged(diags: list[dict]) -> list[dict]:
     return [d for d in diags if d.get("severity") in FLAGGING]
 
@@ -245,6 +287,9 @@ def main() -> int:
     ap.add_argument("--only", nargs="*", default=[], help="corpus ids to run (default: all)")
     ap.add_argument("--findings", type=Path, help="write every error/warning as TSV (id code line severity message verdict)")
     ap.add_argument("--details", action="store_true", help="list programs with false or unclassified findings")
+    ap.add_argument("--rs274", type=Path, nargs="?", const=Path("/work/shared/oracle/run_rs274.sh"),
+                    help="also run LinuxCNC's rs274 (through run_rs274.sh) on the RS274/NGC programs and check "
+                         "that partscope reports an error on the line of every rejection")
     args = ap.parse_args()
 
     binary = args.bin if args.bin.is_absolute() else Path.cwd() / args.bin
@@ -329,6 +374,27 @@ def main() -> int:
         print("\nsniffed as the wrong dialect (without --dialect):")
         for o in wrong_dialect:
             print(f"  {o.program.id} ({o.program.dialect}, checked as {check_dialect(o.program)}) -> {o.detected}: {o.program.path}")
+    if args.rs274:
+        if not args.rs274.exists():
+            print(f"\nrs274 wrapper {args.rs274} not found: skipping the rs274 comparison")
+        else:
+            print("\nrs274 rejections (RS274/NGC programs; `context` = depends on the machine or the caller):")
+            found = missed = 0
+            for o in outcomes:
+                if o.status != "ok" or check_dialect(o.program) != "rs274ngc":
+                    continue
+                got = rs274_check(o, args.rs274, args.cache)
+                if got is None:
+                    continue
+                kind, msg, lines = got
+                ours = sorted({d.get("line") for d in o.diags if d.get("severity") == "error"})
+                hit = [ln for ln in lines if ln in ours]
+                if kind == "program":
+                    found += bool(hit)
+                    missed += not hit
+                mark = "found" if hit else ("MISSED" if kind == "program" else "-")
+                print(f"  {o.program.id} {kind:<7} {mark:<6} line {lines[:3]} {msg[:90]}")
+            print(f"rs274 program rejections found by partscope on their line: {found} of {found + missed}")
     if args.details:
         print("\nprograms with false or unclassified findings:")
         for o in outcomes:
