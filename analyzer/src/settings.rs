@@ -142,9 +142,11 @@ impl Settings {
             match config.machine.get(key) {
                 None => {}
                 Some(toml::Value::Integer(n)) if *n == standard || *n == 8 => *slot = *n as u8,
-                Some(v) => return Err(format!(
+                Some(v) => {
+                    return Err(format!(
                     "machine.{key} = {v}: the control has {standard} digits, or 8 with the option"
-                )),
+                ))
+                }
             }
         }
         Ok(s)

@@ -15,8 +15,10 @@ use crate::plan::{
     self, cross3, dist3, dot3, sub3, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
 };
 
-/// Keys of `[machine]` that the interpreter reads and the planner profile does not know.
+/// Keys of `[machine]` that the interpreter or the host reads and the planner
+/// profile does not know.
 const INTERPRETER_KEYS: &[&str] = &[
+    "subroutine_path",
     "machine_units",
     "tools",
     "work_offsets",

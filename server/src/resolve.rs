@@ -45,6 +45,14 @@ impl FsResolver {
         }
     }
 
+    /// Adds the `SUBROUTINE_PATH` folders, searched after the caller's and the
+    /// main program's folders (RS274/NGC and FANUC; ServoWorks looks only beside
+    /// the main program).
+    pub fn with_search(mut self, dirs: Vec<PathBuf>) -> FsResolver {
+        self.search = dirs;
+        self
+    }
+
     fn candidates(&self, name: &str) -> Vec<String> {
         match self.dialect {
             Dialect::Servoworks => vec![
@@ -120,5 +128,44 @@ impl Resolver for FsResolver {
             }
         }
         None
+    }
+}
+
+/// The `SUBROUTINE_PATH` folders: `machine.subroutine_path` (a string with `:`
+/// separators, or an array) relative to the config file's folder.
+pub fn subroutine_path(machine: &toml::Table, config: Option<&Path>) -> Vec<PathBuf> {
+    let base = config
+        .and_then(Path::parent)
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let parts: Vec<String> = match machine.get("subroutine_path") {
+        Some(toml::Value::String(s)) => s.split(':').map(str::to_string).collect(),
+        Some(toml::Value::Array(a)) => a
+            .iter()
+            .filter_map(|v| v.as_str().map(str::to_string))
+            .collect(),
+        _ => Vec::new(),
+    };
+    parts
+        .into_iter()
+        .filter(|p| !p.trim().is_empty())
+        .map(|p| base.join(p.trim()))
+        .collect()
+}
+
+/// The project a file on the command line belongs to, which bounds what its
+/// subprogram calls may read: the nearest folder above it holding `.git`, else
+/// the current folder when the file is inside it, else the file's own folder.
+/// A `--config` file's folder is not the project (`ci/partscope.toml` would
+/// hide the programs beside `src/main.nc`).
+pub fn project_root(file: &Path) -> PathBuf {
+    let file = file.canonicalize().unwrap_or_else(|_| file.to_path_buf());
+    let dir = file.parent().map(Path::to_path_buf).unwrap_or_default();
+    if let Some(git) = dir.ancestors().find(|a| a.join(".git").exists()) {
+        return git.to_path_buf();
+    }
+    match std::env::current_dir().and_then(|c| c.canonicalize()) {
+        Ok(cwd) if dir.starts_with(&cwd) => cwd,
+        _ => dir,
     }
 }

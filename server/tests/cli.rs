@@ -381,3 +381,94 @@ fn fanuc_macro_file_is_not_run_on_its_own() {
     // The interpreter's zero-feed error shows the main program was run.
     assert!(codes(&diags).iter().any(|c| c.0 == "F001"), "{diags:?}");
 }
+
+/// An `o<name> sub` library file needs no M2 (LinuxCNC never reads it as a
+/// main program); a file that defines a sub and then runs is still a program.
+#[test]
+fn ngc_subroutine_file_needs_no_program_end() {
+    let dir = tempdir("ngc-sub-file");
+    let f = write(&dir, "peck.ngc", b"o<peck> sub\nG0 Z1\no<peck> endsub\n");
+    let (code, diags) = check_json(&[f.to_str().unwrap()]);
+    assert_eq!(codes(&diags), vec![], "{diags:?}");
+    assert_eq!(code, 0);
+    let f = write(
+        &dir,
+        "main.ngc",
+        b"o<peck> sub\nG0 Z1\no<peck> endsub\no<peck> call\n",
+    );
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    // Run as a main program, it does need its end (the interpreter's F006).
+    assert!(
+        codes(&diags).contains(&("F006".into(), 5, "error".into())),
+        "{diags:?}"
+    );
+}
+
+/// `machine.subroutine_path` is searched by `check` and `run` as by the editor,
+/// and a `--config` elsewhere in the project does not shrink what may be read.
+#[test]
+fn subroutine_path_and_config_elsewhere_in_the_project() {
+    let dir = tempdir("sub-path");
+    std::fs::create_dir_all(dir.join(".git")).unwrap();
+    write(
+        &dir,
+        "lib/drill.ngc",
+        b"o<drill> sub\nG0 Z1\no<drill> endsub\n",
+    );
+    let main = write(&dir, "lib/jobs/main.ngc", b"o<drill> call\nM2\n");
+    let main = main.to_str().unwrap();
+    let (_, diags) = check_json(&[main]);
+    assert_eq!(codes(&diags), vec![("F002".into(), 1, "error".into())]);
+    write(
+        &dir,
+        "lib/jobs/partscope.toml",
+        b"[machine]\nsubroutine_path = \"..\"\n",
+    );
+    let (code, diags) = check_json(&[main]);
+    assert_eq!((code, codes(&diags)), (0, vec![]), "{diags:?}");
+    let out = bin()
+        .args(["run", "--format", "json", main])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+
+    write(
+        &dir,
+        "src/drill.ngc",
+        b"o<drill> sub\nG0 Z1\no<drill> endsub\n",
+    );
+    let src = write(&dir, "src/main.ngc", b"o<drill> call\nM2\n");
+    let cfg = write(&dir, "ci/partscope.toml", b"dialect = \"rs274ngc\"\n");
+    let (code, diags) = check_json(&["--config", cfg.to_str().unwrap(), src.to_str().unwrap()]);
+    assert_eq!((code, codes(&diags)), (0, vec![]), "{diags:?}");
+}
+
+/// The JSON output names the dialect and why it was chosen.
+#[test]
+fn json_names_the_dialect_and_its_evidence() {
+    let dir = tempdir("dialect-why");
+    let f = write(
+        &dir,
+        "part.nc",
+        b"%\nO1234 (PART)\nG90 G54 G00 X0 Y0\nG04 P500\nG1 X1.\nM30\n%\n",
+    );
+    let (_, diags) = check_json(&[f.to_str().unwrap()]);
+    let d = diags.first().expect("the zero feed is reported");
+    assert_eq!(d["dialect"], "fanuc");
+    assert_eq!(
+        d["dialect_reason"],
+        "the `%` line 1 and program number O1234 on line 2"
+    );
+    let out = bin()
+        .args(["run", "--format", "json", f.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["dialect"], "fanuc");
+    // FANUC dwell P is in milliseconds: 0.5 s, not 500 s.
+    assert_eq!(v["dwell_s"], 0.5);
+}

@@ -103,9 +103,9 @@ fn check_file(
         };
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
-    // view: ServoWorks `O<name>.dat` files, and FANUC/ServoWorks files that return
-    // with M99 and never end the program (as the language server judges them).
-    // RS274/NGC subroutine files are run as rs274 runs them.
+    // view: ServoWorks `O<name>.dat` files, RS274/NGC files that only define
+    // `o<name> sub`s, and FANUC/ServoWorks files that return with M99 and never end
+    // the program (as the language server judges them).
     let is_subprogram = (dialect == analyzer::Dialect::Servoworks
         && path
             .extension()
@@ -115,8 +115,7 @@ fn check_file(
             .file_name()
             .and_then(|n| n.to_str())
             .is_some_and(|n| n.starts_with('O')))
-        || (dialect != analyzer::Dialect::Rs274ngc
-            && runtime::interp::files::is_subprogram_file(&parsed.program));
+        || runtime::interp::files::is_subprogram_file(&parsed.program);
     let interpret = !args.no_run && !is_subprogram && !analyzer::reports_l009(&parsed, &settings);
     // The static rules and the interpreter only read the syntax tree: they run side by
     // side, on two cores when the pool has them free.
@@ -126,11 +125,15 @@ fn check_file(
             if !interpret {
                 return None;
             }
-            let config_dir = loaded
-                .path
-                .as_ref()
-                .and_then(|p| p.parent().map(Path::to_path_buf));
-            let resolver = crate::resolve::FsResolver::new(path, config_dir.as_deref(), dialect);
+            let resolver = crate::resolve::FsResolver::new(
+                path,
+                Some(&crate::resolve::project_root(path)),
+                dialect,
+            )
+            .with_search(crate::resolve::subroutine_path(
+                &loaded.config.machine,
+                loaded.path.as_deref(),
+            ));
             let files = loaded.linuxcnc_files();
             for w in &files.warnings {
                 workspace::warn_once(w);

@@ -108,10 +108,6 @@ pub fn run(args: RunArgs) -> ExitCode {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
-    let config_dir = loaded
-        .path
-        .as_ref()
-        .and_then(|p| p.parent().map(Path::to_path_buf));
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
     let mut machine_table = loaded.config.machine.clone();
@@ -232,7 +228,15 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
-    let resolver = crate::resolve::FsResolver::new(&args.file, config_dir.as_deref(), dialect);
+    let resolver = crate::resolve::FsResolver::new(
+        &args.file,
+        Some(&crate::resolve::project_root(&args.file)),
+        dialect,
+    )
+    .with_search(crate::resolve::subroutine_path(
+        &loaded.config.machine,
+        loaded.path.as_deref(),
+    ));
     let emit_canon = args.emit == Some(Emit::Canon);
     let input = runtime::RunInput {
         program: &parsed.program,

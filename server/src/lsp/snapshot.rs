@@ -268,6 +268,15 @@ mod tests {
             Dialect::Rs274ngc,
             "G0 X1\no<drill> sub\no<drill> endsub\nM2\n"
         ));
+        // Definitions first, then the main program that calls them.
+        assert!(!sub(
+            Dialect::Rs274ngc,
+            "o<drill> sub\nG81 Z-1 R1\no<drill> endsub\no<drill> call\nM2\n"
+        ));
+        assert!(sub(
+            Dialect::Rs274ngc,
+            "%\no<a> sub\nG0 X1\no<a> endsub\n(two in one file)\no<b> sub\no<b> endsub\n%\n"
+        ));
         assert!(sub(Dialect::Fanuc, "%\nO1234;\nG01 X1. F100.;\nM99;\n%\n"));
         assert!(!sub(
             Dialect::Fanuc,

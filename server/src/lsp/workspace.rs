@@ -100,27 +100,7 @@ pub fn read_confined(path: &Path, roots: &[PathBuf]) -> Option<(PathBuf, String)
     Some((canon, String::from_utf8_lossy(&text).into_owned()))
 }
 
-/// The `SUBROUTINE_PATH` folders: `machine.subroutine_path` (a string with `:`
-/// separators, or an array) relative to the config file's folder.
-pub fn subroutine_path(machine: &toml::Table, config: Option<&Path>) -> Vec<PathBuf> {
-    let base = config
-        .and_then(Path::parent)
-        .map(Path::to_path_buf)
-        .unwrap_or_default();
-    let parts: Vec<String> = match machine.get("subroutine_path") {
-        Some(toml::Value::String(s)) => s.split(':').map(str::to_string).collect(),
-        Some(toml::Value::Array(a)) => a
-            .iter()
-            .filter_map(|v| v.as_str().map(str::to_string))
-            .collect(),
-        _ => Vec::new(),
-    };
-    parts
-        .into_iter()
-        .filter(|p| !p.trim().is_empty())
-        .map(|p| base.join(p.trim()))
-        .collect()
-}
+pub use crate::resolve::subroutine_path;
 
 #[cfg(test)]
 mod tests {
