@@ -162,8 +162,10 @@ fn note(cx: &BlockCx<'_>, c: &BlockCode, sev: Severity, msg: String, out: &mut V
 fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic>) {
     let d = cx.program.dialect;
     let name = code_name(d, c.letter, CodeNum(t));
-    let axes = !axis_words(cx).is_empty();
     let emc2 = is_emc2(cx.settings);
+    // LinuxCNC's polar distance `@` and angle `^` (G17) give the end point too.
+    let polar = d == Dialect::Rs274ngc && !emc2 && (has_word(cx, b'@') || has_word(cx, b'^'));
+    let axes = polar || !axis_words(cx).is_empty();
     let lval = word_item(cx, b'L').and_then(|(_, w)| lit(w));
     match (d, c.letter, t) {
         (Dialect::Rs274ngc, 'G', 330) | (Dialect::Rs274ngc, 'G', 331) if !axes => {

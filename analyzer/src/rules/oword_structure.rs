@@ -226,14 +226,22 @@ impl Rule for OwordStructure {
                         if matches!(top.kind, Open::If { .. }) && same(&top.label, &label) =>
                     {
                         if top.kind == (Open::If { seen_else: true }) {
-                            out.push(
+                            // rs274 accepts a second `else` and runs the first one: the
+                            // later branch is dead code, not an error.
+                            let d = if kw == OKeyword::Else {
+                                Diagnostic::warning(
+                                    "P001",
+                                    span,
+                                    format!("`{name} else` after `else` never runs: LinuxCNC takes the first `else` branch. Remove the second one or merge the branches."),
+                                )
+                            } else {
                                 Diagnostic::error(
                                     "P001",
                                     span,
                                     format!("`{name} {}` after `else`: the `else` branch must be the last one of the `if`.", kw.as_str()),
                                 )
-                                .with_related(top.span, "the if"),
-                            );
+                            };
+                            out.push(d.with_related(top.span, "the if"));
                         }
                         if kw == OKeyword::Else {
                             top.kind = Open::If { seen_else: true };

@@ -6,7 +6,8 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::{BlockKind, ItemKind, OKeyword, Program};
 
-use super::util::{has_code_items, lit};
+use super::macro_loop_structure::literal;
+use super::util::{fanuc_call_start, has_code_items, lit};
 use super::{ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -57,6 +58,24 @@ pub struct ProgramEnd;
 fn has_m(p: &Program, b: &crate::syntax::Block, ms: &[f64]) -> bool {
     p.words(b)
         .any(|(_, w)| w.letter == b'M' && !w.comma && lit(w).is_some_and(|v| ms.contains(&v)))
+}
+
+/// Whether a FANUC program's last code block hands the end to something else:
+/// a macro alarm (`#3000 = n` stops the program) or a call (`M98 P…`, `G65 P…`),
+/// whose program may well end with M30 itself; the file alone cannot tell.
+fn ends_elsewhere(p: &Program) -> bool {
+    use crate::syntax::Expr;
+    let Some(last) = p.blocks.iter().rev().find(|b| has_code_items(p, b)) else {
+        return false;
+    };
+    let items = p.items_of(last);
+    let alarm = items.iter().any(|i| match i.kind {
+        ItemKind::Assign { target, .. } => {
+            matches!(p.expr(target).expr, Expr::Var { index } if literal(p, index) == Some(3000.0))
+        }
+        _ => false,
+    });
+    alarm || has_m(p, last, &[98.0]) || fanuc_call_start(p, last).is_some()
 }
 
 fn end_span(p: &Program) -> Span {
@@ -185,7 +204,7 @@ impl Rule for ProgramEnd {
                         format!("The file {what}: a FANUC program is stored as `%`, `O1234;`, blocks, end code, `%`. Text between the first `%` and the first end of block is skipped as the leader."),
                     ));
                 }
-                if !ends(&[2.0, 30.0, 99.0]) {
+                if !ends(&[2.0, 30.0, 99.0]) && !ends_elsewhere(p) {
                     out.push(Diagnostic::warning(
                         "P005",
                         end_span(p),
