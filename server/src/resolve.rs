@@ -67,7 +67,12 @@ impl FsResolver {
             ],
             Dialect::Fanuc => {
                 let mut v = Vec::new();
-                for base in [format!("O{name}"), format!("O{name:0>4}"), name.to_string()] {
+                for base in [
+                    format!("O{name}"),
+                    format!("O{name:0>4}"),
+                    format!("O{name:0>5}"),
+                    name.to_string(),
+                ] {
                     for ext in ["", ".nc", ".NC", ".fnc", ".txt", ".TXT"] {
                         v.push(format!("{base}{ext}"));
                     }
@@ -127,8 +132,97 @@ impl Resolver for FsResolver {
                 });
             }
         }
+        // A control finds a program by the O number of its head, not by a file
+        // name (`gauge_tool_o1002.nc` holds O1002): look at the heads of the
+        // G-code files in the caller's folder.
+        if self.dialect == Dialect::Fanuc {
+            let number: u32 = name.parse().ok()?;
+            let dir = self
+                .dirs
+                .lock()
+                .ok()
+                .and_then(|d| d.get(from.0 as usize).cloned())
+                .unwrap_or_else(|| self.main_dir.clone());
+            return self.by_program_head(&dir, number);
+        }
         None
     }
+}
+
+/// How much of a file is read to find its program head.
+const HEAD_BYTES: usize = 4096;
+/// Files looked at per folder when searching by program head.
+const HEAD_FILES: usize = 2000;
+
+impl FsResolver {
+    /// The first file of `dir` whose first program head is `O<number>`.
+    fn by_program_head(&self, dir: &Path, number: u32) -> Option<ResolvedFile> {
+        let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
+            .ok()?
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+            .map(|e| e.path())
+            .filter(|p| {
+                p.extension().and_then(|x| x.to_str()).is_some_and(|x| {
+                    crate::cli::workspace::EXTENSIONS.contains(&x.to_ascii_lowercase().as_str())
+                })
+            })
+            .take(HEAD_FILES)
+            .collect();
+        entries.sort();
+        for p in entries {
+            let Some(canonical) = self.inside_root(&p) else {
+                continue;
+            };
+            let Ok(file) = std::fs::File::open(&canonical) else {
+                continue;
+            };
+            let mut head = Vec::with_capacity(HEAD_BYTES);
+            use std::io::Read;
+            if file.take(HEAD_BYTES as u64).read_to_end(&mut head).is_err() {
+                continue;
+            }
+            if first_program_number(&head) != Some(number) {
+                continue;
+            }
+            let Ok(text) = std::fs::read(&canonical) else {
+                continue;
+            };
+            if let Ok(mut d) = self.dirs.lock() {
+                d.push(
+                    canonical
+                        .parent()
+                        .map(Path::to_path_buf)
+                        .unwrap_or_default(),
+                );
+            }
+            return Some(ResolvedFile {
+                path: p.display().to_string(),
+                text: text.into(),
+            });
+        }
+        None
+    }
+}
+
+/// The number of the first `O1234` / `:1234` program head in a file's start.
+fn first_program_number(head: &[u8]) -> Option<u32> {
+    for line in head.split(|b| *b == b'\n') {
+        let line = line.trim_ascii();
+        match line.first() {
+            None | Some(b'%' | b'(') => continue,
+            Some(b'O' | b'o' | b':') => {
+                let digits: Vec<u8> = line[1..]
+                    .iter()
+                    .copied()
+                    .take_while(u8::is_ascii_digit)
+                    .collect();
+                return std::str::from_utf8(&digits).ok()?.parse().ok();
+            }
+            _ => return None,
+        }
+    }
+    None
 }
 
 /// The `SUBROUTINE_PATH` folders: `machine.subroutine_path` (a string with `:`

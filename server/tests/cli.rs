@@ -472,3 +472,21 @@ fn json_names_the_dialect_and_its_evidence() {
     // FANUC dwell P is in milliseconds: 0.5 s, not 500 s.
     assert_eq!(v["dwell_s"], 0.5);
 }
+
+/// A FANUC control finds a called program by the O number of its head: a
+/// Haas-style five-digit name and a file named for its job both resolve.
+#[test]
+fn fanuc_calls_find_programs_by_their_head() {
+    let dir = tempdir("fanuc-heads");
+    let main = write(&dir, "f2.nc", b"%\nO5\nM98 P1002\nG65 P9002 A1.\nM30\n%\n");
+    let (_, diags) = check_json(&["--dialect", "fanuc", main.to_str().unwrap()]);
+    assert_eq!(codes(&diags)[0], ("F002".into(), 3, "error".into()));
+    write(
+        &dir,
+        "gauge_tool_o1002.nc",
+        b"%\nO1002 (GAUGE)\nG0 X1.\nM99\n%\n",
+    );
+    write(&dir, "O09002.nc", b"%\nO09002\nG0 X#1\nM99\n%\n");
+    let (code, diags) = check_json(&["--dialect", "fanuc", main.to_str().unwrap()]);
+    assert_eq!((code, codes(&diags)), (0, vec![]), "{diags:?}");
+}

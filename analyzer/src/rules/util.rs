@@ -114,14 +114,13 @@ pub fn branch_targets(cx: &super::ProgramCx<'_>) -> BranchTargets {
         computed: false,
     };
     for item in &p.items {
-        match item.kind {
-            ItemKind::Macro(MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. }) => {
-                match super::macro_loop_structure::literal(p, target) {
-                    Some(n) => t.numbers.push(n),
-                    None => t.computed = true,
-                }
+        if let ItemKind::Macro(MacroStmt::Goto { target } | MacroStmt::IfGoto { target, .. }) =
+            item.kind
+        {
+            match super::macro_loop_structure::literal(p, target) {
+                Some(n) => t.numbers.push(n),
+                None => t.computed = true,
             }
-            _ => {}
         }
     }
     for b in cx.non_plain_blocks() {
