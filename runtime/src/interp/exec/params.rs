@@ -1,0 +1,259 @@
+//! Parameters: the numbered and named parameter tables, the read-only system
+//! variables computed from the state (FANUC `#4001…`, `#5001…`; LinuxCNC `#5420…`,
+//! `#<_x>` …), expression evaluation against them, and assignment.
+
+use super::*;
+
+impl Interp<'_, '_> {
+    pub(super) fn param(&self, n: usize) -> f64 {
+        self.st.params.get(n).copied().flatten().unwrap_or(0.0)
+    }
+
+    pub(super) fn set_param(&mut self, n: usize, v: Option<f64>) {
+        if n < NUM_PARAMS {
+            Arc::make_mut(&mut self.st.params)[n] = v;
+        }
+    }
+
+    pub(super) fn eval_err(&self, e: EvalError) -> Diagnostic {
+        self.err(codes::EXPRESSION, e.span, e.message)
+    }
+
+    pub(super) fn eval(&self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
+        let locals = self
+            .frames
+            .last()
+            .map(|f| &f.named_locals)
+            .or(Some(&self.main_locals));
+        let vars = self.vars(locals);
+        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+    }
+
+    /// What expressions read: the state, the named locals in scope and the
+    /// current tool's offsets in parameter units.
+    pub(super) fn vars<'s>(&'s self, locals: Option<&'s HashMap<String, f64>>) -> Vars<'s> {
+        let t = self
+            .cfg
+            .tools
+            .get(&self.st.tool)
+            .copied()
+            .unwrap_or_default();
+        // LinuxCNC reads #5401-#5410 straight from its tool table, in the machine's
+        // units whatever G20/G21 says.
+        Vars {
+            st: &self.st,
+            locals,
+            dialect: self.dialect,
+            tool: [t.x_offset, t.y_offset, t.length, t.diameter],
+        }
+    }
+
+    /// A numbered parameter as an expression would read it (system values included).
+    pub(super) fn read_param(&self, n: i64) -> f64 {
+        self.vars(None)
+            .get_num(n, Span::default())
+            .ok()
+            .flatten()
+            .unwrap_or(0.0)
+    }
+
+    pub(super) fn eval_num(&self, p: &Program, id: ExprId) -> Result<f64, Diagnostic> {
+        Ok(self.eval(p, id)?.unwrap_or(0.0))
+    }
+
+    pub(super) fn assign(
+        &mut self,
+        p: &Program,
+        target: ExprId,
+        v: Val,
+        span: Span,
+    ) -> Result<(), Diagnostic> {
+        match p.expr(target).expr {
+            Expr::Var { index } => {
+                let n = self.eval_num(p, index)?.round();
+                if n < 0.0 || n as usize >= NUM_PARAMS {
+                    return Err(self.err(
+                        codes::EXPRESSION,
+                        span,
+                        format!("parameter number #{n} out of range"),
+                    ));
+                }
+                if n == 0.0 && !self.ngc() {
+                    return Err(self.err(codes::EXPRESSION, span, "#0 is read-only (PS0116)"));
+                }
+                let v = if self.ngc() {
+                    Some(v.unwrap_or(0.0))
+                } else {
+                    v
+                };
+                if self.dialect == Dialect::Fanuc && (n as usize == 3000 || n as usize == 3006) {
+                    let stop = n as usize == 3000;
+                    self.event(EventKind::Message(format!("#{} = {}", n, v.unwrap_or(0.0))));
+                    if stop {
+                        return Err(self.err(
+                            codes::MACRO_ALARM,
+                            span,
+                            format!("macro alarm #3000 = {}", v.unwrap_or(0.0)),
+                        ));
+                    }
+                }
+                self.set_param(n as usize, v);
+                Ok(())
+            }
+            Expr::Named { name } => {
+                let key = expr::named_key(&p.str_of(name));
+                let v = v.unwrap_or(0.0);
+                if key.starts_with('_') {
+                    Arc::make_mut(&mut self.st.named).insert(key, v);
+                } else if let Some(f) = self.frames.last_mut() {
+                    f.named_locals.insert(key, v);
+                } else {
+                    self.main_locals.insert(key, v);
+                }
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+pub(super) struct Vars<'s> {
+    st: &'s State,
+    locals: Option<&'s HashMap<String, f64>>,
+    dialect: Dialect,
+    /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, in the tool
+    /// table's units.
+    tool: [f64; 4],
+}
+
+impl VarSource for Vars<'_> {
+    fn get_num(&self, n: i64, span: Span) -> Result<Val, EvalError> {
+        if n < 0 || n as usize >= NUM_PARAMS {
+            let code = if self.dialect == Dialect::Rs274ngc {
+                "X006"
+            } else {
+                "X007"
+            };
+            return Err(EvalError {
+                span,
+                message: format!("parameter number #{n} out of range"),
+                code,
+            });
+        }
+        if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
+            return Ok(Some(self.tool[(n - 5401) as usize]));
+        }
+        if self.dialect == Dialect::Rs274ngc && n == 5410 {
+            return Ok(Some(self.tool[3]));
+        }
+        if let Some(v) = system_var(self.st, self.dialect, n) {
+            return Ok(Some(v));
+        }
+        let v = self.st.params.get(n as usize).copied().flatten();
+        Ok(if self.dialect == Dialect::Rs274ngc {
+            Some(v.unwrap_or(0.0))
+        } else {
+            v
+        })
+    }
+    fn get_named(&self, name: &str, span: Span) -> Result<Val, EvalError> {
+        if let Some(v) = self.locals.and_then(|l| l.get(name)) {
+            return Ok(Some(*v));
+        }
+        if let Some(v) = self.st.named.get(name) {
+            return Ok(Some(*v));
+        }
+        if let Some(v) = predefined(self.st, name) {
+            return Ok(Some(v));
+        }
+        Err(EvalError {
+            span,
+            message: format!("named parameter #<{name}> not defined"),
+            code: "X006",
+        })
+    }
+    fn named_exists(&self, name: &str) -> bool {
+        self.locals.is_some_and(|l| l.contains_key(name))
+            || self.st.named.contains_key(name)
+            || predefined(self.st, name).is_some()
+    }
+}
+
+/// Read-only system variables computed from the state: FANUC/ServoWorks
+/// #4001… modal codes, #5001… end point, #5021… machine, #5041… work
+/// position; LinuxCNC #5420… current position.
+fn system_var(st: &State, d: Dialect, n: i64) -> Option<f64> {
+    // RS274/NGC keeps lengths in program units already.
+    let u = if st.modal.inch && d != Dialect::Rs274ngc {
+        25.4
+    } else {
+        1.0
+    };
+    let axis = |v: &[f64; 6], i: usize| if i < 3 { v[i] / u } else { v[i] };
+    match d {
+        Dialect::Rs274ngc => match n {
+            5420..=5425 => Some(axis(&st.pos, (n - 5420) as usize)),
+            5400 => Some(f64::from(st.tool)),
+            _ => None,
+        },
+        _ => match n {
+            4001 => Some(f64::from(st.modal.motion) / 10.0),
+            4002 => Some(f64::from(st.modal.plane) / 10.0),
+            4003 => Some(if st.modal.incremental { 91.0 } else { 90.0 }),
+            4005 => Some(f64::from(st.modal.feed_mode) / 10.0),
+            4006 => Some(if st.modal.inch { 20.0 } else { 21.0 }),
+            4007 => Some(f64::from(st.modal.comp) / 10.0),
+            4008 => Some(f64::from(st.modal.tlo_mode) / 10.0),
+            4009 => Some(if st.modal.modal_cycle() {
+                f64::from(st.modal.motion) / 10.0
+            } else {
+                80.0
+            }),
+            4010 => Some(if st.modal.retract_old_z { 98.0 } else { 99.0 }),
+            4014 => Some(match st.modal.origin {
+                o @ 1..=6 => 53.0 + o as f64,
+                _ => 54.1,
+            }),
+            4109 => Some(st.feed / u),
+            4119 => Some(st.spindle),
+            4120 => Some(f64::from(st.tool)),
+            5001..=5006 | 5041..=5046 => Some(axis(&st.pos, ((n - 1) % 20) as usize)),
+            5021..=5026 => Some(axis(&st.mpos, (n - 5021) as usize)),
+            5081..=5086 => Some(axis(&st.tlo, (n - 5081) as usize)),
+            _ => None,
+        },
+    }
+}
+
+/// LinuxCNC read-only named parameters, in program units.
+pub(super) fn predefined(st: &State, name: &str) -> Option<f64> {
+    // Only RS274/NGC has named parameters, and it keeps program units.
+    let u = 1.0;
+    let axes = ["x", "y", "z", "a", "b", "c"];
+    for (i, a) in axes.iter().enumerate() {
+        if name.strip_prefix('_') == Some(a) {
+            return Some(if i < 3 { st.pos[i] / u } else { st.pos[i] });
+        }
+        if name == format!("_abs_{a}") {
+            return Some(if i < 3 { st.mpos[i] / u } else { st.mpos[i] });
+        }
+    }
+    Some(match name {
+        "_metric" => f64::from(u8::from(!st.modal.inch)),
+        "_imperial" => f64::from(u8::from(st.modal.inch)),
+        "_lathe_diameter_mode" => f64::from(u8::from(st.modal.diameter)),
+        "_lathe_radius_mode" => f64::from(u8::from(!st.modal.diameter)),
+        "_absolute" => f64::from(u8::from(!st.modal.incremental)),
+        "_incremental" => f64::from(u8::from(st.modal.incremental)),
+        "_feed" => st.feed / u,
+        "_rpm" => st.spindle,
+        "_current_tool" => f64::from(st.tool),
+        "_selected_tool" => f64::from(st.next_tool),
+        "_coord_system" => 530.0 + 10.0 * st.modal.origin as f64,
+        "_motion_mode" => f64::from(st.modal.motion),
+        "_plane" => f64::from(st.modal.plane),
+        "_value" | "_value_returned" => 0.0,
+        "_line" => f64::from(st.line),
+        _ => return None,
+    })
+}
