@@ -487,7 +487,7 @@ fn plan_run_stoppable(
     };
     let mut stopped = false;
     for (i, ev) in events.into_iter().enumerate() {
-        if i % 1024 == 0 && stop() {
+        if i.is_multiple_of(1024) && stop() {
             stopped = true;
             break;
         }

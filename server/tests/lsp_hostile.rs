@@ -325,7 +325,7 @@ fn a_change_with_half_an_emoji_still_applies() {
     // What `JSON.stringify` sends once half of "😀" is deleted: the text is
     // applied with U+FFFD in its place, so the next hover sees the new code.
     let body = format!(
-        r#"{{"jsonrpc":"2.0","method":"textDocument/didChange","params":{{"textDocument":{{"uri":"{uri}","version":2}},"contentChanges":[{{"text":"G0 X1 (\ud83d)\n"}}]}}}}"#
+        r#"{{"jsonrpc":"2.0","method":"textDocument/didChange","params":{{"textDocument":{{"uri":"{uri}","version":2}},"contentChanges":[{{"text":"G0 X1 (\ud83d)\nM2\n"}}]}}}}"#
     );
     c.send_bytes(&framed(body.as_bytes()));
     let p = c.wait_for("textDocument/publishDiagnostics", |p| p["version"] == 2);
@@ -334,9 +334,20 @@ fn a_change_with_half_an_emoji_still_applies() {
         hover(&mut c, &uri, 0, "the change"),
         ("**G0**".to_string(), range(0, 0, 2))
     );
-    // The comment holds one U+FFFD: one UTF-16 unit, so `)` is at 8.
-    let r = c.request("textDocument/hover", hover_params(&uri, 0, 9));
-    assert_eq!(r, Value::Null);
+    // The comment `(\u{fffd})` is three UTF-16 units long (the escape kept
+    // as text would be eight).
+    let r = c.request(
+        "textDocument/semanticTokens/full",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let comment = r["data"]
+        .as_array()
+        .and_then(|d| d.get(20..25).map(<[Value]>::to_vec));
+    assert_eq!(
+        comment,
+        Some(vec![json!(0), json!(2), json!(3), json!(0), json!(0)]),
+        "{r}"
+    );
     assert!(c.shutdown().success());
 }
 
@@ -439,6 +450,69 @@ fn closing_stdin_ends_the_server_while_it_runs() {
     assert!(took < Duration::from_secs(2), "exit took {took:?}");
 }
 
+/// CPU time the server spends over `window`.
+fn cpu_over(c: &Client, window: Duration) -> Duration {
+    let before = c.cpu_time().expect("server CPU time");
+    std::thread::sleep(window);
+    c.cpu_time()
+        .expect("server CPU time")
+        .saturating_sub(before)
+}
+
+#[test]
+fn runs_stop_when_their_request_is_cancelled_or_their_document_closes() {
+    let (mut c, uri) = start("stop", &[]);
+    let window = Duration::from_secs(1);
+    // Below a few ticks of CPU the server is idle; a run takes at least a
+    // fifth of a core even on a loaded machine.
+    let idle = Duration::from_millis(60);
+    let busy = Duration::from_millis(200);
+    // A small document runs with its analysis, for its diagnostics: closing
+    // the document stops that run.
+    let small = uri.replace("part.ngc", "small.ngc");
+    open(&mut c, &small, &endless());
+    let running = cpu_over(&c, window);
+    c.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": small}}),
+    );
+    hover_ok(&mut c, &uri, "the close");
+    let after_close = cpu_over(&c, window);
+    // Above 256 KB the document's own run waits for edits to pause, so the
+    // dry run is the request's: its cancel stops it (the close stops the
+    // document's run that would follow).
+    let large = uri.replace("part.ngc", "large.ngc");
+    let text = endless() + &"(padding to make the file large)\n".repeat(10_000);
+    open(&mut c, &large, &text);
+    let run = c.send_request("partscope/dryRun", json!({"textDocument": {"uri": large}}));
+    let running_request = cpu_over(&c, window);
+    c.notify("$/cancelRequest", json!({"id": run}));
+    c.notify(
+        "textDocument/didClose",
+        json!({"textDocument": {"uri": large}}),
+    );
+    assert_eq!(take_response(&mut c, run).unwrap()["error"]["code"], -32800);
+    let after_cancel = cpu_over(&c, window);
+    eprintln!(
+        "server CPU per {window:?}: document run {running:?}, after its close {after_close:?}; \
+         request run {running_request:?}, after its cancel {after_cancel:?}"
+    );
+    assert!(
+        running >= busy && running_request >= busy,
+        "no run was running"
+    );
+    assert!(
+        after_close <= idle,
+        "the run went on after the close: {after_close:?}"
+    );
+    assert!(
+        after_cancel <= idle,
+        "the run went on after the cancel: {after_cancel:?}"
+    );
+    hover_ok(&mut c, &uri, "the cancel");
+    assert!(c.shutdown().success());
+}
+
 /// A small deterministic generator (xorshift).
 struct Rng(u64);
 
@@ -486,9 +560,9 @@ fn random_json(rng: &mut Rng, depth: u32, out: &mut String) {
         "partscope/dryRun",
         "$/cancelRequest",
         "$/x",
+        // Not `shutdown` or `exit`: those end the session by right.
         "initialize",
-        "shutdown",
-        "exit",
+        "initialized",
         "file:///nowhere.ngc",
         "\\ud83d",
         "\\ude00x",
@@ -504,7 +578,7 @@ fn random_json(rng: &mut Rng, depth: u32, out: &mut String) {
         3 => out.push_str(&format!("{}.5e{}", rng.below(1000), rng.below(400))),
         4 => {
             out.push('"');
-            out.push_str(rng.pick(STRINGS));
+            out.push_str(rng.pick::<&str>(STRINGS));
             out.push('"');
         }
         5 | 6 => {
@@ -516,7 +590,7 @@ fn random_json(rng: &mut Rng, depth: u32, out: &mut String) {
                 if i > 0 {
                     out.push(',');
                 }
-                out.push_str(&format!(r#""{}":"#, rng.pick(KEYS)));
+                out.push_str(&format!(r#""{}":"#, *rng.pick(KEYS)));
                 random_json(rng, depth + 1, out);
             }
             out.push('}');

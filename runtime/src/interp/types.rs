@@ -31,7 +31,7 @@ pub const CANCEL_POLL_STEPS: u64 = 1024;
 
 /// Whether a run at `steps` executed blocks should stop for its host.
 pub(crate) fn stop_requested(steps: u64, resolver: &dyn Resolver) -> bool {
-    steps % CANCEL_POLL_STEPS == 0 && resolver.cancelled()
+    steps.is_multiple_of(CANCEL_POLL_STEPS) && resolver.cancelled()
 }
 
 /// A resolver that never finds anything.

@@ -187,10 +187,10 @@ fn scan_header(data: &[u8], max_header: usize) -> Scan {
                 }
                 return Scan::NeedMore { keep: i };
             };
-            // A second `Content-Length` line starts a new header: the block
-            // before it never ended (its blank line was lost).
-            if header_line_at(data, k).is_ok() {
-                i = k;
+            // A second `Content-Length` line, also one after junk on its
+            // line, starts a new header: the block before it never ended.
+            if let Some(q) = embedded_header(&data[k..=k + nl]) {
+                i = k + q;
                 continue 'candidates;
             }
             let line = &data[k..k + nl];
@@ -322,7 +322,7 @@ impl<R: AsyncRead + Unpin> FrameReader<R> {
             scanned = upto;
             // A valid body never ends inside a header line; a broken one
             // may, and then the rest of that header is awaited.
-            if avail >= len && !(header_may_start_before(&self.data()[..upto], len) && !self.eof) {
+            if avail >= len && (self.eof || !header_may_start_before(&self.data()[..upto], len)) {
                 let body = self.data()[..len].to_vec();
                 self.pos += len;
                 return Ok(Frame::Body(body));
@@ -359,7 +359,7 @@ impl<R: AsyncRead + Unpin> FrameReader<R> {
             // Keep a header's worth unread: a header may start in it.
             let end = avail.min(here + MAX_LENGTH_LINE);
             let drop = if (here as u64) == left
-                && !(header_may_start_before(&self.data()[..end], here) && !self.eof)
+                && (self.eof || !header_may_start_before(&self.data()[..end], here))
             {
                 here
             } else {
@@ -625,9 +625,13 @@ fn error_response(id: Id, code: ErrorCode, message: String) -> Response {
     )
 }
 
-/// The only writer of `output`: each message in one `write_all`.
+/// The only writer of `output`: each message in one `write_all`, until the
+/// channel closes or an empty message (the end marker) comes.
 async fn write_all<O: AsyncWrite + Unpin>(mut rx: mpsc::UnboundedReceiver<Vec<u8>>, mut output: O) {
     while let Some(msg) = rx.recv().await {
+        if msg.is_empty() {
+            break;
+        }
         if output.write_all(&msg).await.is_err() || output.flush().await.is_err() {
             break;
         }
@@ -722,6 +726,15 @@ where
             );
             continue;
         }
+        // These two are requests; as notifications they would change the
+        // server's state with nobody waiting for the answer.
+        if req.id().is_none() && matches!(req.method(), "initialize" | "shutdown") {
+            eprintln!(
+                "partscope lsp: dropped `{}` sent without an id",
+                req.method()
+            );
+            continue;
+        }
         let exit = req.method() == "exit";
         if req.method() == "shutdown" && req.id().is_some() {
             shutdown = true;
@@ -761,9 +774,9 @@ where
         }
     };
     forward.abort();
-    drop(out);
     // Answers already queued (the one to `shutdown`) still go out; answers of
     // requests still running are abandoned with them.
+    let _ = out.send(Vec::new());
     let _ = tokio::time::timeout(Duration::from_millis(500), writer).await;
     code
 }
@@ -862,8 +875,12 @@ mod tests {
         );
         let got = frames(input.as_bytes(), Limits::default()).await;
         assert_eq!(got, vec![Frame::Body(good.as_bytes().to_vec())]);
-        // A header whose blank line was lost gives way to the next header.
+        // A header whose blank line was lost gives way to the next header,
+        // also one that follows junk on the same line.
         let input = format!("Content-Length: 50\r\n{}", msg(good));
+        let got = frames(input.as_bytes(), Limits::default()).await;
+        assert_eq!(got, vec![Frame::Body(good.as_bytes().to_vec())]);
+        let input = format!("Content-Length: 50\r\nab\x01{}", msg(good));
         let got = frames(input.as_bytes(), Limits::default()).await;
         assert_eq!(got, vec![Frame::Body(good.as_bytes().to_vec())]);
     }
