@@ -512,7 +512,9 @@ impl Backend {
             }
             let cancel = CancelFlag::default();
             let _guard = cancel.guard();
-            let result: Option<DryRunResult> = blocking(move || {
+            // The JSON value is built on the blocking thread too: a long
+            // toolpath is a large conversion.
+            let result: Option<Result<Value>> = blocking(move || {
                 let report = snap.run_report(&cancel)?;
                 let diags = report
                     .diagnostics
@@ -520,11 +522,12 @@ impl Backend {
                     .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
-                Some(dry_run::summarize(snap.version, &report, diags))
+                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags);
+                Some(serde_json::to_value(r).map_err(|e| internal(e.to_string())))
             })
             .await?;
             match result {
-                Some(r) => serde_json::to_value(r).map_err(|e| internal(e.to_string())),
+                Some(r) => r,
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
                     message: "no dry run for this document (cancelled, or above the size limit)"

@@ -763,9 +763,10 @@ where
             Poll::Pending => {
                 let out = out.clone();
                 tokio::spawn(async move {
-                    if let Ok(Some(resp)) = fut.await {
-                        send(&out, &resp);
-                    }
+                    let Ok(Some(resp)) = fut.await else { return };
+                    // A dry run's answer can be large: serialise it off the
+                    // async workers.
+                    let _ = tokio::task::spawn_blocking(move || send(&out, &resp)).await;
                 });
             }
         }
