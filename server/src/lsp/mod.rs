@@ -120,7 +120,7 @@ pub fn run() -> ExitCode {
         .await
     });
     // Blocking analyses still running are abandoned rather than awaited: the
-    // process ends with them.
-    rt.shutdown_timeout(std::time::Duration::from_millis(100));
+    // process ends with them (the writer has flushed what was queued).
+    rt.shutdown_background();
     code
 }
