@@ -447,6 +447,28 @@ pub fn stream_totals<R>(
 
 /// Plans a run.
 pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
+    plan_run_stoppable(out, profile, &|| false).0
+}
+
+/// [`plan_run`] for a host that may stop it: `None` when `stop` returned
+/// true (it is polled every 1024 planner events).
+pub fn plan_run_until(
+    out: &RunOutput,
+    profile: &MachineProfile,
+    stop: &dyn Fn() -> bool,
+) -> Option<DryRun> {
+    match plan_run_stoppable(out, profile, stop) {
+        (_, true) => None,
+        (plan, false) => Some(plan),
+    }
+}
+
+/// The plan, and whether `stop` cut it short.
+fn plan_run_stoppable(
+    out: &RunOutput,
+    profile: &MachineProfile,
+    stop: &dyn Fn() -> bool,
+) -> (DryRun, bool) {
     let events = planner_events(out);
     let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
     // Period-by-period execution costs time in proportion to machine time; beyond
@@ -467,7 +489,12 @@ pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
             slot.2 = slot.2.max(t.peak_speed);
         }
     };
-    for ev in events {
+    let mut stopped = false;
+    for (i, ev) in events.into_iter().enumerate() {
+        if i.is_multiple_of(1024) && stop() {
+            stopped = true;
+            break;
+        }
         planner.push(ev, &mut record);
     }
     let totals = planner.finish(&mut record);
@@ -484,11 +511,14 @@ pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
         };
         event_times.push(t);
     }
-    DryRun {
-        totals,
-        motion_times,
-        event_times,
-    }
+    (
+        DryRun {
+            totals,
+            motion_times,
+            event_times,
+        },
+        stopped,
+    )
 }
 
 /// Samples motions into polylines with at most `chord` mm deviation on arcs.

@@ -10,5 +10,5 @@ pub mod rules;
 pub use interp::{
     rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
     BlockSnapshot, Checkpoints, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile,
-    Resolver, RunInput, RunOutput, CANON_FILE_NAME,
+    Resolver, RunInput, RunOutput, CANCEL_POLL_STEPS, CANON_FILE_NAME,
 };

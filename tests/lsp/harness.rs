@@ -1,6 +1,6 @@
 //! A tiny LSP client for the end-to-end tests: spawns `partscope lsp` and
 //! speaks JSON-RPC over its stdio with Content-Length framing. Included by
-//! `server/tests/lsp_e2e.rs` and `server/tests/lsp_latency.rs`.
+//! `server/tests/lsp_e2e.rs`, `lsp_latency.rs`, `lsp_soak.rs` and `lsp_hostile.rs`.
 
 // Each test crate that includes this uses a different subset of it.
 #![allow(dead_code)]
@@ -48,8 +48,14 @@ fn read_message(r: &mut impl BufRead) -> Option<Value> {
 
 impl Client {
     pub fn spawn() -> Client {
+        Client::spawn_with_env(&[])
+    }
+
+    /// Spawns the server with extra environment variables.
+    pub fn spawn_with_env(env: &[(&str, &str)]) -> Client {
         let mut child = Command::new(env!("CARGO_BIN_EXE_partscope"))
             .arg("lsp")
+            .envs(env.iter().copied())
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
@@ -79,6 +85,56 @@ impl Client {
     /// The server's process id (the soak test reads its memory use).
     pub fn pid(&self) -> u32 {
         self.child.id()
+    }
+
+    /// Writes bytes as they are, without a header (hostile-client tests).
+    pub fn send_bytes(&mut self, bytes: &[u8]) {
+        self.stdin.write_all(bytes).unwrap();
+        self.stdin.flush().unwrap();
+    }
+
+    /// User + system CPU time of the server so far, from `/proc/<pid>/stat`
+    /// (fields 14 and 15, in clock ticks of 1/100 s on Linux).
+    pub fn cpu_time(&self) -> Option<Duration> {
+        let stat = std::fs::read_to_string(format!("/proc/{}/stat", self.child.id())).ok()?;
+        // The command name (field 2) may hold spaces; fields restart after ')'.
+        let rest = &stat[stat.rfind(')')? + 1..];
+        let f: Vec<&str> = rest.split_whitespace().collect();
+        let ticks = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
+        Some(Duration::from_millis(ticks * 10))
+    }
+
+    /// The exit status, if the server has exited.
+    pub fn exited(&mut self) -> Option<std::process::ExitStatus> {
+        self.child.try_wait().unwrap()
+    }
+
+    /// Waits up to `timeout` for the response to request `id`.
+    pub fn response_within(&mut self, id: i64, timeout: Duration) -> Option<Value> {
+        let deadline = Instant::now() + timeout;
+        loop {
+            let msg = self.recv(deadline)?;
+            if msg.get("id") == Some(&json!(id)) {
+                return Some(msg);
+            }
+            self.pending.push(msg);
+        }
+    }
+
+    /// Closes stdin and waits up to `timeout` for the exit status.
+    pub fn close_and_wait(mut self, timeout: Duration) -> Option<std::process::ExitStatus> {
+        drop(self.stdin);
+        let deadline = Instant::now() + timeout;
+        loop {
+            if let Some(st) = self.child.try_wait().unwrap() {
+                return Some(st);
+            }
+            if Instant::now() >= deadline {
+                let _ = self.child.kill();
+                return None;
+            }
+            std::thread::sleep(Duration::from_millis(10));
+        }
     }
 
     pub fn send_raw(&mut self, body: &[u8]) {

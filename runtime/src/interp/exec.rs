@@ -576,6 +576,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                 break;
             }
             self.steps += 1;
+            if super::types::stop_requested(self.steps, self.input.resolver) {
+                break;
+            }
             if self.steps > budget {
                 let span = self.block_span(fi, bi);
                 self.diag(

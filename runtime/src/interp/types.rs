@@ -17,6 +17,21 @@ pub struct ResolvedFile {
 /// (RS274/NGC `o<drill> call` → `drill.ngc`).
 pub trait Resolver {
     fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile>;
+
+    /// Whether the host wants the run to stop now (its client cancelled the
+    /// request or went away). Polled every [`CANCEL_POLL_STEPS`] blocks; a
+    /// stopped run's output ends where it stopped. The default never stops.
+    fn cancelled(&self) -> bool {
+        false
+    }
+}
+
+/// How many executed blocks pass between two [`Resolver::cancelled`] polls.
+pub const CANCEL_POLL_STEPS: u64 = 1024;
+
+/// Whether a run at `steps` executed blocks should stop for its host.
+pub(crate) fn stop_requested(steps: u64, resolver: &dyn Resolver) -> bool {
+    steps.is_multiple_of(CANCEL_POLL_STEPS) && resolver.cancelled()
 }
 
 /// A resolver that never finds anything.

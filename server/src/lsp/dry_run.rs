@@ -188,6 +188,10 @@ impl CancelFlag {
         self.0.load(Ordering::Relaxed)
     }
 
+    pub fn cancel(&self) {
+        self.0.store(true, Ordering::Relaxed);
+    }
+
     /// A guard that sets the flag when dropped: the request future owns it,
     /// so dropping the future (what `$/cancelRequest` does) cancels the work.
     pub fn guard(&self) -> CancelOnDrop {
@@ -199,7 +203,7 @@ pub struct CancelOnDrop(CancelFlag);
 
 impl Drop for CancelOnDrop {
     fn drop(&mut self) {
-        self.0 .0.store(true, Ordering::Relaxed);
+        self.0.cancel();
     }
 }
 

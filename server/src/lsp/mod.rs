@@ -35,8 +35,10 @@
 //! - Above `maxFileSize` (20 MB) a document is only parsed: syntax
 //!   diagnostics, navigation, symbols and tokens, no rules and no run.
 //! - Every handler runs under `catch_unwind` and its work in `spawn_blocking`;
-//!   stdin goes through [`stdio`], which turns a malformed message into a
-//!   no-op instead of letting the protocol library end the session.
+//!   the transport is [`stdio`] (framing, JSON-RPC decoding, limits, exit
+//!   status), so no message can end the session. A cancelled request's
+//!   [`dry_run::CancelFlag`] reaches the interpreter and the planner, which
+//!   poll it.
 //! - Other files are read only inside the workspace folders (canonicalized,
 //!   so symlinks cannot escape): [`workspace`].
 //!
@@ -76,7 +78,7 @@ mod workspace;
 
 use std::process::ExitCode;
 
-use tower_lsp_server::{ClientSocket, LspService, Server};
+use tower_lsp_server::{ClientSocket, LspService};
 
 pub use server::Backend;
 
@@ -90,7 +92,9 @@ pub fn service() -> (LspService<Backend>, ClientSocket) {
         .finish()
 }
 
-/// Runs the language server on stdin/stdout until the client exits.
+/// Runs the language server on stdin/stdout until the client exits: status 0
+/// after `shutdown` and `exit`, 1 when `exit` or the end of input comes
+/// without `shutdown` (as the protocol asks).
 pub fn run() -> ExitCode {
     let rt = match tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
@@ -103,13 +107,20 @@ pub fn run() -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    rt.block_on(async {
+    let code = rt.block_on(async {
         let (service, socket) = service();
-        Server::new(stdio::filtered_stdin(), tokio::io::stdout(), socket)
-            .serve(service)
-            .await;
+        let limits = stdio::Limits::from_env();
+        stdio::serve(
+            tokio::io::stdin(),
+            tokio::io::stdout(),
+            service,
+            socket,
+            limits,
+        )
+        .await
     });
-    // Blocking analyses still running are abandoned rather than awaited.
-    rt.shutdown_timeout(std::time::Duration::from_millis(100));
-    ExitCode::SUCCESS
+    // Blocking analyses still running are abandoned rather than awaited: the
+    // process ends with them (the writer has flushed what was queued).
+    rt.shutdown_background();
+    code
 }

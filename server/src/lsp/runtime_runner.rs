@@ -12,7 +12,7 @@ use std::sync::Arc;
 use analyzer::{Dialect, FileId};
 use runtime::{dryrun, EventKind, ResolvedFile, Resolver, RunInput};
 
-use super::dry_run::{DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
+use super::dry_run::{CancelFlag, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
 use super::nav::{self, Sym};
 use super::workspace;
 
@@ -39,6 +39,8 @@ struct WorkspaceResolver<'a> {
     roots: &'a [PathBuf],
     /// Every file handed to the interpreter.
     loaded: RefCell<Vec<Loaded>>,
+    /// The request's cancellation, which the interpreter polls.
+    cancel: &'a CancelFlag,
 }
 
 impl Resolver for WorkspaceResolver<'_> {
@@ -58,6 +60,10 @@ impl Resolver for WorkspaceResolver<'_> {
             .borrow_mut()
             .push((name.to_string(), path.clone(), text.clone()));
         Some(ResolvedFile { path, text })
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.is_cancelled()
     }
 }
 
@@ -125,6 +131,7 @@ impl DryRunner for RuntimeRunner {
             subroutine_path: subs,
             roots: input.roots,
             loaded: RefCell::new(Vec::new()),
+            cancel: input.cancel,
         };
         // Missing or outside-the-workspace files leave the run without them, as
         // `partscope run` does for files a config names.
@@ -180,6 +187,7 @@ impl DryRunner for RuntimeRunner {
                 if rerun { " (rerun)" } else { "" }
             );
         }
+        // A cancelled run stopped part way: no answer, and nothing to rerun from.
         if input.cancel.is_cancelled() {
             return None;
         }
@@ -204,10 +212,16 @@ impl DryRunner for RuntimeRunner {
                 length: dryrun::segment_of(m, i as u32).length,
             })
             .collect();
+        if input.cancel.is_cancelled() {
+            return None;
+        }
         // A `[machine]` table the planner cannot read leaves the run without times.
-        let plan = dryrun::profile_from_table(input.machine, input.settings.dialect)
-            .ok()
-            .map(|profile| dryrun::plan_run(&out, &profile));
+        let plan = match dryrun::profile_from_table(input.machine, input.settings.dialect) {
+            Ok(profile) => Some(dryrun::plan_run_until(&out, &profile, &|| {
+                input.cancel.is_cancelled()
+            })?),
+            Err(_) => None,
+        };
         let timing = plan.as_ref().map(|p| Timing {
             rapid_s: p.totals.rapid_s,
             cutting_s: p.totals.cutting_s,
@@ -257,7 +271,6 @@ impl DryRunner for RuntimeRunner {
 #[cfg(test)]
 mod run_tests {
     use super::*;
-    use crate::lsp::dry_run::CancelFlag;
     use analyzer::Settings;
 
     fn run(text: &str) -> RunReport {

@@ -65,6 +65,8 @@ struct Doc {
     /// Held while the document is analysed: one analysis at a time, so each
     /// starts from the result of the one before.
     analysing: Arc<tokio::sync::Mutex<()>>,
+    /// Set when the document is closed: its background runs stop.
+    closed: CancelFlag,
 }
 
 #[derive(Default)]
@@ -210,8 +212,10 @@ impl Backend {
         let this = self.clone();
         tokio::spawn(async move {
             tokio::time::sleep(delay).await;
-            let gate = match this.lock().docs.get(&uri) {
-                Some(doc) if doc.generation == generation => doc.analysing.clone(),
+            let (gate, closed) = match this.lock().docs.get(&uri) {
+                Some(doc) if doc.generation == generation => {
+                    (doc.analysing.clone(), doc.closed.clone())
+                }
                 _ => return,
             };
             let analysing = gate.lock_owned().await;
@@ -261,7 +265,7 @@ impl Backend {
                 }
                 tokio::task::spawn_blocking(move || {
                     let _permit = permit;
-                    s.run_report(&CancelFlag::default());
+                    s.run_report(&closed);
                 })
                 .await
                 .ok()
@@ -309,10 +313,13 @@ impl Backend {
             return;
         }
         let Some(snap) = weak.upgrade() else { return };
+        let Some(closed) = self.lock().docs.get(&uri).map(|d| d.closed.clone()) else {
+            return;
+        };
         let s = snap.clone();
         let done = blocking(move || {
             let _permit = permit;
-            s.run_report(&CancelFlag::default()).is_some()
+            s.run_report(&closed).is_some()
         })
         .await
         .unwrap_or(false);
@@ -505,7 +512,9 @@ impl Backend {
             }
             let cancel = CancelFlag::default();
             let _guard = cancel.guard();
-            let result: Option<DryRunResult> = blocking(move || {
+            // The JSON value is built on the blocking thread too: a long
+            // toolpath is a large conversion.
+            let result: Option<Result<Value>> = blocking(move || {
                 let report = snap.run_report(&cancel)?;
                 let diags = report
                     .diagnostics
@@ -513,11 +522,12 @@ impl Backend {
                     .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
-                Some(dry_run::summarize(snap.version, &report, diags))
+                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags);
+                Some(serde_json::to_value(r).map_err(|e| internal(e.to_string())))
             })
             .await?;
             match result {
-                Some(r) => serde_json::to_value(r).map_err(|e| internal(e.to_string())),
+                Some(r) => r,
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
                     message: "no dry run for this document (cancelled, or above the size limit)"
@@ -672,6 +682,7 @@ impl LanguageServer for Backend {
                         generation: 0,
                         snapshot: None,
                         analysing: Arc::default(),
+                        closed: CancelFlag::default(),
                     },
                 );
             }
@@ -707,7 +718,9 @@ impl LanguageServer for Backend {
     async fn did_close(&self, params: DidCloseTextDocumentParams) {
         guarded_notify("didClose", async {
             let uri = params.text_document.uri;
-            self.lock().docs.remove(&uri);
+            if let Some(doc) = self.lock().docs.remove(&uri) {
+                doc.closed.cancel();
+            }
             self.client.publish_diagnostics(uri, Vec::new(), None).await;
         })
         .await
