@@ -63,7 +63,17 @@ pub struct Settings {
     pub axes: Vec<char>,
     /// ServoWorks "Integer Programming with Machine Unit Enable".
     pub integer_machine_unit: bool,
+    /// Diagnostics of one code reported per file; the rest become one
+    /// "… and N more" (see [`crate::limit_diagnostics`]).
+    pub max_per_code: usize,
+    /// Diagnostics reported per file, all codes together.
+    pub max_per_file: usize,
 }
+
+/// Default of [`Settings::max_per_code`].
+pub const DEFAULT_MAX_PER_CODE: usize = 1000;
+/// Default of [`Settings::max_per_file`].
+pub const DEFAULT_MAX_PER_FILE: usize = 20_000;
 
 impl Settings {
     pub fn new(dialect: Dialect) -> Settings {
@@ -75,6 +85,8 @@ impl Settings {
             custom_codes: Vec::new(),
             axes: vec!['X', 'Y', 'Z', 'A', 'B', 'C'],
             integer_machine_unit: false,
+            max_per_code: DEFAULT_MAX_PER_CODE,
+            max_per_file: DEFAULT_MAX_PER_FILE,
         }
     }
 

@@ -20,6 +20,7 @@ use super::rotary_feed;
 use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
+mod budget;
 mod context;
 mod g37;
 mod g7x;
@@ -920,13 +921,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     codes::STEP_BUDGET,
                     Severity::Warning,
                     span,
-                    format!("execution stopped after {budget} blocks (step budget): a loop may never end; raise the budget if the program is meant to run this long"),
+                    format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
                 );
                 break;
             }
             let first_motion = self.out.motions.len();
             let result = self.exec_block(fi, bi);
             self.check_limits(fi, bi, first_motion);
+            if self.motion_budget_reached(self.block_span(fi, bi)) {
+                break;
+            }
             match result {
                 Ok(Flow::Next) => self.cur = (self.cur.0, self.cur.1 + 1),
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
@@ -5639,7 +5643,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         // Each repetition counts against the step budget, so `L1000000000` stays bounded.
         let left = self.input.step_budget.saturating_sub(self.steps);
         let repeats = if repeats as u64 > left {
-            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated"));
+            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated (raise it with --step-budget)"));
             left as i64
         } else {
             repeats
@@ -5655,6 +5659,9 @@ impl<'a, 'i> Interp<'a, 'i> {
             )
         });
         for k in 0..repeats {
+            if self.motion_budget_reached(span) {
+                break;
+            }
             if let Some((dr, dth)) = polar {
                 let (r0, th0) = (pa.hypot(pb), pb.atan2(pa));
                 let (r, th) = if inc {

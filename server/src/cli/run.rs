@@ -61,14 +61,35 @@ pub struct RunArgs {
     /// Write a PNG picture of the toolpath.
     #[arg(long)]
     pub png: Option<PathBuf>,
-    /// Step budget: blocks executed before a runaway program is stopped (default: ten
-    /// executions of every block of the file, at least a million).
+    /// Step budget: blocks executed before a runaway program is stopped (default: a
+    /// million plus a hundred per block of the file).
     #[arg(long)]
     pub step_budget: Option<u64>,
+    /// Motion budget: motions simulated before the run stops (default: a million
+    /// plus eight per block of the file).
+    #[arg(long)]
+    pub motion_budget: Option<u64>,
+    /// Diagnostics of one rule code reported per file (default 1000); the rest are
+    /// summed up in one "… and N more" diagnostic.
+    #[arg(long)]
+    pub max_per_code: Option<usize>,
+    /// Diagnostics reported per file (default 20000).
+    #[arg(long)]
+    pub max_per_file: Option<usize>,
     /// Largest program to read, in MB (default 128); larger files are refused
     /// with an error instead of exhausting memory.
     #[arg(long)]
     pub max_file_size: Option<u64>,
+}
+
+/// The static and the runtime diagnostics together, in order and within the
+/// per-file limits.
+fn limited(
+    mut diagnostics: Vec<analyzer::Diagnostic>,
+    settings: &analyzer::Settings,
+) -> Vec<analyzer::Diagnostic> {
+    diagnostics.sort_by_key(|d| (d.file, d.span.start));
+    analyzer::limit_diagnostics(diagnostics, settings)
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -104,10 +125,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         &args.file,
         &text,
     );
-    let settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
+    let mut settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
+    settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
+    settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
     let config_dir = loaded
         .path
         .as_ref()
@@ -241,7 +264,10 @@ pub fn run(args: RunArgs) -> ExitCode {
         resolver: &resolver,
         step_budget: args
             .step_budget
-            .unwrap_or_else(|| super::check::step_budget(parsed.program.blocks.len())),
+            .unwrap_or_else(|| runtime::default_step_budget(parsed.program.blocks.len())),
+        motion_budget: args
+            .motion_budget
+            .unwrap_or_else(|| runtime::default_motion_budget(parsed.program.blocks.len())),
         emit_canon,
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
@@ -269,6 +295,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             &settings,
             out.diagnostics,
         ));
+        let diagnostics = limited(diagnostics, &settings);
         let report = FileReport {
             path: args.file.clone(),
             text,
@@ -299,6 +326,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         &settings,
         out.diagnostics.clone(),
     ));
+    let diagnostics = limited(diagnostics, &settings);
 
     if emit_canon {
         return emit_canon_output(&out, &parsed.program, &diagnostics, &args.file);
