@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use analyzer::{Diagnostic, Severity};
+use analyzer::{Diagnostic, Severity, Span};
 use runtime::dryrun::{self, DryRun};
 use runtime::machine::MachineProfile;
 use serde_json::json;
@@ -58,6 +58,10 @@ pub struct RunArgs {
     /// Write an SVG picture of the toolpath.
     #[arg(long)]
     pub svg: Option<PathBuf>,
+    /// Largest SVG picture to write, in MB (default 32); a longer toolpath is cut
+    /// off with a warning.
+    #[arg(long)]
+    pub max_svg_mb: Option<u64>,
     /// Write a PNG picture of the toolpath.
     #[arg(long)]
     pub png: Option<PathBuf>,
@@ -335,7 +339,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let dry = dryrun::plan_run(&out, &profile);
     progress.finish();
     let extra_files = output::read_extra_files(&out.files);
-    let report = FileReport {
+    let mut report = FileReport {
         path: args.file.clone(),
         text: text.clone(),
         diagnostics,
@@ -345,11 +349,36 @@ pub fn run(args: RunArgs) -> ExitCode {
 
     if let Some(svg) = &args.svg {
         let tp = dryrun::toolpath(&out, 0.01);
-        if let Err(e) = std::fs::write(
-            svg,
-            crate::picture::svg(&tp, &args.file.display().to_string(), &dry),
-        ) {
-            return fail(format_args!("{}: {e}", svg.display()));
+        let max_mb = args
+            .max_svg_mb
+            .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
+        let written = std::fs::File::create(svg).and_then(|f| {
+            let mut w = std::io::BufWriter::new(f);
+            let title = args.file.display().to_string();
+            let cut =
+                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))?;
+            w.flush()?;
+            Ok(cut)
+        });
+        match written {
+            Ok(Some((line, file))) => {
+                // Located at the first line left out of the picture (the start of the
+                // main file when that line is in a subprogram file).
+                let at = if file == 0 {
+                    analyzer::LineIndex::new(&text)
+                        .line_start(line)
+                        .unwrap_or(0)
+                } else {
+                    0
+                };
+                report.diagnostics.push(Diagnostic::warning(
+                    runtime::rules::codes::STEP_BUDGET,
+                    Span::new(at, at),
+                    format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
+                ));
+            }
+            Ok(None) => {}
+            Err(e) => return fail(format_args!("{}: {e}", svg.display())),
         }
     }
     if let Some(png) = &args.png {
@@ -508,8 +537,18 @@ fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
         "other_s": t.other_s,
         "distance_mm": t.distance_mm,
         "per_tool": per_tool,
+        "partial": partial(report),
         "diagnostics": diags,
     })
+}
+
+/// Whether a budget (steps, motions, picture points: F004) cut the run short, so
+/// that the totals cover only part of the program.
+fn partial(report: &FileReport) -> bool {
+    report
+        .diagnostics
+        .iter()
+        .any(|d| d.code == runtime::rules::codes::STEP_BUDGET)
 }
 
 /// Seconds with three decimals, in scientific notation from 1e9 s on (a
@@ -566,6 +605,12 @@ fn human(
         writeln!(w, "  other        {:>12}", hms(t.other_s))?;
     }
     writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
+    if partial(report) {
+        writeln!(
+            w,
+            "  partial: a budget stopped the run (F004); the figures cover only what ran"
+        )?;
+    }
     if !t.per_tool.is_empty() {
         writeln!(
             w,
