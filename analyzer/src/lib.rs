@@ -155,7 +155,71 @@ pub fn finish(
     diagnostics.dedup_by(|a, b| {
         a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message
     });
-    diagnostics
+    limit_diagnostics(diagnostics, settings)
+}
+
+/// How the "… and N more" diagnostics of [`limit_diagnostics`] begin.
+const MORE_PREFIX: &str = "… and ";
+
+/// Keeps the first `settings.max_per_code` diagnostics of each code in each file
+/// and the first `settings.max_per_file` of each file, in the order given (sorted
+/// by position), and reports what it drops as one "… and N more" diagnostic per
+/// code (or per file) at the first one dropped. Hostile files produce millions of
+/// diagnostics; this bounds the memory and output they take. Idempotent.
+pub fn limit_diagnostics(diagnostics: Vec<Diagnostic>, settings: &Settings) -> Vec<Diagnostic> {
+    use std::collections::HashMap;
+    let per_code = settings.max_per_code.max(1);
+    let per_file = settings.max_per_file.max(1);
+    let is_more = |d: &Diagnostic| d.message.starts_with(MORE_PREFIX);
+    let mut counts: HashMap<(FileId, &'static str), usize> = HashMap::new();
+    let mut file_counts: HashMap<FileId, usize> = HashMap::new();
+    // (first dropped, how many) per code and per file.
+    let mut dropped: HashMap<(FileId, &'static str), (Diagnostic, usize)> = HashMap::new();
+    let mut dropped_file: HashMap<FileId, (Diagnostic, usize)> = HashMap::new();
+    if diagnostics.len() <= per_code.min(per_file) {
+        return diagnostics;
+    }
+    let mut kept = Vec::with_capacity(diagnostics.len().min(per_file));
+    for d in diagnostics {
+        if is_more(&d) {
+            kept.push(d);
+            continue;
+        }
+        let n = counts.entry((d.file, d.code)).or_insert(0);
+        if *n >= per_code {
+            let e = dropped
+                .entry((d.file, d.code))
+                .or_insert_with(|| (d.clone(), 0));
+            e.1 += 1;
+            continue;
+        }
+        let f = file_counts.entry(d.file).or_insert(0);
+        if *f >= per_file {
+            let e = dropped_file.entry(d.file).or_insert_with(|| (d.clone(), 0));
+            e.1 += 1;
+            continue;
+        }
+        *n += 1;
+        *f += 1;
+        kept.push(d);
+    }
+    if dropped.is_empty() && dropped_file.is_empty() {
+        return kept;
+    }
+    for ((_, code), (first, n)) in dropped {
+        let mut d = Diagnostic::new(code, first.severity, first.span, format!("{MORE_PREFIX}{n} more {code} diagnostics in this file from here on: at most {per_code} of one code are reported (raise with --max-per-code)"));
+        d.file = first.file;
+        kept.push(d);
+    }
+    for (_, (first, n)) in dropped_file {
+        let mut d = Diagnostic::new(first.code, first.severity, first.span, format!("{MORE_PREFIX}{n} more diagnostics in this file from here on: at most {per_file} are reported per file (raise with --max-per-file)"));
+        d.file = first.file;
+        kept.push(d);
+    }
+    kept.sort_by(|a, b| {
+        (a.file, a.span.start, a.code, &a.message).cmp(&(b.file, b.span.start, b.code, &b.message))
+    });
+    kept
 }
 
 /// The warning for text that is not valid UTF-8, at its first bad byte.

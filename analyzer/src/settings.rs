@@ -67,7 +67,17 @@ pub struct Settings {
     pub sequence_number_digits: u8,
     /// FANUC program-number digits: 4, or 8 with the 8-digit program number option.
     pub program_number_digits: u8,
+    /// Diagnostics of one code reported per file; the rest become one
+    /// "… and N more" (see [`crate::limit_diagnostics`]).
+    pub max_per_code: usize,
+    /// Diagnostics reported per file, all codes together.
+    pub max_per_file: usize,
 }
+
+/// Default of [`Settings::max_per_code`].
+pub const DEFAULT_MAX_PER_CODE: usize = 1000;
+/// Default of [`Settings::max_per_file`].
+pub const DEFAULT_MAX_PER_FILE: usize = 20_000;
 
 impl Settings {
     pub fn new(dialect: Dialect) -> Settings {
@@ -81,6 +91,8 @@ impl Settings {
             integer_machine_unit: false,
             sequence_number_digits: 5,
             program_number_digits: 4,
+            max_per_code: DEFAULT_MAX_PER_CODE,
+            max_per_file: DEFAULT_MAX_PER_FILE,
         }
     }
 

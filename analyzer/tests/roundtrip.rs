@@ -130,3 +130,67 @@ fn deep_nesting_does_not_overflow() {
         assert!(p.diagnostics.iter().any(|d| d.code == "L014"));
     }
 }
+
+/// The height of the highest expression tree, walked with an explicit stack.
+fn max_expr_height(p: &Program) -> u32 {
+    use analyzer::syntax::{Expr, ExprId};
+    let mut below = vec![0u32; p.exprs.len()];
+    // Children are pushed before their parents, so one pass in id order sees
+    // every child's height before its parent's.
+    for (i, node) in p.exprs.iter().enumerate() {
+        let kids: Vec<ExprId> = match node.expr {
+            Expr::Var { index } => vec![index],
+            Expr::Neg { arg } | Expr::Plus { arg } => vec![arg],
+            Expr::Binary { lhs, rhs, .. } => vec![lhs, rhs],
+            Expr::Call { arg, arg2, .. } => std::iter::once(arg).chain(arg2).collect(),
+            Expr::Group { inner } => vec![inner],
+            Expr::Num(_) | Expr::Named { .. } | Expr::Error => Vec::new(),
+        };
+        below[i] = 1 + kids.iter().map(|k| below[k.0 as usize]).max().unwrap_or(0);
+    }
+    below.into_iter().max().unwrap_or(0)
+}
+
+#[test]
+fn every_expression_tree_is_lower_than_the_walkers_allow() {
+    let kinds = [
+        format!("G1 X[{}1]\n", "1+".repeat(20_000)),
+        format!("G1 X[{}1]\n", "1**".repeat(20_000)),
+        format!("G1 X{}1\n", "#".repeat(20_000)),
+        format!("G1 X[{}1]\n", "-".repeat(20_000)),
+        format!("G1 X{}1{}\n", "SIN[".repeat(5000), "]".repeat(5000)),
+        format!("G1 X{}1{}\n", "[1+".repeat(5000), "]".repeat(5000)),
+        format!(
+            "G1 X[{}] Y[{}]\n",
+            vec!["[1+1]"; 200].join("*"),
+            vec!["1"; 200].join("-")
+        ),
+    ];
+    for d in Dialect::ALL {
+        for s in &kinds {
+            let p = parse(ParseOptions::new(d), s.clone().into_bytes());
+            check_lossless(&p, s.as_bytes());
+            let h = max_expr_height(&p);
+            assert!(h <= analyzer::syntax::MAX_EXPR_HEIGHT, "{d:?}: height {h}");
+            assert!(
+                p.diagnostics.iter().any(|d| d.code == "L014"),
+                "{d:?}: no L014"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_block_reads_up_to_256_operators() {
+    for d in Dialect::ALL {
+        let ok = format!("G1 X[{}1]\n", "1+".repeat(256));
+        let p = parse(ParseOptions::new(d), ok.into_bytes());
+        assert!(!p.diagnostics.iter().any(|d| d.code == "L014"), "{d:?}");
+        let over = format!("G1 X[{}1]\n", "1+".repeat(257));
+        let p = parse(ParseOptions::new(d), over.into_bytes());
+        let l014: Vec<_> = p.diagnostics.iter().filter(|d| d.code == "L014").collect();
+        assert_eq!(l014.len(), 1, "{d:?}");
+        // At the 257th operator: `G1 X[` then 256 times `1+`, then `1`.
+        assert_eq!(l014[0].span.start, 5 + 2 * 256 + 1, "{d:?}");
+    }
+}

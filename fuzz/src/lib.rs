@@ -104,6 +104,7 @@ pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
         machine: &machine,
         resolver: &runtime::NoResolver,
         step_budget: 2_000,
+        motion_budget: 20_000,
         emit_canon: variant_pick & 1 == 1,
         tool_table: None,
         var_file: None,

@@ -23,6 +23,7 @@ fn main() {
         machine: &machine,
         resolver: &resolver,
         step_budget: 10_000_000,
+        motion_budget: u64::MAX,
         emit_canon: true,
         tool_table: tbl.as_deref(),
         var_file: var.as_deref(),

@@ -20,6 +20,7 @@ fn main() {
         machine: &machine,
         resolver: &runtime::NoResolver,
         step_budget: 100_000_000,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: None,
         var_file: None,

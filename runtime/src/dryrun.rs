@@ -167,7 +167,14 @@ fn arc_sweep(m: &Motion, center: [f64; 3], normal: [f64; 3], turns: i32) -> f64 
     let sin = dot3(&cross3(&s, &e), &normal);
     let cos = dot3(&s, &e);
     let mut angle = sin.atan2(cos);
-    if angle <= 1e-12 {
+    let d = sub3(&e, &s);
+    let chord = dot3(&d, &d).sqrt();
+    if chord > 1e-6 {
+        // Distinct ends: never a full circle, however small the angle (`R1e12`).
+        if angle <= 0.0 {
+            angle += std::f64::consts::TAU;
+        }
+    } else if angle <= 1e-12 {
         // Counter-clockwise about the normal: a zero angle is a full circle.
         angle += std::f64::consts::TAU;
     }

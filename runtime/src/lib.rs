@@ -7,6 +7,7 @@ pub mod machine;
 pub mod plan;
 pub mod rules;
 
+pub use interp::{default_motion_budget, default_step_budget};
 pub use interp::{
     rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
     BlockSnapshot, Checkpoints, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile,

@@ -26,6 +26,7 @@ fn peck_cycle_with_zero_q_is_reported_and_bounded() {
         machine: &machine,
         resolver: &runtime::NoResolver,
         step_budget: 10_000,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: None,
         var_file: None,

@@ -171,6 +171,7 @@ fn run_on(d: Dialect, text: &str, prev: Option<RunOutput>) -> RunOutput {
         machine: &machine,
         resolver: &NoResolver,
         step_budget: 5_000_000,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: None,
         var_file: None,

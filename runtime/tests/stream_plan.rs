@@ -30,6 +30,7 @@ fn input<'a>(
         machine,
         resolver: &runtime::NoResolver,
         step_budget: 10_000_000,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: None,
         var_file: None,

@@ -164,10 +164,27 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-pub fn svg(tp: &Toolpath, title: &str, dry: &DryRun) -> String {
+/// Largest SVG written by default, in MB: beyond it the picture is cut off, see
+/// [`svg`].
+pub const DEFAULT_MAX_SVG_MB: u64 = 32;
+
+/// Writes the SVG picture of `tp` to `out` as it is made. It stops drawing
+/// before `max_bytes`; when the toolpath needs more, the picture says so and the
+/// result is the first segment left out: its (0-based) line and its file.
+pub fn svg(
+    out: &mut impl std::io::Write,
+    tp: &Toolpath,
+    title: &str,
+    dry: &DryRun,
+    max_bytes: u64,
+) -> std::io::Result<Option<(u32, u32)>> {
     let (w, h, views) = layout();
     let (fmin, fmax) = feed_range(tp);
     let mut s = String::new();
+    // Bytes handed to `out`; the legend after the toolpath takes under 8 KB.
+    let mut written = 0u64;
+    let budget = max_bytes.saturating_sub(8192);
+    let mut cut: Option<(u32, u32)> = None;
     let _ = writeln!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif">"#
@@ -201,6 +218,17 @@ pub fn svg(tp: &Toolpath, title: &str, dry: &DryRun) -> String {
             view.name()
         );
         for seg in &tp.segments {
+            if s.len() > 1 << 16 {
+                out.write_all(s.as_bytes())?;
+                written += s.len() as u64;
+                s.clear();
+            }
+            // A polyline takes at most 24 bytes a point and 200 besides.
+            let need = 200 + 24 * seg.points.len() as u64;
+            if cut.is_some() || written + s.len() as u64 + need > budget {
+                cut = cut.or(Some((seg.line, seg.file)));
+                break;
+            }
             let pts: Vec<String> = seg
                 .points
                 .iter()
@@ -252,8 +280,17 @@ pub fn svg(tp: &Toolpath, title: &str, dry: &DryRun) -> String {
         fmin,
         fmax
     );
+    if let Some((line, _)) = cut {
+        let _ = writeln!(
+            s,
+            r##"<text x="16" y="52" font-size="14" fill="#c00">toolpath cut off at line {} to keep the file under {} MB (raise with --max-svg-mb)</text>"##,
+            line + 1,
+            max_bytes >> 20
+        );
+    }
     s.push_str("</svg>\n");
-    s
+    out.write_all(s.as_bytes())?;
+    Ok(cut)
 }
 
 pub fn png(tp: &Toolpath, path: &Path) -> Result<(), String> {

@@ -600,6 +600,7 @@ fn crash_fixtures_stay_fixed() {
                     machine: &machine,
                     resolver: &runtime::NoResolver,
                     step_budget: 20_000,
+                    motion_budget: u64::MAX,
                     emit_canon: dialect == D::Rs274ngc,
                     tool_table: None,
                     var_file: None,

@@ -65,7 +65,7 @@ impl Eval<'_> {
     /// The value of a constant expression; `None` when it reads a parameter or fails
     /// (failures are reported at the innermost node).
     fn eval(&mut self, id: ExprId, depth: u32) -> Option<f64> {
-        if depth > 200 {
+        if depth > crate::syntax::MAX_EXPR_HEIGHT {
             return None;
         }
         let v = match self.p.expr(id).expr {

@@ -223,10 +223,9 @@ fn run_axis_feed_rules(
     words: &AxisFeedWords,
     out: &mut Vec<Diagnostic>,
 ) {
-    // As in `run_block_rules`: a pathological block gets no block rule.
-    if (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK {
-        return;
-    }
+    // As in `check_block_at`: a pathological block is checked on its first items.
+    let head = huge_block_head(block, out);
+    let block = head.as_ref().unwrap_or(block);
     let bcx = BlockCx {
         program: cx.program,
         block,
@@ -276,10 +275,12 @@ pub fn check_block_at(
     codes: &mut Vec<BlockCode>,
     out: &mut Vec<Diagnostic>,
 ) {
-    let Some(block) = cx.program.blocks.get(i) else {
+    let Some(full) = cx.program.blocks.get(i) else {
         return;
     };
     codes.clear();
+    let first = huge_block_head(full, out);
+    let block = first.as_ref().unwrap_or(full);
     if context::is_axis_feed_block(cx.program, block) {
         // Same verdict as a full check: the skipped rules cannot report on this block.
         for r in enabled.iter().filter(|r| r.reports_on_axis_feed_blocks()) {
@@ -289,6 +290,27 @@ pub fn check_block_at(
     }
     context::collect_codes(cx.program, block, codes);
     run_block_rules(cx, enabled, i, block, codes, out);
+}
+
+/// For a block of more than [`MAX_ITEMS_PER_BLOCK`] items: the block cut to its
+/// first ones, which the block rules check instead (the span, and so the line
+/// length, stays the whole block's), and L015 on the block.
+fn huge_block_head(
+    block: &crate::syntax::Block,
+    out: &mut Vec<Diagnostic>,
+) -> Option<crate::syntax::Block> {
+    let n = (block.items.1 - block.items.0) as usize;
+    if n <= MAX_ITEMS_PER_BLOCK {
+        return None;
+    }
+    let mut head = *block;
+    head.items.1 = block.items.0 + MAX_ITEMS_PER_BLOCK as u32;
+    out.push(Diagnostic::warning(
+        "L015",
+        block.span,
+        format!("this block has {n} words and other items; the block rules check the first {MAX_ITEMS_PER_BLOCK} only (no control reads a block this long): split it"),
+    ));
+    Some(head)
 }
 
 /// Calls the block rules `rules` on block `i` whose codes are `codes`.
@@ -307,13 +329,10 @@ fn run_block_rules(
         settings: cx.settings,
         codes,
     };
-    // Some block rules compare words pairwise; a pathological block (thousands of
-    // words on one line) gets only the block-length rule, so analysis stays linear.
-    let huge = (block.items.1 - block.items.0) as usize > MAX_ITEMS_PER_BLOCK;
+    // Some block rules compare words pairwise: a pathological block (thousands of
+    // words on one line) comes here cut to its first items (`huge_block_head`), so
+    // analysis stays linear.
     for r in rules {
-        if huge && r.meta().code != "W011" {
-            continue;
-        }
         r.check_block(&bcx, out);
     }
 }

@@ -71,6 +71,7 @@ pub static RULES: &[&RuleMeta] = &[
     &syn::MISPLACED_PERCENT,
     &syn::TEXT_AFTER_EOB,
     &syn::EXPRESSION_TOO_DEEP,
+    &syn::BLOCK_TOO_MANY_ITEMS,
     &MODAL_GROUP_CONFLICT,
     &M_GROUP_CONFLICT,
     &TOO_MANY_M_WORDS,

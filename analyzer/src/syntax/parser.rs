@@ -48,6 +48,14 @@ impl ParseOptions {
 /// Expressions nested deeper than this are cut off with a diagnostic so that
 /// hostile input cannot overflow the stack.
 const MAX_EXPR_DEPTH: u32 = 64;
+/// Binary operators per block: `1+1+…` puts each `+` above the previous one, so
+/// together with [`MAX_EXPR_DEPTH`] this bounds the height of every expression tree
+/// (see [`MAX_EXPR_HEIGHT`]). LinuxCNC reads at most 256 characters a line.
+const MAX_BLOCK_OPERATORS: u32 = 256;
+/// No expression tree is higher than this (a nesting level adds at most two nodes
+/// to a path, a binary operator one), so the recursive walkers over expressions in
+/// every crate need at most this many frames.
+pub const MAX_EXPR_HEIGHT: u32 = 2 * (MAX_EXPR_DEPTH + 2) + MAX_BLOCK_OPERATORS;
 
 /// Parses a whole file on the calling thread (see [`parse_in_two`] for large files
 /// on a machine with a spare core).
@@ -369,6 +377,8 @@ struct Cx<'p> {
     limit: usize,
     dialect: Dialect,
     depth: u32,
+    /// Binary operators read in this block (see [`MAX_BLOCK_OPERATORS`]).
+    operators: u32,
     /// Whether tokens are recorded.
     tokens: bool,
     /// The spindle number of the word being read (`S2_1500`).
@@ -590,6 +600,7 @@ impl Parser {
             limit: content_end,
             dialect,
             depth: 0,
+            operators: 0,
             tokens: self.tokens,
             spindle: None,
         };
@@ -1429,7 +1440,8 @@ impl<'p> Cx<'p> {
                         "`##n` is not allowed in Custom Macro B; write `#[#n]`",
                     );
                 }
-                self.param_ref()
+                // Through `value_expr`, so that a run of `#` counts against the depth.
+                self.value_expr()
             }
             Some(b'[') => self.group(),
             Some(c) if is_digit(c) || c == b'.' => {
@@ -1585,18 +1597,24 @@ impl<'p> Cx<'p> {
         r
     }
 
+    /// Ends the block's expression at `start` with L014: the rest of the block is
+    /// one unknown token.
+    fn too_deep(&mut self, start: usize, what: &str) -> ExprId {
+        self.pos = self.limit;
+        self.token(start, TokenKind::Unknown);
+        self.diag(
+            codes::EXPRESSION_TOO_DEEP,
+            Severity::Error,
+            Span::new(start as u32, self.pos as u32),
+            format!("{what}; the rest of the block is not read"),
+        );
+        self.push_expr(Expr::Error, start)
+    }
+
     fn value_expr_inner(&mut self) -> ExprId {
         let start = self.pos;
         if self.depth > MAX_EXPR_DEPTH {
-            self.pos = self.limit;
-            self.token(start, TokenKind::Unknown);
-            self.diag(
-                codes::EXPRESSION_TOO_DEEP,
-                Severity::Error,
-                Span::new(start as u32, self.pos as u32),
-                "expression nested too deeply; the rest of the block is not read",
-            );
-            return self.push_expr(Expr::Error, start);
+            return self.too_deep(start, "expression nested too deeply (more than 64 levels)");
         }
         match self.peek() {
             Some(b'[') => self.group(),
@@ -1742,6 +1760,11 @@ impl<'p> Cx<'p> {
                 break;
             }
             let s = self.pos;
+            self.operators += 1;
+            if self.operators > MAX_BLOCK_OPERATORS {
+                let rhs = self.too_deep(s, "more than 256 operators in one block");
+                return self.push_expr(Expr::Binary { op, lhs, rhs }, start);
+            }
             self.token(
                 s,
                 if len > 1 && op != BinOp::Pow {

@@ -261,7 +261,9 @@ pub fn sweep(s: [f64; 2], e: [f64; 2], c: [f64; 2], cw: bool, turns: i32) -> f64
     let a0 = (s[1] - c[1]).atan2(s[0] - c[0]);
     let a1 = (e[1] - c[1]).atan2(e[0] - c[0]);
     let mut d = if cw { a0 - a1 } else { a1 - a0 };
-    while d <= 1e-12 {
+    // Distinct ends are never a full circle, however small the angle (`R1e12`).
+    let zero = if hypot(s, e) > 1e-6 { 0.0 } else { 1e-12 };
+    while d <= zero {
         d += std::f64::consts::TAU;
     }
     while d > std::f64::consts::TAU + 1e-12 {

@@ -1043,6 +1043,16 @@ impl Interp<'_, '_> {
         if r == 0.0 || chord == 0.0 || chord > 2.0 * r.abs() {
             return Ok(());
         }
+        if r.abs() > 1e6 * chord {
+            let sagitta = chord * chord / (8.0 * r.abs());
+            let shape = if r > 0.0 {
+                format!("it differs from a straight line by {sagitta:.1e} mm; program G1")
+            } else {
+                "as a negative radius it is an almost full circle of that size; check the sign and the radius".to_string()
+            };
+            self.diag(codes::ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("radius {} is over a million times the chord ({chord:.4}): the centre lies too far away to be computed exactly, and {shape}", r.abs()));
+            return Ok(());
+        }
         let half = (chord / (2.0 * r.abs())).min(1.0).asin().to_degrees();
         let sweep = if r > 0.0 {
             2.0 * half

@@ -29,6 +29,7 @@ use super::rotary_feed;
 use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
+mod budget;
 mod comp;
 mod context;
 mod cycles;
@@ -585,13 +586,16 @@ impl<'a, 'i> Interp<'a, 'i> {
                     codes::STEP_BUDGET,
                     Severity::Warning,
                     span,
-                    format!("execution stopped after {budget} blocks (step budget): a loop may never end; raise the budget if the program is meant to run this long"),
+                    format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
                 );
                 break;
             }
             let first_motion = self.out.motions.len();
             let result = self.exec_block(fi, bi);
             self.check_limits(fi, bi, first_motion);
+            if self.motion_budget_reached(self.block_span(fi, bi)) {
+                break;
+            }
             match result {
                 Ok(Flow::Next) => self.cur = (self.cur.0, self.cur.1 + 1),
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),

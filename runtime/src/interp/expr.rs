@@ -3,7 +3,7 @@
 //! Values are `Option<f64>`: `None` is FANUC Macro B's *vacant* (null); in
 //! RS274/NGC every parameter has a number (unset ones read as 0).
 
-use analyzer::syntax::{BinOp, Expr, ExprId, Func, Program};
+use analyzer::syntax::{BinOp, Expr, ExprId, Func, Program, MAX_EXPR_HEIGHT};
 use analyzer::{Dialect, Span};
 
 /// An evaluation error with the span of the failing node.
@@ -47,7 +47,8 @@ pub fn eval(
 ) -> Result<Val, EvalError> {
     let node = p.expr(id);
     let span = node.span;
-    if depth > 200 {
+    // The parser bounds every tree's height; this guards trees built elsewhere.
+    if depth > MAX_EXPR_HEIGHT {
         return Err(err(span, "X006", "expression nested too deeply"));
     }
     let num = |v: Val| v.unwrap_or(0.0);

@@ -44,6 +44,22 @@ impl Resolver for NoResolver {
     }
 }
 
+/// The default step budget for a program of `blocks` blocks: a floor of a million
+/// (macro loops in short programs) plus a hundred executions of every block, so
+/// that loops which terminate run to their end.
+pub fn default_step_budget(blocks: usize) -> u64 {
+    (blocks as u64)
+        .saturating_mul(100)
+        .saturating_add(1_000_000)
+}
+
+/// The default motion budget: a floor of a million motions plus eight per block
+/// (a canned-cycle block makes three or four), some 400 MB at most for a short
+/// program's dry run.
+pub fn default_motion_budget(blocks: usize) -> u64 {
+    (blocks as u64).saturating_mul(8).saturating_add(1_000_000)
+}
+
 /// Everything one run needs.
 pub struct RunInput<'a> {
     pub program: &'a Program,
@@ -53,6 +69,9 @@ pub struct RunInput<'a> {
     pub resolver: &'a dyn Resolver,
     /// Upper bound on executed blocks (loops and calls included).
     pub step_budget: u64,
+    /// Upper bound on motions produced (canned-cycle repeats and pecks included):
+    /// memory grows with motions, which one block can multiply.
+    pub motion_budget: u64,
     /// Produce LinuxCNC canonical lines (rs274ngc only).
     pub emit_canon: bool,
     /// LinuxCNC `.tbl` text.

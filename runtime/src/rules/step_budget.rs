@@ -4,10 +4,14 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Reports that the dry run stopped after the configured number of blocks.
+    /// Reports that the dry run stopped at one of its budgets: blocks executed
+    /// (`--step-budget`), motions produced (`--motion-budget`) or, for `run --svg`,
+    /// the size of the SVG picture (`--max-svg-mb`). The message names the budget and the
+    /// flag that raises it; the run's figures then cover only part of the program.
     ///
     /// ## Why is this bad?
-    /// A loop whose condition never changes runs forever on the machine.
+    /// A loop whose condition never changes runs forever on the machine; a program
+    /// that really runs this long is only partly simulated.
     ///
     /// ## Example
     /// ```gcode
@@ -33,7 +37,7 @@ declare_rule! {
     pub static STEP_BUDGET = {
         code: "F004",
         name: "step-budget-exceeded",
-        summary: "Execution stopped by the step budget",
+        summary: "Execution stopped by a run budget",
         implements: &["NGC615", "FAN145"],
         origin: Runtime,
         default_enabled: true,

@@ -69,6 +69,7 @@ pub fn run_full_sel(
         machine: &machine,
         resolver: &resolver,
         step_budget: 100_000,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: tools,
         var_file,

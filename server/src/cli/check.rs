@@ -11,12 +11,6 @@ use super::output::{self, FileReport};
 use super::workspace::{self, ConfigCache, LoadedConfig};
 use super::CheckArgs;
 
-/// Blocks the interpreter may execute per checked file before it reports a runaway
-/// program: ten executions of every block, and at least a million (macro loops).
-pub fn step_budget(blocks: usize) -> u64 {
-    (blocks as u64).saturating_mul(10).max(1_000_000)
-}
-
 pub fn run(args: CheckArgs) -> ExitCode {
     let explicit = match &args.config {
         Some(p) => match workspace::load_config(p) {
@@ -96,11 +90,13 @@ fn check_file(
     };
     let (dialect, dialect_reason) =
         workspace::resolve_dialect(args.dialect.map(|d| d.dialect()), &loaded, path, &text);
-    let settings =
+    let mut settings =
         match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
             Ok(s) => s,
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
+    settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
+    settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
     // view: ServoWorks `O<name>.dat` files, RS274/NGC files that only define
@@ -147,7 +143,10 @@ fn check_file(
                 resolver: &resolver,
                 step_budget: args
                     .step_budget
-                    .unwrap_or_else(|| step_budget(parsed.program.blocks.len())),
+                    .unwrap_or_else(|| runtime::default_step_budget(parsed.program.blocks.len())),
+                motion_budget: args
+                    .motion_budget
+                    .unwrap_or_else(|| runtime::default_motion_budget(parsed.program.blocks.len())),
                 emit_canon: false,
                 tool_table: files.tool_table.as_deref(),
                 var_file: files.var_file.as_deref(),
@@ -162,6 +161,7 @@ fn check_file(
     if let Some((run_diagnostics, files)) = run {
         diagnostics.extend(run_diagnostics);
         diagnostics.sort_by_key(|d| (d.file, d.span.start));
+        diagnostics = analyzer::limit_diagnostics(diagnostics, &settings);
         extra_files = output::read_extra_files(&files);
     }
     FileReport {

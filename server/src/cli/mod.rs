@@ -72,9 +72,20 @@ pub struct CheckArgs {
     #[arg(long)]
     pub no_run: bool,
     /// Blocks the interpreter may execute per file before it reports a runaway program
-    /// (default: ten executions of every block, at least a million).
+    /// (default: a million plus a hundred per block of the file).
     #[arg(long)]
     pub step_budget: Option<u64>,
+    /// Motions the interpreter may produce per file before it stops (default: a
+    /// million plus eight per block of the file).
+    #[arg(long)]
+    pub motion_budget: Option<u64>,
+    /// Diagnostics of one rule code reported per file (default 1000); the rest are
+    /// summed up in one "… and N more" diagnostic.
+    #[arg(long)]
+    pub max_per_code: Option<usize>,
+    /// Diagnostics reported per file (default 20000).
+    #[arg(long)]
+    pub max_per_file: Option<usize>,
     /// Largest program to read, in MB (default 128); a larger file gets one
     /// located error (L000) and exit status 2 instead of exhausting memory.
     #[arg(long)]

@@ -4,7 +4,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use analyzer::{Diagnostic, Severity};
+use analyzer::{Diagnostic, Severity, Span};
 use runtime::dryrun::{self, DryRun};
 use runtime::machine::MachineProfile;
 use serde_json::json;
@@ -58,17 +58,42 @@ pub struct RunArgs {
     /// Write an SVG picture of the toolpath.
     #[arg(long)]
     pub svg: Option<PathBuf>,
+    /// Largest SVG picture to write, in MB (default 32); a longer toolpath is cut
+    /// off with a warning.
+    #[arg(long)]
+    pub max_svg_mb: Option<u64>,
     /// Write a PNG picture of the toolpath.
     #[arg(long)]
     pub png: Option<PathBuf>,
-    /// Step budget: blocks executed before a runaway program is stopped (default: ten
-    /// executions of every block of the file, at least a million).
+    /// Step budget: blocks executed before a runaway program is stopped (default: a
+    /// million plus a hundred per block of the file).
     #[arg(long)]
     pub step_budget: Option<u64>,
+    /// Motion budget: motions simulated before the run stops (default: a million
+    /// plus eight per block of the file).
+    #[arg(long)]
+    pub motion_budget: Option<u64>,
+    /// Diagnostics of one rule code reported per file (default 1000); the rest are
+    /// summed up in one "… and N more" diagnostic.
+    #[arg(long)]
+    pub max_per_code: Option<usize>,
+    /// Diagnostics reported per file (default 20000).
+    #[arg(long)]
+    pub max_per_file: Option<usize>,
     /// Largest program to read, in MB (default 128); larger files are refused
     /// with an error instead of exhausting memory.
     #[arg(long)]
     pub max_file_size: Option<u64>,
+}
+
+/// The static and the runtime diagnostics together, in order and within the
+/// per-file limits.
+fn limited(
+    mut diagnostics: Vec<analyzer::Diagnostic>,
+    settings: &analyzer::Settings,
+) -> Vec<analyzer::Diagnostic> {
+    diagnostics.sort_by_key(|d| (d.file, d.span.start));
+    analyzer::limit_diagnostics(diagnostics, settings)
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -104,10 +129,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         &args.file,
         &text,
     );
-    let settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
+    let mut settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
         Ok(s) => s,
         Err(e) => return fail(e),
     };
+    settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
+    settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
     let mut machine_table = loaded.config.machine.clone();
@@ -245,7 +272,10 @@ pub fn run(args: RunArgs) -> ExitCode {
         resolver: &resolver,
         step_budget: args
             .step_budget
-            .unwrap_or_else(|| super::check::step_budget(parsed.program.blocks.len())),
+            .unwrap_or_else(|| runtime::default_step_budget(parsed.program.blocks.len())),
+        motion_budget: args
+            .motion_budget
+            .unwrap_or_else(|| runtime::default_motion_budget(parsed.program.blocks.len())),
         emit_canon,
         tool_table: tool_table.as_deref(),
         var_file: var_file.as_deref(),
@@ -273,6 +303,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             &settings,
             out.diagnostics,
         ));
+        let diagnostics = limited(diagnostics, &settings);
         let report = FileReport {
             path: args.file.clone(),
             text,
@@ -304,6 +335,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         &settings,
         out.diagnostics.clone(),
     ));
+    let diagnostics = limited(diagnostics, &settings);
 
     if emit_canon {
         return emit_canon_output(&out, &parsed.program, &diagnostics, &args.file);
@@ -312,7 +344,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let dry = dryrun::plan_run(&out, &profile);
     progress.finish();
     let extra_files = output::read_extra_files(&out.files);
-    let report = FileReport {
+    let mut report = FileReport {
         path: args.file.clone(),
         text: text.clone(),
         diagnostics,
@@ -323,11 +355,36 @@ pub fn run(args: RunArgs) -> ExitCode {
 
     if let Some(svg) = &args.svg {
         let tp = dryrun::toolpath(&out, 0.01);
-        if let Err(e) = std::fs::write(
-            svg,
-            crate::picture::svg(&tp, &args.file.display().to_string(), &dry),
-        ) {
-            return fail(format_args!("{}: {e}", svg.display()));
+        let max_mb = args
+            .max_svg_mb
+            .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
+        let written = std::fs::File::create(svg).and_then(|f| {
+            let mut w = std::io::BufWriter::new(f);
+            let title = args.file.display().to_string();
+            let cut =
+                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))?;
+            w.flush()?;
+            Ok(cut)
+        });
+        match written {
+            Ok(Some((line, file))) => {
+                // Located at the first line left out of the picture (the start of the
+                // main file when that line is in a subprogram file).
+                let at = if file == 0 {
+                    analyzer::LineIndex::new(&text)
+                        .line_start(line)
+                        .unwrap_or(0)
+                } else {
+                    0
+                };
+                report.diagnostics.push(Diagnostic::warning(
+                    runtime::rules::codes::STEP_BUDGET,
+                    Span::new(at, at),
+                    format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
+                ));
+            }
+            Ok(None) => {}
+            Err(e) => return fail(format_args!("{}: {e}", svg.display())),
         }
     }
     if let Some(png) = &args.png {
@@ -489,8 +546,18 @@ fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
         "other_s": t.other_s,
         "distance_mm": t.distance_mm,
         "per_tool": per_tool,
+        "partial": partial(report),
         "diagnostics": diags,
     })
+}
+
+/// Whether a budget (steps, motions, picture points: F004) cut the run short, so
+/// that the totals cover only part of the program.
+fn partial(report: &FileReport) -> bool {
+    report
+        .diagnostics
+        .iter()
+        .any(|d| d.code == runtime::rules::codes::STEP_BUDGET)
 }
 
 /// Seconds with three decimals, in scientific notation from 1e9 s on (a
@@ -550,6 +617,12 @@ fn human(
         writeln!(w, "  other        {:>12}", hms(t.other_s))?;
     }
     writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
+    if partial(report) {
+        writeln!(
+            w,
+            "  partial: a budget stopped the run (F004); the figures cover only what ran"
+        )?;
+    }
     if !t.per_tool.is_empty() {
         writeln!(
             w,

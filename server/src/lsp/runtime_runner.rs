@@ -147,6 +147,7 @@ impl DryRunner for RuntimeRunner {
             machine: input.machine,
             resolver: &resolver,
             step_budget: STEP_BUDGET,
+            motion_budget: runtime::default_motion_budget(input.program.blocks.len()),
             emit_canon: false,
             tool_table: tool_table.as_deref(),
             var_file: var_file.as_deref(),

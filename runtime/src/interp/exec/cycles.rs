@@ -275,7 +275,7 @@ impl Interp<'_, '_> {
         // Each repetition counts against the step budget, so `L1000000000` stays bounded.
         let left = self.input.step_budget.saturating_sub(self.steps);
         let repeats = if repeats as u64 > left {
-            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated"));
+            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated (raise it with --step-budget)"));
             left as i64
         } else {
             repeats
@@ -291,6 +291,9 @@ impl Interp<'_, '_> {
             )
         });
         for k in 0..repeats {
+            if self.motion_budget_reached(span) {
+                break;
+            }
             if let Some((dr, dth)) = polar {
                 let (r0, th0) = (pa.hypot(pb), pb.atan2(pa));
                 let (r, th) = if inc {

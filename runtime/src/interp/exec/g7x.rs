@@ -218,7 +218,7 @@ impl Interp<'_, '_> {
                 break Err(self.err(
                     codes::STEP_BUDGET,
                     span,
-                    format!("execution stopped after {budget} blocks (step budget) while reading a G7x profile"),
+                    format!("execution stopped after {budget} blocks while reading a G7x profile: the step budget was reached; raise it with --step-budget"),
                 ));
             }
             self.cur = at;
