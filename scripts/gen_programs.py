@@ -11,6 +11,16 @@ Examples:
     gen_programs.py drilling --dialect fanuc --lines 20000 > holes.nc
     gen_programs.py macro --dialect servoworks --lines 5000 > loops.nc
     gen_programs.py mixed --dialect fanuc --lines 100000 --seed 7 > mix.nc
+    gen_programs.py g1xyz --dialect fanuc --lines 500000 > cam.nc
+
+Kinds (the shapes of scripts/bench_matrix.sh):
+    surfacing  modal axis-only lines (`X… Z…`), a G1 with feed every 500 blocks
+    g1xyz      `G1 X… Y… Z…` on every line, as most post-processors write
+    arcs       G2/G3 every few lines, alternating R and I/J forms
+    drilling   canned cycles over hole grids and bolt circles
+    fusion     FANUC/Fusion-style: N numbers in steps of 5, `G43 … H`, G1 only on change
+    macro      macro-variable loops (WHILE, o-word while, G65 calls)
+    mixed      drilling, surfacing and macro thirds
 """
 
 import argparse
@@ -135,6 +145,104 @@ def surfacing(w, dialect, budget, rng):
         w.line("Y%s Z%s" % (fmt(y), fmt(surface_z(x, y))))
 
 
+def g1xyz(w, dialect, budget, rng):
+    """Raster finishing with the motion code and all three axes on every line."""
+    tool_change(w, dialect, 3, 12000)
+    w.line("G0 X0. Y0. Z5.")
+    w.line("G1 Z%s F800." % fmt(surface_z(0.0, 0.0)))
+    x, y, direction, width = 0.0, 0.0, 1, 120.0
+    while w.count < budget:
+        x += direction * (0.08 + 0.12 * rng.random())
+        if x >= width or x <= 0.0:
+            x = min(max(x, 0.0), width)
+            y += 0.25
+            direction = -direction
+        w.line("G1 X%s Y%s Z%s" % (fmt(x), fmt(y), fmt(surface_z(x, y))))
+
+
+def arcs(w, dialect, budget, rng):
+    """Contours of short lines and quarter circles: a G2/G3 every few lines,
+    alternately in R and in I/J form."""
+    tool_change(w, dialect, 2, 8000)
+    w.line("G0 X0. Y0. Z5.")
+    w.line("G1 Z-1. F600.")
+    x, y, k = 0.0, 0.0, 0
+    while w.count < budget:
+        for _ in range(rng.randint(1, 3)):
+            x += 0.5 + rng.random()
+            w.line("G1 X%s Y%s" % (fmt(x), fmt(y)))
+        r = 0.5 + rng.random() * 4.0
+        # A quarter circle to (x + r, y + r): centre above the start for G3,
+        # to its right for G2.
+        end = "X%s Y%s" % (fmt(x + r), fmt(y + r))
+        code = "G3" if k % 2 == 0 else "G2"
+        if k % 4 < 2:
+            w.line("%s %s R%s" % (code, end, fmt(r)))
+        elif code == "G3":
+            w.line("G3 %s I0. J%s" % (end, fmt(r)))
+        else:
+            w.line("G2 %s I%s J0." % (end, fmt(r)))
+        x, y = float(fmt(x + r)), float(fmt(y + r))
+        k += 1
+        if y > 200.0 or x > 200.0:
+            w.line("G0 Z5.")
+            x, y = 0.0, 0.0
+            w.line("G0 X0. Y0.")
+            w.line("G1 Z-1. F600.")
+
+
+def fusion(w, dialect, budget, rng):
+    """The layout of a Fusion 360 FANUC post: sequence numbers in steps of 5,
+    tool length offset as `G43 Z… H…`, modal G1 written only when the motion
+    mode changes, feed on the first move of each pass."""
+    n = [0]
+
+    def out(text):
+        n[0] += 5
+        if n[0] > 99995:
+            n[0] = 5
+        w.line("N%d %s" % (n[0], text))
+
+    tool = 1
+    while w.count < budget:
+        out("M5")
+        out("G91 G28 Z0.")
+        out("G90")
+        out("T%d M6" % tool)
+        out("S%d M3" % rng.choice((6000, 8000, 10000)))
+        out("G54")
+        out("M8")
+        out("G0 X0. Y0.")
+        if dialect == "rs274ngc":
+            out("G43 H%d" % tool)
+            out("G0 Z15.")
+        else:
+            out("G43 Z15. H%d" % tool)
+        y = 0.0
+        for _ in range(rng.randint(50, 400)):
+            if w.count >= budget:
+                break
+            out("G0 Z5.")
+            out("G1 Z-1. F300.")
+            x = 0.0
+            first = True
+            for _ in range(rng.randint(20, 200)):
+                if w.count >= budget:
+                    break
+                x += 0.1 + rng.random() * 0.4
+                z = surface_z(x, y)
+                if first:
+                    out("X%s Z%s F1200." % (fmt(x), fmt(z)))
+                    first = False
+                else:
+                    out("X%s Z%s" % (fmt(x), fmt(z)))
+            y += 0.3
+            out("G0 Z5.")
+            out("X0. Y%s" % fmt(y))
+        out("M9")
+        tool = tool % 3 + 1
+
+
 def drilling(w, dialect, budget, rng):
     """Grids and bolt circles with peck drilling, tapping and tool changes."""
     tool = 1
@@ -226,7 +334,9 @@ def macro(w, dialect, budget, rng):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("kind", choices=("surfacing", "drilling", "macro", "mixed"))
+    ap.add_argument(
+        "kind", choices=("surfacing", "g1xyz", "arcs", "drilling", "fusion", "macro", "mixed")
+    )
     ap.add_argument("--dialect", choices=DIALECTS, default="rs274ngc")
     ap.add_argument("--lines", type=int, default=10000, help="approximate number of lines")
     ap.add_argument("--seed", type=int, default=1)
@@ -239,6 +349,12 @@ def main():
     done = False
     if args.kind == "surfacing":
         surfacing(w, args.dialect, budget, rng)
+    elif args.kind == "g1xyz":
+        g1xyz(w, args.dialect, budget, rng)
+    elif args.kind == "arcs":
+        arcs(w, args.dialect, budget, rng)
+    elif args.kind == "fusion":
+        fusion(w, args.dialect, budget, rng)
     elif args.kind == "drilling":
         drilling(w, args.dialect, budget, rng)
     elif args.kind == "macro":

@@ -11,13 +11,9 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_in_two, parse_lean, parse_lean_in_two, ParseOptions, Program};
+use analyzer::syntax::{parse, parse_lean, ParseOptions, Program};
 use analyzer::Settings;
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-
-// The allocator the `partscope` binary installs, so the figures are the product's.
-#[global_allocator]
-static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;
 
 const LINES: usize = 1_000_000;
 
@@ -102,11 +98,6 @@ fn bench_parse(c: &mut Criterion) {
     parse_group(c, "parse_1M_lines", parse);
     // Without tokens, as the command line parses.
     parse_group(c, "parse_lean_1M_lines", parse_lean);
-    // The opt-in two-thread parse, with and without tokens.
-    parse_group(c, "parse_in_two_1M_lines", parse_in_two);
-    parse_group(c, "parse_lean_in_two_1M_lines", |o, t| {
-        parse_lean_in_two(o, t)
-    });
 
     // Parse and static rules, as `analyze` runs them.
     let mut group = c.benchmark_group("analyze_1M_lines");

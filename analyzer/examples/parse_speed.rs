@@ -8,12 +8,8 @@
 use std::time::Instant;
 
 use analyzer::dialect::Dialect;
-use analyzer::syntax::{parse, parse_in_two, ParseOptions};
+use analyzer::syntax::{parse, ParseOptions};
 use analyzer::Settings;
-
-// The allocator the `partscope` binary installs, so the figures are the product's.
-#[global_allocator]
-static ALLOC: analyzer::memory::LargePages = analyzer::memory::LargePages;
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -43,22 +39,10 @@ fn main() {
         || parse(ParseOptions::new(dialect), text.clone()),
         |p| blocks = p.blocks.len(),
     );
-    // The same parse in two halves on two threads.
-    let best_two = best_of(
-        runs,
-        || parse_in_two(ParseOptions::new(dialect), text.clone()),
-        drop,
-    );
     // Without tokens, as the command line parses.
     let best_lean = best_of(
         runs,
         || analyzer::syntax::parse_lean(ParseOptions::new(dialect), text.clone()),
-        drop,
-    );
-    // Lean, in two halves (opt-in; the command line parses serially).
-    let best_lean_two = best_of(
-        runs,
-        || analyzer::syntax::parse_lean_in_two(ParseOptions::new(dialect), text.clone()),
         drop,
     );
 
@@ -78,16 +62,12 @@ fn main() {
         |a| diags = a.diagnostics.len(),
     );
     println!(
-        "{} {blocks} blocks, {mb:.1} MB, {diags} diagnostics, best of {runs}: parse {:.1} ms {:.0} MB/s | lean parse {:.1} ms {:.0} MB/s | two-thread parse {:.1} ms {:.0} MB/s | lean two-thread {:.1} ms {:.0} MB/s | lint {:.1} ms {:.0} MB/s | parse+lint {:.1} ms {:.0} MB/s",
+        "{} {blocks} blocks, {mb:.1} MB, {diags} diagnostics, best of {runs}: parse {:.1} ms {:.0} MB/s | lean parse {:.1} ms {:.0} MB/s | lint {:.1} ms {:.0} MB/s | parse+lint {:.1} ms {:.0} MB/s",
         dialect.as_str(),
         best_parse * 1e3,
         mb / best_parse,
         best_lean * 1e3,
         mb / best_lean,
-        best_two * 1e3,
-        mb / best_two,
-        best_lean_two * 1e3,
-        mb / best_lean_two,
         best_lint * 1e3,
         mb / best_lint,
         best_both * 1e3,

@@ -189,6 +189,7 @@ impl Incremental {
                     .collect();
                 let cx = ProgramCx::with_plain(&program, settings, &rs.plain);
                 rs.skipped = rules::skipped_blocks_in(&program, cx.segments());
+                let block_rules = rules::BlockRules::new(&enabled, settings);
                 let mut codes = Vec::new();
                 let mut out = Vec::new();
                 for i in 0..program.blocks.len() {
@@ -196,7 +197,7 @@ impl Incremental {
                     if rs.skipped.get(i).copied().unwrap_or(false) {
                         continue;
                     }
-                    rules::check_block_at(&cx, &enabled, i, &mut codes, &mut out);
+                    rules::check_block_at(&cx, &block_rules, i, &mut codes, &mut out);
                     rs.diags.extend(out.drain(..).map(|d| (i as u32, d)));
                 }
             }
@@ -560,6 +561,7 @@ fn recheck(
         }
     }
     let cx = ProgramCx::new(p, settings);
+    let block_rules = rules::BlockRules::new(enabled, settings);
     let mut fresh: Vec<(u32, Diagnostic)> = Vec::new();
     let mut codes = Vec::new();
     let mut out = Vec::new();
@@ -567,7 +569,7 @@ fn recheck(
         if skipped.get(b as usize).copied().unwrap_or(false) {
             continue;
         }
-        rules::check_block_at(&cx, enabled, b as usize, &mut codes, &mut out);
+        rules::check_block_at(&cx, &block_rules, b as usize, &mut codes, &mut out);
         fresh.extend(out.drain(..).map(|d| (b, d)));
     }
     // Merge by block: a block's diagnostics are all kept or all fresh.

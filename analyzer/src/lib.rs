@@ -1,13 +1,11 @@
 //! Partscope analyzer: text → lossless syntax → blocks; dialect tables; static
-//! rules; the [`Diagnostic`] type. Pure: no IO, no LSP, no global state. ([`memory`]
-//! holds an allocator type that hosts may install; the library itself never does.)
+//! rules; the [`Diagnostic`] type. Pure: no IO, no LSP, no global state, no `unsafe`.
 
-#![deny(unsafe_code)]
+#![forbid(unsafe_code)]
 
 pub mod diagnostic;
 pub mod dialect;
 pub mod incremental;
-pub mod memory;
 pub mod rules;
 pub mod settings;
 pub mod span;

@@ -1,5 +1,7 @@
 //! Partscope runtime: interpreter, interpolator and motion planner. Pure: no IO.
 
+#![forbid(unsafe_code)]
+
 pub mod canon;
 pub mod dryrun;
 pub mod interp;

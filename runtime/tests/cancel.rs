@@ -43,6 +43,7 @@ fn run(resolver: &dyn Resolver, step_budget: u64) -> runtime::RunOutput {
         machine: &machine,
         resolver,
         step_budget,
+        motion_budget: u64::MAX,
         emit_canon: false,
         tool_table: None,
         var_file: None,

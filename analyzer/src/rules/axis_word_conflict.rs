@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{axis_words, code_name, is_emc2};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -57,8 +57,8 @@ impl Rule for AxisWordConflict {
     }
 
     /// Every report needs a G code that takes the axis words or a motion code.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -77,7 +77,7 @@ impl Rule for AxisWordConflict {
             .codes
             .iter()
             .find(|c| c.letter == 'G' && c.group() == Some(1) && c.num.is_some_and(|n| n.0 != 800));
-        let axes = axis_words(cx);
+        let first_axis = axis_words(cx).next();
         if let (Some(g0), Some(m)) = (consumer, motion) {
             let (Some(gn), Some(mn)) = (g0.num, m.num) else {
                 return;
@@ -90,7 +90,7 @@ impl Rule for AxisWordConflict {
                     format!("Cannot use two G codes that both use axis values: {gname} and {mname} both take the axis words of this line. Put {mname} on its own line."),
                 )
             } else {
-                if axes.is_empty() {
+                if first_axis.is_none() {
                     return;
                 }
                 Diagnostic::warning(
@@ -115,7 +115,7 @@ impl Rule for AxisWordConflict {
                 return;
             }
         }
-        if d == Dialect::Rs274ngc && consumer.is_none() && !axes.is_empty() {
+        if let (Dialect::Rs274ngc, None, Some((axis, _))) = (d, consumer, first_axis) {
             let modern_axis_users =
                 !is_emc2(cx.settings) && (cx.has_code('G', 431) || cx.has_code('G', 432));
             if let Some(g80) = cx.codes.iter().find(|c| c.is('G', 800)) {
@@ -123,7 +123,7 @@ impl Rule for AxisWordConflict {
                     out.push(
                         Diagnostic::error(
                             "W004",
-                            axes[0].0.span,
+                            axis.span,
                             "Cannot use axis values with G80: G80 cancels the motion mode, so nothing on this line uses the axis words. Remove them, or add the motion code that should use them.",
                         )
                         .with_related(g80.span, "G80"),

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 
 use super::util::is_emc2;
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -53,8 +53,8 @@ impl Rule for BlockTooLong {
         &BLOCK_TOO_LONG
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

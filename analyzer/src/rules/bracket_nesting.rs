@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::TokenKind;
 
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -60,8 +60,8 @@ impl Rule for BracketNesting {
         &BRACKET_NESTING
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::{Dialect, Variant};
 
 use super::util::{code_name, is_custom};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -52,9 +52,9 @@ impl Rule for CodeNotOnVariant {
         &CODE_NOT_ON_VARIANT
     }
 
-    /// It only looks at G and M codes.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only G and M codes are looked up.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"GM")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{CommentKind, ItemKind};
 
 use super::util::is_emc2;
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -98,9 +98,9 @@ impl Rule for CommentUse {
         &COMMENT_USE
     }
 
-    /// It only looks at comments.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Every report is about a comment.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{first_g, has, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -65,8 +65,8 @@ impl Rule for ConflictingWords {
     }
 
     /// Every conflict it knows involves a G code.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NOT_AXIS_FEED
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -136,7 +136,7 @@ impl Rule for ConflictingWords {
                 }
             }
             if let Some(tcp) = first_g(cx, &[432]).filter(|_| !super::util::is_emc2(cx.settings)) {
-                let axes = !super::util::axis_words(cx).is_empty();
+                let axes = super::util::has_axis_word(cx);
                 let h = word_item(cx, b'H').is_some();
                 if axes == h {
                     let msg = if h {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::syntax::{BinOp, Expr, ExprId, Func, Program};
 
 use super::util::{block_exprs, is_emc2};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -150,9 +150,9 @@ impl Rule for ConstantExpression {
         &CONSTANT_EXPRESSION
     }
 
-    /// It only looks at expressions.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only expressions are evaluated.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -38,9 +38,36 @@ pub struct BlockCx<'a> {
     pub index: usize,
     pub settings: &'a Settings,
     pub codes: &'a [BlockCode],
+    /// What the block holds ([`block_words`]).
+    pub contents: BlockWords,
 }
 
 impl<'a> BlockCx<'a> {
+    /// The context of block `index`, its codes collected into `codes`.
+    pub fn new(
+        program: &'a Program,
+        index: usize,
+        settings: &'a Settings,
+        codes: &'a mut Vec<BlockCode>,
+    ) -> Option<BlockCx<'a>> {
+        let block = program.blocks.get(index)?;
+        codes.clear();
+        collect_codes(program, block, codes);
+        Some(BlockCx {
+            program,
+            block,
+            index,
+            settings,
+            codes,
+            contents: block_words(program, block),
+        })
+    }
+
+    /// Whether the block has a word of `letter` without a comma: one bit test.
+    pub fn has_letter(&self, letter: u8) -> bool {
+        self.contents.letters & (1u128 << (letter & 127)) != 0
+    }
+
     pub fn items(&self) -> &'a [crate::syntax::Item] {
         self.program.items_of(self.block)
     }
@@ -57,6 +84,9 @@ impl<'a> BlockCx<'a> {
     }
 
     pub fn word(&self, letter: u8) -> Option<&'a crate::syntax::Word> {
+        if !self.has_letter(letter) {
+            return None;
+        }
         self.words()
             .find(|(_, w)| w.letter == letter && !w.comma)
             .map(|(_, w)| w)
@@ -180,77 +210,143 @@ pub fn collect_codes(program: &Program, block: &Block, out: &mut Vec<BlockCode>)
 /// The letters of an axis/feed block: axes, arc centre and radius, feed.
 const AXIS_FEED_LETTERS: &[u8] = b"XYZABCUVWIJKRF";
 
-/// [`AXIS_FEED_LETTERS`] as bits `1 << letter`.
-const AXIS_FEED_MASK: u128 = {
+/// The set of ASCII letters in `s`, one bit `1 << letter` per byte value.
+pub const fn letter_set(s: &[u8]) -> u128 {
     let mut m = 0u128;
     let mut i = 0;
-    while i < AXIS_FEED_LETTERS.len() {
-        m |= 1u128 << AXIS_FEED_LETTERS[i];
+    while i < s.len() {
+        m |= 1u128 << (s[i] & 127);
         i += 1;
     }
     m
-};
-
-/// What the block rules that do run on an axis/feed block need to know to tell,
-/// without walking the words again, that they have nothing to report
-/// ([`super::Rule::silent_on_axis_feed`]). Letters are bits `1 << letter`.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct AxisFeedWords {
-    /// The letters of the block's words.
-    pub letters: u128,
-    /// Some letter appears more than once.
-    pub repeated: bool,
-    /// The letters with a negative value.
-    pub negative: u128,
-    /// The most digits of any number of the block.
-    pub max_digits: u16,
 }
 
-/// [`is_axis_feed_block`] and, for such a block, its [`AxisFeedWords`], in one
-/// pass over the items.
-pub fn axis_feed_words(program: &Program, block: &Block) -> Option<AxisFeedWords> {
+/// What is in a block, from one pass over its items: the dispatcher matches each
+/// rule's [`Interest`] against it, so a rule is called only on blocks that hold
+/// something it may report on. Letters are bits `1 << letter`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct BlockWords {
+    /// The letters of the block's words written without a comma, whatever their value.
+    pub letters: u128,
+    /// The letters that appear in more than one word without a comma.
+    pub repeated: u128,
+    /// The letters with a negative literal value (NaN counts as negative: a check
+    /// `v >= 0` rejects it).
+    pub negative: u128,
+    /// The most digits of any literal value.
+    pub max_digits: u16,
+    /// The block holds more than words with literal values: a word with another
+    /// value (expression, name, none), a comma word, a comment, an assignment, a
+    /// statement, an O-word, a program head or an error; or it has a block-skip
+    /// mark, or no items at all.
+    pub other: bool,
+}
+
+/// The [`BlockWords`] of a block.
+pub fn block_words(program: &Program, block: &Block) -> BlockWords {
     let items = program.items_of(block);
-    if items.is_empty() || block.skip().is_some() {
-        return None;
-    }
-    let mut s = AxisFeedWords::default();
+    let mut s = BlockWords {
+        other: items.is_empty() || block.skip().is_some(),
+        ..BlockWords::default()
+    };
     for it in items {
         let ItemKind::Word(w) = &it.kind else {
-            return None;
+            s.other = true;
+            continue;
         };
-        let WordValue::Num(n) = &w.value else {
-            return None;
-        };
+        if w.comma {
+            s.other = true;
+            continue;
+        }
         let bit = 1u128 << (w.letter & 127);
-        if w.comma || w.letter >= 128 || AXIS_FEED_MASK & bit == 0 {
-            return None;
-        }
-        s.repeated |= s.letters & bit != 0;
+        s.repeated |= s.letters & bit;
         s.letters |= bit;
-        // NaN counts as negative: a check `v >= 0` rejects it.
-        if n.value < 0.0 || n.value.is_nan() {
-            s.negative |= bit;
+        match &w.value {
+            WordValue::Num(n) => {
+                if n.value < 0.0 || n.value.is_nan() {
+                    s.negative |= bit;
+                }
+                s.max_digits = s.max_digits.max(n.digits);
+            }
+            _ => s.other = true,
         }
-        s.max_digits = s.max_digits.max(n.digits);
     }
-    Some(s)
+    s
 }
 
-/// Whether every item of the block is a plain axis/feed word with a literal value
-/// (`X1.5 Z-0.2`, `I3 J0 F200`): no G or M code, no expression, comment, statement
-/// or other letter. Such blocks make up most of a CAM program, and the block rules
-/// that answer `false` to [`super::Rule::reports_on_axis_feed_blocks`] skip them.
-/// A block-skip `/` or an empty block does not count.
-pub fn is_axis_feed_block(program: &Program, block: &Block) -> bool {
-    let items = program.items_of(block);
-    !items.is_empty()
-        && block.skip().is_none()
-        && items.iter().all(|it| match &it.kind {
-            ItemKind::Word(w) => {
-                !w.comma
-                    && matches!(w.value, WordValue::Num(_))
-                    && AXIS_FEED_LETTERS.contains(&w.letter)
-            }
-            _ => false,
-        })
+/// What a block must hold for a rule's `check_block` to report anything on it
+/// ([`super::Rule::interest`]): the block is of interest when any one field
+/// matches its [`BlockWords`]. A rule may only leave out what it can never
+/// report on; `rules::tests` checks every claim on random blocks of all kinds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Interest {
+    /// A word without a comma of one of these letters.
+    pub letters: u128,
+    /// One of these letters repeated.
+    pub repeated: u128,
+    /// A negative literal of one of these letters.
+    pub negative: u128,
+    /// A literal with more digits than this.
+    pub digits_over: u16,
+    /// Anything but words with literal values ([`BlockWords::other`]).
+    pub other: bool,
+}
+
+impl Interest {
+    /// Every block: the safe answer.
+    pub const ALL: Interest = Interest {
+        letters: !0,
+        repeated: !0,
+        negative: !0,
+        digits_over: 0,
+        other: true,
+    };
+
+    /// No block: a whole-file rule without a block check.
+    pub const NONE: Interest = Interest {
+        letters: 0,
+        repeated: 0,
+        negative: 0,
+        digits_over: u16::MAX,
+        other: false,
+    };
+
+    /// Blocks with anything but literal words ([`BlockWords::other`]).
+    pub const OTHER: Interest = Interest {
+        other: true,
+        ..Interest::NONE
+    };
+
+    /// Blocks with two or more words without a comma of one of `letters`.
+    pub const fn repeated(letters: &[u8]) -> Interest {
+        Interest {
+            repeated: letter_set(letters),
+            ..Interest::NONE
+        }
+    }
+
+    /// Blocks with a word without a comma of one of `letters`.
+    pub const fn letters(letters: &[u8]) -> Interest {
+        Interest {
+            letters: letter_set(letters),
+            ..Interest::NONE
+        }
+    }
+
+    /// Blocks with a word whose letter is not an axis, arc centre, radius or
+    /// feed letter, or anything but literal words: the interest of a rule that
+    /// needs a G or M code, another address, an expression or a comment.
+    pub const NOT_AXIS_FEED: Interest = Interest {
+        letters: !letter_set(AXIS_FEED_LETTERS),
+        ..Interest::OTHER
+    };
+
+    /// Whether a block with these contents is of interest.
+    pub fn matches(&self, w: &BlockWords) -> bool {
+        w.letters & self.letters != 0
+            || (self.other && w.other)
+            || w.repeated & self.repeated != 0
+            || w.negative & self.negative != 0
+            || w.max_digits > self.digits_over
+    }
 }

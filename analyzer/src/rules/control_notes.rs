@@ -4,8 +4,8 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
-use super::util::{axis_words, has, lit, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::util::{axis_words, has, has_axis_word, lit, word_item};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -61,8 +61,8 @@ impl Rule for ControlNotes {
     }
 
     /// Every note is about a G or M code.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NOT_AXIS_FEED
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -84,7 +84,7 @@ impl Rule for ControlNotes {
                     }
                 }
                 if let Some(m) = cx.codes.iter().find(|c| c.is('G', 511)) {
-                    if axis_words(cx).len() == 1 {
+                    if axis_words(cx).count() == 1 {
                         note(out, m.span, "Mirroring a single axis reverses the direction of G02/G03 arcs and of cutter compensation.");
                     }
                 }
@@ -97,7 +97,7 @@ impl Rule for ControlNotes {
                         note(out, g51.span, "G51 with only some of I/J/K: the missing factors keep the values of the previous G51.");
                     }
                 }
-                if !axis_words(cx).is_empty() {
+                if has_axis_word(cx) {
                     if let Some(m) = cx
                         .codes
                         .iter()

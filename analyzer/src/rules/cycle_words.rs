@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{code_name, is_drilling_cycle, is_emc2, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -57,9 +57,9 @@ impl Rule for CycleWords {
         &CYCLE_WORDS
     }
 
-    /// It needs a canned-cycle code.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs a canned-cycle G code.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{lit, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -50,9 +50,9 @@ impl Rule for DlaccForm {
         &DLACC_FORM
     }
 
-    /// It needs G5 or G8.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs G05 or G08.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
 use super::util::{has, removal_span};
-use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -53,9 +53,13 @@ impl Rule for DuplicateWord {
         &DUPLICATE_WORD
     }
 
-    fn silent_on_axis_feed(&self, _cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
-        // Without a repeated letter there is no duplicate to report.
-        !words.repeated
+    /// Without a repeated letter there is no duplicate to report (comma words
+    /// count as other contents).
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest {
+            repeated: !0,
+            ..Interest::OTHER
+        }
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

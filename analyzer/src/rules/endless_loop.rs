@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{Expr, ExprId, ItemKind, MacroStmt, OKeyword, Program};
 
 use super::macro_loop_structure::literal;
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -64,8 +64,8 @@ impl Rule for EndlessLoop {
         &ENDLESS_LOOP
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

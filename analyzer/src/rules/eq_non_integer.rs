@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{BinOp, Expr};
 
 use super::util::{block_exprs, expr_nodes};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -56,9 +56,9 @@ impl Rule for EqNonInteger {
         &EQ_NON_INTEGER
     }
 
-    /// It only looks at expressions.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only comparisons inside expressions are read.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

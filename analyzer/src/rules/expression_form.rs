@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{Expr, Func};
 
 use super::util::{block_exprs, expr_nodes, is_emc2};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -52,9 +52,9 @@ impl Rule for ExpressionForm {
         &EXPRESSION_FORM
     }
 
-    /// It only looks at expressions.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only expressions are read.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

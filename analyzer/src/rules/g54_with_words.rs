@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -49,9 +49,9 @@ impl Rule for G54WithWords {
         &G54_WITH_WORDS
     }
 
-    /// It needs a work offset code.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs a G54-G59 code.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -7,7 +7,7 @@ use crate::syntax::{ItemKind, MacroStmt};
 
 use super::macro_loop_structure::{literal, loops};
 use super::util::lit;
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -61,8 +61,8 @@ impl Rule for GotoTarget {
         &GOTO_TARGET
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 
 use super::util::{has, is_drilling_cycle, near_integer};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -56,9 +56,15 @@ impl Rule for IntegerWord {
         &INTEGER_WORD
     }
 
-    /// Axis, arc and feed letters are never integer-only without a code (dwell, cycle, M98) that makes them so.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only literal words of the letters each dialect reads as integers are
+    /// reported (a ServoWorks dwell X needs its G04).
+    fn interest(&self, settings: &crate::Settings) -> Interest {
+        let letters: &[u8] = match settings.dialect {
+            Dialect::Fanuc => b"NOPHDTMLSK",
+            Dialect::Servoworks => b"STHLRPKG",
+            Dialect::Rs274ngc => b"MTHLDP",
+        };
+        Interest::letters(letters)
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -68,16 +74,17 @@ impl Rule for IntegerWord {
             .iter()
             .any(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let dwell = has(cx, 'G', 40);
+        let macro_call = has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661);
         for (item, w) in cx.words() {
             if w.comma {
                 continue;
             }
             let Some(n) = w.num() else { continue };
             let l = w.letter_char();
-            let text = cx.program.str_of(item.span).into_owned();
+            // Only a diagnostic needs the word's text.
+            let text = || cx.program.str_of(item.span);
             match d {
                 Dialect::Fanuc => {
-                    let macro_call = has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661);
                     let int_letters: &[u8] = if macro_call { b"PL" } else { b"NOPHDTMLSK" };
                     if !n.has_point
                         || !int_letters.contains(&w.letter)
@@ -86,9 +93,9 @@ impl Rule for IntegerWord {
                         continue;
                     }
                     let msg = if dwell && w.letter == b'P' {
-                        format!("`{text}`: G04 P is an integer number of milliseconds and takes no decimal point (alarm PS0007). Write `P{}`, or use X in seconds.", (n.value * 1000.0).round())
+                        format!("`{}`: G04 P is an integer number of milliseconds and takes no decimal point (alarm PS0007). Write `P{}`, or use X in seconds.", text(), (n.value * 1000.0).round())
                     } else {
-                        format!("`{text}`: address {l} takes an integer without a decimal point (alarm PS0007). Write `{l}{}`.", n.value.round())
+                        format!("`{}`: address {l} takes an integer without a decimal point (alarm PS0007). Write `{l}{}`.", text(), n.value.round())
                     };
                     // The digest grades M/S/T literals (FAN147) below the other addresses (FAN004).
                     let sev = if matches!(w.letter, b'M' | b'S' | b'T') {
@@ -108,32 +115,34 @@ impl Rule for IntegerWord {
                     };
                     if int_here && n.has_point {
                         let msg = if dwell && w.letter == b'P' {
-                            format!("`{text}`: G04 P is milliseconds and must be an integer without a decimal point. Write `P{}`, or use `X{}` (seconds).", (n.value * 1000.0).round(), n.value)
+                            format!("`{}`: G04 P is milliseconds and must be an integer without a decimal point. Write `P{}`, or use `X{}` (seconds).", text(), (n.value * 1000.0).round(), n.value)
                         } else {
-                            format!("`{text}`: {l} must be an integer here; ServoWorks reads a number with a decimal point differently. Write `{l}{}`.", n.value.round())
+                            format!("`{}`: {l} must be an integer here; ServoWorks reads a number with a decimal point differently. Write `{l}{}`.", text(), n.value.round())
                         };
                         out.push(Diagnostic::warning("W006", item.span, msg));
                     } else if dwell && w.letter == b'X' && !n.has_point {
                         out.push(Diagnostic::warning(
                             "W006",
                             item.span,
-                            format!("`{text}`: G04 X is the dwell in seconds and is written with a decimal point. Write `X{:.1}` (or P in milliseconds).", n.value),
+                            format!("`{}`: G04 X is the dwell in seconds and is written with a decimal point. Write `X{:.1}` (or P in milliseconds).", text(), n.value),
                         ));
                     }
                 }
                 Dialect::Rs274ngc => {
                     // LinuxCNC's D is a diameter, speed or clearance with these codes.
-                    let real_d = [411, 421, 960, 730, 830, 700, 710, 711, 712, 720, 721, 722]
-                        .into_iter()
-                        .any(|t| has(cx, 'G', t));
+                    let real_d = || {
+                        [411, 421, 960, 730, 830, 700, 710, 711, 712, 720, 721, 722]
+                            .into_iter()
+                            .any(|t| has(cx, 'G', t))
+                    };
                     let int_here = matches!(w.letter, b'M' | b'T' | b'H' | b'L')
-                        || (w.letter == b'D' && !real_d)
+                        || (w.letter == b'D' && !real_d())
                         || (w.letter == b'P' && has(cx, 'G', 100));
                     if int_here && !near_integer(n.value) {
                         out.push(Diagnostic::error(
                             "W006",
                             item.span,
-                            format!("Non integer value for integer: `{text}`; {l} must be within 0.0001 of a whole number."),
+                            format!("Non integer value for integer: `{}`; {l} must be within 0.0001 of a whole number.", text()),
                         ));
                     }
                 }

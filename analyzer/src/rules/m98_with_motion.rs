@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::axis_words;
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -49,9 +49,9 @@ impl Rule for M98WithMotion {
         &M98_WITH_MOTION
     }
 
-    /// It needs M98.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs M98.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"M")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -61,9 +61,9 @@ impl Rule for M98WithMotion {
         let Some(call) = cx.codes.iter().find(|c| c.is('M', 980)) else {
             return;
         };
-        let axes = axis_words(cx);
-        if let Some((first, _)) = axes.first() {
-            let span = axes.iter().fold(first.span, |s, (i, _)| s.cover(i.span));
+        let mut axes = axis_words(cx);
+        if let Some((first, _)) = axes.next() {
+            let span = axes.fold(first.span, |s, (i, _)| s.cover(i.span));
             out.push(
                 Diagnostic::warning(
                     "W010",

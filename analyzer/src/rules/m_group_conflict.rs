@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -50,9 +50,9 @@ impl Rule for MGroupConflict {
         &M_GROUP_CONFLICT
     }
 
-    /// It only compares M codes.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs two M codes.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::repeated(b"M")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::{Expr, ExprId, ItemKind, MacroStmt, Program};
 
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -198,8 +198,8 @@ impl Rule for MacroLoopStructure {
         &MACRO_LOOP_STRUCTURE
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

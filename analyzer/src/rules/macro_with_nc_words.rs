@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::syntax::{ItemKind, MacroStmt};
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -57,9 +57,9 @@ impl Rule for MacroWithNcWords {
         &MACRO_WITH_NC_WORDS
     }
 
-    /// It needs a macro statement or assignment.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs a macro statement or an assignment.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,8 +5,8 @@ use crate::diagnostic::Diagnostic;
 use crate::diagnostic::Severity;
 use crate::dialect::{CodeNum, Dialect};
 
-use super::util::{axis_words, code_name, first_g, is_emc2, lit, word_item};
-use super::{BlockCode, BlockCx, Rule, RuleMeta};
+use super::util::{axis_words, code_name, first_g, has_axis_word, is_emc2, lit, word_item};
+use super::{BlockCode, BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -80,8 +80,8 @@ impl Rule for MissingRequiredWord {
     }
 
     /// Words are only required by G and M codes.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"GM")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -116,7 +116,7 @@ impl Rule for MissingRequiredWord {
                 ('G', 510) if sw && !has_word(cx, b'P') && ![b'I', b'J', b'K'].into_iter().any(|l| has_word(cx, l)) => {
                     missing(cx, c, "P or I/J/K", "the magnification (P for all axes, I/J/K per axis).", out)
                 }
-                ('G', 920) | ('G', 520) if ngc && axis_words(cx).is_empty() => {
+                ('G', 920) | ('G', 520) if ngc && !has_axis_word(cx) => {
                     if num.0 == 520 && is_emc2(cx.settings) {
                         continue;
                     }
@@ -161,11 +161,12 @@ fn note(cx: &BlockCx<'_>, c: &BlockCode, sev: Severity, msg: String, out: &mut V
 /// Word requirements of the less common codes.
 fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic>) {
     let d = cx.program.dialect;
-    let name = code_name(d, c.letter, CodeNum(t));
+    // Only a diagnostic needs the code's name.
+    let name = || code_name(d, c.letter, CodeNum(t));
     let emc2 = is_emc2(cx.settings);
     // LinuxCNC's polar distance `@` and angle `^` (G17) give the end point too.
     let polar = d == Dialect::Rs274ngc && !emc2 && (has_word(cx, b'@') || has_word(cx, b'^'));
-    let axes = polar || !axis_words(cx).is_empty();
+    let axes = polar || has_axis_word(cx);
     let lval = word_item(cx, b'L').and_then(|(_, w)| lit(w));
     match (d, c.letter, t) {
         (Dialect::Rs274ngc, 'G', 330) | (Dialect::Rs274ngc, 'G', 331) if !axes => {
@@ -179,7 +180,7 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             cx,
             c,
             Severity::Error,
-            format!("{name} without axis words: the 2007 interpreter requires at least one axis word with a motion code."),
+            format!("{} without axis words: the 2007 interpreter requires at least one axis word with a motion code.", name()),
             out,
         ),
         (Dialect::Rs274ngc, 'G', 730 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880 | 890)
@@ -241,14 +242,14 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             cx,
             c,
             Severity::Warning,
-            format!("{name} without D: the 2007 interpreter's manual requires a D number on every G41/G42 line."),
+            format!("{} without D: the 2007 interpreter's manual requires a D number on every G41/G42 line.", name()),
             out,
         ),
-        (Dialect::Servoworks, 'G', 370) if axis_words(cx).len() != 1 => note(
+        (Dialect::Servoworks, 'G', 370) if axis_words(cx).count() != 1 => note(
             cx,
             c,
             Severity::Error,
-            format!("G37 needs exactly one axis word, the theoretical surface position; this block has {}.", axis_words(cx).len()),
+            format!("G37 needs exactly one axis word, the theoretical surface position; this block has {}.", axis_words(cx).count()),
             out,
         ),
         (Dialect::Servoworks, 'G', 501) if !axes => note(
@@ -262,7 +263,7 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             note(cx, c, Severity::Info, "G68 without R rotates by 0°. Give the angle with R.".into(), out)
         }
         (Dialect::Servoworks, 'G', 280 | 290 | 300 | 530) if !axes => {
-            note(cx, c, Severity::Info, format!("{name} without axis words moves nothing."), out)
+            note(cx, c, Severity::Info, format!("{} without axis words moves nothing.", name()), out)
         }
         (Dialect::Servoworks, 'G', 100) => {
             // L106/L107 set one smoothing mode for all axes: `G10 L106 R2` has no P.
@@ -288,7 +289,7 @@ fn more_checks(cx: &BlockCx<'_>, c: &BlockCode, t: u32, out: &mut Vec<Diagnostic
             cx,
             c,
             Severity::Warning,
-            format!("{name} without H: no tool length offset is selected. Add H with the offset number."),
+            format!("{} without H: no tool length offset is selected. Add H with the offset number.", name()),
             out,
         ),
         (Dialect::Servoworks, 'M', 290) if !has_word(cx, b'S') => {

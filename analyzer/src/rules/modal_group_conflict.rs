@@ -7,7 +7,7 @@ use crate::span::Span;
 use crate::syntax::ItemKind;
 
 use super::util::{code_name, is_drilling_cycle, removal_span};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCode, BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -60,24 +60,24 @@ impl Rule for ModalGroupConflict {
         &MODAL_GROUP_CONFLICT
     }
 
-    /// It only compares G codes.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs two G codes.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::repeated(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let d = cx.program.dialect;
-        let g: Vec<_> = cx
-            .codes
-            .iter()
-            .filter(|c| c.letter == 'G' && c.info.is_some())
-            .collect();
-        for (j, later) in g.iter().enumerate() {
+        let known_g = |c: &&BlockCode| c.letter == 'G' && c.info.is_some();
+        for (j, later) in cx.codes.iter().enumerate().filter(|(_, c)| known_g(c)) {
             let Some(group) = later.group() else { continue };
             if group == 0 && d != Dialect::Rs274ngc {
                 continue;
             }
-            let Some(earlier) = g[..j].iter().find(|e| e.group() == Some(group)) else {
+            let Some(earlier) = cx.codes[..j]
+                .iter()
+                .filter(known_g)
+                .find(|e| e.group() == Some(group))
+            else {
                 continue;
             };
             let (Some(en), Some(ln)) = (earlier.num, later.num) else {

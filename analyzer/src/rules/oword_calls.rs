@@ -7,7 +7,7 @@ use crate::span::Span;
 use crate::syntax::{BlockKind, Expr, ItemKind, OKeyword, OLabel, OWord, Program};
 
 use super::util::{block_exprs, expr_nodes, is_emc2, lit};
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -80,8 +80,8 @@ impl Rule for OwordCalls {
         &OWORD_CALLS
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -7,7 +7,7 @@ use crate::span::Span;
 use crate::syntax::{ItemKind, OKeyword, OLabel, OWord, Program};
 
 use super::util::lit;
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -118,8 +118,8 @@ impl Rule for OwordStructure {
         &OWORD_STRUCTURE
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

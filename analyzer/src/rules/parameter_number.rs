@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{Expr, ExprId, Func, ItemKind};
 
 use super::util::{block_exprs, expr_nodes, is_emc2, near_integer};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -67,9 +67,9 @@ impl Rule for ParameterNumber {
         &PARAMETER_NUMBER
     }
 
-    /// It only looks at parameter references.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only parameter references and assignments are read.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

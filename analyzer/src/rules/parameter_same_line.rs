@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{Expr, ExprId, ItemKind, Program};
 
 use super::util::{block_exprs, expr_nodes};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -65,9 +65,9 @@ impl Rule for ParameterSameLine {
         &PARAMETER_SAME_LINE
     }
 
-    /// It only looks at assignments.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only assignments are compared.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

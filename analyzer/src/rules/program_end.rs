@@ -8,7 +8,7 @@ use crate::syntax::{BlockKind, ItemKind, OKeyword, Program};
 
 use super::macro_loop_structure::literal;
 use super::util::{fanuc_call_start, has_code_items, lit};
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -95,8 +95,8 @@ impl Rule for ProgramEnd {
         &PROGRAM_END
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

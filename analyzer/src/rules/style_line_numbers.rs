@@ -5,7 +5,7 @@ use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
 use super::util::{lit, removal_span};
-use super::{ProgramCx, Rule, RuleMeta};
+use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -86,8 +86,8 @@ impl Rule for LineNumbers {
         &LINE_NUMBERS
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -118,8 +118,8 @@ impl Rule for LineNumberOrder {
         &LINE_NUMBER_ORDER
     }
 
-    fn has_block_check(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NONE
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::ItemKind;
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -51,9 +51,9 @@ impl Rule for LowercaseO {
         &LOWERCASE_O
     }
 
-    /// It only looks at O-words.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs an O-word.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -4,8 +4,8 @@ use crate::declare_rule;
 use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 
-use super::util::{axis_words, code_name};
-use super::{BlockCx, Rule, RuleMeta};
+use super::util::{code_name, has_axis_word};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -60,8 +60,8 @@ impl Rule for OrderOfExecution {
     }
 
     /// It needs a G, M, T or S word besides the motion.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::NOT_AXIS_FEED
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -77,7 +77,7 @@ impl Rule for OrderOfExecution {
                 && c.num
                     .is_some_and(|n| [100, 280, 300, 520, 920].contains(&n.0))
         });
-        let motion = explicit_motion || (!axis_words(cx).is_empty() && !consumer);
+        let motion = explicit_motion || (has_axis_word(cx) && !consumer);
         if !motion {
             return;
         }

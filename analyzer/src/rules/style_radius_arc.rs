@@ -5,7 +5,7 @@ use crate::diagnostic::{Diagnostic, Severity};
 use crate::dialect::Dialect;
 
 use super::util::{first_g, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -49,9 +49,9 @@ impl Rule for RadiusArc {
         &RADIUS_ARC
     }
 
-    /// It needs G2 or G3.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs an arc code.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"G")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

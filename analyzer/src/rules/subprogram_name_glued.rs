@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::WordValue;
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -50,9 +50,9 @@ impl Rule for SubprogramNameGlued {
         &SUBPROGRAM_NAME_GLUED
     }
 
-    /// It needs M98.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// A report needs a P word whose value is a name.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::OTHER
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

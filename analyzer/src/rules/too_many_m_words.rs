@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -52,9 +52,9 @@ impl Rule for TooManyMWords {
         &TOO_MANY_M_WORDS
     }
 
-    /// It only counts M words.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only two or more M words are reported.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::repeated(b"M")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{has, is_emc2, is_machine_axis};
-use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -87,29 +87,26 @@ impl Rule for UnknownAddress {
         &UNKNOWN_ADDRESS
     }
 
-    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
-        // An axis/feed block has no comma words and no G65/G66, so each word's
-        // verdict depends on its letter alone: silent when every letter is one
-        // the dialect reads as a non-axis word, or an axis of the machine (and, for
-        // ServoWorks, not one of the E/U/V/W axes it warns about). A block has
-        // two or three such letters, so they are looked up one by one.
-        let d = cx.program.dialect;
-        let (other, axes) = letter_sets(d, is_emc2(cx.settings));
-        let mut rest = words.letters & !other;
-        while rest != 0 {
-            let l = rest.trailing_zeros();
-            rest &= rest - 1;
-            let Ok(letter) = u8::try_from(l) else {
-                return false;
-            };
-            if axes & (1u128 << l) == 0
-                || (d == Dialect::Servoworks && matches!(letter, b'E' | b'U' | b'V' | b'W'))
-                || !is_machine_axis(cx.settings, letter)
-            {
-                return false;
-            }
+    /// A word's verdict depends on its letter alone (a G65/G66 call only
+    /// silences some): the rule may report on a letter the dialect does not read
+    /// as a non-axis word unless it is a configured axis (and, for ServoWorks, not
+    /// one of the E/U/V/W axes it warns about).
+    fn interest(&self, settings: &crate::Settings) -> Interest {
+        let (other, axes) = letter_sets(settings.dialect, is_emc2(settings));
+        let configured = settings
+            .axes
+            .iter()
+            .filter(|a| a.is_ascii())
+            .fold(0u128, |m, a| m | 1u128 << (*a as u8 & 127));
+        let warned = if settings.dialect == Dialect::Servoworks {
+            const { letters(b"EUVW") }
+        } else {
+            0
+        };
+        Interest {
+            letters: !other & !(axes & configured & !warned),
+            ..Interest::NONE
         }
-        true
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

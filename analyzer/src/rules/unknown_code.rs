@@ -6,7 +6,7 @@ use crate::dialect::{CodeNum, Dialect};
 use crate::syntax::WordValue;
 
 use super::util::{code_name, is_custom, near_integer, table_has_letter};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -55,9 +55,9 @@ impl Rule for UnknownCode {
         &UNKNOWN_CODE
     }
 
-    /// It only looks at G and M codes.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only G and M codes are looked up.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"GM")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
@@ -70,7 +70,7 @@ impl Rule for UnknownCode {
             let WordValue::Num(n) = &w.value else {
                 continue;
             };
-            let text = cx.program.str_of(item.span).into_owned();
+            let text = cx.program.str_of(item.span);
             if n.value < 0.0 {
                 if d == Dialect::Rs274ngc {
                     let what = if c.letter == 'G' { "g" } else { "m" };

@@ -21,10 +21,15 @@ pub fn is_machine_axis(settings: &Settings, letter: u8) -> bool {
 }
 
 /// The words of the block that are configured axes.
-pub fn axis_words<'a>(cx: &BlockCx<'a>) -> Vec<(&'a Item, &'a Word)> {
+pub fn axis_words<'a>(cx: &BlockCx<'a>) -> impl Iterator<Item = (&'a Item, &'a Word)> + 'a {
+    let settings = cx.settings;
     cx.words()
-        .filter(|(_, w)| !w.comma && is_machine_axis(cx.settings, w.letter))
-        .collect()
+        .filter(move |(_, w)| !w.comma && is_machine_axis(settings, w.letter))
+}
+
+/// Whether the block has an axis word of the machine ([`axis_words`] without collecting).
+pub fn has_axis_word(cx: &BlockCx<'_>) -> bool {
+    axis_words(cx).next().is_some()
 }
 
 /// Whether the block holds the code `letter``tenths` written as a literal.
@@ -41,6 +46,9 @@ pub fn first_g<'a>(cx: &BlockCx<'a>, tenths: &[u32]) -> Option<&'a super::BlockC
 
 /// The word of `letter` (not after a comma), with its item.
 pub fn word_item<'a>(cx: &BlockCx<'a>, letter: u8) -> Option<(&'a Item, &'a Word)> {
+    if !cx.has_letter(letter) {
+        return None;
+    }
     cx.words().find(|(_, w)| w.letter == letter && !w.comma)
 }
 

@@ -8,7 +8,7 @@ use crate::syntax::ItemKind;
 use super::util::{
     fanuc_call_start, has, is_drilling_cycle, is_emc2, lit, near_integer, word_item,
 };
-use super::{AxisFeedWords, BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -101,17 +101,22 @@ impl Rule for WordValueRange {
         &WORD_VALUE_RANGE
     }
 
-    fn silent_on_axis_feed(&self, cx: &BlockCx<'_>, words: &AxisFeedWords) -> bool {
-        // With no G or M code and only axis, arc and feed letters, the checks
-        // that remain are the sign of F (RS274/NGC), the sign of K and F and the
-        // digit counts (FANUC); ServoWorks checks none of these letters.
+    /// With only axis, arc and feed letters and literal values, the checks that
+    /// remain are the sign of F (RS274/NGC), the sign of K and F and the digit
+    /// counts (FANUC); ServoWorks checks none of these letters.
+    fn interest(&self, settings: &crate::Settings) -> Interest {
         let bit = |l: u8| 1u128 << l;
-        match cx.program.dialect {
-            Dialect::Servoworks => true,
-            Dialect::Rs274ngc => words.negative & bit(b'F') == 0,
-            Dialect::Fanuc => {
-                words.negative & (bit(b'K') | bit(b'F')) == 0 && words.max_digits <= 9
-            }
+        match settings.dialect {
+            Dialect::Servoworks => Interest::NOT_AXIS_FEED,
+            Dialect::Rs274ngc => Interest {
+                negative: bit(b'F'),
+                ..Interest::NOT_AXIS_FEED
+            },
+            Dialect::Fanuc => Interest {
+                negative: bit(b'K') | bit(b'F'),
+                digits_over: 9,
+                ..Interest::NOT_AXIS_FEED
+            },
         }
     }
 
@@ -123,10 +128,7 @@ impl Rule for WordValueRange {
             .iter()
             .find(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let cyc = |t: u32| cycle.is_some_and(|c| c.num.is_some_and(|n| n.0 == t));
-        let present = cx
-            .words()
-            .filter(|(_, w)| !w.comma)
-            .fold(0, |m, (_, w)| m | letter_bit(w.letter));
+        let present = cx.contents.letters;
         let mut k = Ctx { cx, out, present };
         match d {
             Dialect::Servoworks => {

@@ -5,7 +5,7 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 
 use super::util::{has, is_emc2, word_item};
-use super::{BlockCx, Rule, RuleMeta};
+use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -51,9 +51,9 @@ impl Rule for WordWithoutUser {
         &WORD_WITHOUT_USER
     }
 
-    /// It only looks at E, @ and ^ words.
-    fn reports_on_axis_feed_blocks(&self) -> bool {
-        false
+    /// Only E and the polar words @ and ^ are checked.
+    fn interest(&self, _: &crate::Settings) -> Interest {
+        Interest::letters(b"E@^")
     }
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {

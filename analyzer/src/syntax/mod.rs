@@ -12,6 +12,6 @@ mod parser;
 
 pub use ast::*;
 pub use parser::{
-    block_tokens, parse, parse_in_two, parse_lean, parse_lean_in_two, parse_serial, ParseOptions,
-    Parser, ParserState, MAX_EXPR_HEIGHT,
+    block_tokens, parse, parse_lean, parse_serial, ParseOptions, Parser, ParserState,
+    MAX_EXPR_HEIGHT,
 };

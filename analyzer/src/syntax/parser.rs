@@ -57,8 +57,7 @@ const MAX_BLOCK_OPERATORS: u32 = 256;
 /// every crate need at most this many frames.
 pub const MAX_EXPR_HEIGHT: u32 = 2 * (MAX_EXPR_DEPTH + 2) + MAX_BLOCK_OPERATORS;
 
-/// Parses a whole file on the calling thread (see [`parse_in_two`] for large files
-/// on a machine with a spare core).
+/// Parses a whole file.
 pub fn parse(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     parse_serial(opts, text)
 }
@@ -99,43 +98,10 @@ pub fn parse_serial(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
 pub fn parse_lean(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
     let text: Arc<[u8]> = text.into();
     let mut program = with_capacity(opts.dialect, text.clone(), text.len(), false);
-    let mut parser = Parser::new(opts, text.clone()).without_tokens();
-    if text.len() < PREFAULT_FROM {
-        parser.parse_blocks(&mut program, usize::MAX);
-        return program;
-    }
-    // A large file: a second thread faults in the item and block vectors ahead of
-    // the parse (`memory::prefault_while`); the vectors were sized for the whole
-    // text, so they do not move while it works.
-    let buffers = [
-        (
-            program.items.as_ptr() as usize,
-            program.items.capacity() * std::mem::size_of::<Item>(),
-        ),
-        (
-            program.blocks.as_ptr() as usize,
-            program.blocks.capacity() * std::mem::size_of::<Block>(),
-        ),
-    ];
-    let total = text.len().max(1) as f64;
-    crate::memory::prefault_while(&buffers, |progress| {
-        while !parser.is_done() {
-            parser.parse_blocks(&mut program, 4096);
-            progress.report(
-                &[
-                    program.items.len() * std::mem::size_of::<Item>(),
-                    program.blocks.len() * std::mem::size_of::<Block>(),
-                ],
-                parser.pos as f64 / total,
-            );
-        }
-    });
+    let mut parser = Parser::new(opts, text).without_tokens();
+    parser.parse_blocks(&mut program, usize::MAX);
     program
 }
-
-/// Texts from this size on are parsed with their tree's pages faulted in beside the
-/// parse ([`parse_lean`]).
-const PREFAULT_FROM: usize = 4 << 20;
 
 /// The tokens of one block, read again from the text: for programs parsed by
 /// [`parse_lean`], or to look at one block without walking the token list. Equal to
@@ -168,176 +134,6 @@ pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
     let mut parser = Parser::resume(opts, program.text.clone(), start, block.line, state);
     parser.parse_blocks(&mut scratch, 1);
     scratch.tokens
-}
-
-/// Parses the two halves of the text (split after a line break near the middle)
-/// on two threads and joins them; the result equals [`parse_serial`]'s.
-///
-/// Not the default: on the shared 2-core machine of BENCHMARKS.md it gave no
-/// steady wall-clock gain and holds the second half twice while joining (about
-/// 40 % more peak memory), so hosts opt in where a core is known to be idle.
-///
-/// Every byte after a `\n` starts a block, and a block reads no text before its
-/// start, so the only things the second half needs from the first are the line
-/// number (added afterwards) and the [`ParserState`] (`%` lines seen). The second
-/// half is parsed with the state most files have there; when the first half ends
-/// in another state, that guess is thrown away and the first parser simply
-/// continues through the second half.
-pub fn parse_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
-    two_halves(opts, text.into(), false)
-}
-
-/// [`parse_in_two`] without tokens: the tree of [`parse_lean`]. The halves parse in
-/// parallel and are then joined by a copy, so where memory is reused (repeated
-/// parses) the wall time falls by a quarter to a third, not by half; a process's first parse
-/// gains nothing, because it faults in a third more memory (the second half's own
-/// vectors), and its peak memory is a third higher (BENCHMARKS.md, session 7). No
-/// host uses it by default.
-pub fn parse_lean_in_two(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
-    two_halves(opts, text.into(), true)
-}
-
-fn two_halves(opts: ParseOptions, text: Arc<[u8]>, lean: bool) -> Program {
-    let serial = |text: Arc<[u8]>| {
-        if lean {
-            parse_lean(opts, text)
-        } else {
-            parse_serial(opts, text)
-        }
-    };
-    let mid = text.len() / 2;
-    let split = memchr::memchr(b'\n', &text[mid..]).map(|k| mid + k + 1);
-    let Some(split) = split.filter(|s| *s < text.len()) else {
-        return serial(text);
-    };
-    let first_byte = text
-        .iter()
-        .find(|b| !is_ws(**b) && !matches!(b, b'\n' | b'\r'))
-        .copied();
-    let guess = ParserState {
-        // ServoWorks never records `%` lines in the state.
-        percent_seen: opts.dialect != Dialect::Servoworks && first_byte == Some(b'%'),
-        after_end: false,
-        seen_content: true,
-    };
-    let (mut program, mut parser, second) = std::thread::scope(|s| {
-        let t2 = text.clone();
-        let handle = std::thread::Builder::new().spawn_scoped(s, move || {
-            let mut p = with_capacity(opts.dialect, t2.clone(), t2.len() - split, !lean);
-            let mut parser = Parser::resume(opts, t2, split, 0, guess);
-            if lean {
-                parser = parser.without_tokens();
-            }
-            parser.parse_blocks(&mut p, usize::MAX);
-            p
-        });
-        let mut program = with_capacity(opts.dialect, text.clone(), text.len(), !lean);
-        let mut parser = Parser::new(opts, text.clone());
-        if lean {
-            parser = parser.without_tokens();
-        }
-        parser.parse_blocks_before(&mut program, usize::MAX, split);
-        // A thread that could not start or that failed leaves the work to this one.
-        let second = handle.ok().and_then(|h| h.join().ok());
-        (program, parser, second)
-    });
-    match second {
-        Some(second) if parser.pos == split && parser.state() == guess => {
-            append_rebased(&mut program, second, parser.line);
-        }
-        _ => {
-            parser.parse_blocks(&mut program, usize::MAX);
-        }
-    }
-    program
-}
-
-/// Appends a program parsed from a later block boundary (its lines counted from
-/// 0, its ids from 0) to `program`, whose last block ends at that boundary and
-/// has `lines` line breaks before it.
-fn append_rebased(program: &mut Program, second: Program, lines: u32) {
-    let items = program.items.len() as u32;
-    let exprs = program.exprs.len() as u32;
-    let lists = program.expr_lists.len() as u32;
-    let id = |e: ExprId| ExprId(e.0.saturating_add(exprs));
-    program.tokens.extend_from_slice(&second.tokens);
-    program.blocks.extend(second.blocks.iter().map(|b| Block {
-        line: b.line.saturating_add(lines),
-        items: (
-            b.items.0.saturating_add(items),
-            b.items.1.saturating_add(items),
-        ),
-        ..*b
-    }));
-    // Without expressions or argument lists on either side (plain CAM output) no
-    // item holds an id to move, and the items are copied as they are.
-    if second.exprs.is_empty() && second.expr_lists.is_empty() && lists == 0 {
-        program.items.extend_from_slice(&second.items);
-        program.diagnostics.extend(second.diagnostics);
-        return;
-    }
-    program.items.extend(second.items.iter().map(|it| {
-        let kind = match it.kind {
-            ItemKind::Word(mut w) => {
-                if let WordValue::Expr(e) = w.value {
-                    w.value = WordValue::Expr(id(e));
-                }
-                ItemKind::Word(w)
-            }
-            ItemKind::Assign { target, value } => ItemKind::Assign {
-                target: id(target),
-                value: id(value),
-            },
-            ItemKind::OWord(mut o) => {
-                if let OLabel::Expr(e) = o.label {
-                    o.label = OLabel::Expr(id(e));
-                }
-                o.args_start = o.args_start.saturating_add(lists);
-                ItemKind::OWord(o)
-            }
-            ItemKind::Macro(m) => ItemKind::Macro(match m {
-                MacroStmt::Goto { target } => MacroStmt::Goto { target: id(target) },
-                MacroStmt::IfGoto { cond, target } => MacroStmt::IfGoto {
-                    cond: id(cond),
-                    target: id(target),
-                },
-                MacroStmt::IfThen { cond } => MacroStmt::IfThen { cond: id(cond) },
-                MacroStmt::While { cond, m } => MacroStmt::While {
-                    cond: id(cond),
-                    m: id(m),
-                },
-                MacroStmt::Do { m } => MacroStmt::Do { m: id(m) },
-                MacroStmt::End { m } => MacroStmt::End { m: id(m) },
-                MacroStmt::Output => MacroStmt::Output,
-            }),
-            k @ (ItemKind::Comment(_) | ItemKind::ProgramHead { .. } | ItemKind::Error) => k,
-        };
-        Item { kind, ..*it }
-    }));
-    program.exprs.extend(second.exprs.iter().map(|n| {
-        let expr = match n.expr {
-            Expr::Var { index } => Expr::Var { index: id(index) },
-            Expr::Neg { arg } => Expr::Neg { arg: id(arg) },
-            Expr::Plus { arg } => Expr::Plus { arg: id(arg) },
-            Expr::Binary { op, lhs, rhs } => Expr::Binary {
-                op,
-                lhs: id(lhs),
-                rhs: id(rhs),
-            },
-            Expr::Call { func, arg, arg2 } => Expr::Call {
-                func,
-                arg: id(arg),
-                arg2: arg2.map(id),
-            },
-            Expr::Group { inner } => Expr::Group { inner: id(inner) },
-            e @ (Expr::Num(_) | Expr::Named { .. } | Expr::Error) => e,
-        };
-        ExprNode { expr, ..*n }
-    }));
-    program
-        .expr_lists
-        .extend(second.expr_lists.iter().map(|e| id(*e)));
-    program.diagnostics.extend(second.diagnostics);
 }
 
 /// A resumable parser over one file's text.
@@ -469,21 +265,10 @@ impl Parser {
     /// Parses up to `max_blocks` blocks into `program`, appending. Returns the
     /// number of blocks parsed (0 at end of input).
     pub fn parse_blocks(&mut self, program: &mut Program, max_blocks: usize) -> usize {
-        self.parse_blocks_before(program, max_blocks, usize::MAX)
-    }
-
-    /// [`Parser::parse_blocks`], stopping also at the first block that starts at or
-    /// after byte `limit`.
-    fn parse_blocks_before(
-        &mut self,
-        program: &mut Program,
-        max_blocks: usize,
-        limit: usize,
-    ) -> usize {
         // One handle on the text for the whole run: cloning the `Arc` per block
         // cost two atomic operations per line.
         let text = self.text.clone();
-        let limit = limit.min(text.len());
+        let limit = text.len();
         let mut n = 0;
         let quick = self.plain_fast && !self.tokens;
         while n < max_blocks && self.pos < limit {
@@ -1475,61 +1260,57 @@ impl<'p> Cx<'p> {
 
     /// A numeric literal; `allow_sign` admits a leading `+`/`-`. Blanks inside the
     /// number are allowed in RS274/NGC and FANUC (they are removed before reading).
+    /// The digits are read by [`decimal`], the reader of plain lines too.
     fn number(&mut self, allow_sign: bool) -> Num {
         let start = self.pos;
         let inner_ws = self.dialect != Dialect::Servoworks;
         let t = self.text;
         let mut i = self.pos;
-        let mut signed = false;
-        let mut negative = false;
-        if allow_sign && i < t.len() && (t[i] == b'+' || t[i] == b'-') {
-            signed = true;
-            negative = t[i] == b'-';
+        let sign = t
+            .get(i)
+            .copied()
+            .filter(|c| allow_sign && matches!(c, b'+' | b'-'));
+        if sign.is_some() {
             i += 1;
         }
-        // The value is accumulated while scanning: up to 15 significant digits fit a
-        // u64 exactly, and one division by an exact power of ten then rounds correctly.
-        let mut mant: u64 = 0;
-        let mut frac_digits: u32 = 0;
-        let mut digits = 0u16;
-        let mut has_point = false;
+        let (mut mant, mut digits, mut frac_digits, mut has_point, end) = decimal(t, i);
+        i = end;
         let mut bad = false;
         let mut had_ws = false;
+        // What `decimal` leaves: a second point (malformed, but read to its end) and
+        // blanks before more digits (`X1 5` is `X15` in RS274/NGC and FANUC).
         loop {
-            // Integer and fraction digits in separate loops keep the common path tight.
-            if !has_point {
-                while i < t.len() && t[i].is_ascii_digit() {
-                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
-                    digits = digits.saturating_add(1);
+            match t.get(i).copied() {
+                Some(b'.') => {
+                    bad |= has_point;
+                    has_point = true;
                     i += 1;
                 }
-            } else {
-                while i < t.len() && t[i].is_ascii_digit() {
-                    mant = mant.wrapping_mul(10).wrapping_add((t[i] - b'0') as u64);
-                    digits = digits.saturating_add(1);
-                    frac_digits += 1;
-                    i += 1;
-                }
-            }
-            if i < t.len() && t[i] == b'.' {
-                // A second decimal point makes the literal malformed; keep consuming it.
-                bad |= has_point;
-                has_point = true;
-                i += 1;
-                continue;
-            }
-            if inner_ws && i < t.len() && is_ws(t[i]) {
-                let mut j = i;
-                while j < t.len() && is_ws(t[j]) {
-                    j += 1;
-                }
-                if j < t.len() && (t[j].is_ascii_digit() || t[j] == b'.') {
+                Some(c) if c.is_ascii_digit() => {}
+                Some(c) if inner_ws && is_ws(c) => {
+                    let mut j = i;
+                    while t.get(j).is_some_and(|c| is_ws(*c)) {
+                        j += 1;
+                    }
+                    if !t.get(j).is_some_and(|c| c.is_ascii_digit() || *c == b'.') {
+                        break;
+                    }
                     had_ws = true;
                     i = j;
                     continue;
                 }
+                _ => break,
             }
-            break;
+            let (run, n, e) = digit_run(t, i);
+            // Past 15 digits the value is read from the text below.
+            mant = mant
+                .wrapping_mul(POW10_U64.get(n).copied().unwrap_or(0))
+                .wrapping_add(run);
+            digits += n;
+            if has_point {
+                frac_digits += n;
+            }
+            i = e;
         }
         let end = i;
         self.pos = end;
@@ -1540,17 +1321,24 @@ impl<'p> Cx<'p> {
         let value = if digits == 0 || bad {
             None
         } else if digits <= 15 {
-            let v = mant as f64 / POW10[frac_digits as usize];
-            Some(if negative { -v } else { v })
+            // At most 15 digits: the mantissa is exact and one division by an exact
+            // power of ten rounds correctly.
+            let v = mant as f64 / POW10[frac_digits];
+            Some(if sign == Some(b'-') { -v } else { v })
         } else {
             let raw = span.slice(t);
-            if had_ws {
-                let compact: Vec<u8> = raw.iter().copied().filter(|b| !is_ws(*b)).collect();
-                parse_f64(&compact)
+            let compact: Vec<u8>;
+            let raw = if had_ws {
+                compact = raw.iter().copied().filter(|b| !is_ws(*b)).collect();
+                &compact[..]
             } else {
-                parse_f64(raw)
-            }
+                raw
+            };
+            std::str::from_utf8(raw)
+                .ok()
+                .and_then(|s| s.parse::<f64>().ok())
         };
+        let digits = u16::try_from(digits).unwrap_or(u16::MAX);
         let value = match value {
             Some(v) if v.is_finite() => v,
             _ => self.bad_number(bad, digits, start, end),
@@ -1559,7 +1347,7 @@ impl<'p> Cx<'p> {
             value,
             span,
             has_point,
-            signed,
+            signed: sign.is_some(),
             digits,
         }
     }
@@ -2474,38 +2262,6 @@ fn comment_kind(text: &[u8]) -> CommentKind {
     }
 }
 
-/// Reads a literal made of an optional sign, digits and at most one point.
-fn parse_f64(raw: &[u8]) -> Option<f64> {
-    // Fast path: up to 15 significant digits fit a u64 exactly, and dividing by an
-    // exact power of ten gives the correctly rounded result.
-    let (neg, body) = match raw.first() {
-        Some(b'-') => (true, &raw[1..]),
-        Some(b'+') => (false, &raw[1..]),
-        _ => (false, raw),
-    };
-    if body.len() <= 16 {
-        let mut mant: u64 = 0;
-        let mut frac_digits: i32 = -1;
-        let mut n = 0;
-        for &b in body {
-            if b == b'.' {
-                frac_digits = 0;
-                continue;
-            }
-            mant = mant * 10 + (b - b'0') as u64;
-            n += 1;
-            if frac_digits >= 0 {
-                frac_digits += 1;
-            }
-        }
-        if n <= 15 {
-            let v = mant as f64 / POW10[frac_digits.max(0) as usize];
-            return Some(if neg { -v } else { v });
-        }
-    }
-    std::str::from_utf8(raw).ok()?.parse::<f64>().ok()
-}
-
 fn printable(s: &str) -> String {
     let mut out: String = s
         .chars()
@@ -2520,7 +2276,27 @@ fn printable(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{decimal, digit_run, leading_digits, parse_f64};
+    use super::{decimal, digit_run, leading_digits, parse, ParseOptions};
+    use crate::dialect::Dialect;
+    use crate::syntax::{ItemKind, WordValue};
+
+    /// The value the parser reads for the number `s` after an X, on a plain line
+    /// (`general` false) or on one the general path reads (a comment follows).
+    fn read_value(s: &str, general: bool) -> Option<u64> {
+        let text = if general {
+            format!("X{s} (c)\n")
+        } else {
+            format!("X{s}\n")
+        };
+        let program = parse(ParseOptions::new(Dialect::Rs274ngc), text.into_bytes());
+        match program.items.first().map(|i| i.kind) {
+            Some(ItemKind::Word(w)) => match w.value {
+                WordValue::Num(n) if n.value.is_finite() => Some(n.value.to_bits()),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
 
     /// One step of the fixed-seed generator the tests below draw from.
     fn lcg(x: &mut u64) -> u64 {
@@ -2623,8 +2399,10 @@ mod tests {
         }
     }
 
+    /// Both paths through the one number reader give the correctly rounded value
+    /// that `str::parse` gives, whether the number has 15 digits or more.
     #[test]
-    fn fast_number_path_agrees_with_std() {
+    fn numbers_read_as_std_reads_them() {
         let samples = [
             "0",
             "-0",
@@ -2646,11 +2424,13 @@ mod tests {
             "3.14159265358979",
         ];
         for s in samples {
-            assert_eq!(
-                parse_f64(s.as_bytes()).map(f64::to_bits),
-                s.parse::<f64>().ok().map(f64::to_bits),
-                "{s}"
-            );
+            for general in [false, true] {
+                assert_eq!(
+                    read_value(s, general),
+                    s.parse::<f64>().ok().map(f64::to_bits),
+                    "{s}, general path {general}"
+                );
+            }
         }
         // A deterministic sweep of short decimals.
         let mut x: u64 = 12345;
@@ -2659,11 +2439,9 @@ mod tests {
             let int = (x >> 40) % 100000;
             let frac = (x >> 10) % 10000;
             let s = format!("{int}.{frac:04}");
-            assert_eq!(
-                parse_f64(s.as_bytes()).map(f64::to_bits),
-                s.parse::<f64>().ok().map(f64::to_bits),
-                "{s}"
-            );
+            let want = s.parse::<f64>().ok().map(f64::to_bits);
+            assert_eq!(read_value(&s, false), want, "{s}");
+            assert_eq!(read_value(&s, true), want, "{s}");
         }
     }
 }
