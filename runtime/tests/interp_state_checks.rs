@@ -203,6 +203,32 @@ fn cycle_hygiene_vectors() {
         messages(&out, "C006"),
         vec!["point Z (5) is above point R (2): R must lie between the initial level and Z"]
     );
+    // FAN081: R above the initial level is advice (the cycle rapids up to R).
+    let out = run_fanuc(
+        "M3 S500\nG90 G0 Z0.1\nG99 G81 X0 Y0 Z-1. R0.25 F100\nG80\nM30\n",
+        "",
+    );
+    assert_eq!(found(&out, "C006"), vec![Severity::Info]);
+}
+
+/// FAN090: a FANUC cycle without R is a warning, and the dry run goes on with
+/// the feed starting at the initial level; ServoWorks (SW126) and LinuxCNC stop.
+#[test]
+fn cycle_without_r() {
+    let text = "M3 S500\nG90 G0 X0 Y0 Z1.\nG81 Z-0.1 F10.\nX1.\nG80\nM30\n";
+    let out = run_fanuc(text, "");
+    assert_eq!(found(&out, "C001"), vec![Severity::Warning]);
+    // Two holes, each fed from the initial level Z1 to Z-0.1.
+    let feeds: Vec<_> = out
+        .motions
+        .iter()
+        .filter(|m| m.kind == runtime::MotionKind::Feed)
+        .map(|m| (m.start[2], m.end[2]))
+        .collect();
+    assert_eq!(feeds, vec![(1.0, -0.1), (1.0, -0.1)], "{:?}", out.motions);
+    assert_eq!(found(&run_sw(text, ""), "C001"), vec![Severity::Error]);
+    let out = run_ngc("M3 S500\nG0 Z1\nG81 Z-0.1 F10\nM2\n");
+    assert_eq!(found(&out, "C001"), vec![Severity::Error]);
 }
 
 #[test]

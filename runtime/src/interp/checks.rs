@@ -650,7 +650,9 @@ impl Interp<'_, '_> {
                 self.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, format!("in G87 point R ({}) must lie beyond point Z ({}): the back-boring cycle starts below the hole", fmt_len(r / u), fmt_len(z / u)));
             }
         } else if r > init + eps {
-            self.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, format!("point R ({}) is above the initial level ({}): the tool retracts upward to R before drilling", fmt_len(r / u), fmt_len(init / u)));
+            // Advice, not a fault: the cycle rapids up to R and drills from there,
+            // and real programs run that way (FAN081; the tool moves away from the work).
+            self.diag(codes::CYCLE_HYGIENE, Severity::Info, span, format!("point R ({}) is above the initial level ({}): the tool retracts upward to R before drilling", fmt_len(r / u), fmt_len(init / u)));
         } else if z > r + eps {
             self.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, format!("point Z ({}) is above point R ({}): R must lie between the initial level and Z", fmt_len(z / u), fmt_len(r / u)));
         }

@@ -24,7 +24,9 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// All. Error.
+    /// RS274/NGC and ServoWorks: error, and the dry run stops. FANUC: a missing R is a
+    /// warning (FAN090); after it the dry run continues as if R were the initial level,
+    /// where the cycle then starts its feed. A missing Z is an error everywhere.
     ///
     /// Implements: SW126, NGC301, NGC302, NGC306, FAN090
     pub static CYCLE_MISSING = {

@@ -71,16 +71,31 @@ impl Interp<'_, '_> {
         if let Some(z) = w.get(zl) {
             cyc.z = Some(self.lin(z));
         }
-        if cyc.r.is_none() || (ngc && !same && !w.has(b'R')) {
+        if ngc && (cyc.r.is_none() || (!same && !w.has(b'R'))) {
             return Err(self.err(
                 codes::CYCLE_MISSING,
                 span,
-                if ngc {
-                    "R clearance plane unspecified in cycle"
-                } else {
-                    "canned cycle without R (point R level)"
-                },
+                "R clearance plane unspecified in cycle",
             ));
+        }
+        if cyc.r.is_none() && self.dialect == Dialect::Servoworks {
+            return Err(self.err(
+                codes::CYCLE_MISSING,
+                span,
+                "canned cycle without R (point R level)",
+            ));
+        }
+        if cyc.r.is_none() {
+            // FANUC (FAN090, a warning): with no point R the cycle
+            // starts its feed at the initial level, which the dry run then uses
+            // as R.
+            self.diag(
+                codes::CYCLE_MISSING,
+                Severity::Warning,
+                span,
+                "canned cycle without R (point R level): the cycle feeds from the initial level. Give R to start the feed closer to the work",
+            );
+            cyc.r = Some(self.st.cycle.initial.unwrap_or(self.st.pos[n]));
         }
         if cyc.z.is_none() || (ngc && !same && !w.has(zl)) {
             return Err(self.err(

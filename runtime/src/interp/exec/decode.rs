@@ -41,8 +41,7 @@ impl Interp<'_, '_> {
                     // rs274 reads `%` as a bad character.
                     return Err(self.err(codes::INTERP, block.span, "Bad character '%' used"));
                 }
-                if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_content_before(&prog, bi)
-                {
+                if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_code_before(&prog, bi) {
                     self.saw_end = true;
                     return Ok(Flow::Stop);
                 }
@@ -384,6 +383,18 @@ impl Interp<'_, '_> {
             .iter()
             .take(bi as usize)
             .any(|b| b.kind == BlockKind::Normal && !p.items_of(b).is_empty())
+    }
+
+    /// Whether a block before `bi` holds more than comments: on FANUC, comment
+    /// lines before the first `%` are tape leader (a `(partscope: dialect=…)`
+    /// line, a title), so that `%` opens the program instead of ending it.
+    pub(super) fn seen_code_before(&self, p: &Program, bi: u32) -> bool {
+        p.blocks.iter().take(bi as usize).any(|b| {
+            b.kind == BlockKind::Normal
+                && p.items_of(b)
+                    .iter()
+                    .any(|i| !matches!(i.kind, ItemKind::Comment(_)))
+        })
     }
 
     /// FANUC decimal-point rules and ServoWorks integer machine units.
