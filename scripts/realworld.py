@@ -190,6 +190,8 @@ def dry_run(binary: Path, file: Path, dialect: str | None) -> tuple[str | None, 
     except json.JSONDecodeError:
         return None, None
     named = doc.pop("dialect", None) if isinstance(doc, dict) else None
+    if isinstance(doc, dict):
+        doc.pop("dialect_reason", None)
     return json.dumps(doc, sort_keys=True), named
 
 
@@ -209,9 +211,13 @@ def measure(p: Program, binary: Path, mirrors: Path, cache: Path) -> Outcome:
     if sniffed_named:
         out.detected = str(sniffed_named)
         return out
-    # The output does not name the dialect: the dry run without --dialect is
-    # identical (findings, cycle time, distances) to the run of one forced dialect.
-    sniffed, _ = dry_run(binary, file, None)
+    # `run --format json` names the dialect it chose (`dialect`); older binaries
+    # do not, and then the dry run without --dialect is identical (findings,
+    # cycle time, distances) to the run of one forced dialect.
+    sniffed, sniffed_named = dry_run(binary, file, None)
+    if sniffed_named:
+        out.detected = str(sniffed_named)
+        return out
     if sniffed is None:
         out.detected = "run failed"
         return out

@@ -89,6 +89,10 @@ impl FsResolver {
 }
 
 impl Resolver for FsResolver {
+    fn searches_like_the_control(&self) -> bool {
+        !self.search.is_empty()
+    }
+
     fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile> {
         if name.is_empty() || name.contains(['/', '\\']) || name.contains("..") {
             return None;

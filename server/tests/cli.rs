@@ -417,8 +417,22 @@ fn subroutine_path_and_config_elsewhere_in_the_project() {
     );
     let main = write(&dir, "lib/jobs/main.ngc", b"o<drill> call\nM2\n");
     let main = main.to_str().unwrap();
-    let (_, diags) = check_json(&[main]);
-    assert_eq!(codes(&diags), vec![("F002".into(), 1, "error".into())]);
+    // Without a search path the dry run cannot know the sub is missing.
+    let (code, diags) = check_json(&[main]);
+    assert_eq!(
+        (code, codes(&diags)),
+        (0, vec![("F002".into(), 1, "info".into())])
+    );
+    write(
+        &dir,
+        "lib/jobs/partscope.toml",
+        b"[machine]\nsubroutine_path = \"nowhere\"\n",
+    );
+    let (code, diags) = check_json(&[main]);
+    assert_eq!(
+        (code, codes(&diags)),
+        (1, vec![("F002".into(), 1, "error".into())])
+    );
     write(
         &dir,
         "lib/jobs/partscope.toml",

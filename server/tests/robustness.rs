@@ -704,7 +704,13 @@ fn numeric_limits_print_readable_cycle_times() {
         let o = run(&["run", &file.to_string_lossy()], &dir);
         let out = String::from_utf8_lossy(&o.stdout);
         assert_eq!(o.code, code, "{name}: {out}");
-        assert_eq!(out.lines().nth(1), Some(line), "{name}: {out}");
+        // Line 2 names the dialect; the cycle time follows it.
+        assert_eq!(
+            out.lines().nth(1),
+            Some("  dialect          rs274ngc  (the `.ngc` extension)"),
+            "{name}: {out}"
+        );
+        assert_eq!(out.lines().nth(2), Some(line), "{name}: {out}");
     }
     let file = dir.join("zero_arc.ngc");
     std::fs::write(

@@ -4,7 +4,7 @@ use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::span::Span;
-use crate::syntax::{BlockKind, ItemKind, OKeyword, Program};
+use crate::syntax::{BlockKind, ItemKind, Program};
 
 use super::macro_loop_structure::literal;
 use super::util::{fanuc_call_start, has_code_items, lit};
@@ -133,20 +133,7 @@ impl Rule for ProgramEnd {
                     return;
                 }
                 // A file that only defines subroutines is a library called by others.
-                let mut depth = 0i32;
-                let mut top_level_code = false;
-                for b in &code_blocks {
-                    let ow = p.items_of(b).iter().find_map(|i| match i.kind {
-                        ItemKind::OWord(o) => o.keyword,
-                        _ => None,
-                    });
-                    match ow {
-                        Some(OKeyword::Sub) => depth += 1,
-                        Some(OKeyword::Endsub) => depth -= 1,
-                        _ if depth <= 0 => top_level_code = true,
-                        _ => {}
-                    }
-                }
+                let top_level_code = !p.is_ngc_library();
                 if top_level_code && !ends(&[2.0, 30.0]) {
                     out.push(Diagnostic::error(
                         "P005",

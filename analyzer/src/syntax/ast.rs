@@ -515,6 +515,39 @@ pub struct Program {
 }
 
 impl Program {
+    /// An RS274/NGC subroutine library: `o<name> sub … endsub` definitions, and
+    /// outside them nothing but comments, parameter assignments (a library may
+    /// initialise its globals) and `%` lines. LinuxCNC calls it by name and
+    /// never reads it as a main program, so it needs no M2.
+    pub fn is_ngc_library(&self) -> bool {
+        if self.dialect != Dialect::Rs274ngc {
+            return false;
+        }
+        let (mut depth, mut subs) = (0usize, 0usize);
+        for b in &self.blocks {
+            if b.kind != BlockKind::Normal {
+                continue;
+            }
+            for it in self.items_of(b) {
+                match it.kind {
+                    ItemKind::Comment(_) => {}
+                    ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub) => {
+                        depth += 1;
+                        subs += 1;
+                    }
+                    ItemKind::OWord(o) if o.keyword == Some(OKeyword::Endsub) => {
+                        depth = depth.saturating_sub(1);
+                    }
+                    _ if depth > 0 => {}
+                    ItemKind::Assign { .. } => {}
+                    // Code outside every definition: the file is a main program.
+                    _ => return false,
+                }
+            }
+        }
+        subs > 0
+    }
+
     pub fn items_of(&self, block: &Block) -> &[Item] {
         self.items
             .get(block.items.0 as usize..block.items.1 as usize)

@@ -222,37 +222,13 @@ impl<'a> FileEntry<'a> {
 }
 
 /// A subprogram file, which only its callers can run meaningfully: an
-/// RS274/NGC file that holds `o<name> sub … endsub` definitions and nothing
-/// else but comments and `%` lines (LinuxCNC calls it by name and never reads it
-/// as a main program, so it needs no M2), or a FANUC/ServoWorks file that
+/// RS274/NGC library ([`Program::is_ngc_library`]), or a FANUC/ServoWorks file that
 /// returns with M99 and never ends with M2/M30 (run on its own, M99 would
 /// restart it forever, and its arguments `#1`… would be vacant).
 pub fn is_subprogram_file(program: &Program) -> bool {
-    use analyzer::syntax::{BlockKind, ItemKind, OKeyword};
+    use analyzer::syntax::ItemKind;
     if program.dialect == analyzer::Dialect::Rs274ngc {
-        let mut depth = 0usize;
-        let mut subs = 0usize;
-        for b in &program.blocks {
-            if b.kind != BlockKind::Normal {
-                continue;
-            }
-            for it in program.items_of(b) {
-                match it.kind {
-                    ItemKind::Comment(_) => {}
-                    ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub) => {
-                        depth += 1;
-                        subs += 1;
-                    }
-                    ItemKind::OWord(o) if o.keyword == Some(OKeyword::Endsub) => {
-                        depth = depth.saturating_sub(1);
-                    }
-                    _ if depth > 0 => {}
-                    // Code outside every definition: the file is a main program.
-                    _ => return false,
-                }
-            }
-        }
-        return subs > 0;
+        return program.is_ngc_library();
     }
     let m = |v: f64| {
         program.items.iter().any(|it| match &it.kind {

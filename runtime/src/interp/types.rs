@@ -24,6 +24,14 @@ pub trait Resolver {
     fn cancelled(&self) -> bool {
         false
     }
+
+    /// Whether the host searched every folder the control would (for LinuxCNC,
+    /// its SUBROUTINE_PATH), so that a name it cannot resolve is really missing.
+    /// A host without that configuration answers `false`, and an unresolved
+    /// RS274/NGC subroutine is then information, not an error.
+    fn searches_like_the_control(&self) -> bool {
+        true
+    }
 }
 
 /// How many executed blocks pass between two [`Resolver::cancelled`] polls.

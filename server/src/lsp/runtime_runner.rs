@@ -44,6 +44,10 @@ struct WorkspaceResolver<'a> {
 }
 
 impl Resolver for WorkspaceResolver<'_> {
+    fn searches_like_the_control(&self) -> bool {
+        !self.subroutine_path.is_empty()
+    }
+
     fn resolve(&self, name: &str, _from: FileId) -> Option<ResolvedFile> {
         let doc = self.doc.as_deref()?;
         let path = workspace::find_program_file(

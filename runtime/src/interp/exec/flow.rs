@@ -338,6 +338,17 @@ impl Interp<'_, '_> {
                     self.cur_line + 1
                 ));
             }
+            if !self.input.resolver.searches_like_the_control() {
+                // LinuxCNC would also look in PROGRAM_PREFIX and SUBROUTINE_PATH,
+                // which nobody configured here: the file may well be on the machine.
+                return Err(Diagnostic::new(
+                    codes::SUB_NOT_FOUND,
+                    Severity::Info,
+                    span,
+                    format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found beside it; LinuxCNC also searches its SUBROUTINE_PATH, so the dry run stops here. Set machine.subroutine_path (or ini) to check the call"),
+                )
+                .in_file(self.file_id()));
+            }
             return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
