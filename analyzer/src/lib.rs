@@ -3,6 +3,7 @@
 
 #![forbid(unsafe_code)]
 
+pub mod control;
 pub mod diagnostic;
 pub mod dialect;
 pub mod incremental;
@@ -11,6 +12,7 @@ pub mod settings;
 pub mod span;
 pub mod syntax;
 
+pub use control::{control_signature, Control, Evidence, Signature};
 pub use diagnostic::{Diagnostic, FileId, Fix, Related, Severity, TextEdit};
 pub use dialect::{Dialect, Variant};
 pub use settings::{Config, Settings, Suppressions};
@@ -118,6 +120,22 @@ pub fn reports_l009(parsed: &Parsed, settings: &Settings) -> bool {
     !l009.is_empty() && !finish(&parsed.program, settings, l009).is_empty()
 }
 
+/// The code of [`rules::control_mismatch`]: a lathe or Haas program in the `fanuc` dialect.
+const MISMATCH: &str = "P010";
+
+/// Whether [`analyze`] would report `P010` (the program looks written for a lathe or a
+/// Haas mill, and the report is neither disabled nor suppressed): hosts then skip the
+/// interpreter, whose findings and cycle time would mean nothing.
+pub fn reports_mismatch(parsed: &Parsed, settings: &Settings) -> bool {
+    if parsed.binary {
+        return false;
+    }
+    match rules::control_mismatch::mismatch_diagnostic(&parsed.program) {
+        Some(d) => !finish(&parsed.program, settings, vec![d]).is_empty(),
+        None => false,
+    }
+}
+
 /// Applies rule selection and suppression comments, and sorts. Hosts call this
 /// on the runtime's diagnostics too.
 pub fn finish(
@@ -149,6 +167,14 @@ pub fn finish(
         };
         enabled && (d.file != FileId(0) || !sup.is_suppressed(program, d))
     });
+    // A program for another control (P010) gets that one finding: the others would
+    // only describe the mismatch, many times over.
+    if diagnostics
+        .iter()
+        .any(|d| d.code == MISMATCH && d.file == FileId(0))
+    {
+        diagnostics.retain(|d| d.code == MISMATCH && d.file == FileId(0));
+    }
     diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
     diagnostics.dedup_by(|a, b| {
         a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message

@@ -504,3 +504,49 @@ fn fanuc_calls_find_programs_by_their_head() {
     let (code, diags) = check_json(&["--dialect", "fanuc", main.to_str().unwrap()]);
     assert_eq!((code, codes(&diags)), (0, vec![]), "{diags:?}");
 }
+
+/// A lathe program written for this test: T0101, G50 S, G71/G70 P Q, G28 U W.
+const LATHE: &[u8] = b"%\nO3100 (SHAFT)\nG20 G18 G40\nG28 U0. W0.\nT0101\nG50 S2000\nG96 S500 M03\nG00 X1.8 Z0.1\nG71 P10 Q20 U0.02 W0.005 D0.03 F0.01\nN10 G00 X0.9\nG01 Z-0.8\nN20 X1.8\nG70 P10 Q20 F0.004\nG28 U0. W0.\nM30\n%\n";
+
+#[test]
+fn a_lathe_program_checked_as_fanuc_gets_exactly_one_diagnostic() {
+    let dir = tempdir("lathe-mismatch");
+    let p = write(&dir, "shaft.nc", LATHE);
+    let path = p.to_str().unwrap();
+    let (code, diags) = check_json(&["--dialect", "fanuc", path]);
+    // A warning fails `check` at the default fail level: an unchecked program does not pass.
+    assert_eq!(code, 1);
+    assert_eq!(
+        codes(&diags),
+        vec![("P010".to_string(), 4, "warning".to_string())]
+    );
+    assert_eq!(
+        diags[0]["message"].as_str().unwrap(),
+        "This looks like a FANUC or Haas lathe program (G28 U0. W0. on line 4, T0101 on line 5, G50 S2000 on line 6, G71 P10 Q20 on line 9): Partscope checks FANUC 30i mill programs; lathe programs are not checked. No other finding and no cycle time is reported for this file."
+    );
+    // Without P010 the same program floods (U and W are not mill axes): what it replaces.
+    let (_, flood) = check_json(&["--dialect", "fanuc", "--ignore", "P010", path]);
+    assert!(flood.len() >= 5, "{flood:?}");
+    assert!(flood.iter().all(|d| d["code"] != "P010"));
+}
+
+#[test]
+fn run_reports_no_cycle_time_for_a_lathe_program() {
+    let dir = tempdir("lathe-run");
+    let p = write(&dir, "shaft.nc", LATHE);
+    let out = bin()
+        .args(["run", "--format", "json", "--dialect", "fanuc"])
+        .arg(&p)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["cycle_time_s"], Value::Null);
+    assert_eq!(v["distance_mm"], Value::Null);
+    assert_eq!(v["partial"], Value::Bool(true));
+    let diags = v["diagnostics"].as_array().unwrap();
+    assert_eq!(
+        codes(diags),
+        vec![("P010".to_string(), 4, "warning".to_string())]
+    );
+}

@@ -68,6 +68,7 @@ mod word_value_range;
 pub use context::{BlockCode, BlockCx, BlockWords, Interest, ProgramCx, Seg};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
+pub(crate) mod control_mismatch;
 mod word_without_user;
 
 use crate::diagnostic::Diagnostic;

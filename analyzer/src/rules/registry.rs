@@ -13,6 +13,7 @@ use super::code_not_on_variant::{CodeNotOnVariant, CODE_NOT_ON_VARIANT};
 use super::comment_use::{CommentUse, COMMENT_USE};
 use super::conflicting_words::{ConflictingWords, CONFLICTING_WORDS};
 use super::constant_expression::{ConstantExpression, CONSTANT_EXPRESSION};
+use super::control_mismatch::{ControlMismatch, CONTROL_MISMATCH};
 use super::control_notes::{ControlNotes, CONTROL_NOTES};
 use super::cycle_words::{CycleWords, CYCLE_WORDS};
 use super::dlacc_form::{DlaccForm, DLACC_FORM};
@@ -110,6 +111,7 @@ pub static RULES: &[&RuleMeta] = &[
     &SEQUENCE_NUMBER,
     &OWORD_CALLS,
     &ENDLESS_LOOP,
+    &CONTROL_MISMATCH,
     &LINE_NUMBERS,
     &LINE_NUMBER_ORDER,
     &RADIUS_ARC,
@@ -163,6 +165,7 @@ pub static STATIC_RULES: &[&dyn Rule] = &[
     &SequenceNumber,
     &OwordCalls,
     &EndlessLoop,
+    &ControlMismatch,
     &LineNumbers,
     &LineNumberOrder,
     &RadiusArc,

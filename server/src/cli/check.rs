@@ -112,7 +112,11 @@ fn check_file(
             .and_then(|n| n.to_str())
             .is_some_and(|n| n.starts_with('O')))
         || runtime::interp::files::is_subprogram_file(&parsed.program);
-    let interpret = !args.no_run && !is_subprogram && !analyzer::reports_l009(&parsed, &settings);
+    // Neither a binary file nor a program for another control (P010) is interpreted.
+    let interpret = !args.no_run
+        && !is_subprogram
+        && !analyzer::reports_l009(&parsed, &settings)
+        && !analyzer::reports_mismatch(&parsed, &settings);
     // The static rules and the interpreter only read the syntax tree: they run side by
     // side, on two cores when the pool has them free.
     let (mut diagnostics, run) = rayon::join(

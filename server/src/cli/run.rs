@@ -255,6 +255,18 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
+    if analyzer::reports_mismatch(&parsed, &settings) {
+        // A lathe or Haas program: a cycle time read as a FANUC mill would mean nothing.
+        let report = FileReport {
+            path: args.file.clone(),
+            text,
+            diagnostics: analyzer::lint(&parsed, &settings),
+            io_error: false,
+            extra_files: Vec::new(),
+            dialect: Some((dialect, dialect_reason)),
+        };
+        return mismatch_output(&args, &report);
+    }
     let resolver = crate::resolve::FsResolver::new(
         &args.file,
         Some(&crate::resolve::project_root(&args.file)),
@@ -498,6 +510,61 @@ fn plan_beside(
             (out, totals.unwrap_or_default())
         }
     }
+}
+
+/// The output of `run` for a program written for another control (P010): the
+/// diagnostic, no figures (`cycle_time_s` and the other totals are null, `partial`
+/// is true in JSON).
+fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
+    let stdout = std::io::stdout();
+    let mut w = std::io::BufWriter::new(stdout.lock());
+    let located = output::locate(std::slice::from_ref(report));
+    let res = if args.format == RunFormat::Json && args.emit.is_none() {
+        let diags: Vec<serde_json::Value> = located
+            .iter()
+            .map(|l| {
+                json!({"path": l.path, "line": l.line, "column": l.column, "end_line": l.end_line, "end_column": l.end_column,
+                       "code": l.d.code, "severity": l.d.severity.as_str(), "message": l.d.message})
+            })
+            .collect();
+        let (dialect, dialect_reason) = output::dialect_fields(report);
+        let v = json!({
+            "dialect": dialect,
+            "dialect_reason": dialect_reason,
+            "cycle_time_s": null,
+            "motion_s": null,
+            "rapid_s": null,
+            "cutting_s": null,
+            "dwell_s": null,
+            "tool_change_s": null,
+            "other_s": null,
+            "distance_mm": null,
+            "per_tool": {},
+            "partial": true,
+            "diagnostics": diags,
+        });
+        serde_json::to_writer_pretty(&mut w, &v)
+            .map_err(std::io::Error::other)
+            .and_then(|_| writeln!(w))
+    } else {
+        // Emits and pictures are not made either; the reason goes where a human reads it.
+        let mut r = writeln!(w, "{}", args.file.display()).and_then(|_| {
+            writeln!(
+                w,
+                "  cycle time   not computed: the program is not for a FANUC 30i mill"
+            )
+        });
+        for l in &located {
+            if r.is_ok() {
+                r = writeln!(w, "  {}:{} {} {}", l.line, l.column, l.d.code, l.d.message);
+            }
+        }
+        r
+    };
+    if let Err(e) = res.and_then(|_| w.flush()) {
+        return fail(format_args!("cannot write output: {e}"));
+    }
+    exit_status(report)
 }
 
 /// 1 when the run reported an error, else success.

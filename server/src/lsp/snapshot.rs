@@ -151,7 +151,16 @@ impl Snapshot {
         if let Some(r) = self.run.get() {
             return r.clone();
         }
-        if self.syntax_only {
+        // A program for another control (P010, which is then the only static
+        // finding) is not interpreted: its findings and cycle time would mean nothing.
+        if self.syntax_only
+            || self
+                .inc
+                .analysis
+                .diagnostics
+                .iter()
+                .any(|d| d.code == "P010")
+        {
             return None;
         }
         // One run per version: a second caller waits for the first run

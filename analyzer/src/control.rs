@@ -1,0 +1,294 @@
+//! Recognises programs written for a control Partscope does not model (a FANUC or
+//! Haas lathe, a Haas mill) when they are checked in the `fanuc` dialect, which
+//! models the FANUC 30i mill. Checked as a mill, such a program gets a flood of
+//! findings and a meaningless cycle time; one clear diagnostic (P010) is more use.
+//!
+//! One sign is never enough: each sign alone also occurs in ordinary mill
+//! programs (a `T101` tool number, a `G99` return level, a 5-digit O number on a
+//! control with the 8-digit option). A signature needs two signs of different kinds.
+
+use crate::dialect::Dialect;
+use crate::span::Span;
+use crate::syntax::{Block, ItemKind, Program, Word};
+
+/// The control a program looks written for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Control {
+    /// A lathe (T system): FANUC, or Haas when `haas` (a Haas-only sign is present too).
+    Lathe { haas: bool },
+    /// A Haas mill.
+    HaasMill,
+}
+
+impl Control {
+    /// How the diagnostic names the control.
+    pub fn name(self) -> &'static str {
+        match self {
+            Control::Lathe { haas: true } => "a Haas lathe",
+            Control::Lathe { haas: false } => "a FANUC or Haas lathe",
+            Control::HaasMill => "a Haas mill",
+        }
+    }
+}
+
+/// One piece of evidence: what was written, and where.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Evidence {
+    pub span: Span,
+    /// 0-based line.
+    pub line: u32,
+    /// The words as written, e.g. `G71 P10 Q20`.
+    pub text: String,
+}
+
+/// What a program looks written for, with the first evidence of each kind in file order.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Signature {
+    pub control: Control,
+    pub evidence: Vec<Evidence>,
+}
+
+impl Signature {
+    /// The evidence in words: "T0101 on line 4, G71 P10 Q20 on line 9".
+    pub fn describe(&self) -> String {
+        let parts: Vec<String> = self
+            .evidence
+            .iter()
+            .map(|e| format!("{} on line {}", e.text, e.line + 1))
+            .collect();
+        parts.join(", ")
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Sign {
+    // Lathe signs.
+    LatheTool,
+    SpeedClamp,
+    TurningCycle,
+    ReferenceUw,
+    FeedPerRev,
+    // Haas signs.
+    Haas187,
+    Haas103,
+    FiveDigitO,
+    DwellSeconds,
+    LocalCall,
+    Haas154,
+}
+
+impl Sign {
+    fn lathe(self) -> bool {
+        self <= Sign::FeedPerRev
+    }
+}
+
+fn lit_of(w: &Word) -> Option<f64> {
+    w.num().map(|n| n.value)
+}
+
+fn code_in(program: &Program, b: &Block, letter: u8, v: f64) -> bool {
+    program
+        .words(b)
+        .any(|(_, w)| w.letter == letter && !w.comma && lit_of(w) == Some(v))
+}
+
+/// The text of the block's words with these letters, in the order written.
+fn words_text(program: &Program, b: &Block, letters: &[u8]) -> (Span, String) {
+    let mut span: Option<Span> = None;
+    let mut parts = Vec::new();
+    for (it, w) in program.words(b) {
+        if !w.comma && letters.contains(&w.letter) {
+            span = Some(match span {
+                Some(s) => Span::new(s.start, it.span.end),
+                None => it.span,
+            });
+            parts.push(program.str_of(it.span).trim().to_string());
+        }
+    }
+    (span.unwrap_or(b.span), parts.join(" "))
+}
+
+/// The lathe- or Haas-style signs of one block.
+fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign, Evidence)>) {
+    let mut push = |sign: Sign, (span, text): (Span, String)| {
+        out.push((
+            sign,
+            Evidence {
+                span,
+                line: b.line,
+                text,
+            },
+        ))
+    };
+    let has = |letter: u8| {
+        program
+            .words(b)
+            .any(|(_, w)| w.letter == letter && !w.comma)
+    };
+    for it in program.items_of(b) {
+        if let ItemKind::ProgramHead {
+            name,
+            number: Some(_),
+        } = it.kind
+        {
+            let digits = program.slice(name);
+            if digits.len() == 5 && digits.iter().all(u8::is_ascii_digit) {
+                push(
+                    Sign::FiveDigitO,
+                    (it.span, program.str_of(it.span).trim().to_string()),
+                );
+            }
+        }
+    }
+    for (it, w) in program.words(b) {
+        let Some(n) = w.num() else { continue };
+        if w.comma {
+            continue;
+        }
+        let word = || (it.span, program.str_of(it.span).trim().to_string());
+        let v = n.value;
+        let whole = v.fract() == 0.0 && v >= 0.0 && !n.has_point;
+        match w.letter {
+            // A lathe T word selects tool and offset together: T0101, T202.
+            b'T' if whole && (101.0..10000.0).contains(&v) => {
+                let t = v as u32;
+                let written_four = n.digits == 4 && t < 1000;
+                if !t.is_multiple_of(100) && (written_four || t / 100 == t % 100) {
+                    push(Sign::LatheTool, word());
+                }
+            }
+            b'G' if v == 50.0 && has(b'S') => push(Sign::SpeedClamp, words_text(program, b, b"GS")),
+            b'G' if (v == 70.0 || v == 71.0 || v == 72.0) && has(b'P') && has(b'Q') => {
+                let (span, text) = words_text(program, b, b"PQ");
+                let g = program.str_of(it.span).trim().to_string();
+                push(
+                    Sign::TurningCycle,
+                    (
+                        Span::new(it.span.start, span.end.max(it.span.end)),
+                        format!("{g} {text}"),
+                    ),
+                );
+            }
+            b'G' if v == 28.0 && (has(b'U') || has(b'W')) => {
+                push(Sign::ReferenceUw, words_text(program, b, b"GUW"))
+            }
+            // On a mill G99 returns a canned cycle to the R level; without any
+            // drilling cycle in the file it is a lathe's feed per revolution.
+            b'G' if v == 99.0 && !drilling => push(Sign::FeedPerRev, word()),
+            b'G' if v == 187.0 => push(Sign::Haas187, word()),
+            b'G' if v == 103.0 => push(Sign::Haas103, word()),
+            b'G' if v == 154.0 && has(b'P') => push(Sign::Haas154, words_text(program, b, b"GP")),
+            b'M' if v == 97.0 && has(b'P') => push(Sign::LocalCall, words_text(program, b, b"MP")),
+            // FANUC reads G04 P as whole milliseconds; Haas takes seconds with a point.
+            b'P' if n.has_point && code_in(program, b, b'G', 4.0) => {
+                push(Sign::DwellSeconds, words_text(program, b, b"GP"))
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Whether the program uses a drilling canned cycle (G73, G74, G76, G81–G89).
+fn has_drilling(program: &Program) -> bool {
+    program.blocks.iter().any(|b| {
+        program.words(b).any(|(_, w)| {
+            w.letter == b'G'
+                && !w.comma
+                && lit_of(w)
+                    .is_some_and(|v| matches!(v as i64, 73 | 74 | 76 | 81..=89) && v.fract() == 0.0)
+        })
+    })
+}
+
+/// What a FANUC-dialect program looks written for, if not the FANUC 30i mill:
+/// a lathe needs two kinds of lathe sign, a Haas mill two kinds of Haas sign.
+/// Other dialects, and programs with fewer signs, give `None`.
+pub fn control_signature(program: &Program) -> Option<Signature> {
+    if program.dialect != Dialect::Fanuc {
+        return None;
+    }
+    let drilling = has_drilling(program);
+    let mut found = Vec::new();
+    for b in &program.blocks {
+        block_signs(program, b, drilling, &mut found);
+    }
+    // The first evidence of each kind, in file order.
+    let mut firsts: Vec<(Sign, Evidence)> = Vec::new();
+    for (s, e) in found {
+        if !firsts.iter().any(|(k, _)| *k == s) {
+            firsts.push((s, e));
+        }
+    }
+    let lathe = firsts.iter().filter(|(s, _)| s.lathe()).count();
+    let haas = firsts.len() - lathe;
+    let (control, keep): (Control, fn(Sign) -> bool) = if lathe >= 2 {
+        (Control::Lathe { haas: haas > 0 }, |_| true)
+    } else if haas >= 2 {
+        (Control::HaasMill, |s| !s.lathe())
+    } else {
+        return None;
+    };
+    let evidence = firsts
+        .into_iter()
+        .filter(|(s, _)| keep(*s))
+        .map(|(_, e)| e)
+        .collect();
+    Some(Signature { control, evidence })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sig(src: &str) -> Option<Signature> {
+        let settings = crate::Settings::new(Dialect::Fanuc);
+        control_signature(&crate::analyze(src.as_bytes().to_vec(), &settings).program)
+    }
+
+    #[test]
+    fn a_lathe_program_is_named_with_its_evidence_in_file_order() {
+        let s = sig("%\nO10\nG18\nT0101\nG0 X2. Z0.1\nG71 P10 Q20 U0.01 W0 D0.025 F0.02\nN10 G1 X1.\nN20 Z-1.\nM30\n%\n")
+            .expect("a lathe");
+        assert_eq!(s.control, Control::Lathe { haas: false });
+        assert_eq!(s.describe(), "T0101 on line 4, G71 P10 Q20 on line 6");
+        assert_eq!(s.evidence[0].line, 3);
+    }
+
+    #[test]
+    fn a_haas_sign_beside_lathe_signs_names_a_haas_lathe() {
+        let s = sig("O58214\nG50 S1600\nT101\nG04 P3.\nM30\n").expect("a lathe");
+        assert_eq!(s.control, Control::Lathe { haas: true });
+        assert_eq!(
+            s.describe(),
+            "O58214 on line 1, G50 S1600 on line 2, T101 on line 3, G04 P3. on line 4"
+        );
+    }
+
+    #[test]
+    fn a_haas_mill_needs_two_kinds_of_haas_sign() {
+        let s = sig("O01000\nG187 P1\nG0 X0 Y0\nM30\n").expect("a Haas mill");
+        assert_eq!(s.control, Control::HaasMill);
+        assert_eq!(s.describe(), "O01000 on line 1, G187 on line 2");
+        assert_eq!(sig("O01000\nG0 X0 Y0\nM30\n"), None);
+        assert_eq!(sig("O1000\nG04 P1.\nG04 P2.\nM30\n"), None);
+    }
+
+    #[test]
+    fn one_sign_or_one_kind_twice_is_an_ordinary_mill_program() {
+        // A tool numbered 101, and G99 among the drilling cycles, are mill usage.
+        assert_eq!(sig("O1\nT101 M6\nG0 X0 Y0\nM30\n"), None);
+        assert_eq!(sig("O1\nT0101 M6\nT0202 M6\nM30\n"), None);
+        assert_eq!(sig("O1\nT0101 M6\nG99 G81 Z-5. R2. F100\nG80\nM30\n"), None);
+        assert_eq!(sig("O1\nG50 S2000\nG50 S3000\nM30\n"), None);
+        // G99 with no drilling cycle in the file is a lathe's feed per revolution.
+        assert!(sig("O1\nT0101\nG99\nG1 X1. F0.01\nM30\n").is_some());
+    }
+
+    #[test]
+    fn other_dialects_are_not_examined() {
+        let settings = crate::Settings::new(Dialect::Rs274ngc);
+        let p = crate::analyze(b"T0101\nG50 S2000\nM2\n".to_vec(), &settings).program;
+        assert_eq!(control_signature(&p), None);
+    }
+}
