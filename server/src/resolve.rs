@@ -119,21 +119,9 @@ impl Resolver for FsResolver {
                 let Some(canonical) = self.inside_root(&p) else {
                     continue;
                 };
-                let Ok(text) = std::fs::read(&canonical) else {
-                    continue;
-                };
-                if let Ok(mut d) = self.dirs.lock() {
-                    d.push(
-                        canonical
-                            .parent()
-                            .map(|p| p.to_path_buf())
-                            .unwrap_or_default(),
-                    );
+                if let Some(found) = self.load(&p, &canonical) {
+                    return Some(found);
                 }
-                return Some(ResolvedFile {
-                    path: p.display().to_string(),
-                    text: text.into(),
-                });
             }
         }
         // A control finds a program by the O number of its head, not by a file
@@ -150,6 +138,26 @@ impl Resolver for FsResolver {
             return self.by_program_head(&dir, number);
         }
         None
+    }
+}
+
+impl FsResolver {
+    /// Reads a found file and records its folder as the one its own calls
+    /// search first.
+    fn load(&self, path: &Path, canonical: &Path) -> Option<ResolvedFile> {
+        let text = std::fs::read(canonical).ok()?;
+        if let Ok(mut d) = self.dirs.lock() {
+            d.push(
+                canonical
+                    .parent()
+                    .map(Path::to_path_buf)
+                    .unwrap_or_default(),
+            );
+        }
+        Some(ResolvedFile {
+            path: path.display().to_string(),
+            text: text.into(),
+        })
     }
 }
 
@@ -189,21 +197,9 @@ impl FsResolver {
             if first_program_number(&head) != Some(number) {
                 continue;
             }
-            let Ok(text) = std::fs::read(&canonical) else {
-                continue;
-            };
-            if let Ok(mut d) = self.dirs.lock() {
-                d.push(
-                    canonical
-                        .parent()
-                        .map(Path::to_path_buf)
-                        .unwrap_or_default(),
-                );
+            if let Some(found) = self.load(&p, &canonical) {
+                return Some(found);
             }
-            return Some(ResolvedFile {
-                path: p.display().to_string(),
-                text: text.into(),
-            });
         }
         None
     }
