@@ -5,13 +5,16 @@ use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
 use crate::syntax::{BinOp, Expr};
 
+use super::macro_loop_structure::literal;
 use super::util::{block_exprs, expr_nodes};
 use super::{BlockCx, Interest, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
     /// Flags FANUC conditions that compare with `EQ` or `NE` against a number that is not
-    /// a whole number, such as `IF [#1 EQ 0.1] GOTO 10`.
+    /// a whole number, such as `IF [#1 EQ 0.1] GOTO 10`. A read of the modal information
+    /// (`#4001`–`#4130`, `#4201`–`#4330`) holds the G code as written, so
+    /// `IF [#4014 EQ 54.1]` is exact and not flagged.
     ///
     /// ## Why is this bad?
     /// Computed values carry rounding errors, so an exact comparison with a fraction may
@@ -78,7 +81,13 @@ impl Rule for EqNonInteger {
                     continue;
                 };
                 let frac = |e| matches!(p.expr(e).expr, Expr::Num(n) if n.value.fract() != 0.0);
-                if frac(lhs) || frac(rhs) {
+                // Modal information (#4001–#4130, and #4201–#4330 for the block
+                // before) holds the G code as written, 54.1 exactly: no rounding.
+                let modal = |e| {
+                    matches!(p.expr(e).expr, Expr::Var { index } if literal(p, index)
+                        .is_some_and(|n| (4001.0..=4130.0).contains(&n) || (4201.0..=4330.0).contains(&n)))
+                };
+                if (frac(lhs) && !modal(rhs)) || (frac(rhs) && !modal(lhs)) {
                     out.push(Diagnostic::warning(
                         "W021",
                         node.span,
