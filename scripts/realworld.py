@@ -48,7 +48,9 @@ DIALECTS = ("servoworks", "rs274ngc", "fanuc")
 # Severities that count as "the program is flagged".
 FLAGGING = ("error", "warning")
 # Sibling files copied next to a program so that its subprogram calls resolve.
-SIBLING_SUFFIXES = ("", ".ngc", ".nc", ".fnc", ".txt", ".dat")
+# The extensions `partscope check` takes for G code (server/src/cli/workspace.rs
+# EXTENSIONS), plus what FANUC and ServoWorks resolvers look for.
+SIBLING_SUFFIXES = ("", ".ngc", ".nc", ".fnc", ".txt", ".dat", ".cnc", ".tap", ".gcode", ".eia", ".min", ".mpf", ".sw")
 MAX_SIBLINGS = 300
 RUN_TIMEOUT_S = 300
 
@@ -235,7 +237,7 @@ def measure(p: Program, binary: Path, mirrors: Path, cache: Path) -> Outcome:
 # program: a user M code file, the tool table, a caller's named parameters or
 # arguments, a subroutine found only through the machine's search path.
 RS274_CONTEXT = ("Unknown m code used: M1", "Requested tool", "Named parameter", "seeking o-word",
-                 "Probe was not tripped", "must be > 0")
+                 "Probe was not tripped", "must be > 0", "Failed to find sub")
 # Failures of a subroutine run without its caller's arguments and modes.
 RS274_SUB_CONTEXT = ("zero feed rate", "divide by zero", "zero spindle speed")
 

@@ -265,9 +265,17 @@ fn tv_m1_two_group1_codes_ngc100() {
     assert_eq!(ngc("G0 G1 X1 F1\nM2\n"), vec![(1, "G001", "error")]);
 }
 
+/// NGC113 is reported on the G80; beside a plain motion code dropping it
+/// changes nothing (the motion code ends the cycle too), so it is information
+/// (`G0 G80` is how CAM posts write it); beside a cycle code the block drills
+/// instead of cancelling, which is the warning the digest asks for.
 #[test]
 fn tv_m2_g80_with_g1_is_dropped_ngc113() {
-    assert_eq!(ngc("G1 G80 X1 F1\nM2\n"), vec![(1, "G001", "warning")]);
+    assert_eq!(ngc("G1 G80 X1 F1\nM2\n"), vec![(1, "G001", "info")]);
+    assert_eq!(
+        ngc("G0 Z5\nG80 G81 X1 Y1 Z-1 R1 F1\nG80\nM2\n"),
+        vec![(2, "G001", "warning")]
+    );
 }
 
 #[test]

@@ -209,15 +209,38 @@ fn cycle_hygiene_vectors() {
         "",
     );
     assert_eq!(found(&out, "C006"), vec![Severity::Info]);
+    // FANUC: G91 under a modal cycle reads the stored R and Z incrementally.
+    let switch = |start: &str, r: &str| {
+        let text =
+            format!("M3 S500\nG90 G0 X0 Y0 Z{start}\nG82 Z-0.2 {r} F10.\nG91 X0.5 L2\nG80\nM30\n");
+        messages(&run_fanuc(&text, ""), "C006")
+            .iter()
+            .map(|m| m.to_string())
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(
+        switch("1.", "R0.1"),
+        vec!["G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again"]
+    );
+    // From the surface (initial level 0) with no R, both readings give R0 and Z-0.2.
+    assert!(switch("0", "").is_empty());
 }
 
-/// FAN090: a FANUC cycle without R is a warning, and the dry run goes on with
-/// the feed starting at the initial level; ServoWorks (SW126) and LinuxCNC stop.
+/// FAN090: a FANUC cycle without R goes on with the feed starting at the
+/// initial level. In a program that never gave R that is its choice
+/// (information, as a Haas program feeding to the surface and drilling from
+/// there does); after a cancel cleared an earlier R it is a warning.
+/// ServoWorks (SW126) and LinuxCNC stop.
 #[test]
 fn cycle_without_r() {
     let text = "M3 S500\nG90 G0 X0 Y0 Z1.\nG81 Z-0.1 F10.\nX1.\nG80\nM30\n";
     let out = run_fanuc(text, "");
-    assert_eq!(found(&out, "C001"), vec![Severity::Warning]);
+    assert_eq!(found(&out, "C001"), vec![Severity::Info]);
+    let cleared = "M3 S500\nG90 G0 X0 Y0 Z1.\nG81 Z-0.1 R0.1 F10.\nG80\nG81 X1. Z-0.1\nG80\nM30\n";
+    assert_eq!(
+        found(&run_fanuc(cleared, ""), "C001"),
+        vec![Severity::Warning]
+    );
     // Two holes, each fed from the initial level Z1 to Z-0.1.
     let feeds: Vec<_> = out
         .motions

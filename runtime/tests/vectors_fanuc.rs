@@ -640,3 +640,80 @@ fn example_8_6_involute_path() {
     let p = curve.point(3.0 * std::f64::consts::PI);
     assert_eq!(format!("{:.5} {:.5}", p[0], p[1]), "1.00000 9.42478");
 }
+
+/// #500–#999 are kept in the machine (fanuc.md §4.1): a robot cell or an
+/// operator sets them, so an alarm reached only because one read as vacant is
+/// information that names the variable, not a certain error.
+#[test]
+fn alarm_behind_a_machine_variable_is_not_certain() {
+    let text = "%\nO2\nIF[#890 NE 1] GOTO2\nM30\nN2 #3000=15 (NOT BY ROBOT)\n%\n";
+    let out = run_fanuc(text, "");
+    let alarms: Vec<_> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "X004")
+        .map(|d| (d.severity, d.message.as_str()))
+        .collect();
+    assert_eq!(
+        alarms,
+        vec![(
+            analyzer::Severity::Info,
+            "macro alarm #3000 = 15 may not fire on the machine: the branch on line 3 read #890, a common variable kept in the machine (#500–#999), whose value this dry run does not know (read as vacant); give it in a variable file (--var-file) to decide"
+        )]
+    );
+    // Given by the variable file, the value is known: #890 = 1 skips the alarm,
+    // #890 = 2 makes it certain.
+    let with_var = |v: &str| {
+        run_full(
+            analyzer::Dialect::Fanuc,
+            text,
+            "",
+            &[],
+            None,
+            Some(&format!("890 {v}\n")),
+        )
+    };
+    assert!(
+        codes(&with_var("1")).is_empty(),
+        "{:?}",
+        with_var("1").diagnostics
+    );
+    let certain = with_var("2");
+    assert_eq!(
+        certain
+            .diagnostics
+            .iter()
+            .map(|d| (d.code, d.severity))
+            .collect::<Vec<_>>(),
+        vec![("X004", analyzer::Severity::Error)]
+    );
+    // Set by the program itself, it is known too.
+    let set = run_fanuc("#890 = 0;\nIF[#890 NE 1] GOTO2;\nM30;\nN2 #3000=15;\n", "");
+    assert_eq!(set.diagnostics[0].severity, analyzer::Severity::Error);
+    // #100–#199 are cleared at power-off: vacant is what the program starts with.
+    let common = run_fanuc("IF[#100 NE 1] GOTO2;\nM30;\nN2 #3000=15;\n", "");
+    assert_eq!(common.diagnostics[0].severity, analyzer::Severity::Error);
+}
+
+/// A handshake loop on a machine variable is waiting, not running away.
+#[test]
+fn wait_loop_on_a_machine_variable() {
+    let out = run_fanuc("N1 IF[#890 EQ 3] GOTO2;\nG04 P1000;\nGOTO1;\nN2 M30;\n", "");
+    let f004: Vec<_> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "F004")
+        .collect();
+    assert_eq!(f004.len(), 1, "{:?}", out.diagnostics);
+    assert_eq!(f004[0].severity, analyzer::Severity::Info);
+    assert!(
+        f004[0]
+            .message
+            .contains("a loop that waits for #890 (tested on line 1)"),
+        "{}",
+        f004[0].message
+    );
+    // A loop that reads nothing from the machine is still a runaway warning.
+    let out = run_fanuc("N1 GOTO 1;\nM30;\n", "");
+    assert_eq!(out.diagnostics[0].severity, analyzer::Severity::Warning);
+}

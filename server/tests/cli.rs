@@ -550,3 +550,23 @@ fn run_reports_no_cycle_time_for_a_lathe_program() {
         vec![("P010".to_string(), 4, "warning".to_string())]
     );
 }
+
+/// A user M code (M100–M199) runs a program file from the machine's
+/// USER_M_PATH: without `machine.user_m_codes` and without a search path the
+/// file may exist on the machine, so it is information and the check goes on;
+/// with the list configured, a code not in it stops LinuxCNC (rs274: "Unknown m
+/// code used").
+#[test]
+fn user_m_code_needs_configuration_to_be_an_error() {
+    let dir = tempdir("userm");
+    let prog = write(&dir, "p.ngc", b"G21\nM101\nG0 X1\nG1 X2 F100\nM2\n");
+    let (_, diags) = check_json(&[prog.to_str().unwrap()]);
+    assert_eq!(codes(&diags), vec![("X009".into(), 2, "info".into())]);
+    write(&dir, "partscope.toml", b"[machine]\nuser_m_codes = [102]\n");
+    let (code, diags) = check_json(&[prog.to_str().unwrap()]);
+    assert_eq!(codes(&diags), vec![("X009".into(), 2, "error".into())]);
+    assert_eq!(code, 1);
+    write(&dir, "partscope.toml", b"[machine]\nuser_m_codes = [101]\n");
+    let (_, diags) = check_json(&[prog.to_str().unwrap()]);
+    assert!(codes(&diags).is_empty(), "{diags:?}");
+}

@@ -36,7 +36,9 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC: error (warning when one of the codes is `G80`, which is dropped); when
+    /// RS274/NGC: error, except for `G80` beside another motion code, which is dropped:
+    /// a warning when that code is a canned cycle (the block drills instead of
+    /// cancelling), information otherwise (`G0 G80` ends the cycle either way); when
     /// only G codes precede the second code, a quick fix splits the line before it.
     /// ServoWorks and FANUC: warning; a quick fix removes the code that has no effect.
     /// Groups come from each dialect's code table; ServoWorks and FANUC group 00 codes are
@@ -87,12 +89,21 @@ impl Rule for ModalGroupConflict {
             let l_name = code_name(d, 'G', ln);
             let diag = match d {
                 Dialect::Rs274ngc if group == 1 && (en.0 == 800 || ln.0 == 800) => {
-                    let (g80, other) = if en.0 == 800 { (*earlier, &l_name) } else { (*later, &e_name) };
-                    Diagnostic::warning(
-                        "G001",
-                        g80.span,
-                        format!("G80 is dropped: {other} on the same line sets the motion mode. Remove the G80, or put it on its own line if the cycle must be cancelled first."),
-                    )
+                    let (g80, other, on) = if en.0 == 800 { (*earlier, &l_name, ln) } else { (*later, &e_name, en) };
+                    if is_drilling_cycle(d, on.0) || on.0 == 760 {
+                        Diagnostic::warning(
+                            "G001",
+                            g80.span,
+                            format!("G80 is dropped: {other} on the same line starts the cycle, so the block drills instead of cancelling. Put the G80 on its own line if the cycle must be cancelled first."),
+                        )
+                    } else {
+                        // `G0 G80` is a common CAM idiom: the motion code ends the cycle anyway.
+                        Diagnostic::info(
+                            "G001",
+                            g80.span,
+                            format!("G80 has no effect: {other} on the same line sets the motion mode, which ends any canned cycle as well."),
+                        )
+                    }
                 }
                 Dialect::Rs274ngc => {
                     let d = Diagnostic::error(

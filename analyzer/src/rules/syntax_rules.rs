@@ -166,7 +166,11 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored).
+    /// RS274/NGC and FANUC: error. ServoWorks: warning (the data is ignored). A UTF-8
+    /// byte-order mark before the first line is one diagnostic: an error in RS274/NGC
+    /// (rs274 stops with `Bad character '\357' used`), information in FANUC and
+    /// ServoWorks, whose manuals say nothing of it; the line after it is read as if the
+    /// mark were not there.
     ///
     /// Implements: SW008, NGC002, NGC011, NGC111
     pub static UNKNOWN_CHARACTER = {

@@ -45,6 +45,8 @@ impl ParseOptions {
     }
 }
 
+/// The UTF-8 encoding of U+FEFF, which some editors put before the first line.
+const BOM: &[u8] = &[0xEF, 0xBB, 0xBF];
 /// Expressions nested deeper than this are cut off with a diagnostic so that
 /// hostile input cannot overflow the stack.
 const MAX_EXPR_DEPTH: u32 = 64;
@@ -368,6 +370,14 @@ impl Parser {
         let line = self.line;
         let item_start = p.items.len() as u32;
         let dialect = self.opts.dialect;
+        // A UTF-8 byte-order mark before the first line: one located diagnostic,
+        // and the line is read as if it were not there.
+        let bom = if start == 0 && text[..content_end].starts_with(BOM) {
+            BOM.len()
+        } else {
+            0
+        };
+        let start = start + bom;
         let content = &text[start..content_end];
         // First and last non-blank bytes decide the line's kind without allocating.
         let first_nb = content.iter().position(|b| !is_ws(*b));
@@ -389,6 +399,15 @@ impl Parser {
             tokens: self.tokens,
             spindle: None,
         };
+        if bom > 0 {
+            let (kind, sev, msg) = if dialect == Dialect::Rs274ngc {
+                (TokenKind::Unknown, Severity::Error, "the file starts with a UTF-8 byte-order mark (bytes EF BB BF), which LinuxCNC reads as a bad character and stops (rs274: Bad character '\\357' used): save the file without it")
+            } else {
+                (TokenKind::Whitespace, Severity::Info, "the file starts with a UTF-8 byte-order mark (bytes EF BB BF): Partscope skips it, but a control that reads the file as ISO/EIA code may not; save the file without it if the control rejects it")
+            };
+            cx.token(0, kind);
+            cx.diag(codes::UNKNOWN_CHARACTER, sev, Span::new(0, bom as u32), msg);
+        }
 
         if self.after_end {
             kind = BlockKind::Ignored;
@@ -491,7 +510,7 @@ impl Parser {
             self.line += 1;
         }
         self.pos = end.max(start + 1).min(text.len());
-        if end == start {
+        if end + bom == start {
             // Cannot happen (an empty block at EOF is not parsed), but guard the loop.
             self.pos = text.len();
         }

@@ -26,6 +26,9 @@ pub(super) struct Mem {
     rigid_s_cleared: bool,
     /// The current block's motion, computed once per block.
     motion: Option<(u32, Span)>,
+    /// A canned cycle has been given an R (FANUC: a later cycle without R then
+    /// lost it to a cancel).
+    pub(super) cycle_r_seen: bool,
 }
 
 impl Mem {
@@ -527,7 +530,12 @@ impl Interp<'_, '_> {
                 let inc = self.st.modal.incremental;
                 let changes = (w.has_g(900) && inc) || (w.has_g(910) && !inc);
                 let zl = [b'X', b'Y', b'Z'][self.normal_axis()];
-                if changes && !(w.has(b'R') && w.has(zl)) {
+                // Absolute R, Z = r, z; incremental R = I + r, Z = R + z: with the
+                // initial level I and r both zero the two readings agree.
+                let c = &self.st.cycle;
+                let initial = c.initial.unwrap_or(self.st.pos[self.normal_axis()]);
+                let same_either_way = initial.abs() < 1e-9 && c.r.is_none_or(|r| r.abs() < 1e-9);
+                if changes && !(w.has(b'R') && w.has(zl)) && !same_either_way {
                     let s = w.g_span(if w.has_g(900) { 900 } else { 910 });
                     self.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, "G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again");
                 }

@@ -38,6 +38,7 @@ mod flow;
 mod g37;
 mod g7x;
 mod g7x_geom;
+mod machine_vars;
 mod messages;
 mod modal;
 mod motion;
@@ -264,6 +265,8 @@ struct Interp<'a, 'i> {
     top_context: Option<context::SavedContext>,
     /// G64 Q (naive CAM tolerance) as written; M70 saves it.
     naive_tol: f64,
+    /// FANUC #500–#999: which the machine alone knows, and the branches they decided.
+    machine_vars: machine_vars::MachineVars,
     /// LinuxCNC's `doing_break`: set by a break out of a while or repeat loop and
     /// consumed by the next `do` loop's closing `while`.
     pending_break: bool,
@@ -403,6 +406,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             fast_words: Some(Box::default()),
             top_context: None,
             naive_tol: 0.0,
+            machine_vars: machine_vars::MachineVars::default(),
             pending_break: false,
             g7x: None,
             resume: None,
@@ -416,6 +420,9 @@ impl<'a, 'i> Interp<'a, 'i> {
                     format!("parameter #5220 is {n}: the start-up coordinate system must be a whole number 1 to 9 (G54 to G59.3); the control faults"),
                 );
             }
+        }
+        if dialect == Dialect::Fanuc {
+            it.machine_vars = machine_vars::MachineVars::new(&it.st.params);
         }
         // The current position starts at the machine origin.
         it.st.pos = it.to_program(it.st.mpos);
@@ -582,12 +589,22 @@ impl<'a, 'i> Interp<'a, 'i> {
             }
             if self.steps > budget {
                 let span = self.block_span(fi, bi);
-                self.diag(
-                    codes::STEP_BUDGET,
-                    Severity::Warning,
-                    span,
-                    format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
-                );
+                match self.machine_vars.waiting(self.steps) {
+                    // A handshake loop (`WHILE [#890 NE 3]`, a dwell, `END`) ends
+                    // when the machine or a cell controller sets the variable.
+                    Some((var, line)) => self.diag(
+                        codes::STEP_BUDGET,
+                        Severity::Info,
+                        span,
+                        format!("execution stopped after {budget} blocks in a loop that waits for #{var} (tested on line {}), {}: the machine or a cell controller changes it, the dry run cannot; the time from here on is unknown", line + 1, machine_vars::describe(var)),
+                    ),
+                    None => self.diag(
+                        codes::STEP_BUDGET,
+                        Severity::Warning,
+                        span,
+                        format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
+                    ),
+                }
                 break;
             }
             let first_motion = self.out.motions.len();

@@ -51,6 +51,9 @@ pub struct FileEntry<'a> {
     pub loops: HashMap<u32, u32>,
     /// Blocks with a syntax error (the control stops there).
     pub error_blocks: std::collections::HashSet<u32>,
+    /// The file branches to sequence numbers (GOTO, IF … GOTO, M99 P, M97 P), so a
+    /// numbered block may run although nothing before it leads there.
+    pub branches: bool,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -81,6 +84,7 @@ impl<'a> FileEntry<'a> {
             seq: HashMap::new(),
             loops: HashMap::new(),
             error_blocks: Default::default(),
+            branches: false,
         };
         f.index();
         let p = f.prog.clone();
@@ -118,6 +122,18 @@ impl<'a> FileEntry<'a> {
                         } else if let Ok(n) = p.str_of(*name).trim().parse::<u32>() {
                             self.heads.entry(n).or_insert(bi);
                         }
+                    }
+                    ItemKind::Macro(MacroStmt::Goto { .. } | MacroStmt::IfGoto { .. }) => {
+                        self.branches = true;
+                    }
+                    ItemKind::Word(w)
+                        if w.letter == b'P'
+                            && p.words(block).any(|(_, m)| {
+                                m.letter == b'M'
+                                    && m.num().is_some_and(|n| n.value == 99.0 || n.value == 97.0)
+                            }) =>
+                    {
+                        self.branches = true;
                     }
                     ItemKind::Macro(MacroStmt::While { m, .. })
                     | ItemKind::Macro(MacroStmt::Do { m }) => {

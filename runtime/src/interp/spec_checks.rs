@@ -9,6 +9,8 @@ use super::*;
 /// What these checks remember between blocks.
 #[derive(Debug, Default, Clone, PartialEq)]
 pub(super) struct SpecMem {
+    /// RS274/NGC: user M codes already noted as unconfigured.
+    pub(super) user_m_noted: Vec<i64>,
     /// ServoWorks: G311 (feed excludes rotary axes) is in force.
     g311: bool,
     /// RS274/NGC: a UVW plane (G17.1/G18.1/G19.1) is selected.
@@ -364,13 +366,20 @@ impl Interp<'_, '_> {
         // User M codes M100–M199 run a program from the configured list.
         if let Some(&(m, s)) = w.m.iter().find(|(m, _)| (1000..=1990).contains(m)) {
             let n = i64::from(m / 10);
-            let known = self
+            let listed = self
                 .input
                 .machine
                 .get("user_m_codes")
-                .and_then(|v| v.as_array())
-                .is_some_and(|a| a.iter().any(|x| x.as_integer() == Some(n)));
-            if !known {
+                .and_then(|v| v.as_array());
+            let known = listed.is_some_and(|a| a.iter().any(|x| x.as_integer() == Some(n)));
+            // Without a list and without the machine's search path the program file
+            // M<n> may well exist on the machine: say so once per code, go on.
+            if !known && listed.is_none() && !self.input.resolver.searches_like_the_control() {
+                if !self.spec.user_m_noted.contains(&n) {
+                    self.spec.user_m_noted.push(n);
+                    self.diag(codes::UNKNOWN_USER_M, Severity::Info, s, format!("M{n} is a user M code: LinuxCNC runs the program file M{n} from its USER_M_PATH. None is configured here, so the dry run takes it as doing nothing; list the codes the machine has in `machine.user_m_codes` to have the others reported"));
+                }
+            } else if !known {
                 return Err(self.err(codes::UNKNOWN_USER_M, s, format!("Unknown m code used: M{n}: no user M-code program M{n} is configured; list it in `machine.user_m_codes` or remove it")));
             }
         }

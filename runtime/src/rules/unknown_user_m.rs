@@ -22,7 +22,10 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC. Error; interpretation stops.
+    /// RS274/NGC. Error, and interpretation stops, when `machine.user_m_codes` is
+    /// configured or the machine's search path is (`machine.subroutine_path`).
+    /// Without either the program file may well exist on the machine: information,
+    /// once per code, and the dry run continues as if the code did nothing.
     ///
     /// Implements: NGC507
     pub static UNKNOWN_USER_M = {

@@ -67,6 +67,7 @@ impl Interp<'_, '_> {
         let mut cyc = self.st.cycle.clone();
         if let Some(r) = w.get(b'R') {
             cyc.r = Some(self.lin(r));
+            self.chk.cycle_r_seen = true;
         }
         if let Some(z) = w.get(zl) {
             cyc.z = Some(self.lin(z));
@@ -86,14 +87,23 @@ impl Interp<'_, '_> {
             ));
         }
         if cyc.r.is_none() {
-            // FANUC (FAN090, a warning): with no point R the cycle
-            // starts its feed at the initial level, which the dry run then uses
-            // as R.
+            // FANUC (FAN090): with no point R the cycle starts its feed at the
+            // initial level, which the dry run then uses as R. After a G80 that
+            // cleared an R the programmer may expect the old one (a warning); a
+            // program that never gave R chose to start from where the tool is.
+            let (sev, why) = if self.chk.cycle_r_seen {
+                (
+                    Severity::Warning,
+                    "the R of the earlier cycle was cleared by the cancel",
+                )
+            } else {
+                (Severity::Info, "no R has been given in this program")
+            };
             self.diag(
                 codes::CYCLE_MISSING,
-                Severity::Warning,
+                sev,
                 span,
-                "canned cycle without R (point R level): the cycle feeds from the initial level. Give R to start the feed closer to the work",
+                format!("canned cycle without R (point R level), {why}: the cycle feeds from the initial level. Give R to start the feed closer to the work"),
             );
             cyc.r = Some(self.st.cycle.initial.unwrap_or(self.st.pos[n]));
         }

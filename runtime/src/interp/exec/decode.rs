@@ -110,7 +110,7 @@ impl Interp<'_, '_> {
                     }
                     ItemKind::Macro(m) => match *m {
                         MacroStmt::IfThen { cond } => {
-                            let c = self.eval(&prog, cond)?;
+                            let c = self.eval_condition(&prog, cond)?;
                             if c.unwrap_or(0.0) == 0.0 {
                                 skip_next = true;
                             }
@@ -121,13 +121,13 @@ impl Interp<'_, '_> {
                             return self.goto_seq(fi, bi, n, it.span);
                         }
                         MacroStmt::IfGoto { cond, target } => {
-                            if self.eval(&prog, cond)?.unwrap_or(0.0) != 0.0 {
+                            if self.eval_condition(&prog, cond)?.unwrap_or(0.0) != 0.0 {
                                 let n = self.eval_num(&prog, target)?;
                                 return self.goto_seq(fi, bi, n, it.span);
                             }
                         }
                         MacroStmt::While { cond, .. } => {
-                            if self.eval(&prog, cond)?.unwrap_or(0.0) == 0.0 {
+                            if self.eval_condition(&prog, cond)?.unwrap_or(0.0) == 0.0 {
                                 let Some(end) = self.files[fi].loops.get(&bi).copied() else {
                                     return Err(self.err(
                                         codes::FLOW,

@@ -634,6 +634,14 @@ impl Interp<'_, '_> {
             if self.dialect == Dialect::Rs274ngc {
                 return;
             }
+            // `IF [#890 NE 1] GOTO2 … M30 / N2 #3000 = 15`: a numbered block a
+            // branch can reach runs on another path, although not on this one.
+            let numbered = items
+                .iter()
+                .any(|it| matches!(&it.kind, ItemKind::Word(w) if w.letter == b'N'));
+            if numbered && self.files[0].branches {
+                return;
+            }
             self.diag(
                 codes::AFTER_END,
                 Severity::Warning,

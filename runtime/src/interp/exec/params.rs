@@ -45,6 +45,9 @@ impl Interp<'_, '_> {
             locals,
             dialect: self.dialect,
             tool: [t.x_offset, t.y_offset, t.length, t.diameter],
+            machine: &self.machine_vars,
+            machine_read: std::cell::Cell::new(None),
+            shared_read: std::cell::Cell::new(None),
         }
     }
 
@@ -90,13 +93,17 @@ impl Interp<'_, '_> {
                     let stop = n as usize == 3000;
                     self.event(EventKind::Message(format!("#{} = {}", n, v.unwrap_or(0.0))));
                     if stop {
-                        return Err(self.err(
-                            codes::MACRO_ALARM,
-                            span,
-                            format!("macro alarm #3000 = {}", v.unwrap_or(0.0)),
-                        ));
+                        let alarm = format!("macro alarm #3000 = {}", v.unwrap_or(0.0));
+                        let mut d = self.err(codes::MACRO_ALARM, span, &alarm);
+                        // Reached only because a machine value was read as vacant.
+                        if let Some(why) = self.machine_dependence() {
+                            d.severity = Severity::Info;
+                            d.message = format!("{alarm} may not fire on the machine: {why}");
+                        }
+                        return Err(d);
                     }
                 }
+                self.machine_vars.assigned(n as usize);
                 self.set_param(n as usize, v);
                 Ok(())
             }
@@ -124,6 +131,11 @@ pub(super) struct Vars<'s> {
     /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, in the tool
     /// table's units.
     tool: [f64; 4],
+    machine: &'s machine_vars::MachineVars,
+    /// The first variable read whose value only the machine knows.
+    pub(super) machine_read: std::cell::Cell<Option<usize>>,
+    /// The first variable read that the machine may change while the program runs.
+    pub(super) shared_read: std::cell::Cell<Option<usize>>,
 }
 
 impl VarSource for Vars<'_> {
@@ -150,6 +162,15 @@ impl VarSource for Vars<'_> {
             return Ok(Some(v));
         }
         let v = self.st.params.get(n as usize).copied().flatten();
+        if self.dialect == Dialect::Fanuc {
+            let n = n as usize;
+            if v.is_none() && self.machine.unknown(n) && self.machine_read.get().is_none() {
+                self.machine_read.set(Some(n));
+            }
+            if machine_vars::shared(n) && self.shared_read.get().is_none() {
+                self.shared_read.set(Some(n));
+            }
+        }
         Ok(if self.dialect == Dialect::Rs274ngc {
             Some(v.unwrap_or(0.0))
         } else {

@@ -88,6 +88,7 @@ pub(super) struct Checkpoint {
     inv_rate_set: bool,
     top_context: Option<context::SavedContext>,
     naive_tol: f64,
+    machine_vars: machine_vars::MachineVars,
     pending_break: bool,
     cfg: MachineCfg,
 }
@@ -157,6 +158,7 @@ impl Checkpoint {
             && self.inv_rate_set == o.inv_rate_set
             && self.top_context == o.top_context
             && self.naive_tol == o.naive_tol
+            && self.machine_vars == o.machine_vars
             && self.pending_break == o.pending_break
             && self.cfg == o.cfg
     }
@@ -430,6 +432,7 @@ impl Interp<'_, '_> {
             inv_rate_set: self.inv_rate_set,
             top_context: self.top_context.clone(),
             naive_tol: self.naive_tol,
+            machine_vars: self.machine_vars.clone(),
             pending_break: self.pending_break,
             cfg: self.cfg.clone(),
         }
@@ -453,6 +456,7 @@ impl Interp<'_, '_> {
         self.inv_rate_set = c.inv_rate_set;
         self.top_context = c.top_context.clone();
         self.naive_tol = c.naive_tol;
+        self.machine_vars = c.machine_vars.clone();
         self.pending_break = c.pending_break;
         self.cfg = c.cfg.clone();
     }
