@@ -437,7 +437,7 @@ fn comp_mode_and_g10_vectors() {
     let out = run_ngc("G0 X0 Y0\nG41.1 D0.4\nG1 X1 F100\nG98\nG40 G1 X2\nM2\n");
     assert_eq!(
         messages(&out, "T002"),
-        vec!["cannot change the retract mode (G98) while cutter radius compensation is on: LinuxCNC stops; cancel it with G40 first"]
+        vec!["cannot change the retract mode (G98) while cutter radius compensation is on: LinuxCNC stops; cancel it with G40 first (the dry run stops here)"]
     );
     // NGC412: compensation in G19 ("allowed only in XY, XZ planes"); G18 is fine.
     let out = run_ngc("G19\nG41.1 D0.4\nG1 Z1 F100\nG40\nM2\n");

@@ -19,14 +19,30 @@ impl Interp<'_, '_> {
         self.err(codes::EXPRESSION, e.span, e.message)
     }
 
+    /// Evaluates an expression. While recovering (`recover.rs`), a failed one is
+    /// reported and yields an unknown value (0), and one that reads a parameter an
+    /// earlier error left unknown is unknown too: `taint.last` says which.
     pub(super) fn eval(&self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
         let locals = self
             .frames
             .last()
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
-        let vars = self.vars(locals);
-        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+        let hit = std::cell::Cell::new(false);
+        let mut vars = self.vars(locals);
+        vars.tainted = Some(&hit);
+        self.taint.last.set(false);
+        match expr::eval(p, id, self.dialect, &vars, 0) {
+            Ok(v) => {
+                if hit.get() {
+                    self.taint.last.set(true);
+                    self.taint.block.set(true);
+                }
+                Ok(v)
+            }
+            Err(e) if self.recovering() => Ok(self.taint_failed(self.eval_err(e))),
+            Err(e) => Err(self.eval_err(e)),
+        }
     }
 
     /// What expressions read: the state, the named locals in scope and the
@@ -45,6 +61,7 @@ impl Interp<'_, '_> {
             locals,
             dialect: self.dialect,
             tool: [t.x_offset, t.y_offset, t.length, t.diameter],
+            tainted: None,
         }
     }
 
@@ -67,6 +84,7 @@ impl Interp<'_, '_> {
         target: ExprId,
         v: Val,
         span: Span,
+        tainted: bool,
     ) -> Result<(), Diagnostic> {
         match p.expr(target).expr {
             Expr::Var { index } => {
@@ -98,11 +116,13 @@ impl Interp<'_, '_> {
                     }
                 }
                 self.set_param(n as usize, v);
+                self.mark_taint(|| format!("#{}", n as usize), tainted);
                 Ok(())
             }
             Expr::Named { name } => {
                 let key = expr::named_key(&p.str_of(name));
                 let v = v.unwrap_or(0.0);
+                self.mark_taint(|| key.clone(), tainted);
                 if key.starts_with('_') {
                     Arc::make_mut(&mut self.st.named).insert(key, v);
                 } else if let Some(f) = self.frames.last_mut() {
@@ -124,6 +144,20 @@ pub(super) struct Vars<'s> {
     /// Tool-table offsets (X Y Z) and diameter of the tool in the spindle, in the tool
     /// table's units.
     tool: [f64; 4],
+    /// Set when a read hits a parameter an earlier error left unknown.
+    tainted: Option<&'s std::cell::Cell<bool>>,
+}
+
+impl Vars<'_> {
+    /// Notes a read of `key` when it is tainted (the list is empty unless an
+    /// error happened, so the key is only built then).
+    fn read(&self, key: impl FnOnce() -> String) {
+        if let Some(hit) = self.tainted {
+            if !self.st.tainted.is_empty() && self.st.tainted.contains(&key()) {
+                hit.set(true);
+            }
+        }
+    }
 }
 
 impl VarSource for Vars<'_> {
@@ -149,6 +183,7 @@ impl VarSource for Vars<'_> {
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
         }
+        self.read(|| format!("#{n}"));
         let v = self.st.params.get(n as usize).copied().flatten();
         Ok(if self.dialect == Dialect::Rs274ngc {
             Some(v.unwrap_or(0.0))
@@ -157,6 +192,7 @@ impl VarSource for Vars<'_> {
         })
     }
     fn get_named(&self, name: &str, span: Span) -> Result<Val, EvalError> {
+        self.read(|| name.to_string());
         if let Some(v) = self.locals.and_then(|l| l.get(name)) {
             return Ok(Some(*v));
         }
