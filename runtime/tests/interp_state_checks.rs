@@ -447,7 +447,7 @@ fn comp_mode_and_g10_vectors() {
     // NGC400: G10 L5; NGC821: G10 L0 with tool 1 loaded.
     assert_eq!(
         messages(&run_ngc("G10 L5 P1 X1\nM2\n"), "K003"),
-        vec!["G10 needs one of L0, L1, L2, L10, L11, L20: LinuxCNC stops"]
+        vec!["G10 needs one of L0, L1, L2, L10, L11, L20: LinuxCNC stops (the dry run stops here)"]
     );
     assert_eq!(
         found(&run_ngc("T1 M6\nG10 L0 P1\nM2\n"), "K003"),

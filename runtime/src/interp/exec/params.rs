@@ -40,7 +40,10 @@ impl Interp<'_, '_> {
                 }
                 Ok(v)
             }
-            Err(e) if self.recovering() => Ok(self.taint_failed(self.eval_err(e))),
+            // A failure that follows from an unknown value is not reported again.
+            Err(e) if self.recovering() => {
+                Ok(self.taint_failed(Some(self.eval_err(e)).filter(|_| !hit.get())))
+            }
             Err(e) => Err(self.eval_err(e)),
         }
     }

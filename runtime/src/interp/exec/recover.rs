@@ -68,9 +68,10 @@ impl Interp<'_, '_> {
     }
 
     /// An expression error in recovering mode: reported (once, with the block's
-    /// other errors dropped), and the value is unknown, read as 0.
-    pub(super) fn taint_failed(&self, d: Diagnostic) -> Val {
-        self.taint.pending.borrow_mut().push(d);
+    /// other errors dropped; not at all when it follows from an unknown value),
+    /// and the value is unknown, read as 0.
+    pub(super) fn taint_failed(&self, d: Option<Diagnostic>) -> Val {
+        self.taint.pending.borrow_mut().extend(d);
         self.taint.last.set(true);
         self.taint.block.set(true);
         Some(0.0)
