@@ -586,6 +586,8 @@ struct Stop {
     partial: bool,
     /// Path, 1-based line and reason of the run's stop.
     at: Option<(String, u32, String)>,
+    /// A budget (F004) stopped it.
+    budget: bool,
 }
 
 fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileReport) -> Stop {
@@ -603,6 +605,7 @@ fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileRe
     Stop {
         partial: at.is_some() || partial(report),
         at,
+        budget: stopped.is_some_and(|s| s.code == runtime::rules::codes::STEP_BUDGET),
     }
 }
 
@@ -735,6 +738,8 @@ fn human(
             format!("{path} line {line}")
         };
         writeln!(w, "  stopped at {place}: {reason}")?;
+    }
+    if stop.at.is_some() && !stop.budget {
         writeln!(
             w,
             "  partial: the run stopped early; the figures cover only what ran"
