@@ -43,6 +43,8 @@ pub struct RulesConfig {
     /// Custom G/M codes the control defines as macro calls (e.g. `["G100", "M150"]`).
     #[serde(default)]
     pub custom_codes: Vec<String>,
+    /// Runtime errors the dry run recovers from per file before it stops (default 100).
+    pub max_runtime_errors: Option<usize>,
 }
 
 impl Config {
@@ -72,12 +74,17 @@ pub struct Settings {
     pub max_per_code: usize,
     /// Diagnostics reported per file, all codes together.
     pub max_per_file: usize,
+    /// Runtime errors the interpreter reports and recovers from per file; at this
+    /// many it stops the run with one F004.
+    pub max_runtime_errors: usize,
 }
 
 /// Default of [`Settings::max_per_code`].
 pub const DEFAULT_MAX_PER_CODE: usize = 1000;
 /// Default of [`Settings::max_per_file`].
 pub const DEFAULT_MAX_PER_FILE: usize = 20_000;
+/// Default of [`Settings::max_runtime_errors`].
+pub const DEFAULT_MAX_RUNTIME_ERRORS: usize = 100;
 
 impl Settings {
     pub fn new(dialect: Dialect) -> Settings {
@@ -93,6 +100,7 @@ impl Settings {
             program_number_digits: 4,
             max_per_code: DEFAULT_MAX_PER_CODE,
             max_per_file: DEFAULT_MAX_PER_FILE,
+            max_runtime_errors: DEFAULT_MAX_RUNTIME_ERRORS,
         }
     }
 
@@ -115,6 +123,9 @@ impl Settings {
             }
         }
         s.select = config.rules.select.clone();
+        if let Some(n) = config.rules.max_runtime_errors {
+            s.max_runtime_errors = n.max(1);
+        }
         s.ignore = config.rules.ignore.clone();
         s.custom_codes = config
             .rules

@@ -13,5 +13,5 @@ pub use interp::{default_motion_budget, default_step_budget};
 pub use interp::{
     rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
     BlockSnapshot, Checkpoints, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile,
-    Resolver, RunInput, RunOutput, CANCEL_POLL_STEPS, CANON_FILE_NAME,
+    Resolver, RunInput, RunOutput, Stopped, CANCEL_POLL_STEPS, CANON_FILE_NAME,
 };

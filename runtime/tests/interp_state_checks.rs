@@ -460,7 +460,7 @@ fn comp_mode_and_g10_vectors() {
     let out = run_ngc("G0 X0 Y0\nG41.1 D0.4\nG1 X1 F100\nG98\nG40 G1 X2\nM2\n");
     assert_eq!(
         messages(&out, "T002"),
-        vec!["cannot change the retract mode (G98) while cutter radius compensation is on: LinuxCNC stops; cancel it with G40 first"]
+        vec!["cannot change the retract mode (G98) while cutter radius compensation is on: LinuxCNC stops; cancel it with G40 first (the dry run stops here)"]
     );
     // NGC412: compensation in G19 ("allowed only in XY, XZ planes"); G18 is fine.
     let out = run_ngc("G19\nG41.1 D0.4\nG1 Z1 F100\nG40\nM2\n");
@@ -470,7 +470,7 @@ fn comp_mode_and_g10_vectors() {
     // NGC400: G10 L5; NGC821: G10 L0 with tool 1 loaded.
     assert_eq!(
         messages(&run_ngc("G10 L5 P1 X1\nM2\n"), "K003"),
-        vec!["G10 needs one of L0, L1, L2, L10, L11, L20: LinuxCNC stops"]
+        vec!["G10 needs one of L0, L1, L2, L10, L11, L20: LinuxCNC stops (the dry run stops here)"]
     );
     assert_eq!(
         found(&run_ngc("T1 M6\nG10 L0 P1\nM2\n"), "K003"),

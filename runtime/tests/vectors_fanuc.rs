@@ -229,10 +229,12 @@ fn modal_rule_last_group01_wins_and_ijk_in_polar() {
 }
 
 #[test]
-fn division_by_zero_stops() {
+fn division_by_zero_is_reported_and_the_run_goes_on() {
     let out = run_fanuc("#1 = 0;\n#2 = 1 / #1;\nG00 X1.;\nM30;\n", "");
     assert_eq!(codes(&out), vec!["X001"]);
-    assert!(out.motions.is_empty());
+    // The alarm is reported once; the dry run goes on with #2 unknown.
+    assert_eq!(out.motions.len(), 1);
+    assert!(out.stopped.is_none());
 }
 
 #[test]
@@ -658,7 +660,7 @@ fn alarm_behind_a_machine_variable_is_not_certain() {
         alarms,
         vec![(
             analyzer::Severity::Info,
-            "macro alarm #3000 = 15 may not fire on the machine: the branch on line 3 read #890, a common variable kept in the machine (#500–#999), whose value this dry run does not know (read as vacant); give it in a variable file (--var-file) to decide"
+            "macro alarm #3000 = 15 may not fire on the machine: the branch on line 3 read #890, a common variable kept in the machine (#500–#999), whose value this dry run does not know (read as vacant); give it in a variable file (--var-file) to decide (the dry run stops here)"
         )]
     );
     // Given by the variable file, the value is known: #890 = 1 skips the alarm,

@@ -1032,7 +1032,7 @@ fn tv_r3_concave_corner() {
     assert_eq!(codes(&out), vec!["X003"]);
     assert_eq!(
         out.diagnostics[0].message,
-        "Concave corner with cutter radius comp"
+        "Concave corner with cutter radius comp (the dry run stops here)"
     );
 }
 
@@ -1044,7 +1044,7 @@ fn tv_r4_tool_inside_a_smaller_arc() {
     assert_eq!(codes(&out), vec!["X003"]);
     assert_eq!(
         out.diagnostics[0].message,
-        "Tool radius not less than arc radius with comp"
+        "Tool radius not less than arc radius with comp (the dry run stops here)"
     );
 }
 

@@ -746,8 +746,10 @@
     var el = byId("stats");
     if (!el) return;
     var b = result.toolpath && result.toolpath.bounds;
+    // A run that stopped early covers only part of the program: say so and where.
+    var partial = result.complete === false;
     var rows = [
-      ["Cycle time", formatDuration(result.cycle_time_s)],
+      ["Cycle time", formatDuration(result.cycle_time_s) + (partial ? " (partial)" : "")],
       ["Cutting", formatDuration(result.cutting_s)],
       ["Rapid", formatDuration(result.rapid_s)],
       ["Dwell", formatDuration(result.dwell_s)],
@@ -755,6 +757,9 @@
       ["Distance", num(result.distance_mm, 1) + " mm"],
       ["Segments", String((result.toolpath && result.toolpath.segments || []).length)],
     ];
+    if (partial && result.stopped_at) {
+      rows.splice(1, 0, ["Stopped", "at line " + (result.stopped_at.line + 1) + ": " + result.stopped_at.reason]);
+    }
     if (b && b.min && b.max) {
       ["X", "Y", "Z"].forEach(function (a, i) {
         rows.push([a + " range", num(b.min[i], 3) + " … " + num(b.max[i], 3)]);

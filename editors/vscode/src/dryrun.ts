@@ -27,6 +27,16 @@ export interface DryRunResult {
     bounds: { min: [number, number, number]; max: [number, number, number] };
   };
   diagnostics: unknown[];
+  /** False when the run stopped before the program's end: the times cover only what ran. */
+  complete?: boolean;
+  /** Where and why the run stopped (0-based line), `null` when complete. */
+  stopped_at?: { line: number; reason: string } | null;
+}
+
+/** "stopped at line N: reason" (1-based line) for a run that stopped early, else undefined. */
+export function stoppedText(r: DryRunResult): string | undefined {
+  if (r.complete !== false || !r.stopped_at) return undefined;
+  return `stopped at line ${r.stopped_at.line + 1}: ${r.stopped_at.reason}`;
 }
 
 /** `h:mm:ss` above an hour, `m:ss.s` below: what a machinist reads off a control's timer. */
@@ -52,8 +62,9 @@ export function formatDuration(seconds: number): string {
 
 /** A fixed-width breakdown for the output channel and the status-bar tooltip. */
 export function summarize(r: DryRunResult): string {
+  const partial = r.complete === false;
   const rows: [string, string][] = [
-    ["cycle time", formatDuration(r.cycle_time_s)],
+    ["cycle time", formatDuration(r.cycle_time_s) + (partial ? " (partial)" : "")],
     ["  cutting", formatDuration(r.cutting_s)],
     ["  rapid", formatDuration(r.rapid_s)],
     ["  dwell", formatDuration(r.dwell_s)],
@@ -67,5 +78,8 @@ export function summarize(r: DryRunResult): string {
       rows.push([`${axis} range`, `${b.min[i].toFixed(3)} … ${b.max[i].toFixed(3)}`]);
     });
   }
-  return rows.map(([k, v]) => `${k.padEnd(14)}${v.padStart(22)}`).join("\n");
+  const lines = rows.map(([k, v]) => `${k.padEnd(14)}${v.padStart(22)}`);
+  const stopped = stoppedText(r);
+  if (stopped) lines.push(stopped);
+  return lines.join("\n");
 }

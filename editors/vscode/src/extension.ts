@@ -13,7 +13,7 @@ import {
   ServerOptions,
   TransportKind,
 } from "vscode-languageclient/node";
-import { DryRunResult, formatDuration, summarize } from "./dryrun";
+import { DryRunResult, formatDuration, stoppedText, summarize } from "./dryrun";
 import { webviewHtml } from "./webview";
 
 const LANGUAGE_ID = "gcode";
@@ -172,7 +172,11 @@ async function refreshStatus(): Promise<void> {
     const r = await requestDryRun(doc.uri);
     // A newer request (another edit or editor) has started; its answer will be shown instead.
     if (seq !== statusSeq) return;
-    statusItem.text = `$(watch) ${formatDuration(r.cycle_time_s)}`;
+    // A stopped run's time covers only part of the program.
+    const stopped = stoppedText(r);
+    statusItem.text = stopped
+      ? `$(warning) ${formatDuration(r.cycle_time_s)} partial`
+      : `$(watch) ${formatDuration(r.cycle_time_s)}`;
     statusItem.tooltip = new vscode.MarkdownString(
       "**Partscope dry run**\n\n```\n" + summarize(r) + "\n```\n\nClick to show the toolpath."
     );

@@ -23,3 +23,11 @@ test("summarize", () => {
   assert.ok(lines.some((l) => /^segments\s+38$/.test(l)));
   assert.ok(lines.some((l) => /^Z range\s+-14\.000 … 50\.000$/.test(l)));
 });
+
+test("a stopped run is marked partial and says where it stopped", () => {
+  const r = { ...fixture, complete: false, stopped_at: { line: 3, reason: "dwell time P word missing with G4" } };
+  const text = summarize(r);
+  assert.match(text.split("\n")[0], /\(partial\)$/);
+  assert.equal(text.split("\n").pop(), "stopped at line 4: dwell time P word missing with G4");
+  assert.doesNotMatch(summarize({ ...fixture, complete: true, stopped_at: null }), /partial|stopped/);
+});

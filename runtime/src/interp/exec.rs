@@ -44,7 +44,9 @@ mod modal;
 mod motion;
 mod offsets;
 mod params;
+mod recover;
 pub(super) use g37::G37Cfg;
+pub use recover::STOP_SUFFIX;
 mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
@@ -274,6 +276,10 @@ struct Interp<'a, 'i> {
     resume: Option<resume::Resume>,
     /// RS274/NGC: the profile of a G70-G72 cycle being read from its subroutine.
     g7x: Option<g7x::Capture>,
+    /// Where a recoverable error of this block leaves the position (`recover.rs`).
+    recover_to: Option<recover::Recover>,
+    /// Failed and tainted expressions of this block (`recover.rs`).
+    taint: recover::Taint,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -357,6 +363,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             g28_mid: None,
             line: 0,
             g66: None,
+            tainted: Vec::new(),
+            runtime_errors: 0,
         };
         let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
         let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
@@ -410,6 +418,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             pending_break: false,
             g7x: None,
             resume: None,
+            recover_to: None,
+            taint: Default::default(),
         };
         if let Some(n) = bad_origin {
             if it.variant == Variant::Emc2 {
@@ -605,12 +615,20 @@ impl<'a, 'i> Interp<'a, 'i> {
                         format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
                     ),
                 }
+                self.stopped_by_last(fi);
                 break;
             }
             let first_motion = self.out.motions.len();
+            let mark = self.out.diagnostics.len();
+            self.recover_to = None;
             let result = self.exec_block(fi, bi);
             self.check_limits(fi, bi, first_motion);
+            let result = self.settle_taint(mark, result, fi, bi);
+            let diags_before_budget = self.out.diagnostics.len();
             if self.motion_budget_reached(self.block_span(fi, bi)) {
+                if self.out.diagnostics.len() > diags_before_budget {
+                    self.stopped_by_last(fi);
+                }
                 break;
             }
             match result {
@@ -618,11 +636,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                 Ok(Flow::Goto(f, b)) => self.cur = (f, b),
                 Ok(Flow::Stop) => break,
                 Err(d) => {
-                    // rs274 never prints the calls cutter compensation still holds back
-                    // when it stops at an error.
-                    let held = self.st.comp_queue.first().map(|q| q.canon);
-                    if let (Some(first), Some(c)) = (held, self.canon.as_mut()) {
-                        c.lines.truncate(first);
+                    if self.canon.is_some() {
+                        // rs274 never prints the calls cutter compensation still holds
+                        // back when it stops at an error.
+                        let held = self.st.comp_queue.first().map(|q| q.canon);
+                        if let (Some(first), Some(c)) = (held, self.canon.as_mut()) {
+                            c.lines.truncate(first);
+                        }
                     }
                     if self.canon.is_some() && self.out.canon_error.is_none() {
                         let line = self.line_text(self.cur.0, self.cur.1);
@@ -637,9 +657,14 @@ impl<'a, 'i> Interp<'a, 'i> {
                             .unwrap_or_else(|| rs274_message(&d.message));
                         self.out.canon_error = Some(format!("{msg}\n{line}"));
                     }
-                    self.out.diagnostics.push(d);
-                    break;
+                    if !self.after_error(d, fi, bi) {
+                        break;
+                    }
+                    self.cur = (fi, bi + 1);
                 }
+            }
+            if self.st.runtime_errors > 0 && self.error_cap_reached(fi, bi) {
+                break;
             }
             if fi == 0 && (bi as usize) < self.nblocks_main.min(SNAPSHOT_LIMIT) {
                 let snap = self.snapshot();

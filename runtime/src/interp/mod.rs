@@ -21,7 +21,7 @@ mod types;
 
 pub use exec::{
     rerun, run, run_checkpointed, run_streaming, run_streaming_owned, run_with_snapshots,
-    run_without_fast_path, Checkpoints, MotionSink, OwnedMotionSink, SNAPSHOT_LIMIT,
+    run_without_fast_path, Checkpoints, MotionSink, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
 };
 pub use state::{Modal, State};
 pub use types::*;

@@ -119,6 +119,11 @@ pub struct State {
     pub line: u32,
     /// FANUC G66 modal macro call: program and arguments.
     pub g66: Option<(String, Arc<Vec<Option<f64>>>)>,
+    /// Parameters whose value an earlier runtime error left unknown (`exec/recover.rs`):
+    /// numbered ones as `#n`, named ones by their key. Usually empty.
+    pub tainted: Vec<String>,
+    /// Runtime errors reported and recovered from so far (the cap stops floods).
+    pub runtime_errors: u32,
 }
 
 impl Modal {

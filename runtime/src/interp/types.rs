@@ -3,7 +3,7 @@
 use std::sync::Arc;
 
 use analyzer::syntax::Program;
-use analyzer::{Diagnostic, FileId, Settings};
+use analyzer::{Diagnostic, FileId, Settings, Span};
 
 /// A file the host found for a subprogram name.
 #[derive(Debug, Clone)]
@@ -208,6 +208,25 @@ pub struct RunOutput {
     pub canon_error: Option<String>,
     /// Checkpoints of a [`super::run_checkpointed`] run, for [`super::rerun`].
     pub checkpoints: super::Checkpoints,
+    /// Where and why the run ended before the program's end (an error that leaves
+    /// the state undefined, a budget, the runtime-error cap, a block the control
+    /// cannot read): the motions and totals then cover only what ran. `None` when
+    /// the run reached the end of the program (recovered errors included).
+    pub stopped: Option<Stopped>,
+}
+
+/// Where a run stopped early ([`RunOutput::stopped`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stopped {
+    pub file: FileId,
+    /// Span of the diagnostic that says why, in `file`.
+    pub span: Span,
+    /// Zero-based line of the block that stopped the run, in `file`.
+    pub line: u32,
+    /// Code of that diagnostic (`F004` for the budgets and the error cap).
+    pub code: &'static str,
+    /// Its message, without the "the dry run stops here" suffix.
+    pub reason: String,
 }
 
 /// Stands for the program's path in [`RunOutput::canon_error`].

@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error. Reads `arc_radius_tolerance` (FANUC), `circle_error_allowance` and `machine_unit` (ServoWorks).
     ///
+    /// After this error the dry run continues as if the block were a straight feed move to the programmed end point (the tool ends where the program says; with no feed rate the position is set there without a move).
+    ///
     /// Implements: SW038, NGC211, NGC212, FAN031
     pub static ARC_RADIUS_MISMATCH = {
         code: "A001",

@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// After this error the dry run continues as if the arc had been skipped with the tool at its programmed end point (no motion, no time).
+    ///
     /// Implements: SW036, NGC207, FAN035
     pub static ARC_RADIUS_TOO_SMALL = {
         code: "A002",

@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// After this error the dry run continues as if the arc had been skipped (the tool stays where it is, which is the programmed end).
+    ///
     /// Implements: SW035, NGC206, FAN033
     pub static ARC_SAME_END_R = {
         code: "A006",

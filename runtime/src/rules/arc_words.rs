@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC, ServoWorks. Error.
     ///
+    /// After this error the dry run continues as if the arc had been skipped with the tool at its programmed end point (no motion, no time).
+    ///
     /// Implements: NGC205, NGC208, NGC210, NGC216, SW033, SW034, SW042
     pub static ARC_WORDS = {
         code: "A008",

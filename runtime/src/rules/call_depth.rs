@@ -30,6 +30,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// The dry run stops here (the message says so); the run's figures are partial.
+    ///
     /// Implements: SW023, NGC607, FAN139, FAN138
     pub static CALL_DEPTH = {
         code: "F003",

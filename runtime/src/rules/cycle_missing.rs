@@ -24,9 +24,11 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC and ServoWorks: error, and the dry run stops. FANUC: a missing R is a
+    /// RS274/NGC and ServoWorks: error. FANUC: a missing R is a
     /// warning (FAN090); after it the dry run continues as if R were the initial level,
     /// where the cycle then starts its feed. A missing Z is an error everywhere.
+    ///
+    /// After this error the dry run continues as if the cycle block had been skipped with the tool over its hole (X/Y of the block) at the height it had; the later blocks of the cycle mode run with the data they give.
     ///
     /// Implements: SW126, NGC301, NGC302, NGC306, FAN090
     pub static CYCLE_MISSING = {

@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// All.
     ///
+    /// After this error the dry run continues as if the cycle block had been skipped with the tool over its hole (X/Y of the block) at the height it had.
+    ///
     /// Implements: SW121, NGC307, NGC308, FAN072
     pub static CYCLE_Q = {
         code: "C002",

@@ -24,6 +24,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// The state after this error is undefined (where the control would go is unknown): the dry run stops here and says so in the message; the run's figures are partial.
+    ///
     /// Implements: FAN121, FAN122, FAN124, NGC601, NGC603, NGC605
     pub static FLOW = {
         code: "F007",

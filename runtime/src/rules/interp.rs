@@ -24,6 +24,8 @@ declare_rule! {
     /// ## Dialects
     /// All.
     ///
+    /// After this error the dry run stops (the message says so) and the run's figures are partial, except where the message says the dry run goes on.
+    ///
     /// Implements: SW024, SW026, NGC223, NGC231, NGC416, NGC417, NGC418
     pub static INTERP = {
         code: "X003",

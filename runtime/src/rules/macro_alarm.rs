@@ -23,6 +23,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC, RS274/NGC. Error.
     ///
+    /// The control stops at the alarm: so does the dry run, and the run's figures are partial.
+    ///
     /// Implements: — (no catalogue id)
     pub static MACRO_ALARM = {
         code: "X004",

@@ -27,6 +27,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// After this error the dry run continues as if the call were not there: the block's remaining words are skipped and the run goes on with the next block.
+    ///
     /// Implements: SW021, NGC609, FAN140
     pub static SUB_NOT_FOUND = {
         code: "F002",

@@ -25,6 +25,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// After this error the dry run continues as if the block were not there (the rest of the block is skipped).
+    ///
     /// Implements: — (no catalogue id)
     pub static UNKNOWN_CODE = {
         code: "X002",

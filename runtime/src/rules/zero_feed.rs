@@ -24,6 +24,8 @@ declare_rule! {
     /// ## Dialects
     /// All. Error.
     ///
+    /// After this error (RS274/NGC, where it is an error) the dry run continues as if the move had been skipped with the tool at its programmed end point (no motion, no time).
+    ///
     /// Implements: SW047, NGC200, NGC228, NGC312, FAN039, FAN091, FAN037
     pub static ZERO_FEED = {
         code: "F001",

@@ -96,6 +96,9 @@ fn check_file(
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         };
     settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
+    if let Some(n) = args.max_runtime_errors {
+        settings.max_runtime_errors = n.max(1);
+    }
     settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of

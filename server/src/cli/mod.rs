@@ -86,6 +86,10 @@ pub struct CheckArgs {
     /// Diagnostics reported per file (default 20000).
     #[arg(long)]
     pub max_per_file: Option<usize>,
+    /// Runtime errors the dry run reports and recovers from per file before it
+    /// stops (default 100, `[rules] max_runtime_errors`).
+    #[arg(long)]
+    pub max_runtime_errors: Option<usize>,
     /// Largest program to read, in MB (default 128); a larger file gets one
     /// located error (L000) and exit status 2 instead of exhausting memory.
     #[arg(long)]

@@ -84,6 +84,10 @@ pub struct RunArgs {
     /// with an error instead of exhausting memory.
     #[arg(long)]
     pub max_file_size: Option<u64>,
+    /// Runtime errors the dry run reports and recovers from before it stops
+    /// (default 100, `[rules] max_runtime_errors`).
+    #[arg(long)]
+    pub max_runtime_errors: Option<usize>,
 }
 
 /// The static and the runtime diagnostics together, in order and within the
@@ -134,6 +138,9 @@ pub fn run(args: RunArgs) -> ExitCode {
         Err(e) => return fail(e),
     };
     settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
+    if let Some(n) = args.max_runtime_errors {
+        settings.max_runtime_errors = n.max(1);
+    }
     settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
@@ -328,16 +335,17 @@ pub fn run(args: RunArgs) -> ExitCode {
             totals,
             ..DryRun::default()
         };
+        let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
         let stdout = std::io::stdout();
         let mut w = std::io::BufWriter::new(stdout.lock());
-        let res = serde_json::to_writer_pretty(&mut w, &summary_json(&dry, &report))
+        let res = serde_json::to_writer_pretty(&mut w, &summary_json(&dry, &report, &stop))
             .map_err(std::io::Error::other)
             .and_then(|_| writeln!(w))
             .and_then(|_| w.flush());
         if let Err(e) = res {
             return fail(format_args!("cannot write output: {e}"));
         }
-        return exit_status(&report);
+        return exit_status(&report, &stop);
     }
     let out = runtime::run_with_snapshots(&input, false);
     progress.stage("planning");
@@ -405,6 +413,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             return fail(format_args!("{}: {e}", png.display()));
         }
     }
+    let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
     let stdout = std::io::stdout();
     let mut w = std::io::BufWriter::new(stdout.lock());
     let res = match args.emit {
@@ -446,18 +455,18 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
         Some(Emit::Canon) | None => match args.format {
             RunFormat::Json => {
-                let v = summary_json(&dry, &report);
+                let v = summary_json(&dry, &report, &stop);
                 serde_json::to_writer_pretty(&mut w, &v)
                     .map_err(std::io::Error::other)
                     .and_then(|_| writeln!(w))
             }
-            RunFormat::Human => human(&mut w, &args.file, &dry, &out, &report),
+            RunFormat::Human => human(&mut w, &args.file, &dry, &out, &report, &stop),
         },
     };
     if let Err(e) = res.and_then(|_| w.flush()) {
         return fail(format_args!("cannot write output: {e}"));
     }
-    exit_status(&report)
+    exit_status(&report, &stop)
 }
 
 /// Chunks of motions in flight between the interpreter and the planner thread: enough
@@ -541,6 +550,8 @@ fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
             "distance_mm": null,
             "per_tool": {},
             "partial": true,
+            "complete": false,
+            "stopped_at": null,
             "diagnostics": diags,
         });
         serde_json::to_writer_pretty(&mut w, &v)
@@ -564,15 +575,47 @@ fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
     if let Err(e) = res.and_then(|_| w.flush()) {
         return fail(format_args!("cannot write output: {e}"));
     }
-    exit_status(report)
+    exit_status(report, &Stop::default())
 }
 
-/// 1 when the run reported an error, else success.
-fn exit_status(report: &FileReport) -> ExitCode {
-    if report
-        .diagnostics
-        .iter()
-        .any(|d| d.severity == Severity::Error)
+/// Why the figures cover only part of the program: where the run stopped (an
+/// error that leaves the state undefined, a budget, the runtime-error cap, a block
+/// the control cannot read), or a budget diagnostic (F004, also the SVG cut-off).
+#[derive(Default)]
+struct Stop {
+    partial: bool,
+    /// Path, 1-based line and reason of the run's stop.
+    at: Option<(String, u32, String)>,
+    /// A budget (F004) stopped it.
+    budget: bool,
+}
+
+fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileReport) -> Stop {
+    let at = stopped.map(|s| {
+        let path = if s.file == analyzer::FileId(0) {
+            report.path.display().to_string()
+        } else {
+            files
+                .get((s.file.0 as usize).saturating_sub(1))
+                .cloned()
+                .unwrap_or_default()
+        };
+        (path, s.line + 1, s.reason.clone())
+    });
+    Stop {
+        partial: at.is_some() || partial(report),
+        at,
+        budget: stopped.is_some_and(|s| s.code == runtime::rules::codes::STEP_BUDGET),
+    }
+}
+
+/// 1 when the run reported an error or its cycle time is partial, else success.
+fn exit_status(report: &FileReport, stop: &Stop) -> ExitCode {
+    if stop.partial
+        || report
+            .diagnostics
+            .iter()
+            .any(|d| d.severity == Severity::Error)
     {
         ExitCode::from(1)
     } else {
@@ -580,7 +623,7 @@ fn exit_status(report: &FileReport) -> ExitCode {
     }
 }
 
-fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
+fn summary_json(dry: &DryRun, report: &FileReport, stop: &Stop) -> serde_json::Value {
     let t = &dry.totals;
     let per_tool: serde_json::Map<String, serde_json::Value> = t
         .per_tool
@@ -613,7 +656,9 @@ fn summary_json(dry: &DryRun, report: &FileReport) -> serde_json::Value {
         "other_s": t.other_s,
         "distance_mm": t.distance_mm,
         "per_tool": per_tool,
-        "partial": partial(report),
+        "partial": stop.partial,
+        "complete": !stop.partial,
+        "stopped_at": stop.at.as_ref().map(|(file, line, reason)| json!({"file": file, "line": line, "reason": reason})),
         "diagnostics": diags,
     })
 }
@@ -664,6 +709,7 @@ fn human(
     dry: &DryRun,
     out: &runtime::RunOutput,
     report: &FileReport,
+    stop: &Stop,
 ) -> std::io::Result<()> {
     let t = &dry.totals;
     writeln!(w, "{}", file.display())?;
@@ -672,9 +718,10 @@ fn human(
     }
     writeln!(
         w,
-        "  cycle time   {:>12}  ({} s)",
+        "  cycle time   {:>12}  ({} s{})",
         hms(t.cycle_time_s),
-        seconds(t.cycle_time_s)
+        seconds(t.cycle_time_s),
+        if stop.partial { ", partial" } else { "" }
     )?;
     writeln!(w, "  cutting      {:>12}", hms(t.cutting_s))?;
     writeln!(w, "  rapid        {:>12}", hms(t.rapid_s))?;
@@ -684,7 +731,20 @@ fn human(
         writeln!(w, "  other        {:>12}", hms(t.other_s))?;
     }
     writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
-    if partial(report) {
+    if let Some((path, line, reason)) = &stop.at {
+        let place = if *path == file.display().to_string() {
+            format!("line {line}")
+        } else {
+            format!("{path} line {line}")
+        };
+        writeln!(w, "  stopped at {place}: {reason}")?;
+    }
+    if stop.at.is_some() && !stop.budget {
+        writeln!(
+            w,
+            "  partial: the run stopped early; the figures cover only what ran"
+        )?;
+    } else if stop.partial {
         writeln!(
             w,
             "  partial: a budget stopped the run (F004); the figures cover only what ran"

@@ -89,6 +89,28 @@ pub struct RunReport {
     /// The interpreter's output (with one state per block of the document),
     /// until the next version's run takes it to continue from.
     pub run: Arc<PreviousRun>,
+    /// Where the run stopped before the program's end, when it did: the times
+    /// and toolpath then cover only what ran.
+    pub stopped: Option<StoppedAt>,
+}
+
+/// Where a run stopped early, in the document.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StoppedAt {
+    /// 0-based line in the document (a stop inside a called file is put on the call).
+    pub line: u32,
+    pub reason: String,
+}
+
+impl StoppedAt {
+    /// "stopped at line N: reason", with a 1-based line and the reason cut short.
+    pub fn describe(&self) -> String {
+        let mut reason: String = self.reason.chars().take(100).collect();
+        if reason.len() < self.reason.len() {
+            reason.push('…');
+        }
+        format!("stopped at line {}: {reason}", self.line + 1)
+    }
 }
 
 impl RunReport {
@@ -127,6 +149,10 @@ pub struct DryRunResult {
     pub toolpath: Toolpath,
     /// LSP diagnostics (converted by the caller).
     pub diagnostics: Vec<serde_json::Value>,
+    /// False when the run stopped before the program's end: the times are partial.
+    pub complete: bool,
+    /// Where and why it stopped (`null` when complete).
+    pub stopped_at: Option<StoppedAt>,
 }
 
 /// Builds the preview result from a run report.
@@ -166,6 +192,8 @@ pub fn summarize(
             bounds: Bounds { min, max },
         },
         diagnostics,
+        complete: report.stopped.is_none(),
+        stopped_at: report.stopped.clone(),
     }
 }
 
@@ -244,6 +272,7 @@ mod tests {
             tool_changes: vec![],
             diagnostics: vec![],
             run: Default::default(),
+            stopped: None,
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);

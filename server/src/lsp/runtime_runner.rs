@@ -12,7 +12,9 @@ use std::sync::Arc;
 use analyzer::{Dialect, FileId};
 use runtime::{dryrun, EventKind, ResolvedFile, Resolver, RunInput};
 
-use super::dry_run::{CancelFlag, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, Timing};
+use super::dry_run::{
+    CancelFlag, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, StoppedAt, Timing,
+};
 use super::nav::{self, Sym};
 use super::workspace;
 
@@ -260,6 +262,25 @@ impl DryRunner for RuntimeRunner {
                 }
             })
             .collect();
+        let stopped = out.stopped.as_ref().and_then(|s| {
+            if s.file == FileId(0) {
+                return Some(StoppedAt {
+                    line: s.line,
+                    reason: s.reason.clone(),
+                });
+            }
+            // A stop inside a called file is shown on the document's call.
+            let d = analyzer::Diagnostic::new(s.code, analyzer::Severity::Info, s.span, &s.reason)
+                .in_file(s.file);
+            let moved = onto_call_site(input.program, &d, &out.files, &loaded)?;
+            Some(StoppedAt {
+                line: analyzer::LineIndex::new(&input.program.text)
+                    .line_col(moved.span.start)
+                    .0,
+                reason: moved.message,
+            })
+        });
+        drop(loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
@@ -269,6 +290,7 @@ impl DryRunner for RuntimeRunner {
             tool_changes,
             diagnostics,
             run: Arc::new(std::sync::Mutex::new(Some(out))),
+            stopped,
         })
     }
 }

@@ -997,14 +997,29 @@ impl LanguageServer for Backend {
                 return Ok(None);
             };
             blocking(move || {
-                let t = planned_run(&snap).and_then(|r| r.timing)?;
-                let title = format!(
-                    "Cycle time {} (cutting {}, rapid {}, tool change {})",
-                    format_duration(t.cycle_time_s),
-                    format_duration(t.cutting_s),
-                    format_duration(t.rapid_s),
-                    format_duration(t.tool_change_s)
-                );
+                let title = match planned_run(&snap) {
+                    Some(r) => {
+                        let t = r.timing?;
+                        let times = format!(
+                            "(cutting {}, rapid {}, tool change {})",
+                            format_duration(t.cutting_s),
+                            format_duration(t.rapid_s),
+                            format_duration(t.tool_change_s)
+                        );
+                        match &r.stopped {
+                            // The run covers only part of the program: say where it stopped.
+                            Some(s) => format!(
+                                "Cycle time {} partial {times}: {}",
+                                format_duration(t.cycle_time_s),
+                                s.describe()
+                            ),
+                            None => {
+                                format!("Cycle time {} {times}", format_duration(t.cycle_time_s))
+                            }
+                        }
+                    }
+                    None => snap.run_skipped_reason()?,
+                };
                 Some(vec![CodeLens {
                     range: Range::new(Position::new(0, 0), Position::new(0, 0)),
                     command: Some(Command {

@@ -208,6 +208,20 @@ impl Snapshot {
         })
     }
 
+    /// Why no dry run is made for this document, when that is its size: the
+    /// editor then says so instead of showing no runtime findings and no time.
+    pub fn run_skipped_reason(&self) -> Option<String> {
+        let len = self.program().text.len();
+        if self.syntax_only || len <= self.doc.max_run_file_size {
+            return None;
+        }
+        Some(format!(
+            "No dry run: the file ({} KB) is above the dry-run size limit ({} KB, partscope.maxRunFileSize); runtime diagnostics and the cycle time are not shown",
+            len / 1024,
+            self.doc.max_run_file_size / 1024
+        ))
+    }
+
     /// The run only if it was already computed.
     pub fn cached_run(&self) -> Option<Arc<RunReport>> {
         self.run.get().cloned().flatten()
@@ -243,11 +257,22 @@ impl Snapshot {
     /// The diagnostics of this document (those located in other files are left
     /// to those files).
     pub fn lsp_diagnostics(&self) -> Vec<LspDiagnostic> {
-        self.diagnostics()
+        let mut out: Vec<LspDiagnostic> = self
+            .diagnostics()
             .iter()
             .filter(|d| d.file == analyzer::FileId(0))
             .map(|d| self.to_lsp(d))
-            .collect()
+            .collect();
+        if let Some(reason) = self.run_skipped_reason() {
+            let d = analyzer::Diagnostic::new(
+                runtime::rules::codes::STEP_BUDGET,
+                Severity::Info,
+                analyzer::Span::new(0, 0),
+                reason,
+            );
+            out.insert(0, self.to_lsp(&d));
+        }
+        out
     }
 }
 

@@ -64,6 +64,11 @@ impl Interp<'_, '_> {
                     self.out.canon_error = Some(format!("{msg}\n{line}"));
                 }
             }
+            self.stopped_at_block(
+                fi,
+                bi,
+                "the control cannot read this block (the syntax error on this line)",
+            );
             return Ok(Flow::Stop);
         }
         let items = prog.items_of(&block);
@@ -106,11 +111,13 @@ impl Interp<'_, '_> {
                 match &it.kind {
                     ItemKind::Assign { target, value } => {
                         let v = self.eval(&prog, *value)?;
-                        self.assign(&prog, *target, v, it.span)?;
+                        let tainted = self.taint.last.get();
+                        self.assign(&prog, *target, v, it.span, tainted)?;
                     }
                     ItemKind::Macro(m) => match *m {
                         MacroStmt::IfThen { cond } => {
                             let c = self.eval_condition(&prog, cond)?;
+                            self.note_tainted_branch(it.span);
                             if c.unwrap_or(0.0) == 0.0 {
                                 skip_next = true;
                             }
@@ -121,13 +128,17 @@ impl Interp<'_, '_> {
                             return self.goto_seq(fi, bi, n, it.span);
                         }
                         MacroStmt::IfGoto { cond, target } => {
-                            if self.eval_condition(&prog, cond)?.unwrap_or(0.0) != 0.0 {
+                            let c = self.eval_condition(&prog, cond)?;
+                            self.note_tainted_branch(it.span);
+                            if c.unwrap_or(0.0) != 0.0 {
                                 let n = self.eval_num(&prog, target)?;
                                 return self.goto_seq(fi, bi, n, it.span);
                             }
                         }
                         MacroStmt::While { cond, .. } => {
-                            if self.eval_condition(&prog, cond)?.unwrap_or(0.0) == 0.0 {
+                            let c = self.eval_condition(&prog, cond)?;
+                            self.note_tainted_branch(it.span);
+                            if c.unwrap_or(0.0) == 0.0 {
                                 let Some(end) = self.files[fi].loops.get(&bi).copied() else {
                                     return Err(self.err(
                                         codes::FLOW,
@@ -161,7 +172,7 @@ impl Interp<'_, '_> {
         }
         let mut w = Words::default();
         let mut comments: Vec<(CommentKind, Span)> = Vec::new();
-        let mut assigns: Vec<(ExprId, Val, Span)> = Vec::new();
+        let mut assigns: Vec<(ExprId, Val, Span, bool)> = Vec::new();
         for it in items {
             match &it.kind {
                 ItemKind::Word(word) => {
@@ -283,7 +294,7 @@ impl Interp<'_, '_> {
                 ItemKind::Comment(k) => comments.push((*k, it.span)),
                 ItemKind::Assign { target, value } if self.ngc() => {
                     let v = self.eval(&prog, *value)?;
-                    assigns.push((*target, v, it.span));
+                    assigns.push((*target, v, it.span, self.taint.last.get()));
                 }
                 _ => {}
             }
@@ -294,8 +305,8 @@ impl Interp<'_, '_> {
             self.check_ngc_codes(&w)?;
         }
         // RS274/NGC: parameters are set after the whole line was read.
-        for (t, v, s) in assigns {
-            self.assign(&prog, t, v, s)?;
+        for (t, v, s, tainted) in assigns {
+            self.assign(&prog, t, v, s, tainted)?;
         }
         if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
             c.line_number = Some(n);

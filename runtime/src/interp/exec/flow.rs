@@ -44,7 +44,11 @@ impl Interp<'_, '_> {
         let args: Vec<ExprId> = p.expr_list(ow.args()).to_vec();
         let cond = |s: &Self| -> Result<bool, Diagnostic> {
             match args.first() {
-                Some(e) => Ok(s.eval_num(p, *e)? != 0.0),
+                Some(e) => {
+                    let v = s.eval_num(p, *e)?;
+                    s.note_tainted_branch(span);
+                    Ok(v != 0.0)
+                }
                 None => Ok(false),
             }
         };
@@ -162,7 +166,11 @@ impl Interp<'_, '_> {
             OKeyword::Do => Ok(Flow::Next),
             OKeyword::Repeat => {
                 let n = match args.first() {
-                    Some(e) => self.eval_num(p, *e)?.round() as i64,
+                    Some(e) => {
+                        let n = self.eval_num(p, *e)?.round() as i64;
+                        self.note_tainted_branch(span);
+                        n
+                    }
                     None => 0,
                 };
                 if n <= 0 {
@@ -204,7 +212,9 @@ impl Interp<'_, '_> {
                     }
                     let a = p.expr_list(o.args()).first().copied();
                     if let Some(a) = a {
-                        if self.eval_num(p, a)? != 0.0 {
+                        let v = self.eval_num(p, a)?;
+                        self.note_tainted_branch(blk.span);
+                        if v != 0.0 {
                             return Ok(Flow::Goto(fi, b + 1));
                         }
                     }
@@ -345,7 +355,7 @@ impl Interp<'_, '_> {
                     codes::SUB_NOT_FOUND,
                     Severity::Info,
                     span,
-                    format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found beside it; LinuxCNC also searches its SUBROUTINE_PATH, so the dry run stops here. Set machine.subroutine_path (or ini) to check the call"),
+                    format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found beside it; LinuxCNC also searches its SUBROUTINE_PATH, so the dry run skips the call. Set machine.subroutine_path (or ini) to check the call"),
                 )
                 .in_file(self.file_id()));
             }

@@ -103,18 +103,9 @@ impl Interp<'_, '_> {
     /// Evaluates a branch or loop condition; when it read a machine value,
     /// remembers that the branch depends on the machine.
     pub(super) fn eval_condition(&mut self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
-        let (v, read) = {
-            let locals = self
-                .frames
-                .last()
-                .map(|f| &f.named_locals)
-                .or(Some(&self.main_locals));
-            let vars = self.vars(locals);
-            let v = expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e));
-            (v, (vars.machine_read.get(), vars.shared_read.get()))
-        };
+        let (v, (unknown, shared)) = self.eval_reading(p, id);
         let (line, step) = (self.cur_line, self.steps);
-        self.machine_vars.tested(read.0, read.1, line, step);
+        self.machine_vars.tested(unknown, shared, line, step);
         v
     }
 

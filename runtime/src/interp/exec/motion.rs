@@ -224,7 +224,11 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn feed_to(&mut self, t: [f64; 6], span: Span) -> Result<(), Diagnostic> {
-        self.check_feed(span)?;
+        if let Err(e) = self.check_feed(span) {
+            // A feed move without F leaves the tool at its end (`recover.rs`).
+            self.recover_to = Some(recover::Recover::SetPos(t));
+            return Err(e);
+        }
         if self.st.modal.feed_mode == 930 && !std::mem::take(&mut self.inv_rate_set) {
             let len = dist(&self.st.pos, &t);
             // LinuxCNC gives a zero-length move a nominal rate of 0.1 (its issue 2410).
@@ -387,7 +391,17 @@ impl Interp<'_, '_> {
             20 | 30 => {
                 self.st.modal.motion = mode;
                 if has_axes || w.has(b'I') || w.has(b'J') || w.has(b'K') {
-                    self.exec_arc(w, mode == 20, bspan)?;
+                    if let Err(e) = self.exec_arc(w, mode == 20, bspan) {
+                        // An arc off its circle goes straight to its end; any other
+                        // arc that cannot be made leaves the tool at its end.
+                        let t = self.target(w);
+                        self.recover_to = Some(if e.code == codes::ARC_RADIUS_MISMATCH {
+                            recover::Recover::Feed(t)
+                        } else {
+                            recover::Recover::SetPos(t)
+                        });
+                        return Err(e);
+                    }
                 }
             }
             50 | 51 if self.ngc() => {
@@ -512,7 +526,17 @@ impl Interp<'_, '_> {
                 self.st.pos = t;
             }
             700 | 710..=712 | 720..=722 if self.ngc() => self.exec_g7x(mode, w, bspan)?,
-            m if is_cycle(m) && (motion.is_some() || has_axes) => self.exec_cycle(m, w, bspan)?,
+            m if is_cycle(m) && (motion.is_some() || has_axes) => {
+                if let Err(e) = self.exec_cycle(m, w, bspan) {
+                    // A cycle that cannot run leaves the tool over its hole, at the
+                    // height it had.
+                    let mut t = self.target(w);
+                    let n = self.normal_axis();
+                    t[n] = self.st.pos[n];
+                    self.recover_to = Some(recover::Recover::SetPos(t));
+                    return Err(e);
+                }
+            }
             _ => {}
         }
         Ok(())

@@ -19,14 +19,44 @@ impl Interp<'_, '_> {
         self.err(codes::EXPRESSION, e.span, e.message)
     }
 
+    /// Evaluates an expression. While recovering (`recover.rs`), a failed one is
+    /// reported and yields an unknown value (0), and one that reads a parameter an
+    /// earlier error left unknown is unknown too: `taint.last` says which.
     pub(super) fn eval(&self, p: &Program, id: ExprId) -> Result<Val, Diagnostic> {
+        self.eval_reading(p, id).0
+    }
+
+    /// [`Self::eval`], and the first variables it read that only the machine
+    /// knows and that the machine may change (`machine_vars.rs`).
+    pub(super) fn eval_reading(
+        &self,
+        p: &Program,
+        id: ExprId,
+    ) -> (Result<Val, Diagnostic>, (Option<usize>, Option<usize>)) {
         let locals = self
             .frames
             .last()
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
-        let vars = self.vars(locals);
-        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+        let hit = std::cell::Cell::new(false);
+        let mut vars = self.vars(locals);
+        vars.tainted = Some(&hit);
+        self.taint.last.set(false);
+        let v = match expr::eval(p, id, self.dialect, &vars, 0) {
+            Ok(v) => {
+                if hit.get() {
+                    self.taint.last.set(true);
+                    self.taint.block.set(true);
+                }
+                Ok(v)
+            }
+            // A failure that follows from an unknown value is not reported again.
+            Err(e) if self.recovering() => {
+                Ok(self.taint_failed(Some(self.eval_err(e)).filter(|_| !hit.get())))
+            }
+            Err(e) => Err(self.eval_err(e)),
+        };
+        (v, (vars.machine_read.get(), vars.shared_read.get()))
     }
 
     /// What expressions read: the state, the named locals in scope and the
@@ -48,6 +78,7 @@ impl Interp<'_, '_> {
             machine: &self.machine_vars,
             machine_read: std::cell::Cell::new(None),
             shared_read: std::cell::Cell::new(None),
+            tainted: None,
         }
     }
 
@@ -70,6 +101,7 @@ impl Interp<'_, '_> {
         target: ExprId,
         v: Val,
         span: Span,
+        tainted: bool,
     ) -> Result<(), Diagnostic> {
         match p.expr(target).expr {
             Expr::Var { index } => {
@@ -105,11 +137,13 @@ impl Interp<'_, '_> {
                 }
                 self.machine_vars.assigned(n as usize);
                 self.set_param(n as usize, v);
+                self.mark_taint(|| format!("#{}", n as usize), tainted);
                 Ok(())
             }
             Expr::Named { name } => {
                 let key = expr::named_key(&p.str_of(name));
                 let v = v.unwrap_or(0.0);
+                self.mark_taint(|| key.clone(), tainted);
                 if key.starts_with('_') {
                     Arc::make_mut(&mut self.st.named).insert(key, v);
                 } else if let Some(f) = self.frames.last_mut() {
@@ -136,6 +170,20 @@ pub(super) struct Vars<'s> {
     pub(super) machine_read: std::cell::Cell<Option<usize>>,
     /// The first variable read that the machine may change while the program runs.
     pub(super) shared_read: std::cell::Cell<Option<usize>>,
+    /// Set when a read hits a parameter an earlier error left unknown.
+    tainted: Option<&'s std::cell::Cell<bool>>,
+}
+
+impl Vars<'_> {
+    /// Notes a read of `key` when it is tainted (the list is empty unless an
+    /// error happened, so the key is only built then).
+    fn read(&self, key: impl FnOnce() -> String) {
+        if let Some(hit) = self.tainted {
+            if !self.st.tainted.is_empty() && self.st.tainted.contains(&key()) {
+                hit.set(true);
+            }
+        }
+    }
 }
 
 impl VarSource for Vars<'_> {
@@ -161,6 +209,7 @@ impl VarSource for Vars<'_> {
         if let Some(v) = system_var(self.st, self.dialect, n) {
             return Ok(Some(v));
         }
+        self.read(|| format!("#{n}"));
         let v = self.st.params.get(n as usize).copied().flatten();
         if self.dialect == Dialect::Fanuc {
             let n = n as usize;
@@ -178,6 +227,7 @@ impl VarSource for Vars<'_> {
         })
     }
     fn get_named(&self, name: &str, span: Span) -> Result<Val, EvalError> {
+        self.read(|| name.to_string());
         if let Some(v) = self.locals.and_then(|l| l.get(name)) {
             return Ok(Some(*v));
         }
