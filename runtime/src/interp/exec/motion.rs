@@ -287,6 +287,20 @@ impl Interp<'_, '_> {
         }
     }
 
+    /// FANUC/ServoWorks G31 skip function: a one-shot straight feed move at F that
+    /// stops where the skip signal comes (here: at the target, no contact is
+    /// simulated). The modal motion is not changed.
+    fn exec_skip(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
+        let t = self.target(w);
+        self.check_feed(bspan)?;
+        let end = self.to_machine(t);
+        let m = self.motion_base(MotionKind::Probe, self.st.mpos, end, self.st.feed);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
+        Ok(())
+    }
+
     pub(super) fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
         for (g, _) in &w.g {
@@ -339,6 +353,9 @@ impl Interp<'_, '_> {
         let has_axes = w.any_axis() || (is_cycle(mode) && w.has(b'R'));
         if motion.is_none() && !has_axes {
             return Ok(());
+        }
+        if w.has_g(310) && !self.ngc() && w.any_axis() {
+            return self.exec_skip(w, bspan);
         }
         if w.has_g(530) {
             // Machine coordinates for this block only.
