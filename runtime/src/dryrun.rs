@@ -57,8 +57,13 @@ const INTERPRETER_KEYS: &[&str] = &[
 /// table's planner keys applied. Interpreter-only keys are skipped here (the
 /// interpreter reads them from the same table); anything else unknown is an error.
 pub fn profile_from_table(table: &toml::Table, dialect: Dialect) -> Result<MachineProfile, String> {
-    let mut merged =
-        toml::Table::try_from(MachineProfile::default_for(dialect)).map_err(|e| e.to_string())?;
+    profile_over(&MachineProfile::default_for(dialect), table)
+}
+
+/// `base` with the planner keys of a `[machine]` table applied: a LinuxCNC `.ini`'s
+/// limits with the configuration's tool-change and spindle times, for example.
+pub fn profile_over(base: &MachineProfile, table: &toml::Table) -> Result<MachineProfile, String> {
+    let mut merged = toml::Table::try_from(base.clone()).map_err(|e| e.to_string())?;
     let base_axis = merged
         .get("axes")
         .and_then(|a| a.as_array())

@@ -207,6 +207,15 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     }
     let mut profile = match profile_override {
+        // The config's own `[machine]` keys (times, overrides) apply over its `ini`.
+        Some(p) if args.machine.is_none() => {
+            let mut keys = loaded.config.machine.clone();
+            keys.remove("axes");
+            match dryrun::profile_over(&p, &keys) {
+                Ok(p) => p,
+                Err(e) => return fail(e),
+            }
+        }
         Some(p) => p,
         None => match dryrun::profile_from_table(&machine_table, dialect) {
             Ok(p) => p,
