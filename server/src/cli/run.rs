@@ -723,7 +723,6 @@ fn human(
     if let Some((d, why)) = &report.dialect {
         writeln!(w, "  dialect      {:>12}  ({why})", d.as_str())?;
     }
-    writeln!(w, "  machine      {profile_name}")?;
     writeln!(
         w,
         "  cycle time   {:>12}  ({} s)",
@@ -770,6 +769,7 @@ fn human(
         )?;
     }
     writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
+    writeln!(w, "  machine      {profile_name}")?;
     if partial(report) {
         writeln!(
             w,
