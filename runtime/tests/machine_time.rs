@@ -337,3 +337,18 @@ fn probe_moves_are_timed_as_feed_moves() {
     let t = dryrun::plan_run(&out, &MachineProfile::default_for(Dialect::Rs274ngc)).totals;
     assert!(t.cutting_s > 50.0 / feed && t.rapid_s == 0.0, "{t:?}");
 }
+
+/// A FANUC G00 stops at its end even when it is interpolated (LRP = 1) and G64
+/// is in force: two rapids round a corner as two moves from rest to rest.
+#[test]
+fn fanuc_rapids_stop_at_every_block_end() {
+    let program = "G21 G90 G64;\nG0 X100.;\nG0 Y100.;\nM30;\n";
+    let t = plan_on(
+        Dialect::Fanuc,
+        program,
+        VMC,
+        "lrp = 1\nin_position_time = 0.0",
+    );
+    let (vx, vy, ax, ay) = (400.0, 300.0, 2000.0, 3000.0);
+    assert_s(t.rapid_s, 100.0 / vx + vx / ax + 100.0 / vy + vy / ay);
+}

@@ -150,7 +150,11 @@ impl Interp<'_, '_> {
         end: [f64; 6],
         feed: f64,
     ) -> Motion {
-        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
+        // A FANUC G00 always decelerates to a stop at its end (spec/fanuc.md §5.3),
+        // whichever way its axes move.
+        let fanuc_rapid = matches!(kind, MotionKind::Rapid)
+            && self.input.program.dialect == analyzer::Dialect::Fanuc;
+        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact || fanuc_rapid;
         let lu = self.lu();
         let mm = |p: [f64; 6]| [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]];
         let kind = match kind {
