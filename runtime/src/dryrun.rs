@@ -10,7 +10,7 @@ use analyzer::Dialect;
 use serde::Serialize;
 
 use crate::interp::{Event as IEvent, EventKind, Motion, MotionKind, RunOutput};
-use crate::machine::MachineProfile;
+use crate::machine::{MachineProfile, RapidPositioning};
 use crate::plan::{
     self, cross3, dist3, dot3, sub3, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
 };
@@ -57,8 +57,13 @@ const INTERPRETER_KEYS: &[&str] = &[
 /// table's planner keys applied. Interpreter-only keys are skipped here (the
 /// interpreter reads them from the same table); anything else unknown is an error.
 pub fn profile_from_table(table: &toml::Table, dialect: Dialect) -> Result<MachineProfile, String> {
-    let mut merged =
-        toml::Table::try_from(MachineProfile::default_for(dialect)).map_err(|e| e.to_string())?;
+    profile_over(&MachineProfile::default_for(dialect), table)
+}
+
+/// `base` with the planner keys of a `[machine]` table applied: a LinuxCNC `.ini`'s
+/// limits with the configuration's tool-change and spindle times, for example.
+pub fn profile_over(base: &MachineProfile, table: &toml::Table) -> Result<MachineProfile, String> {
+    let mut merged = toml::Table::try_from(base.clone()).map_err(|e| e.to_string())?;
     let base_axis = merged
         .get("axes")
         .and_then(|a| a.as_array())
@@ -66,6 +71,10 @@ pub fn profile_from_table(table: &toml::Table, dialect: Dialect) -> Result<Machi
         .cloned();
     for (k, v) in table {
         if INTERPRETER_KEYS.contains(&k.as_str()) {
+            continue;
+        }
+        if let Some(r) = crate::machine::rapid_alias(k, v).map_err(|e| format!("[machine]: {e}"))? {
+            merged.insert("rapid_positioning".into(), r);
             continue;
         }
         if k == "axes" {
@@ -285,13 +294,19 @@ fn planner_event(ev: &IEvent) -> Option<plan::Event> {
             block,
         },
         EventKind::ToolChange { tool } => plan::Event::ToolChange { tool: *tool, block },
-        EventKind::Spindle { dir, .. } => {
+        EventKind::Spindle { dir, rpm } => {
             if *dir == 0 {
                 plan::Event::SpindleStop { block }
             } else {
-                plan::Event::SpindleStart { block }
+                plan::Event::SpindleStart {
+                    rpm: rpm.abs() * f64::from(*dir),
+                    block,
+                }
             }
         }
+        EventKind::Coolant { .. } => plan::Event::MCode { code: 80, block },
+        EventKind::MCode { code } => plan::Event::MCode { code: *code, block },
+        EventKind::ToolSelect { tool } => plan::Event::ToolSelect { tool: *tool, block },
         EventKind::Stop { optional } => plan::Event::ProgramStop {
             optional: *optional,
             block,
@@ -528,9 +543,35 @@ fn plan_run_stoppable(
     )
 }
 
-/// Samples motions into polylines with at most `chord` mm deviation on arcs.
+/// Samples motions into polylines with at most `chord` mm deviation on arcs;
+/// rapids are straight lines (see [`toolpath_on`] for a machine's real G0 path).
 pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
+    toolpath_with(out, chord, None)
+}
+
+/// [`toolpath`] on a machine: where `profile` moves G0 axes independently, each
+/// rapid is drawn as the dog-leg its axes make ([`plan::dogleg_path`]).
+pub fn toolpath_on(out: &RunOutput, chord: f64, profile: &MachineProfile) -> Toolpath {
+    toolpath_with(out, chord, Some(profile))
+}
+
+/// Rapid rates (with the rapid override, at most 100 %) and accelerations of X Y Z
+/// A B C when `profile` moves G0 axes independently.
+fn dogleg_limits(profile: Option<&MachineProfile>) -> Option<([f64; 6], [f64; 6])> {
+    let p = profile.filter(|p| p.rapid_positioning == RapidPositioning::Independent)?;
+    let ovr = p.rapid_override.clamp(0.0, 1.0);
+    let (_, acc) = p.xyzabc_limits();
+    let rate = std::array::from_fn(|i| {
+        p.axis(['X', 'Y', 'Z', 'A', 'B', 'C'][i])
+            .map(|a| a.rapid_rate * ovr)
+            .unwrap_or(0.0)
+    });
+    Some((rate, acc))
+}
+
+fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) -> Toolpath {
     let chord = if chord > 0.0 { chord } else { 0.01 };
+    let dogleg = dogleg_limits(profile);
     let mut tp = Toolpath::default();
     let mut min = [f64::INFINITY; 3];
     let mut max = [f64::NEG_INFINITY; 3];
@@ -600,7 +641,12 @@ pub fn toolpath(out: &RunOutput, chord: f64) -> Toolpath {
                 points.push(p);
             }
         }
-        points.push([m.end[0], m.end[1], m.end[2]]);
+        if let (MotionKind::Rapid, Some((rate, acc))) = (m.kind, &dogleg) {
+            let path = plan::dogleg_path(&m.start, &m.end, rate, acc);
+            points.extend(path.iter().skip(1).map(|p| [p[0], p[1], p[2]]));
+        } else {
+            points.push([m.end[0], m.end[1], m.end[2]]);
+        }
         for p in &points {
             for i in 0..3 {
                 if p[i].is_finite() {

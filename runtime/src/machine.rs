@@ -99,6 +99,20 @@ pub enum PlannerModel {
     Scurve,
 }
 
+/// How G0 moves several axes at once.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum RapidPositioning {
+    /// Straight line at the highest speed no axis's rapid rate forbids (LinuxCNC;
+    /// FANUC LRP No. 1401#1 = 1; ServoWorks *G00 Perform Linear Interpolation* on).
+    #[default]
+    Linear,
+    /// Each axis at its own rapid rate and acceleration, all starting together and
+    /// each stopping when it arrives: the dog-leg path (FANUC non-linear
+    /// positioning, LRP = 0; ServoWorks *G00 Perform Linear Interpolation* off).
+    Independent,
+}
+
 /// Machine and controller parameters used by the interpreter and the planner.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -116,13 +130,43 @@ pub struct MachineProfile {
     /// Minimum time the control spends per motion block, s (0 = none): shorter
     /// moves are slowed down to take this long.
     pub block_processing_time: f64,
-    /// Duration of a tool change (M6), s.
+    /// G0 path: `linear` or `independent` (dog-leg). FANUC: parameter No. 1401#1
+    /// LRP, 0 (the default) = non-linear positioning, each axis at its own rapid
+    /// rate, 1 = linear interpolation positioning (spec/fanuc.md §5.1 from [R10]
+    /// sheet 9 and [R11] sheet 16; the 30i manual's safety precautions warn that
+    /// non-linear positioning leaves the line between the end points).
+    /// ServoWorks: *G00 Perform Linear Interpolation* (manual §6.3.1, p. 6-7;
+    /// Reference Manual §3.4.2); the manual gives no default and calls the
+    /// disabled state "normal rapid traverse", so `independent` is the default.
+    /// RS274/NGC (LinuxCNC): `linear`. Also set by `lrp = 0 | 1` (FANUC) and
+    /// `g00_linear_interpolation = true | false` (ServoWorks).
+    pub rapid_positioning: RapidPositioning,
+    /// Duration of a tool change (M6; ServoWorks: the T word), s.
     pub tool_change_time: f64,
-    /// Time for the spindle to reach speed after a start or to stop, s.
+    /// Tool pre-selection (a T word without M6: FANUC, RS274/NGC), s. Counted only
+    /// when the control waits for it; 0 for a changer that selects while cutting.
+    pub tool_select_time: f64,
+    /// Fixed part of every spindle start (M3/M4), stop (M5) and speed change, s.
     pub spindle_ramp_time: f64,
-    /// Time for an M code that waits for a machine handshake, s.
+    /// Spindle acceleration: seconds per 1000 rpm of speed change (a start from
+    /// rest to S, a stop from S, an S change while turning, a reversal through 0).
+    pub spindle_ramp_per_1000rpm: f64,
+    /// Spindle orientation (M19), s.
+    pub spindle_orient_time: f64,
+    /// Coolant switching (M7, M8, M9), s.
+    pub coolant_time: f64,
+    /// Pallet change, s (the M code `pallet_change_m`).
+    pub pallet_change_time: f64,
+    /// M code number of the pallet change: LinuxCNC M60 (pallet shuttle, then a
+    /// program stop); on FANUC and ServoWorks the machine builder chooses it.
+    pub pallet_change_m: u32,
+    /// Time for any other M code (one that waits for a machine handshake), s.
     pub m_code_time: f64,
-    /// Time charged for a program stop (M0) or optional stop (M1), s.
+    /// Times of particular M codes, s: `m_code_times = { M10 = 0.5, M11 = 0.5 }`;
+    /// codes not listed take `m_code_time`.
+    pub m_code_times: std::collections::BTreeMap<String, f64>,
+    /// Time charged for a program stop (M0) or optional stop (M1), s: operator
+    /// time, reported apart from the machine's own auxiliary time.
     pub program_stop_time: f64,
     /// Settling time added at every exact stop (FANUC in-position check), s.
     /// Applied by the generic models and the closed-form `linuxcnc` execution.
@@ -184,9 +228,17 @@ impl MachineProfile {
             circle_error_allowance: 0.005,
             arc_radius_tolerance: 0.005,
             block_processing_time: 0.0,
+            rapid_positioning: RapidPositioning::Linear,
             tool_change_time: 0.0,
+            tool_select_time: 0.0,
             spindle_ramp_time: 0.0,
+            spindle_ramp_per_1000rpm: 0.0,
+            spindle_orient_time: 0.0,
+            coolant_time: 0.0,
+            pallet_change_time: 0.0,
+            pallet_change_m: 60,
             m_code_time: 0.0,
+            m_code_times: std::collections::BTreeMap::new(),
             program_stop_time: 0.0,
             in_position_time: 0.0,
             planner: PlannerModel::Trapezoid,
@@ -206,14 +258,17 @@ impl MachineProfile {
                 planner: PlannerModel::Linuxcnc,
                 ..base
             },
-            // FANUC AI contour control looks 40 blocks ahead.
+            // FANUC AI contour control looks 40 blocks ahead; LRP (No. 1401#1) is 0.
             Dialect::Fanuc => MachineProfile {
                 lookahead: 40,
+                rapid_positioning: RapidPositioning::Independent,
                 ..base
             },
-            // ServoWorks TRC/DLACC buffers 100 blocks.
+            // ServoWorks TRC/DLACC buffers 100 blocks; G00 is "normal rapid
+            // traverse" unless linear interpolation is enabled.
             Dialect::Servoworks => MachineProfile {
                 lookahead: 100,
+                rapid_positioning: RapidPositioning::Independent,
                 ..base
             },
         }
@@ -231,11 +286,30 @@ impl MachineProfile {
         let mut merged = toml::Table::try_from(MachineProfile::default_for(dialect))
             .map_err(|e| e.to_string())?;
         for (k, v) in table {
-            merged.insert(k, v);
+            match rapid_alias(&k, &v)? {
+                Some(r) => merged.insert("rapid_positioning".into(), r),
+                None => merged.insert(k, v),
+            };
         }
         toml::Value::Table(merged)
             .try_into()
             .map_err(|e: toml::de::Error| e.to_string())
+    }
+
+    /// Seconds an M code (`tenths`: its number × 10, 190 for M19) takes by
+    /// `m_code_times`, else `m_code_time`.
+    pub fn m_code_seconds(&self, tenths: u32) -> f64 {
+        let number = f64::from(tenths) / 10.0;
+        self.m_code_times
+            .iter()
+            .find(|(k, _)| {
+                k.trim()
+                    .trim_start_matches(['M', 'm'])
+                    .parse::<f64>()
+                    .is_ok_and(|n| (n - number).abs() < 1e-6)
+            })
+            .map(|(_, v)| *v)
+            .unwrap_or(self.m_code_time)
     }
 
     /// The axis with this letter (case-insensitive).
@@ -387,6 +461,26 @@ impl MachineProfile {
         }
         Ok((p, extras))
     }
+}
+
+/// The manuals' names of the G0 switch, as a `rapid_positioning` value:
+/// `lrp = 0 | 1` (FANUC parameter No. 1401#1) and `g00_linear_interpolation =
+/// true | false` (ServoWorks). `None` for any other key.
+pub fn rapid_alias(key: &str, v: &toml::Value) -> Result<Option<toml::Value>, String> {
+    let linear = match key {
+        "lrp" => match v.as_integer() {
+            Some(0) => false,
+            Some(1) => true,
+            _ => return Err("`lrp` (FANUC No. 1401#1) must be 0 or 1".into()),
+        },
+        "g00_linear_interpolation" => match v.as_bool() {
+            Some(b) => b,
+            None => return Err("`g00_linear_interpolation` must be true or false".into()),
+        },
+        _ => return Ok(None),
+    };
+    let name = if linear { "linear" } else { "independent" };
+    Ok(Some(toml::Value::String(name.into())))
 }
 
 /// Minimal `.ini` reader: `[SECTION]` headers, `KEY = VALUE` lines, `#`/`;` comments.

@@ -570,3 +570,88 @@ fn user_m_code_needs_configuration_to_be_an_error() {
     let (_, diags) = check_json(&[prog.to_str().unwrap()]);
     assert!(codes(&diags).is_empty(), "{diags:?}");
 }
+
+/// `run` names the machine profile it used and breaks the auxiliary time down by
+/// category, in JSON and in the human summary; the shipped example profiles load.
+#[test]
+fn run_names_the_machine_profile_and_its_auxiliary_times() {
+    let dir = tempdir("aux-times");
+    let f = write(
+        &dir,
+        "part.nc",
+        b"%\nO1000\nT1 M6\nS8000 M3\nM8\nG0 X100. Y120.\nM9\nM5\nM30\n%\n",
+    );
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/machines");
+    let vmc = examples.join("vmc.toml");
+    let run = |extra: &[&str]| -> Value {
+        let out = bin()
+            .args(["run", "--format", "json", f.to_str().unwrap()])
+            .args(extra)
+            .output()
+            .unwrap();
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let v = run(&["--machine", vmc.to_str().unwrap()]);
+    assert_eq!(v["machine_profile"], vmc.to_str().unwrap());
+    let a = &v["auxiliary"];
+    assert_eq!(a["tool_change_s"], 4.0);
+    assert_eq!(a["tool_changes"], 1);
+    // 0.2 s + 0.25 s per 1000 rpm, up to S8000 and down again.
+    assert_eq!(a["spindle_s"], 4.4);
+    assert_eq!(a["coolant_s"], 0.2);
+    assert_eq!(a["program_stop_s"], 0.0);
+    let total = a["total_s"].as_f64().unwrap();
+    let parts = v["tool_change_s"].as_f64().unwrap() + v["other_s"].as_f64().unwrap();
+    assert!((total - parts).abs() < 1e-12, "{a}");
+    // With no profile the output says the times are missing.
+    let v = run(&[]);
+    assert_eq!(
+        v["machine_profile"],
+        "built-in fanuc default (no tool-change or spindle times)"
+    );
+    assert_eq!(v["auxiliary"]["total_s"], 0.0);
+    let human = bin()
+        .args([
+            "run",
+            f.to_str().unwrap(),
+            "--machine",
+            vmc.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&human.stdout);
+    assert!(
+        text.contains(&format!("  machine      {}\n", vmc.display())),
+        "{text}"
+    );
+    assert!(
+        text.contains("  tool change     00:04.000  (1 change)\n"),
+        "{text}"
+    );
+    assert!(text.contains("  spindle         00:04.400\n"), "{text}");
+    for other in ["router.toml", "linuxcnc-mill/partscope.toml"] {
+        let p = examples.join(other);
+        let flag = if other.ends_with("partscope.toml") {
+            "--config"
+        } else {
+            "--machine"
+        };
+        let out = bin()
+            .args([
+                "run",
+                "--format",
+                "json",
+                f.to_str().unwrap(),
+                flag,
+                p.to_str().unwrap(),
+            ])
+            .args(["--dialect", "fanuc"])
+            .output()
+            .unwrap();
+        let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(
+            v["auxiliary"]["tool_change_s"].as_f64().unwrap() > 0.0,
+            "{other}: {v}"
+        );
+    }
+}

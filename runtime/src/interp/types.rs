@@ -159,6 +159,15 @@ pub enum EventKind {
         mist: bool,
         flood: bool,
     },
+    /// A T word that selects the next tool without changing it (FANUC, RS274/NGC).
+    ToolSelect {
+        tool: u32,
+    },
+    /// An M code with no event of its own (M19, a pallet change, machine-builder
+    /// codes): its number × 10 (190 for M19), for the profile's time table.
+    MCode {
+        code: u32,
+    },
     /// Program stop (M0) or optional stop (M1).
     Stop {
         optional: bool,

@@ -12,8 +12,8 @@ use super::servo::{self, Run, View};
 mod blend;
 mod chain;
 use super::{
-    cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel, Segment,
-    SegmentKind, SegmentTiming, Totals,
+    cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
+    RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
 use blend::Circ;
 use chain::Chain;
@@ -87,6 +87,11 @@ struct Tc {
     at_max: bool,
     /// The backward pass has set `finalvel` at least once.
     optimized: bool,
+    /// A rapid whose axes move independently (dog-leg): limits of its slowest
+    /// axis scaled to the line, no path speed cap, a stop at both ends.
+    dogleg: bool,
+    /// Path length travelled, when it differs from `target` (dog-leg rapids).
+    travel: Option<f64>,
     /// Servo-period execution state.
     run: Run,
 }
@@ -133,6 +138,8 @@ pub struct Planner {
     totals: Totals,
     /// Straight feed moves held back by the `linuxcnc` model's naive-CAM detector.
     chain: Chain,
+    /// Spindle speed, rpm: positive clockwise, negative counter-clockwise.
+    spindle_rpm: f64,
 }
 
 impl Planner {
@@ -164,6 +171,7 @@ impl Planner {
             overlap: 0.0,
             totals: Totals::default(),
             chain: Chain::default(),
+            spindle_rpm: 0.0,
         }
     }
 
@@ -193,21 +201,75 @@ impl Planner {
             }
             Event::ToolChange { .. } => {
                 self.flush(out);
-                self.totals.tool_change_s += self.p.tool_change_time;
+                let t = self.p.tool_change_time;
+                self.totals.tool_change_s += t;
+                self.totals.aux.tool_change_s += t;
+                self.totals.aux.tool_changes += 1;
             }
-            Event::SpindleStart { .. } | Event::SpindleStop { .. } => {
+            Event::ToolSelect { .. } => {
+                let t = self.p.tool_select_time;
+                if t > 0.0 {
+                    self.flush(out);
+                    self.totals.aux.tool_select_s += t;
+                    self.totals.other_s += t;
+                }
+            }
+            Event::SpindleStart { rpm, .. } => {
                 self.flush(out);
-                self.totals.other_s += self.p.spindle_ramp_time;
+                let from = self.spindle_rpm;
+                // A reversal runs down to rest and up again.
+                let change = if from * rpm < 0.0 {
+                    from.abs() + rpm.abs()
+                } else {
+                    (rpm - from).abs()
+                };
+                self.spindle_rpm = rpm;
+                if change > 0.0 && change.is_finite() {
+                    self.spindle_time(change);
+                }
+            }
+            Event::SpindleStop { .. } => {
+                self.flush(out);
+                let from = std::mem::take(&mut self.spindle_rpm).abs();
+                if from > 0.0 && from.is_finite() {
+                    self.spindle_time(from);
+                }
             }
             Event::ProgramStop { .. } => {
                 self.flush(out);
-                self.totals.other_s += self.p.program_stop_time;
+                let t = self.p.program_stop_time;
+                self.totals.other_s += t;
+                self.totals.aux.program_stop_s += t;
+                self.totals.aux.program_stops += 1;
             }
-            Event::MCode { .. } => {
-                self.flush(out);
-                self.totals.other_s += self.p.m_code_time;
+            Event::MCode { code, .. } => {
+                let aux = &mut self.totals.aux;
+                let (t, slot) = match code {
+                    190 => (self.p.spindle_orient_time, &mut aux.orient_s),
+                    70 | 80 | 90 => (self.p.coolant_time, &mut aux.coolant_s),
+                    c if c == self.p.pallet_change_m.saturating_mul(10) => {
+                        (self.p.pallet_change_time, &mut aux.pallet_change_s)
+                    }
+                    c => (self.p.m_code_seconds(c), &mut aux.m_code_s),
+                };
+                if t > 0.0 {
+                    *slot += t;
+                    self.totals.other_s += t;
+                    self.flush(out);
+                }
+                if code == 190 {
+                    // The spindle stops to orient.
+                    self.spindle_rpm = 0.0;
+                }
             }
         }
+    }
+
+    /// Charges a spindle speed change of `change` rpm.
+    fn spindle_time(&mut self, change: f64) {
+        let t = self.p.spindle_ramp_time + self.p.spindle_ramp_per_1000rpm * change / 1000.0;
+        self.totals.aux.spindle_s += t;
+        self.totals.other_s += t;
     }
 
     /// Runs out the queue and returns the totals.
@@ -324,6 +386,8 @@ impl Planner {
             halve_parabolic: lcnc,
             at_max: false,
             optimized: false,
+            dogleg: false,
+            travel: None,
             run: Run::default(),
         };
         let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
@@ -361,6 +425,9 @@ impl Planner {
                     vmax.min(feed_cap(seg.feed))
                 };
                 tc.maxaccel = amax;
+                if rapid && self.p.rapid_positioning == RapidPositioning::Independent {
+                    self.dogleg(&mut tc, seg, dtot);
+                }
             }
             SegmentKind::Arc {
                 center,
@@ -490,7 +557,7 @@ impl Planner {
         if !tc.maxaccel.is_finite() || tc.maxaccel <= 0.0 {
             tc.maxaccel = self.p.traj_max_acceleration.min(1e6);
         }
-        if !lcnc {
+        if !lcnc && !tc.dogleg {
             // The generic models honour the path acceleration cap.
             tc.maxaccel = tc.maxaccel.min(self.p.traj_max_acceleration);
         }
@@ -500,14 +567,51 @@ impl Planner {
         Some(tc)
     }
 
+    /// Makes `tc` a dog-leg rapid of path length `dtot`: each axis runs its own
+    /// trapezoid, so the move lasts as long as the slowest axis's. Scaling that
+    /// axis's rapid rate and acceleration by `dtot / dᵢ` gives a path trapezoid of
+    /// exactly that duration (a trapezoid's time does not change when distance,
+    /// speed and acceleration scale together), run from rest to rest.
+    fn dogleg(&self, tc: &mut Tc, seg: &Segment, dtot: f64) {
+        // A rapid override above 100 % cannot pass the axes' rates.
+        let ovr = self.p.rapid_override.clamp(0.0, 1.0);
+        let mut slowest: Option<(f64, usize)> = None;
+        for i in 0..6 {
+            let d = (seg.end[i] - seg.start[i]).abs();
+            let (v, a) = (self.rapid[i] * ovr, self.acc[i]);
+            if d == 0.0 || v <= 0.0 || a <= 0.0 {
+                continue;
+            }
+            let t = trapezoid(d, 0.0, v, 0.0, a).time;
+            if slowest.is_none_or(|(ts, _)| t > ts) {
+                slowest = Some((t, i));
+            }
+        }
+        let Some((_, i)) = slowest else {
+            return;
+        };
+        let k = dtot / (seg.end[i] - seg.start[i]).abs();
+        tc.maxvel = self.rapid[i] * k;
+        tc.reqvel = tc.maxvel;
+        tc.maxaccel = self.acc[i] * k;
+        tc.term = Term::Stop;
+        tc.dogleg = true;
+        if !tc.pure_rotary {
+            let rate: [f64; 6] = std::array::from_fn(|j| self.rapid[j] * ovr);
+            let path = super::dogleg_path(&seg.start, &seg.end, &rate, &self.acc);
+            tc.travel = Some(super::polyline_length(&path));
+        }
+    }
+
     // ------------------------------------------------------------------ queueing
 
     fn add(&mut self, mut tc: Tc, out: &mut dyn FnMut(SegmentTiming)) {
         let mut blend: Option<Tc> = None;
         let mut consumed = false;
         if let Some(mut prev) = self.queue.pop_back() {
-            if prev.rapid != tc.rapid {
-                // Rapid and feed moves are never blended.
+            if prev.rapid != tc.rapid || tc.dogleg {
+                // Rapid and feed moves are never blended, and every axis of a
+                // dog-leg rapid starts from rest.
                 set_term(&mut prev, Some(&mut tc), Term::Stop);
             }
             if self.lcnc() {
@@ -714,7 +818,8 @@ impl Planner {
             self.p.feed_override
         };
         let mut v = (tc.reqvel * scale).min(tc.maxvel);
-        if !tc.pure_rotary {
+        // A dog-leg rapid has no path speed to cap.
+        if !tc.pure_rotary && !tc.dogleg {
             v = v.min(self.p.traj_max_velocity);
         }
         v.max(0.0)
@@ -999,6 +1104,7 @@ impl Planner {
             self.t += self.p.in_position_time;
             self.run_start = self.t;
             self.totals.other_s += self.p.in_position_time;
+            self.totals.aux.in_position_s += self.p.in_position_time;
         }
     }
 
@@ -1016,6 +1122,7 @@ impl Planner {
         out: &mut dyn FnMut(SegmentTiming),
     ) {
         let l = tc.target;
+        let travelled = tc.travel.unwrap_or(l);
         let tot = &mut self.totals;
         tot.motion_s += added;
         if tc.rapid {
@@ -1023,7 +1130,7 @@ impl Planner {
         } else {
             tot.cutting_s += added;
         }
-        tot.distance_mm += if tc.pure_rotary { 0.0 } else { l };
+        tot.distance_mm += if tc.pure_rotary { 0.0 } else { travelled };
         let tt = tot.per_tool.entry(tc.tool).or_default();
         tt.motion_s += added;
         if tc.rapid {
@@ -1031,7 +1138,7 @@ impl Planner {
         } else {
             tt.cutting_s += added;
         }
-        tt.distance_mm += if tc.pure_rotary { 0.0 } else { l };
+        tt.distance_mm += if tc.pure_rotary { 0.0 } else { travelled };
         out(SegmentTiming {
             block: tc.block,
             tool: tc.tool,

@@ -46,7 +46,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::machine::{MachineProfile, PlannerModel};
+pub use crate::machine::{MachineProfile, PlannerModel, RapidPositioning};
 pub use engine::Planner;
 
 /// Position of all six program axes: X Y Z (mm) and A B C (degrees).
@@ -209,11 +209,14 @@ pub enum Event {
         tool: u32,
         block: u32,
     },
-    /// M3/M4: the spindle ramps up (profile `spindle_ramp_time`) before motion resumes.
+    /// M3/M4, or an S word while the spindle turns: the spindle ramps to `rpm`
+    /// (positive clockwise, negative counter-clockwise) before motion resumes, in
+    /// `spindle_ramp_time` plus `spindle_ramp_per_1000rpm` per 1000 rpm of change.
     SpindleStart {
+        rpm: f64,
         block: u32,
     },
-    /// M5: the spindle ramps down.
+    /// M5: the spindle ramps down from its speed.
     SpindleStop {
         block: u32,
     },
@@ -222,9 +225,18 @@ pub enum Event {
         optional: bool,
         block: u32,
     },
-    /// Another M code that waits for a machine handshake (profile `m_code_time`).
+    /// Another M code: `code` is its number × 10 (190 for M19). M19 takes
+    /// `spindle_orient_time`, M7/M8/M9 `coolant_time`, the pallet change code
+    /// `pallet_change_time`, any other `m_code_times` or `m_code_time`. A code
+    /// whose time is 0 does not stop the motion.
     MCode {
         code: u32,
+        block: u32,
+    },
+    /// A T word that only selects the next tool (profile `tool_select_time`; 0
+    /// does not stop the motion).
+    ToolSelect {
+        tool: u32,
         block: u32,
     },
 }
@@ -270,12 +282,54 @@ pub struct Totals {
     pub cutting_s: f64,
     pub dwell_s: f64,
     pub tool_change_s: f64,
-    /// Spindle ramps, M-code handshakes, program stops.
+    /// Every other auxiliary time: the sum of the [`Auxiliary`] categories
+    /// other than the tool change.
     pub other_s: f64,
+    /// Auxiliary (non-motion) time by category.
+    pub aux: Auxiliary,
     /// Path length travelled (blend arcs cut corners, so this can be a little less
-    /// than the programmed length).
+    /// than the programmed length; dog-leg rapids are longer than the line).
     pub distance_mm: f64,
     pub per_tool: BTreeMap<u32, ToolTotals>,
+}
+
+/// Auxiliary time by category, s, and how many events made it.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Auxiliary {
+    /// M6 (ServoWorks: T), also in [`Totals::tool_change_s`].
+    pub tool_change_s: f64,
+    pub tool_changes: u32,
+    /// T words that only select a tool.
+    pub tool_select_s: f64,
+    /// Spindle starts, stops and speed changes.
+    pub spindle_s: f64,
+    /// M19.
+    pub orient_s: f64,
+    /// M7, M8, M9.
+    pub coolant_s: f64,
+    pub pallet_change_s: f64,
+    /// Other M codes.
+    pub m_code_s: f64,
+    /// In-position settling at exact stops.
+    pub in_position_s: f64,
+    /// M0 and M1: operator time.
+    pub program_stop_s: f64,
+    pub program_stops: u32,
+}
+
+impl Auxiliary {
+    /// The sum of every category.
+    pub fn total_s(&self) -> f64 {
+        self.tool_change_s
+            + self.tool_select_s
+            + self.spindle_s
+            + self.orient_s
+            + self.coolant_s
+            + self.pallet_change_s
+            + self.m_code_s
+            + self.in_position_s
+            + self.program_stop_s
+    }
 }
 
 /// Everything [`plan`] computes.
@@ -316,6 +370,90 @@ pub fn naive_motion_time(profile: &MachineProfile, segments: &[Segment]) -> f64 
         }
     }
     t
+}
+
+/// One axis moving rest to rest over `d` at most at `v` with acceleration `a`:
+/// the trapezoid's duration and the times its acceleration ends and its
+/// deceleration starts.
+fn axis_ramp(d: f64, v: f64, a: f64) -> (f64, f64, f64) {
+    let total = profile::trapezoid(d, 0.0, v, 0.0, a).time;
+    let ramp = (v / a).min(total / 2.0);
+    (total, ramp, total - ramp)
+}
+
+/// Distance an axis of [`axis_ramp`] has covered at time `t`.
+fn axis_position(d: f64, v: f64, a: f64, t: f64) -> f64 {
+    let (total, ramp, decel) = axis_ramp(d, v, a);
+    if t >= total {
+        d
+    } else if t <= ramp {
+        0.5 * a * t * t
+    } else if t <= decel {
+        0.5 * a * ramp * ramp + a * ramp * (t - ramp)
+    } else {
+        d - 0.5 * a * (total - t) * (total - t)
+    }
+}
+
+/// The path of a G0 whose axes move independently (FANUC non-linear
+/// positioning, ServoWorks G00 without linear interpolation): every axis starts
+/// at once and runs its own trapezoid at its rapid rate `rate[i]` and acceleration
+/// `acc[i]`, so the tool leaves the straight line where the first axis arrives.
+/// Returns points from `start` to `end`: every moment an axis changes phase, and
+/// between them eight steps where the path bends. Each axis moves monotonically,
+/// so every point lies in the box the end points span. An axis with no rate or
+/// acceleration (not on the machine) moves at once.
+pub fn dogleg_path(start: &Pose, end: &Pose, rate: &[f64; 6], acc: &[f64; 6]) -> Vec<Pose> {
+    let moving = |i: usize| rate[i] > 0.0 && acc[i] > 0.0 && end[i] != start[i];
+    let d: [f64; 6] = std::array::from_fn(|i| (end[i] - start[i]).abs());
+    let mut times = vec![0.0];
+    for i in (0..6).filter(|i| moving(*i)) {
+        let (total, ramp, decel) = axis_ramp(d[i], rate[i], acc[i]);
+        times.extend([ramp, decel, total]);
+    }
+    times.retain(|t| t.is_finite());
+    times.sort_by(f64::total_cmp);
+    times.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    let at = |t: f64| -> Pose {
+        std::array::from_fn(|i| {
+            if !moving(i) {
+                return end[i];
+            }
+            let x = axis_position(d[i], rate[i], acc[i], t);
+            start[i] + x.copysign(end[i] - start[i])
+        })
+    };
+    let mut points = vec![*start];
+    for w in times.windows(2) {
+        let (t0, t1) = (w[0], w[1]);
+        let mid = 0.5 * (t0 + t1);
+        // The path bends where two axes move and one of them changes speed.
+        let movers = (0..6)
+            .filter(|i| moving(*i) && axis_ramp(d[*i], rate[*i], acc[*i]).0 > mid)
+            .count();
+        let ramping = (0..6).any(|i| {
+            let (total, ramp, decel) = axis_ramp(d[i], rate[i], acc[i]);
+            moving(i) && mid < total && (mid < ramp || mid > decel)
+        });
+        let steps = if movers > 1 && ramping { 8 } else { 1 };
+        for k in 1..=steps {
+            points.push(at(t0 + (t1 - t0) * k as f64 / steps as f64));
+        }
+    }
+    // The last sample is the end point up to rounding: make it exact.
+    if points.len() > 1 {
+        points.pop();
+    }
+    points.push(*end);
+    points
+}
+
+/// Length of a polyline through the XYZ of `points`, mm.
+pub fn polyline_length(points: &[Pose]) -> f64 {
+    points
+        .windows(2)
+        .map(|w| dist3(&[w[0][0], w[0][1], w[0][2]], &[w[1][0], w[1][1], w[1][2]]))
+        .sum()
 }
 
 pub(crate) fn dot3(a: &[f64; 3], b: &[f64; 3]) -> f64 {

@@ -145,10 +145,19 @@ pub fn run(args: RunArgs) -> ExitCode {
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
     let mut machine_table = loaded.config.machine.clone();
+    // Named in the output, so a figure is never read without its machine.
+    let mut profile_name = match &loaded.path {
+        Some(p) if !machine_table.is_empty() => format!("[machine] in {}", p.display()),
+        _ => format!(
+            "built-in {} default (no tool-change or spindle times)",
+            dialect.as_str()
+        ),
+    };
     let mut profile_override: Option<MachineProfile> = None;
     let mut tool_table_path = args.tool_table.clone();
     let mut var_path = args.var_file.clone();
     if let Some(m) = &args.machine {
+        profile_name = m.display().to_string();
         let machine_text = match std::fs::read_to_string(m) {
             Ok(t) => t,
             Err(e) => return fail(format_args!("{}: {e}", m.display())),
@@ -200,8 +209,20 @@ pub fn run(args: RunArgs) -> ExitCode {
         machine_table =
             workspace::machine_table_with(&machine_table, cfg_files.ini_profile.as_ref());
         profile_override = cfg_files.ini_profile.clone();
+        if let (Some(ini), Some(cfg)) = (&loaded.config.ini, &loaded.path) {
+            profile_name = format!("ini {ini} of {}", cfg.display());
+        }
     }
     let mut profile = match profile_override {
+        // The config's own `[machine]` keys (times, overrides) apply over its `ini`.
+        Some(p) if args.machine.is_none() => {
+            let mut keys = loaded.config.machine.clone();
+            keys.remove("axes");
+            match dryrun::profile_over(&p, &keys) {
+                Ok(p) => p,
+                Err(e) => return fail(e),
+            }
+        }
         Some(p) => p,
         None => match dryrun::profile_from_table(&machine_table, dialect) {
             Ok(p) => p,
@@ -272,7 +293,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             extra_files: Vec::new(),
             dialect: Some((dialect, dialect_reason)),
         };
-        return mismatch_output(&args, &report);
+        return mismatch_output(&args, &report, &profile_name);
     }
     let resolver = crate::resolve::FsResolver::new(
         &args.file,
@@ -338,10 +359,13 @@ pub fn run(args: RunArgs) -> ExitCode {
         let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
         let stdout = std::io::stdout();
         let mut w = std::io::BufWriter::new(stdout.lock());
-        let res = serde_json::to_writer_pretty(&mut w, &summary_json(&dry, &report, &stop))
-            .map_err(std::io::Error::other)
-            .and_then(|_| writeln!(w))
-            .and_then(|_| w.flush());
+        let res = serde_json::to_writer_pretty(
+            &mut w,
+            &summary_json(&dry, &report, &stop, &profile_name),
+        )
+        .map_err(std::io::Error::other)
+        .and_then(|_| writeln!(w))
+        .and_then(|_| w.flush());
         if let Err(e) = res {
             return fail(format_args!("cannot write output: {e}"));
         }
@@ -374,7 +398,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     if let Some(svg) = &args.svg {
-        let tp = dryrun::toolpath(&out, 0.01);
+        let tp = dryrun::toolpath_on(&out, 0.01, &profile);
         let max_mb = args
             .max_svg_mb
             .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
@@ -408,7 +432,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     }
     if let Some(png) = &args.png {
-        let tp = dryrun::toolpath(&out, 0.01);
+        let tp = dryrun::toolpath_on(&out, 0.01, &profile);
         if let Err(e) = crate::picture::png(&tp, png) {
             return fail(format_args!("{}: {e}", png.display()));
         }
@@ -448,19 +472,27 @@ pub fn run(args: RunArgs) -> ExitCode {
                 .and_then(|_| writeln!(w))
         }
         Some(Emit::Toolpath) => {
-            let tp = dryrun::toolpath(&out, 0.01);
+            let tp = dryrun::toolpath_on(&out, 0.01, &profile);
             serde_json::to_writer(&mut w, &tp)
                 .map_err(std::io::Error::other)
                 .and_then(|_| writeln!(w))
         }
         Some(Emit::Canon) | None => match args.format {
             RunFormat::Json => {
-                let v = summary_json(&dry, &report, &stop);
+                let v = summary_json(&dry, &report, &stop, &profile_name);
                 serde_json::to_writer_pretty(&mut w, &v)
                     .map_err(std::io::Error::other)
                     .and_then(|_| writeln!(w))
             }
-            RunFormat::Human => human(&mut w, &args.file, &dry, &out, &report, &stop),
+            RunFormat::Human => human(
+                &mut w,
+                &args.file,
+                &dry,
+                &out,
+                &report,
+                &stop,
+                &profile_name,
+            ),
         },
     };
     if let Err(e) = res.and_then(|_| w.flush()) {
@@ -524,7 +556,7 @@ fn plan_beside(
 /// The output of `run` for a program written for another control (P010): the
 /// diagnostic, no figures (`cycle_time_s` and the other totals are null, `partial`
 /// is true in JSON).
-fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
+fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> ExitCode {
     let stdout = std::io::stdout();
     let mut w = std::io::BufWriter::new(stdout.lock());
     let located = output::locate(std::slice::from_ref(report));
@@ -540,6 +572,7 @@ fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
         let v = json!({
             "dialect": dialect,
             "dialect_reason": dialect_reason,
+            "machine_profile": profile_name,
             "cycle_time_s": null,
             "motion_s": null,
             "rapid_s": null,
@@ -547,6 +580,7 @@ fn mismatch_output(args: &RunArgs, report: &FileReport) -> ExitCode {
             "dwell_s": null,
             "tool_change_s": null,
             "other_s": null,
+            "auxiliary": null,
             "distance_mm": null,
             "per_tool": {},
             "partial": true,
@@ -623,7 +657,30 @@ fn exit_status(report: &FileReport, stop: &Stop) -> ExitCode {
     }
 }
 
-fn summary_json(dry: &DryRun, report: &FileReport, stop: &Stop) -> serde_json::Value {
+/// The auxiliary times by category, with their sum, for `run --format json`.
+fn auxiliary_json(a: &runtime::plan::Auxiliary) -> serde_json::Value {
+    json!({
+        "tool_change_s": a.tool_change_s,
+        "tool_changes": a.tool_changes,
+        "tool_select_s": a.tool_select_s,
+        "spindle_s": a.spindle_s,
+        "orient_s": a.orient_s,
+        "coolant_s": a.coolant_s,
+        "pallet_change_s": a.pallet_change_s,
+        "m_code_s": a.m_code_s,
+        "in_position_s": a.in_position_s,
+        "program_stop_s": a.program_stop_s,
+        "program_stops": a.program_stops,
+        "total_s": a.total_s(),
+    })
+}
+
+fn summary_json(
+    dry: &DryRun,
+    report: &FileReport,
+    stop: &Stop,
+    profile_name: &str,
+) -> serde_json::Value {
     let t = &dry.totals;
     let per_tool: serde_json::Map<String, serde_json::Value> = t
         .per_tool
@@ -647,6 +704,7 @@ fn summary_json(dry: &DryRun, report: &FileReport, stop: &Stop) -> serde_json::V
     json!({
         "dialect": dialect,
         "dialect_reason": dialect_reason,
+        "machine_profile": profile_name,
         "cycle_time_s": t.cycle_time_s,
         "motion_s": t.motion_s,
         "rapid_s": t.rapid_s,
@@ -654,6 +712,7 @@ fn summary_json(dry: &DryRun, report: &FileReport, stop: &Stop) -> serde_json::V
         "dwell_s": t.dwell_s,
         "tool_change_s": t.tool_change_s,
         "other_s": t.other_s,
+        "auxiliary": auxiliary_json(&t.aux),
         "distance_mm": t.distance_mm,
         "per_tool": per_tool,
         "partial": stop.partial,
@@ -670,6 +729,15 @@ fn partial(report: &FileReport) -> bool {
         .diagnostics
         .iter()
         .any(|d| d.code == runtime::rules::codes::STEP_BUDGET)
+}
+
+/// `"  (3 changes)"`, or nothing for none.
+fn count(n: u32, what: &str) -> String {
+    match n {
+        0 => String::new(),
+        1 => format!("  (1 {what})"),
+        n => format!("  ({n} {what}s)"),
+    }
 }
 
 /// Seconds with three decimals, in scientific notation from 1e9 s on (a
@@ -710,6 +778,7 @@ fn human(
     out: &runtime::RunOutput,
     report: &FileReport,
     stop: &Stop,
+    profile_name: &str,
 ) -> std::io::Result<()> {
     let t = &dry.totals;
     writeln!(w, "{}", file.display())?;
@@ -726,11 +795,44 @@ fn human(
     writeln!(w, "  cutting      {:>12}", hms(t.cutting_s))?;
     writeln!(w, "  rapid        {:>12}", hms(t.rapid_s))?;
     writeln!(w, "  dwell        {:>12}", hms(t.dwell_s))?;
-    writeln!(w, "  tool change  {:>12}", hms(t.tool_change_s))?;
-    if t.other_s > 0.0 {
-        writeln!(w, "  other        {:>12}", hms(t.other_s))?;
+    let a = &t.aux;
+    writeln!(
+        w,
+        "  tool change  {:>12}{}",
+        hms(t.tool_change_s),
+        count(a.tool_changes, "change")
+    )?;
+    // The other auxiliary categories, each when it takes time, then their sum.
+    for (name, s) in [
+        ("tool select ", a.tool_select_s),
+        ("spindle     ", a.spindle_s),
+        ("orient      ", a.orient_s),
+        ("coolant     ", a.coolant_s),
+        ("pallet      ", a.pallet_change_s),
+        ("M codes     ", a.m_code_s),
+        ("in position ", a.in_position_s),
+    ] {
+        if s > 0.0 {
+            writeln!(w, "  {name} {:>12}", hms(s))?;
+        }
+    }
+    if a.program_stop_s > 0.0 {
+        writeln!(
+            w,
+            "  stops        {:>12}{}  (operator time at M0/M1)",
+            hms(a.program_stop_s),
+            count(a.program_stops, "stop")
+        )?;
+    }
+    if a.total_s() > 0.0 {
+        writeln!(
+            w,
+            "  auxiliary    {:>12}  (sum of the above but motion and dwell)",
+            hms(a.total_s())
+        )?;
     }
     writeln!(w, "  distance     {:>12.1} mm", t.distance_mm)?;
+    writeln!(w, "  machine      {profile_name}")?;
     if let Some((path, line, reason)) = &stop.at {
         let place = if *path == file.display().to_string() {
             format!("line {line}")

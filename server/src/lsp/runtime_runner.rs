@@ -200,7 +200,12 @@ impl DryRunner for RuntimeRunner {
         }
         // The same glue as `partscope run`: toolpath sampling, planner segments
         // and the plan itself come from `runtime::dryrun`.
-        let tp = dryrun::toolpath(&out, CHORD_TOLERANCE);
+        // A `[machine]` table the planner cannot read leaves the run without times.
+        let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
+        let tp = match &profile {
+            Some(p) => dryrun::toolpath_on(&out, CHORD_TOLERANCE, p),
+            None => dryrun::toolpath(&out, CHORD_TOLERANCE),
+        };
         let segments: Vec<Segment> = tp
             .segments
             .iter()
@@ -222,12 +227,11 @@ impl DryRunner for RuntimeRunner {
         if input.cancel.is_cancelled() {
             return None;
         }
-        // A `[machine]` table the planner cannot read leaves the run without times.
-        let plan = match dryrun::profile_from_table(input.machine, input.settings.dialect) {
-            Ok(profile) => Some(dryrun::plan_run_until(&out, &profile, &|| {
+        let plan = match &profile {
+            Some(profile) => Some(dryrun::plan_run_until(&out, profile, &|| {
                 input.cancel.is_cancelled()
             })?),
-            Err(_) => None,
+            None => None,
         };
         let timing = plan.as_ref().map(|p| Timing {
             rapid_s: p.totals.rapid_s,

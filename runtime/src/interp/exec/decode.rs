@@ -550,6 +550,8 @@ impl Interp<'_, '_> {
                 // ServoWorks changes the tool with the T word itself.
                 self.st.tool = t;
                 self.event(EventKind::ToolChange { tool: t });
+            } else {
+                self.event(EventKind::ToolSelect { tool: t });
             }
         }
         // Subprogram calls (FANUC/ServoWorks) are handled at the end of the block.

@@ -551,7 +551,9 @@ impl Interp<'_, '_> {
         if w.has_m(600) && self.ngc() {
             self.canon("PALLET_SHUTTLE()");
         }
-        if w.has_m(0) || w.has_m(600) {
+        // LinuxCNC's M60 is a pallet shuttle and a program stop; elsewhere the
+        // pallet code is the machine builder's and stops nothing.
+        if w.has_m(0) || (w.has_m(600) && self.ngc()) {
             self.canon("PROGRAM_STOP()");
             self.event(EventKind::Stop { optional: false });
         }

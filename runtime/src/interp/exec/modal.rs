@@ -154,6 +154,13 @@ impl Interp<'_, '_> {
                 }
             }
         }
+        // Every other M code goes to the dry run, whose profile may give it a time.
+        for (m, _) in &w.m {
+            if !has_own_event(*m, ngc) {
+                let code = *m;
+                self.event(EventKind::MCode { code });
+            }
+        }
         if ngc {
             for (m, text) in [
                 (620u32, "SET_MOTION_OUTPUT_BIT"),
@@ -370,4 +377,15 @@ impl Interp<'_, '_> {
         }
         Ok(())
     }
+}
+
+/// M codes (× 10) with an event or a meaning of their own: stops and ends, calls,
+/// spindle, tool change, coolant, FANUC/ServoWorks M29 (rigid tapping mode), and
+/// the RS274/NGC overrides, I/O, M61 and modal-state codes, which take no time
+/// the machine waits for.
+fn has_own_event(m: u32, ngc: bool) -> bool {
+    matches!(
+        m,
+        0 | 10 | 20 | 300 | 980 | 990 | 1980 | 30 | 40 | 50 | 60 | 70 | 80 | 90 | 290
+    ) || (ngc && matches!(m, 480..=530 | 610..=680 | 700..=730))
 }

@@ -150,7 +150,11 @@ impl Interp<'_, '_> {
         end: [f64; 6],
         feed: f64,
     ) -> Motion {
-        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact;
+        // A FANUC G00 always decelerates to a stop at its end (spec/fanuc.md §5.3),
+        // whichever way its axes move.
+        let fanuc_rapid = matches!(kind, MotionKind::Rapid)
+            && self.input.program.dialect == analyzer::Dialect::Fanuc;
+        let exact = matches!(self.st.modal.path, 610 | 611) || self.block_exact || fanuc_rapid;
         let lu = self.lu();
         let mm = |p: [f64; 6]| [p[0] * lu, p[1] * lu, p[2] * lu, p[3], p[4], p[5]];
         let kind = match kind {
@@ -291,6 +295,20 @@ impl Interp<'_, '_> {
         }
     }
 
+    /// FANUC/ServoWorks G31 skip function: a one-shot straight feed move at F that
+    /// stops where the skip signal comes (here: at the target, no contact is
+    /// simulated). The modal motion is not changed.
+    fn exec_skip(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
+        let t = self.target(w);
+        self.check_feed(bspan)?;
+        let end = self.to_machine(t);
+        let m = self.motion_base(MotionKind::Probe, self.st.mpos, end, self.st.feed);
+        self.out.motions.push(m);
+        self.st.mpos = end;
+        self.st.pos = t;
+        Ok(())
+    }
+
     pub(super) fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
         for (g, _) in &w.g {
@@ -343,6 +361,9 @@ impl Interp<'_, '_> {
         let has_axes = w.any_axis() || (is_cycle(mode) && w.has(b'R'));
         if motion.is_none() && !has_axes {
             return Ok(());
+        }
+        if w.has_g(310) && !self.ngc() && w.any_axis() {
+            return self.exec_skip(w, bspan);
         }
         if w.has_g(530) {
             // Machine coordinates for this block only.

@@ -148,6 +148,8 @@ impl Planner {
             halve_parabolic: true,
             at_max: false,
             optimized: false,
+            dogleg: false,
+            travel: None,
             run: Run::default(),
         }
     }
