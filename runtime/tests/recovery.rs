@@ -190,13 +190,14 @@ fn the_step_budget_marks_the_run_stopped() {
 #[test]
 fn the_runtime_error_cap_stops_a_flood_with_one_diagnostic() {
     let mut text = String::from("G21 G17 G90 F100\n");
-    for _ in 0..150 {
-        text.push_str("G2 X10 Y0\nG0 X0 Y0\n");
+    // Independent faults (a repeat of one is folded into its first report).
+    for i in 0..150 {
+        text.push_str(&format!("G0 X#[100000+{i}]\nG0 X{} Y0\n", i + 1));
     }
     text.push_str("M2\n");
     let out = run_capped(Dialect::Rs274ngc, &text, 100, false);
     let c = codes(&out);
-    assert_eq!(c.iter().filter(|c| **c == "A005").count(), 100);
+    assert_eq!(c.iter().filter(|c| **c == "X001").count(), 100, "{c:?}");
     assert_eq!(c.last(), Some(&"F004"));
     assert_eq!(c.len(), 101);
     let stop = out.stopped.as_ref().expect("stopped");
@@ -214,4 +215,37 @@ fn canonical_output_stops_at_the_first_error_as_rs274_does() {
         Some("Cannot do g1 with zero feed rate\nG1 X1")
     );
     assert_eq!(out.stopped.as_ref().map(|s| s.line), Some(4));
+}
+
+/// One fault, one diagnostic: the same recovered error on later blocks (every
+/// feed move of a program that never gives F) is one report that counts the
+/// repeats and points at them; it does not use up the runtime-error cap.
+#[test]
+fn a_repeated_fault_is_one_report() {
+    let mut text = String::from("G21 G90\n");
+    for i in 1..=150 {
+        text.push_str(&format!("G1 X{i}\n"));
+    }
+    text.push_str("G0 Y1\nM2\n");
+    let out = run_ngc(&text);
+    assert_eq!(located(&text, &out), errors(&[("F001", 2)]));
+    let d = &out.diagnostics[0];
+    assert!(
+        d.message.ends_with("(the same fault on 149 later blocks)"),
+        "{}",
+        d.message
+    );
+    assert_eq!(d.related.len(), 20);
+    assert!(out.stopped.is_none(), "{:?}", out.stopped);
+    // The run went on to the end: the closing rapid starts at X150.
+    assert_eq!(out.motions.last().map(|m| m.start[0]), Some(150.0));
+}
+
+/// A call skipped because its subroutine is missing leaves the globals it would
+/// have set unknown: reading one reports nothing more.
+#[test]
+fn globals_of_a_skipped_call_are_unknown() {
+    let text = "G21\no<setup> call\nG0 X#<_safe_x>\nG0 X#<_never_set>\nM2\n";
+    let out = run_ngc(text);
+    assert_eq!(located(text, &out), errors(&[("F002", 2)]));
 }

@@ -365,6 +365,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             g66: None,
             tainted: Vec::new(),
             runtime_errors: 0,
+            recovered: Default::default(),
+            skipped_call: false,
         };
         let main = FileEntry::new(ProgRef::Borrowed(input.program), FileId(0));
         let emit = input.emit_canon && dialect == Dialect::Rs274ngc;
@@ -771,6 +773,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(c) = self.canon.take() {
             self.out.canon = c.lines;
         }
+        self.fold_repeats();
         self.out
     }
 

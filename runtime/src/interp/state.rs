@@ -1,6 +1,7 @@
 //! Interpreter state at a block boundary. Cloning is cheap: the parameter
 //! tables are `Arc`-shared and copied only on write.
 
+use analyzer::{FileId, Span};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -124,6 +125,24 @@ pub struct State {
     pub tainted: Vec<String>,
     /// Runtime errors reported and recovered from so far (the cap stops floods).
     pub runtime_errors: u32,
+    /// Code and message of each recovered error: a repeat of one (the same fault
+    /// on a later block, e.g. every feed move of a program without F) is folded
+    /// into the first report and does not count towards the cap.
+    pub recovered: Arc<HashMap<(FileId, &'static str, String), Repeated>>,
+    /// A call was skipped because its subroutine was not found: the globals it
+    /// would have set are unknown, not undefined.
+    pub skipped_call: bool,
+}
+
+/// A recovered error and its repeats (`exec/recover.rs`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Repeated {
+    /// Where the first report is in the run's diagnostics.
+    pub index: usize,
+    /// Later blocks with the same fault.
+    pub count: u32,
+    /// The first few of them.
+    pub spans: Vec<(FileId, Span)>,
 }
 
 impl Modal {

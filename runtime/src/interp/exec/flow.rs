@@ -348,6 +348,7 @@ impl Interp<'_, '_> {
                     self.cur_line + 1
                 ));
             }
+            self.st.skipped_call = true;
             if !self.input.resolver.searches_like_the_control() {
                 // LinuxCNC would also look in PROGRAM_PREFIX and SUBROUTINE_PATH,
                 // which nobody configured here: the file may well be on the machine.

@@ -237,6 +237,14 @@ impl VarSource for Vars<'_> {
         if let Some(v) = predefined(self.st, name) {
             return Ok(Some(v));
         }
+        // A global the skipped call would have set: unknown, and what it feeds
+        // reports nothing more.
+        if self.st.skipped_call && name.starts_with('_') {
+            if let Some(hit) = self.tainted {
+                hit.set(true);
+                return Ok(Some(0.0));
+            }
+        }
         Err(EvalError {
             span,
             message: format!("named parameter #<{name}> not defined"),

@@ -158,15 +158,71 @@ impl Interp<'_, '_> {
             return false;
         }
         if d.severity == Severity::Error {
+            let key = (d.file, d.code, d.message.clone());
+            if let Some(r) = Arc::make_mut(&mut self.st.recovered).get_mut(&key) {
+                // The same fault again: folded into the first report (at finish).
+                r.count = r.count.saturating_add(1);
+                if r.spans.len() < MAX_REPEAT_LOCATIONS {
+                    r.spans.push((d.file, d.span));
+                }
+                self.recover_position(recover);
+                return true;
+            }
+            let index = self.out.diagnostics.len();
+            Arc::make_mut(&mut self.st.recovered).insert(
+                key,
+                crate::interp::state::Repeated {
+                    index,
+                    count: 0,
+                    spans: Vec::new(),
+                },
+            );
             self.st.runtime_errors = self.st.runtime_errors.saturating_add(1);
         }
         self.out.diagnostics.push(d);
+        self.recover_position(recover);
+        true
+    }
+
+    fn recover_position(&mut self, recover: Option<Recover>) {
         match recover {
             Some(Recover::Feed(t)) => self.recover_feed(t),
             Some(Recover::SetPos(t)) => self.set_position(t),
             None => {}
         }
-        true
+    }
+
+    /// One fault, one diagnostic: writes the repeats of each recovered error
+    /// (same code and message on a later block: every feed move of a program
+    /// without F) into its first report, as a count and related locations.
+    /// Done from the state at the end, so a resumed rerun writes them afresh.
+    pub(super) fn fold_repeats(&mut self) {
+        for r in self.st.recovered.values().filter(|r| r.count > 0) {
+            let Some(d) = self.out.diagnostics.get_mut(r.index) else {
+                continue;
+            };
+            d.related.retain(|x| x.message != REPEAT_NOTE);
+            d.related.extend(
+                r.spans
+                    .iter()
+                    .map(|&(file, span)| analyzer::diagnostic::Related {
+                        file,
+                        span,
+                        message: REPEAT_NOTE.into(),
+                    }),
+            );
+            let base = d
+                .message
+                .split(REPEAT_SUFFIX)
+                .next()
+                .unwrap_or_default()
+                .to_string();
+            let n = r.count;
+            d.message = format!(
+                "{base}{REPEAT_SUFFIX}{n} later block{})",
+                if n == 1 { "" } else { "s" }
+            );
+        }
     }
 
     /// Marks the run stopped by `d` and says so in its message.
@@ -252,3 +308,8 @@ impl Interp<'_, '_> {
         self.st.pos = t;
     }
 }
+
+/// Repeats of a recovered error kept as related locations of the first report.
+const MAX_REPEAT_LOCATIONS: usize = 20;
+const REPEAT_NOTE: &str = "the same fault again";
+const REPEAT_SUFFIX: &str = " (the same fault on ";
