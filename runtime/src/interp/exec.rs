@@ -43,12 +43,13 @@ mod modal;
 mod motion;
 mod offsets;
 mod params;
+mod record;
 pub(super) use g37::G37Cfg;
 mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 use messages::{rs274_message, rs274_parameter_message};
-pub use resume::{rerun, run_checkpointed, Checkpoints};
+pub use resume::{rerun, run_checkpointed, run_checkpointed_recording, Checkpoints};
 
 #[path = "checks.rs"]
 mod checks;
@@ -271,6 +272,9 @@ struct Interp<'a, 'i> {
     resume: Option<resume::Resume>,
     /// RS274/NGC: the profile of a G70-G72 cycle being read from its subroutine.
     g7x: Option<g7x::Capture>,
+    /// The values of the main file's expressions, when the host asked for them
+    /// (`values.rs`); evaluation reads the interpreter immutably, hence the cell.
+    values: Option<std::cell::RefCell<super::values::ValueRecord>>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -406,6 +410,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             pending_break: false,
             g7x: None,
             resume: None,
+            values: None,
         };
         if let Some(n) = bad_origin {
             if it.variant == Variant::Emc2 {
@@ -729,6 +734,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(c) = self.canon.take() {
             self.out.canon = c.lines;
         }
+        self.out.values = self.values.take().map(std::cell::RefCell::into_inner);
         self.out
     }
 

@@ -208,6 +208,9 @@ pub struct RunOutput {
     pub canon_error: Option<String>,
     /// Checkpoints of a [`super::run_checkpointed`] run, for [`super::rerun`].
     pub checkpoints: super::Checkpoints,
+    /// The values the main file's expressions took, when the run was asked to
+    /// record them ([`super::run_checkpointed_recording`]).
+    pub values: Option<super::values::ValueRecord>,
 }
 
 /// Stands for the program's path in [`RunOutput::canon_error`].

@@ -26,7 +26,8 @@ impl Interp<'_, '_> {
             .map(|f| &f.named_locals)
             .or(Some(&self.main_locals));
         let vars = self.vars(locals);
-        expr::eval(p, id, self.dialect, &vars, 0).map_err(|e| self.eval_err(e))
+        self.eval_recorded(p, id, &vars)
+            .map_err(|e| self.eval_err(e))
     }
 
     /// What expressions read: the state, the named locals in scope and the
@@ -68,6 +69,7 @@ impl Interp<'_, '_> {
         v: Val,
         span: Span,
     ) -> Result<(), Diagnostic> {
+        self.record_assigned(p, target, v);
         match p.expr(target).expr {
             Expr::Var { index } => {
                 let n = self.eval_num(p, index)?.round();
