@@ -89,6 +89,9 @@ pub struct RunReport {
     /// The interpreter's output (with one state per block of the document),
     /// until the next version's run takes it to continue from.
     pub run: Arc<PreviousRun>,
+    /// The values the document's expressions took (hover), kept apart from
+    /// `run` because the next version's run takes that.
+    pub values: Option<Arc<runtime::ValueRecord>>,
 }
 
 impl RunReport {
@@ -244,6 +247,7 @@ mod tests {
             tool_changes: vec![],
             diagnostics: vec![],
             run: Default::default(),
+            values: None,
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);
