@@ -181,6 +181,9 @@ G1 X[#1 * #<step>] F100
 o100 endwhile
 #2 = #<_x>
 #3 = ATAN[1]/[1]
+o200 if [#1 GT 5]
+#5 = 1
+o200 endif
 M2
 ";
 
@@ -218,6 +221,13 @@ fn ngc_values_and_oword_keywords() {
         md.starts_with("**ATAN** — function\n\n`ATAN[y]/[x]`"),
         "{md}"
     );
+
+    // A condition's value on its operator; a block the run skipped.
+    let (md, _) = hover(&mut c, &uri, 9, 12);
+    assert!(md.starts_with("**GT** — operator"), "{md}");
+    assert!(md.contains("Value in the dry run: `0`"), "{md}");
+    let (md, _) = hover(&mut c, &uri, 10, 1);
+    assert!(md.contains("Not evaluated in the dry run."), "{md}");
 
     // Completion: `o100 endw` → endwhile; `GO` has no GOTO in RS274/NGC.
     let items = |c: &mut Client, line: u32, ch: u32| -> Vec<String> {

@@ -189,18 +189,17 @@ fn variable_details(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     if let Some(m) = meaning {
         lines.push(format!("*{m}*"));
     }
-    match snap.cached_run() {
-        Some(run) => match run.values.as_deref() {
-            Some(rec) => match values::recorded(program, rec, bi, span) {
-                Some(v) => lines.push(v),
-                None if run.block_state(bi).is_none() && rec.truncated => lines.push(
-                    "Not recorded: the dry run records values for its first blocks only.".into(),
-                ),
-                None => lines.push("Not evaluated in the dry run.".into()),
-            },
-            None => {}
-        },
-        None => {}
+    let run = snap.cached_run();
+    if let Some((run, rec)) = run.as_ref().and_then(|r| Some((r, r.values.as_deref()?))) {
+        lines.push(match values::recorded(program, rec, bi, span) {
+            Some(v) => v,
+            // The block ran but the record was full.
+            None if rec.truncated && run.block_state(bi).is_some() => format!(
+                "Not recorded: the dry run keeps values for its first {} blocks.",
+                rec.limits().blocks
+            ),
+            None => "Not evaluated in the dry run.".into(),
+        });
     }
     (!lines.is_empty()).then(|| (lines.join("\n\n"), span))
 }
