@@ -57,7 +57,7 @@ cfg = tomllib.load(open(sys.argv[1], "rb"))
 lang = next(l for l in cfg["language"] if l["name"] == "gcode")
 assert lang["language-servers"] == ["partscope"], lang
 assert cfg["language-server"]["partscope"]["args"] == ["lsp"]
-assert set(lang["file-types"]) == {"nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf"}
+assert set(lang["file-types"]) == {"nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf", "fnc", "sw"}
 print("helix languages.toml ok")
 PY
 }

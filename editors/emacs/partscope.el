@@ -50,7 +50,7 @@
   :type '(repeat string))
 
 (defconst partscope-file-extensions
-  '("nc" "ngc" "tap" "cnc" "gcode" "eia" "dat" "min" "mpf")
+  '("nc" "ngc" "tap" "cnc" "gcode" "eia" "dat" "min" "mpf" "fnc" "sw")
   "File extensions opened in `partscope-gcode-mode'.")
 
 (defun partscope--init-options ()

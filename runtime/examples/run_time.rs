@@ -1,5 +1,6 @@
 //! Times parsing and interpreting a file (developer aid for large programs).
-//! Usage: run_time FILE [dialect]
+//! Usage: run_time FILE [dialect] [values]
+//! With `values` the run records expression values as the language server asks it to.
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let Some(path) = args.get(1) else { return };
@@ -25,13 +26,18 @@ fn main() {
         tool_table: None,
         var_file: None,
     };
-    let out = runtime::run(&input);
+    let out = if args.get(3).is_some_and(|a| a == "values") {
+        runtime::run_checkpointed_recording(&input, true, Some(runtime::ValueLimits::default()))
+    } else {
+        runtime::run(&input)
+    };
     let t2 = std::time::Instant::now();
     println!(
-        "blocks {} motions {} diagnostics {} parse {:?} run {:?}",
+        "blocks {} motions {} diagnostics {} recorded blocks {} parse {:?} run {:?}",
         program.blocks.len(),
         out.motions.len(),
         out.diagnostics.len(),
+        out.values.as_ref().map_or(0, |v| v.len()),
         t1 - t0,
         t2 - t1
     );

@@ -15,3 +15,6 @@ pub use interp::{
     BlockSnapshot, Checkpoints, Event, EventKind, Motion, MotionKind, NoResolver, ResolvedFile,
     Resolver, RunInput, RunOutput, Stopped, CANCEL_POLL_STEPS, CANON_FILE_NAME,
 };
+// Editors ask a run for the values its expressions took (`interp::values`).
+pub use interp::run_checkpointed_recording;
+pub use interp::values::{ValueLimits, ValueRecord, ValueSeries};

@@ -8,7 +8,7 @@ mod rng;
 
 use analyzer::{Dialect, Settings};
 use rng::Rng;
-use runtime::{rerun, run_checkpointed, NoResolver, RunInput, RunOutput};
+use runtime::{rerun, run_checkpointed_recording, NoResolver, RunInput, RunOutput, ValueLimits};
 
 /// Lines a straight CAM-like program is made of, per dialect. Some change
 /// the modal state downstream (units, distance mode, work offset, tool,
@@ -178,9 +178,18 @@ fn run_on(d: Dialect, text: &str, prev: Option<RunOutput>) -> RunOutput {
     };
     match prev {
         Some(p) => rerun(&input, true, p),
-        None => run_checkpointed(&input, true),
+        // Small limits, so that reruns meet them too.
+        None => run_checkpointed_recording(&input, true, Some(LIMITS)),
     }
 }
+
+/// Value-record limits the edited programs reach now and then.
+const LIMITS: ValueLimits = ValueLimits {
+    per_series: 3,
+    per_block: 4,
+    blocks: 1500,
+    series: 2000,
+};
 
 fn assert_same(a: &RunOutput, b: &RunOutput, what: &str) {
     assert_eq!(a.diagnostics, b.diagnostics, "{what}: diagnostics");
@@ -197,6 +206,7 @@ fn assert_same(a: &RunOutput, b: &RunOutput, what: &str) {
     for (i, (x, y)) in a.snapshots.iter().zip(&b.snapshots).enumerate() {
         assert_eq!(x, y, "{what}: snapshot of block {i}");
     }
+    assert_eq!(a.values, b.values, "{what}: values");
 }
 
 fn edit_sequence(d: Dialect, seed: u64, edits: usize) -> (u64, u64) {

@@ -47,6 +47,17 @@
                    ((vectorp contents) (mapconcat (lambda (c) (if (stringp c) c (or (plist-get c :value) "")))
                                                   contents "\n"))
                    (t ""))))
+  ;; FANUC `.fnc' and ServoWorks `.sw' files open in the mode too, and `comment-region'
+  ;; writes ( ), never `;' (which ends a FANUC block).
+  (dolist (name '("O1000.fnc" "part.sw"))
+    (with-current-buffer (find-file-noselect (expand-file-name name (file-name-directory (getenv "PARTSCOPE_SAMPLE"))))
+      (unless (eq major-mode 'partscope-gcode-mode)
+        (partscope-test-finish nil (format "%s opens in %s, not partscope-gcode-mode" name major-mode)))
+      (insert "G00 X1.;")
+      (comment-region (point-min) (point-max))
+      (unless (string-match-p "\\`( *G00 X1\\.; *)\\'" (buffer-string))
+        (partscope-test-finish nil (format "comment-region in %s wrote %S" name (buffer-string))))
+      (set-buffer-modified-p nil)))
   (if (string-blank-p (or text ""))
       (partscope-test-finish nil (format "hover returned no content: %S" hover))
     (partscope-test-finish t (format "%d diagnostic(s), first: %s; hover: %s"

@@ -22,7 +22,7 @@ local function remaining()
 end
 
 local ok, err = pcall(function()
-  require("partscope").setup({ cmd = { bin, "lsp" } })
+  require("partscope").setup({ cmd = { bin, "lsp" }, keymaps = { rename = false } })
 end)
 if not ok then
   finish(false, "setup() raised: " .. tostring(err))
@@ -105,6 +105,40 @@ end
 if hover:match("^%s*$") then
   finish(false, ("hover at line %d col %d returned no content (%s)"):format(row + 1, col, vim.inspect(responses)))
   return
+end
+
+-- Completion through 'omnifunc', and the mappings asked for (all but rename).
+if vim.bo[buf].omnifunc ~= "v:lua.vim.lsp.omnifunc" then
+  finish(false, "omnifunc is '" .. vim.bo[buf].omnifunc .. "', expected v:lua.vim.lsp.omnifunc")
+  return
+end
+local gd = vim.fn.maparg("gd", "n", false, true)
+if type(gd) ~= "table" or gd.buffer ~= 1 then
+  finish(false, "no buffer mapping for gd: " .. vim.inspect(gd))
+  return
+end
+if vim.fn.maparg("<leader>rn", "n") ~= "" then
+  finish(false, "<leader>rn is mapped although setup() left rename out")
+  return
+end
+
+-- FANUC `.fnc` and ServoWorks `.sw` files are G-code too, and get the server.
+for _, name in ipairs({ "O1000.fnc", "part.sw" }) do
+  local path = vim.fn.fnamemodify(sample, ":h") .. "/" .. name
+  vim.fn.writefile({ "G00 X1. Y1.;", "M30;" }, path)
+  vim.cmd("edit " .. vim.fn.fnameescape(path))
+  local b = vim.api.nvim_get_current_buf()
+  if vim.bo[b].filetype ~= "gcode" then
+    finish(false, name .. " has filetype '" .. vim.bo[b].filetype .. "', expected 'gcode'")
+    return
+  end
+  buf = b
+  if not vim.wait(remaining(), function()
+    return attached() ~= nil
+  end, 50) then
+    finish(false, "the partscope client did not attach to " .. name)
+    return
+  end
 end
 
 finish(

@@ -19,7 +19,9 @@ test("every contributed command is registered, and none collides with the server
 
 test("the G-code language covers the issue's file extensions and has its grammar", () => {
   const lang = pkg.contributes.languages.find((l) => l.id === "gcode");
-  assert.deepEqual(lang.extensions, [".nc", ".ngc", ".tap", ".cnc", ".gcode", ".eia", ".dat", ".min", ".mpf"]);
+  assert.deepEqual(lang.extensions, [
+    ".nc", ".ngc", ".tap", ".cnc", ".gcode", ".eia", ".dat", ".min", ".mpf", ".fnc", ".sw",
+  ]);
   const grammar = pkg.contributes.grammars.find((g) => g.language === "gcode");
   assert.ok(fs.existsSync(path.join(ROOT, grammar.path)));
   assert.ok(fs.existsSync(path.join(ROOT, lang.configuration)));
@@ -36,4 +38,14 @@ test("settings match the server's initializationOptions", () => {
     "partscope.trace.server",
   ]);
   assert.deepEqual(pkg.contributes.configuration.properties["partscope.dialect"].enum, [null, "servoworks", "rs274ngc", "fanuc"]);
+});
+
+test("Toggle Line Comment writes ( ), never `;`, which ends the block in FANUC and ServoWorks", () => {
+  // Without a line-comment token VS Code's Ctrl+/ wraps the line in the block comment;
+  // ( ) is a comment in every dialect, while a `;` in front of a FANUC line is executed.
+  for (const lang of pkg.contributes.languages) {
+    const config = JSON.parse(fs.readFileSync(path.join(ROOT, lang.configuration), "utf8"));
+    assert.equal(config.comments.lineComment, undefined, lang.id);
+    assert.deepEqual(config.comments.blockComment, ["(", ")"], lang.id);
+  }
 });

@@ -44,6 +44,7 @@ mod modal;
 mod motion;
 mod offsets;
 mod params;
+mod record;
 mod recover;
 pub(super) use g37::G37Cfg;
 pub use recover::STOP_SUFFIX;
@@ -51,7 +52,7 @@ mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 use messages::{rs274_message, rs274_parameter_message};
-pub use resume::{rerun, run_checkpointed, Checkpoints};
+pub use resume::{rerun, run_checkpointed, run_checkpointed_recording, Checkpoints};
 
 #[path = "checks.rs"]
 mod checks;
@@ -280,6 +281,9 @@ struct Interp<'a, 'i> {
     recover_to: Option<recover::Recover>,
     /// Failed and tainted expressions of this block (`recover.rs`).
     taint: recover::Taint,
+    /// The values of the main file's expressions, when the host asked for them
+    /// (`values.rs`); evaluation reads the interpreter immutably, hence the cell.
+    values: Option<std::cell::RefCell<super::values::ValueRecord>>,
 }
 
 fn v6(v: [f64; 6]) -> [f64; 6] {
@@ -422,6 +426,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             resume: None,
             recover_to: None,
             taint: Default::default(),
+            values: None,
         };
         if let Some(n) = bad_origin {
             if it.variant == Variant::Emc2 {
@@ -774,6 +779,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.out.canon = c.lines;
         }
         self.fold_repeats();
+        self.out.values = self.values.take().map(std::cell::RefCell::into_inner);
         self.out
     }
 

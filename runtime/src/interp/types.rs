@@ -222,6 +222,9 @@ pub struct RunOutput {
     /// cannot read): the motions and totals then cover only what ran. `None` when
     /// the run reached the end of the program (recovered errors included).
     pub stopped: Option<Stopped>,
+    /// The values the main file's expressions took, when the run was asked to
+    /// record them ([`super::run_checkpointed_recording`]).
+    pub values: Option<super::values::ValueRecord>,
 }
 
 /// Where a run stopped early ([`RunOutput::stopped`]).

@@ -10,6 +10,7 @@ use tower_lsp_server::ls_types::{
 };
 
 use super::hover::code_markdown;
+use super::keywords::{self, KwKind};
 use super::nav::{self, Sym};
 use super::position::offset_to_position;
 use super::snapshot::Snapshot;
@@ -150,6 +151,8 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
             }
         }
         if !pre.is_empty() && pre.len() > 1 {
+            // `GOTO`, `GT`, `MOD`: a keyword, not a code.
+            keyword_items(settings.dialect, &before, pre, &mut out, &edit);
             return out;
         }
     }
@@ -207,7 +210,50 @@ pub fn complete(snap: &Snapshot, offset: usize) -> Vec<CompletionItem> {
             });
         }
     }
+    keyword_items(settings.dialect, &before, pre, &mut out, &edit);
     out
+}
+
+/// Macro statements, operators, functions and (after an O label) O-word
+/// keywords of the dialect that start with the word being typed.
+fn keyword_items(
+    dialect: analyzer::Dialect,
+    before: &str,
+    pre: &str,
+    out: &mut Vec<CompletionItem>,
+    edit: &dyn Fn(String) -> Option<CompletionTextEdit>,
+) {
+    if pre.is_empty() || !pre.chars().all(|c| c.is_ascii_alphabetic()) {
+        return;
+    }
+    // `o100 wh`, `o<name> ca`: the keyword slot of an O-word line.
+    let head = before[..before.len() - pre.len()].trim();
+    let oword_slot =
+        head.len() > 1 && head.starts_with(['o', 'O']) && !head.contains(char::is_whitespace);
+    for k in keywords::all(dialect) {
+        if (k.kind == KwKind::OWord) != oword_slot
+            || !k
+                .name
+                .to_ascii_uppercase()
+                .starts_with(&pre.to_ascii_uppercase())
+        {
+            continue;
+        }
+        out.push(CompletionItem {
+            label: k.name.to_string(),
+            kind: Some(match k.kind {
+                KwKind::Function => CompletionItemKind::FUNCTION,
+                KwKind::Operator => CompletionItemKind::OPERATOR,
+                KwKind::Statement | KwKind::OWord => CompletionItemKind::KEYWORD,
+            }),
+            detail: Some(k.syntax.to_string()),
+            documentation: doc(keywords::markdown(k)),
+            sort_text: Some(format!("2{}", k.name)),
+            filter_text: Some(k.name.to_string()),
+            text_edit: edit(k.name.to_string()),
+            ..Default::default()
+        });
+    }
 }
 
 /// Stems of the `.ngc` files in the document's folder (inside the workspace).

@@ -92,6 +92,9 @@ pub struct RunReport {
     /// Where the run stopped before the program's end, when it did: the times
     /// and toolpath then cover only what ran.
     pub stopped: Option<StoppedAt>,
+    /// The values the document's expressions took (hover), kept apart from
+    /// `run` because the next version's run takes that.
+    pub values: Option<Arc<runtime::ValueRecord>>,
 }
 
 /// Where a run stopped early, in the document.
@@ -273,6 +276,7 @@ mod tests {
             diagnostics: vec![],
             run: Default::default(),
             stopped: None,
+            values: None,
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);

@@ -4,11 +4,12 @@
 use analyzer::dialect::{self, CodeInfo, CodeNum, Dialect, Variant};
 use analyzer::rules::context::collect_codes;
 use analyzer::rules::registry;
-use analyzer::syntax::{Item, ItemKind, Program, Word};
+use analyzer::syntax::{Expr, Item, ItemKind, Program, TokenKind, Word};
 use analyzer::Span;
 
 use super::nav::{self, Sym};
 use super::snapshot::Snapshot;
+use super::{keywords, values};
 
 /// The item of the block at `offset` whose span holds it (a cursor just after
 /// a word still counts as on it).
@@ -43,6 +44,22 @@ pub fn code_markdown(info: &CodeInfo, variant: Variant) -> String {
 }
 
 fn unknown_code(letter: char, num: CodeNum, dialect: Dialect) -> String {
+    // FANUC hands M codes it does not know to the machine (PMC): they are
+    // the machine builder's, and a few mean the same on nearly every machine.
+    if dialect == Dialect::Fanuc && letter == 'M' {
+        let usual = match num.0 {
+            70 => " On most machines: mist coolant on.",
+            80 => " On most machines: flood coolant on.",
+            90 => " On most machines: coolant off.",
+            190 => " On most machines: oriented spindle stop (spindle orientation).",
+            _ => "",
+        };
+        // As FANUC writes it: two digits at least (`M08`).
+        return format!(
+            "**M{:0>2}** — machine M code: the control passes it to the machine (PMC), whose builder defines it.{usual}",
+            num.display()
+        );
+    }
     format!(
         "**{letter}{}** — not a code of {}.",
         num.display(),
@@ -82,7 +99,109 @@ fn word_markdown(snap: &Snapshot, bi: usize, item: &Item, w: &Word) -> Option<St
             ));
         }
     }
+    // A macro call's argument letter sets a local variable of the macro.
+    let macro_call = codes.iter().find_map(|c| {
+        let i = c.info?;
+        (i.letter == 'G' && matches!(i.num.0, 650 | 660 | 661))
+            .then(|| i.display_name(settings.dialect))
+    });
+    if let (Some(call), Some(n), false) = (
+        macro_call,
+        values::argument_variable(w.letter),
+        w.comma || settings.dialect == Dialect::Rs274ngc,
+    ) {
+        s.push_str(&format!(
+            "\n\nArgument of **{call}**: sets local variable **#{n}** of the macro (Argument Specification I)."
+        ));
+    }
+    // The value the word's expression had in the dry run.
+    if let (ItemKind::Word(_), analyzer::syntax::WordValue::Expr(id)) = (&item.kind, w.value) {
+        if let Some(v) = snap
+            .cached_run()
+            .and_then(|r| r.values.clone())
+            .and_then(|rec| values::recorded(program, &rec, bi, program.expr(id).span))
+        {
+            s.push_str(&format!("\n\n{v}"));
+        }
+    }
     Some(s)
+}
+
+/// A keyword (macro statement, operator, function, O-word keyword) under the cursor.
+fn keyword_at(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
+    let program = snap.program();
+    let i = program
+        .tokens
+        .partition_point(|t| t.start <= offset)
+        .checked_sub(1)?;
+    // A cursor just after a keyword still counts as on it.
+    let candidates = [Some(i), i.checked_sub(1)];
+    for ti in candidates.into_iter().flatten() {
+        let tok = program.tokens.get(ti)?;
+        let span = program.token_span(ti);
+        if tok.kind != TokenKind::Keyword || !(span.contains(offset) || span.end == offset) {
+            continue;
+        }
+        let text = program.str_of(span);
+        let kw = keywords::lookup(snap.doc.settings.dialect, text.trim())?;
+        return Some((keywords::markdown(kw), span));
+    }
+    None
+}
+
+/// The values of the innermost recorded expression around `offset` (an
+/// `IF`/`WHILE` condition, a function's value).
+fn expression_value(snap: &Snapshot, offset: u32) -> Option<String> {
+    let run = snap.cached_run()?;
+    let rec = run.values.as_deref()?;
+    let program = snap.program();
+    let bi = program.block_at(offset)?;
+    let base = program.blocks.get(bi)?.span.start;
+    let rel = offset.checked_sub(base)?;
+    let s = rec
+        .block(bi as u32)
+        .iter()
+        .filter(|s| s.start <= rel && rel < s.end)
+        .min_by_key(|s| s.end - s.start)?;
+    Some(values::series_markdown(s))
+}
+
+/// Meaning and dry-run values of the variable under the cursor (`#101`,
+/// `#[#1+2]`, `#<_x>`).
+fn variable_details(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
+    let program = snap.program();
+    let bi = program.block_at(offset)?;
+    let (id, span) = values::variable_at(program, bi, offset)?;
+    let dialect = snap.doc.settings.dialect;
+    let mut lines = Vec::new();
+    let meaning = match program.expr(id).expr {
+        Expr::Named { name } => {
+            let text = program.str_of(name);
+            let key = text
+                .trim_start_matches('#')
+                .trim_matches(['<', '>'])
+                .trim()
+                .to_string();
+            values::named_meaning(dialect, &key)
+        }
+        _ => values::literal_number(program, id).and_then(|n| values::variable_meaning(dialect, n)),
+    };
+    if let Some(m) = meaning {
+        lines.push(format!("*{m}*"));
+    }
+    let run = snap.cached_run();
+    if let Some((run, rec)) = run.as_ref().and_then(|r| Some((r, r.values.as_deref()?))) {
+        lines.push(match values::recorded(program, rec, bi, span) {
+            Some(v) => v,
+            // The block ran but the record was full.
+            None if rec.truncated && run.block_state(bi).is_some() => format!(
+                "Not recorded: the dry run keeps values for its first {} blocks.",
+                rec.limits().blocks
+            ),
+            None => "Not evaluated in the dry run.".into(),
+        });
+    }
+    (!lines.is_empty()).then(|| (lines.join("\n\n"), span))
 }
 
 fn sym_markdown(snap: &Snapshot, sym: &Sym) -> String {
@@ -132,15 +251,39 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
         parts.push(s);
         span.get_or_insert(d.span);
     }
+    let variable = variable_details(snap, offset);
+    let mut variable_shown = false;
     if let Some(occ) =
         nav::occurrence_at(program, offset).filter(|o| !matches!(o.sym, Sym::Seq(_)) || !o.def)
     {
         if !matches!(occ.sym, Sym::Program(_)) || occ.def {
-            parts.push(sym_markdown(snap, &occ.sym));
+            let mut md = sym_markdown(snap, &occ.sym);
+            if let (Sym::Var(_), Some((v, _))) = (&occ.sym, &variable) {
+                md.push_str("\n\n");
+                md.push_str(v);
+                variable_shown = true;
+            }
+            parts.push(md);
             span = Some(occ.span);
         }
     }
-    if let Some((bi, item)) = item_at(program, offset) {
+    if let (Some((v, vspan)), false) = (&variable, variable_shown) {
+        let text = program.str_of(*vspan);
+        parts.push(format!("**{}** — variable\n\n{v}", text.trim()));
+        span = Some(*vspan);
+    }
+    if let Some((mut md, kspan)) = keyword_at(snap, offset) {
+        // An operator or function: the value of the expression it is in.
+        if variable.is_none() {
+            if let Some(v) = expression_value(snap, offset) {
+                md.push_str("\n\n");
+                md.push_str(&v);
+            }
+        }
+        parts.push(md);
+        span = Some(kspan);
+    }
+    if let Some((bi, item)) = item_at(program, offset).filter(|_| variable.is_none()) {
         if let ItemKind::Word(w) = &item.kind {
             if let Some(s) = word_markdown(snap, bi, item, w) {
                 parts.push(s);

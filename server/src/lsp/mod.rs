@@ -65,6 +65,7 @@ mod config;
 mod dry_run;
 mod goto;
 mod hover;
+mod keywords;
 mod nav;
 mod position;
 mod runtime_runner;
@@ -74,6 +75,7 @@ mod signature;
 mod snapshot;
 mod stdio;
 mod symbols;
+mod values;
 mod workspace;
 
 use std::process::ExitCode;

@@ -167,7 +167,11 @@ impl DryRunner for RuntimeRunner {
         let rerun = previous.is_some();
         let mut out = match previous {
             Some(prev) => runtime::rerun(&run_input, true, prev),
-            None => runtime::run_checkpointed(&run_input, true),
+            None => runtime::run_checkpointed_recording(
+                &run_input,
+                true,
+                Some(runtime::ValueLimits::default()),
+            ),
         };
         if rerun && std::env::var_os("PARTSCOPE_RERUN_CHECK").is_some() {
             let full = runtime::run_checkpointed(&run_input, true);
@@ -288,7 +292,9 @@ impl DryRunner for RuntimeRunner {
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
+        let values = out.values.clone().map(Arc::new);
         Some(RunReport {
+            values,
             segments,
             timing,
             tool_changes,

@@ -9,8 +9,11 @@ local M = {}
 M.defaults = {
   -- Command that starts the server; `cmd[1]` may be a path.
   cmd = { "partscope", "lsp" },
-  -- File extensions opened as G-code (filetype "gcode").
-  extensions = { "nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf" },
+  -- File extensions opened as G-code (filetype "gcode"). `sw` takes the extension from
+  -- Neovim's own `sway` filetype; drop it and list CNC folders in `patterns` if you edit Sway.
+  extensions = { "nc", "ngc", "tap", "cnc", "gcode", "eia", "dat", "min", "mpf", "fnc", "sw" },
+  -- More autocommand patterns opened as G-code, e.g. { "*/cnc/*.sw" }.
+  patterns = {},
   filetypes = { "gcode" },
   -- Files or directories whose presence marks the project root (searched upwards).
   root_markers = { "partscope.toml", ".partscope.toml", ".git" },
@@ -25,6 +28,21 @@ M.defaults = {
   handlers = nil,
   -- Define :PartscopeDryRun, :PartscopeRule and :PartscopeRestart.
   commands = true,
+  -- Set 'omnifunc' to the LSP completion (<C-x><C-o>) in attached buffers.
+  omnifunc = true,
+  -- Buffer-local mappings: false (none), true (the defaults below) or a table of
+  -- { action = lhs } overriding them (an lhs of false leaves that action unmapped).
+  keymaps = false,
+}
+
+M.default_keymaps = {
+  hover = "K",
+  definition = "gd",
+  references = "gr",
+  code_action = "<leader>ca",
+  rename = "<leader>rn",
+  dry_run = "<leader>pd",
+  rule = "<leader>pr",
 }
 
 local config = nil
@@ -72,6 +90,62 @@ local function find_root(path)
   return dir
 end
 
+local actions = {
+  hover = function()
+    vim.lsp.buf.hover()
+  end,
+  definition = function()
+    vim.lsp.buf.definition()
+  end,
+  references = function()
+    vim.lsp.buf.references()
+  end,
+  code_action = function()
+    vim.lsp.buf.code_action()
+  end,
+  rename = function()
+    vim.lsp.buf.rename()
+  end,
+  dry_run = function()
+    vim.cmd("PartscopeDryRun")
+  end,
+  rule = function()
+    vim.cmd("PartscopeRule")
+  end,
+}
+
+--- The buffer mappings `setup({ keymaps = … })` asks for: { action = lhs }.
+function M.keymaps_for(option)
+  if not option then
+    return {}
+  end
+  local maps = vim.deepcopy(M.default_keymaps)
+  if type(option) == "table" then
+    for action, lhs in pairs(option) do
+      maps[action] = lhs
+    end
+  end
+  for action, lhs in pairs(maps) do
+    if not lhs or actions[action] == nil then
+      maps[action] = nil
+    end
+  end
+  return maps
+end
+
+-- Per buffer: completion through 'omnifunc' and the optional mappings.
+local function on_attach(client, bufnr)
+  if config.omnifunc then
+    vim.bo[bufnr].omnifunc = "v:lua.vim.lsp.omnifunc"
+  end
+  for action, lhs in pairs(M.keymaps_for(config.keymaps)) do
+    vim.keymap.set("n", lhs, actions[action], { buffer = bufnr, desc = "Partscope: " .. (action:gsub("_", " ")) })
+  end
+  if config.on_attach then
+    config.on_attach(client, bufnr)
+  end
+end
+
 local function client_config(root)
   local settings = server_settings()
   return {
@@ -81,7 +155,7 @@ local function client_config(root)
     workspace_folders = { { uri = vim.uri_from_fname(root), name = root } },
     init_options = settings,
     settings = { partscope = settings },
-    on_attach = config.on_attach,
+    on_attach = on_attach,
     capabilities = config.capabilities,
     handlers = config.handlers,
   }
@@ -272,7 +346,7 @@ end
 function M.setup(opts)
   config = vim.tbl_deep_extend("force", vim.deepcopy(M.defaults), opts or {})
   -- Lists replace the defaults rather than merging index by index.
-  for _, key in ipairs({ "cmd", "extensions", "filetypes", "root_markers", "select", "ignore" }) do
+  for _, key in ipairs({ "cmd", "extensions", "patterns", "filetypes", "root_markers", "select", "ignore" }) do
     if opts and opts[key] ~= nil then
       config[key] = opts[key]
     end
@@ -284,6 +358,9 @@ function M.setup(opts)
   for _, ext in ipairs(config.extensions) do
     table.insert(patterns, "*." .. ext)
     table.insert(patterns, "*." .. ext:upper())
+  end
+  for _, p in ipairs(config.patterns or {}) do
+    table.insert(patterns, p)
   end
   -- Plain autocommands rather than vim.filetype.add: they behave the same on 0.7, where the
   -- Lua filetype detection is opt-in, and on current releases.

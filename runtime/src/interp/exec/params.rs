@@ -42,7 +42,7 @@ impl Interp<'_, '_> {
         let mut vars = self.vars(locals);
         vars.tainted = Some(&hit);
         self.taint.last.set(false);
-        let v = match expr::eval(p, id, self.dialect, &vars, 0) {
+        let v = match self.eval_recorded(p, id, &vars) {
             Ok(v) => {
                 if hit.get() {
                     self.taint.last.set(true);
@@ -103,6 +103,7 @@ impl Interp<'_, '_> {
         span: Span,
         tainted: bool,
     ) -> Result<(), Diagnostic> {
+        self.record_assigned(p, target, v);
         match p.expr(target).expr {
             Expr::Var { index } => {
                 let n = self.eval_num(p, index)?.round();

@@ -16,10 +16,12 @@
 //! control, no M98/M99/G65/G66 (the bulk of CAM output). Anything else, and
 //! any change of the inputs besides the program text, falls back to a full run.
 
+use std::cell::RefCell;
 use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 
 use super::*;
+use crate::interp::values::{ValueLimits, ValueRecord};
 
 /// Main-file blocks between checkpoints: a rerun re-executes about this many
 /// blocks before and after an edit.
@@ -220,7 +222,19 @@ fn eligible(input: &RunInput<'_>) -> bool {
 /// Like [`run_with_snapshots`], and records checkpoints for [`rerun`] when
 /// the program is single-pass.
 pub fn run_checkpointed(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
+    run_checkpointed_recording(input, snapshots, None)
+}
+
+/// Like [`run_checkpointed`]; with `values` it also records the values of the
+/// main file's expressions within those limits ([`RunOutput::values`]), and a
+/// [`rerun`] of its output records them again.
+pub fn run_checkpointed_recording(
+    input: &RunInput<'_>,
+    snapshots: bool,
+    values: Option<ValueLimits>,
+) -> RunOutput {
     let mut it = Interp::new(input, snapshots);
+    it.values = values.map(|l| RefCell::new(ValueRecord::new(l)));
     if eligible(input) {
         it.spec.single_pass = true;
         it.out.checkpoints = Checkpoints {
@@ -238,11 +252,13 @@ pub fn run_checkpointed(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
 
 /// Runs `input` (an edited program) reusing `prev`, the output of a
 /// checkpointed run of its previous version with the same other inputs. The
-/// result equals `run_checkpointed(input, snapshots)`.
+/// result equals `run_checkpointed(input, snapshots)` (recording values within
+/// the same limits when `prev` recorded them).
 pub fn rerun(input: &RunInput<'_>, snapshots: bool, prev: RunOutput) -> RunOutput {
+    let values = prev.values.as_ref().map(ValueRecord::limits);
     match plan_rerun(input, snapshots, &prev) {
         Some(plan) => resume_from(input, snapshots, prev, plan),
-        None => run_checkpointed(input, snapshots),
+        None => run_checkpointed_recording(input, snapshots, values),
     }
 }
 
@@ -263,6 +279,11 @@ fn plan_rerun(input: &RunInput<'_>, snapshots: bool, prev: &RunOutput) -> Option
     let cps = &prev.checkpoints;
     let old_text = cps.text.as_ref()?;
     if cps.points.is_empty() || cps.key != input_key(input, snapshots) || !eligible(input) {
+        return None;
+    }
+    // A value record that reached its limits may have left out blocks the
+    // edited program would record: only a full run knows.
+    if prev.values.as_ref().is_some_and(|v| v.truncated) {
         return None;
     }
     let p = input.program;
@@ -311,6 +332,7 @@ struct Prev {
     events: Vec<Event>,
     diags: Vec<Diagnostic>,
     snapshots: Vec<Option<BlockSnapshot>>,
+    values: Option<ValueRecord>,
     /// Output counts and block of the restart checkpoint (previous run).
     base: (usize, usize, usize, u32),
     shift: Shift,
@@ -347,6 +369,7 @@ fn resume_from(input: &RunInput<'_>, snapshots: bool, prev: RunOutput, plan: Pla
         mut events,
         snapshots: mut snaps,
         checkpoints,
+        mut values,
         ..
     } = prev;
     let Checkpoints {
@@ -354,8 +377,10 @@ fn resume_from(input: &RunInput<'_>, snapshots: bool, prev: RunOutput, plan: Pla
     } = checkpoints;
     let later = points.split_off(plan.checkpoint + 1);
     let Some(start) = points.last().cloned() else {
-        return run_checkpointed(input, snapshots);
+        let limits = values.as_ref().map(ValueRecord::limits);
+        return run_checkpointed_recording(input, snapshots, limits);
     };
+    let tail_v = values.as_mut().map(|v| v.split_off(start.block));
     let p = input.program;
     let base = (start.motions, start.events, start.diags, start.block);
     let tail_m = motions.split_off(start.motions.min(motions.len()));
@@ -365,6 +390,7 @@ fn resume_from(input: &RunInput<'_>, snapshots: bool, prev: RunOutput, plan: Pla
     let mut it = Interp::new(input, snapshots);
     it.spec.single_pass = true;
     it.restore(&start);
+    it.values = values.map(RefCell::new);
     it.out.diagnostics = diagnostics;
     it.out.motions = motions;
     it.out.events = events;
@@ -386,6 +412,7 @@ fn resume_from(input: &RunInput<'_>, snapshots: bool, prev: RunOutput, plan: Pla
             events: tail_e,
             diags: tail_d,
             snapshots: tail_s,
+            values: tail_v,
             base,
             shift: plan.shift,
             after_edit: plan.after_edit,
@@ -531,12 +558,16 @@ impl Interp<'_, '_> {
             events,
             diags,
             snapshots,
+            values,
             base,
             ..
         } = prev;
         let Some(old) = points.first() else {
             return;
         };
+        if let (Some(rec), Some(tail)) = (self.values.as_mut(), values) {
+            rec.get_mut().splice(tail, old.block, d.blocks);
+        }
         let (bm, be, bd, bb) = base;
         let motion_delta = d.motions;
         let moved_line = |l: u32| add(l, d.lines);
