@@ -175,7 +175,9 @@ impl Settings {
         Ok(s)
     }
 
-    fn matches(pattern: &str, code: &str, name: &str) -> bool {
+    /// Whether a `select`/`ignore` pattern (a code, a code prefix, a rule name or
+    /// `ALL`) names the rule `code`/`name`.
+    pub fn matches(pattern: &str, code: &str, name: &str) -> bool {
         let p = pattern.trim();
         p.eq_ignore_ascii_case("ALL")
             || code.starts_with(&p.to_ascii_uppercase())

@@ -655,3 +655,106 @@ fn run_names_the_machine_profile_and_its_auxiliary_times() {
         );
     }
 }
+
+/// Mistyped rule selectors and levels are usage errors (exit 2) that name the
+/// nearest valid value, not a silent change of what is checked.
+#[test]
+fn unknown_selectors_and_levels_are_usage_errors() {
+    let dir = tempdir("selectors");
+    let prog = write(&dir, "p.ngc", b"G21 G90\nG0 X1\nM2\n");
+    let p = prog.to_str().unwrap();
+    for (args, needle) in [
+        (vec!["--select", "NOPE"], "--select NOPE: no rule"),
+        (
+            vec!["--ignore", "G001,modal-group-conflcit"],
+            "--ignore modal-group-conflcit: no rule",
+        ),
+        (vec!["--fail-level", "erorr"], "did you mean `error`?"),
+    ] {
+        let out = bin().arg("check").args(&args).arg(p).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+    // Codes, prefixes, names and ALL are accepted.
+    let out = bin()
+        .args([
+            "check",
+            "--select",
+            "ALL,G0,modal-group-conflict",
+            "--fail-level",
+            "error",
+            p,
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// `run --svg`/`--png` never overwrite a file the run reads, and only regular
+/// files are read as programs (a FIFO would block the open for ever).
+#[cfg(unix)]
+#[test]
+fn outputs_never_overwrite_inputs_and_fifos_are_refused() {
+    let dir = tempdir("outputs");
+    let prog = write(&dir, "p.ngc", b"G21 G90\nG0 X1\nM2\n");
+    let p = prog.to_str().unwrap();
+    for flag in ["--svg", "--png"] {
+        let out = bin().args(["run", p, flag, p]).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flag}");
+        assert_eq!(std::fs::read(&prog).unwrap(), b"G21 G90\nG0 X1\nM2\n");
+    }
+    let svg = dir.join("p.svg");
+    let out = bin()
+        .args(["run", p, "--svg", svg.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+    // No temporary file is left beside the output.
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+    let fifo = dir.join("pipe.ngc");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        for sub in ["check", "run"] {
+            let out = bin().args([sub, fifo.to_str().unwrap()]).output().unwrap();
+            assert_eq!(out.status.code(), Some(2), "{sub}");
+            let all = format!(
+                "{}{}",
+                String::from_utf8_lossy(&out.stdout),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            assert!(all.contains("not a regular file (a FIFO)"), "{sub}: {all}");
+        }
+    }
+}
+
+/// Terminal escape sequences in a program never reach the terminal through
+/// the human output: control bytes are shown as control pictures.
+#[test]
+fn human_output_shows_control_bytes_visibly() {
+    let dir = tempdir("escapes");
+    let prog = write(&dir, "p.ngc", b"G21 G90\n(\x1b[2J\x07)\nG2 X20 Y0\nM2\n");
+    let out = bin()
+        .args(["check", prog.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        !out.stdout.contains(&0x1b) && !out.stdout.contains(&0x07),
+        "{text}"
+    );
+    assert!(text.contains("(\u{241b}[2J\u{2407})"), "{text}");
+    // The report still points at its own line.
+    assert!(text.contains("p.ngc:3:1"), "{text}");
+}

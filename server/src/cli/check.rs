@@ -12,6 +12,16 @@ use super::workspace::{self, ConfigCache, LoadedConfig};
 use super::CheckArgs;
 
 pub fn run(args: CheckArgs) -> ExitCode {
+    let flags = crate::rules::check_selectors("--select", &args.select)
+        .and_then(|_| crate::rules::check_selectors("--ignore", &args.ignore))
+        .and_then(|_| match args.fail_level.as_deref() {
+            Some(l) => crate::rules::check_level("--fail-level", l).map(|_| ()),
+            None => Ok(()),
+        });
+    if let Err(e) = flags {
+        eprintln!("partscope: {e}");
+        return ExitCode::from(2);
+    }
     let explicit = match &args.config {
         Some(p) => match workspace::load_config(p) {
             Ok(c) => Some(c),

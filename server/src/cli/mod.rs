@@ -1,6 +1,7 @@
 //! Command-line interface: `check`, `run`, `rule`, `lsp`.
 
 pub mod check;
+mod excerpt;
 mod output;
 mod run;
 pub mod workspace;

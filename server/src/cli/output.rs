@@ -273,9 +273,7 @@ fn human(
     reports: &[FileReport],
     located: &[Located<'_>],
 ) -> std::io::Result<()> {
-    use miette::{
-        GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic, NamedSource,
-    };
+    use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, MietteDiagnostic};
     let color = std::io::IsTerminal::is_terminal(&std::io::stdout())
         && std::env::var_os("NO_COLOR").is_none();
     let theme = if color {
@@ -285,9 +283,6 @@ fn human(
     };
     let handler = GraphicalReportHandler::new_themed(theme).with_context_lines(1);
     let (mut errors, mut warnings, mut others) = (0, 0, 0);
-    // One shared source per file: miette reads context lines from it.
-    let mut sources: std::collections::HashMap<String, Arc<String>> =
-        std::collections::HashMap::new();
     let plain = located.len() > 1000;
     let mut last_report = None;
     for l in located {
@@ -316,51 +311,60 @@ fn human(
                 l.column,
                 l.d.severity.as_str(),
                 l.d.code,
-                l.d.message
+                super::excerpt::visible_str(&l.d.message)
             )?;
             continue;
         }
-        let src = sources
-            .entry(l.path.clone())
-            .or_insert_with(|| Arc::new(String::from_utf8_lossy(l.text).into_owned()))
-            .clone();
-        let clamp = |o: u32| -> usize {
-            let mut o = (o as usize).min(src.len());
-            while o > 0 && !src.is_char_boundary(o) {
-                o -= 1;
-            }
-            o
+        // Only the lines around the spans: the report reads nothing else.
+        let (ps, pe) = (l.d.span.start as usize, l.d.span.end as usize);
+        let near = |r: &analyzer::diagnostic::Related| {
+            r.file == l.d.file
+                && (r.span.start as usize).abs_diff(ps) <= super::excerpt::MAX_RELATED_DISTANCE
         };
-        let s = clamp(l.d.span.start);
-        let e = clamp(l.d.span.end).max(s);
+        let (lo, hi) =
+            l.d.related
+                .iter()
+                .filter(|r| near(r))
+                .fold((ps, pe), |(a, b), r| {
+                    (a.min(r.span.start as usize), b.max(r.span.end as usize))
+                });
+        let lo_line = if lo < ps {
+            (l.line as usize).saturating_sub(1).saturating_sub(
+                l.text
+                    .get(lo..ps)
+                    .map_or(0, |t| t.iter().filter(|b| **b == b'\n').count()),
+            )
+        } else {
+            (l.line as usize).saturating_sub(1)
+        };
+        let src = super::excerpt::Excerpt::new(l.path.clone(), l.text, lo, hi, lo_line);
+        let s = src.map(ps);
+        let e = src.map(pe).max(s);
         let mut labels = vec![LabeledSpan::new_primary_with_span(
             Some(l.d.code.to_string()),
             (s, e - s),
         )];
-        for r in &l.d.related {
-            if r.file == l.d.file {
-                let rs = clamp(r.span.start);
-                let re = clamp(r.span.end).max(rs);
-                labels.push(LabeledSpan::new_with_span(
-                    Some(r.message.clone()),
-                    (rs, re - rs),
-                ));
-            }
+        for r in l.d.related.iter().filter(|r| near(r)) {
+            let rs = src.map(r.span.start as usize);
+            let re = src.map(r.span.end as usize).max(rs);
+            labels.push(LabeledSpan::new_with_span(
+                Some(super::excerpt::visible_str(&r.message).into_owned()),
+                (rs, re - rs),
+            ));
         }
         let severity = match l.d.severity {
             Severity::Error => miette::Severity::Error,
             Severity::Warning => miette::Severity::Warning,
             _ => miette::Severity::Advice,
         };
-        let mut diag = MietteDiagnostic::new(l.d.message.clone())
+        let mut diag = MietteDiagnostic::new(super::excerpt::visible_str(&l.d.message))
             .with_code(format!("{}({})", l.d.code, rule_name(l.d.code)))
             .with_severity(severity)
             .with_labels(labels);
         if let Some(f) = l.d.fixes.first() {
             diag = diag.with_help(format!("fix available: {}", f.title));
         }
-        let report =
-            miette::Report::new(diag).with_source_code(NamedSource::new(l.path.clone(), src));
+        let report = miette::Report::new(diag).with_source_code(src);
         let mut buf = String::new();
         if handler.render_report(&mut buf, report.as_ref()).is_ok() {
             writeln!(out, "{buf}")?;

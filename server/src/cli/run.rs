@@ -105,7 +105,50 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
     ExitCode::from(2)
 }
 
+/// The same file on disk (both exist and resolve to one path).
+fn same_file(a: &Path, b: &Path) -> bool {
+    matches!((a.canonicalize(), b.canonicalize()), (Ok(x), Ok(y)) if x == y)
+}
+
+/// Refuses an output path that is one of the files the run reads.
+fn guard_output(flag: &str, out: Option<&PathBuf>, inputs: &[&Path]) -> Result<(), String> {
+    match out {
+        Some(o) if inputs.iter().any(|i| same_file(o, i)) => Err(format!(
+            "{flag} {}: that is a file the run reads (a program or subprogram); choose another output file",
+            o.display()
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// Writes `path` through a temporary file beside it, renamed into place when
+/// `write` succeeds, so a failed or cut-short write never leaves half a file.
+fn write_replacing<T>(
+    path: &Path,
+    write: impl FnOnce(&Path) -> Result<T, String>,
+) -> Result<T, String> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "output".into());
+    let tmp = path.with_file_name(format!(".{name}.partscope-{}.tmp", std::process::id()));
+    let result = write(&tmp).and_then(|v| {
+        std::fs::rename(&tmp, path)
+            .map(|_| v)
+            .map_err(|e| e.to_string())
+    });
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
 pub fn run(args: RunArgs) -> ExitCode {
+    for (flag, out) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+        if let Err(e) = guard_output(flag, out, &[&args.file]) {
+            return fail(e);
+        }
+    }
     let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
     let text = match workspace::read_program(&args.file, max_mb) {
         Ok(b) => b,
@@ -397,17 +440,25 @@ pub fn run(args: RunArgs) -> ExitCode {
         dialect: Some((dialect, dialect_reason)),
     };
 
+    let read: Vec<&Path> = out.files.iter().map(Path::new).collect();
+    for (flag, o) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+        if let Err(e) = guard_output(flag, o, &read) {
+            return fail(e);
+        }
+    }
     if let Some(svg) = &args.svg {
         let tp = dryrun::toolpath_on(&out, 0.01, &profile);
         let max_mb = args
             .max_svg_mb
             .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
-        let written = std::fs::File::create(svg).and_then(|f| {
+        let written = write_replacing(svg, |tmp| {
+            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
             let mut w = std::io::BufWriter::new(f);
             let title = args.file.display().to_string();
             let cut =
-                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))?;
-            w.flush()?;
+                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))
+                    .map_err(|e| e.to_string())?;
+            w.flush().map_err(|e| e.to_string())?;
             Ok(cut)
         });
         match written {
@@ -433,7 +484,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
     if let Some(png) = &args.png {
         let tp = dryrun::toolpath_on(&out, 0.01, &profile);
-        if let Err(e) = crate::picture::png(&tp, png) {
+        if let Err(e) = write_replacing(png, |tmp| crate::picture::png(&tp, tmp)) {
             return fail(format_args!("{}: {e}", png.display()));
         }
     }

@@ -17,6 +17,29 @@ pub const EXTENSIONS: &[&str] = &[
 /// one file near 7 GB instead of letting a multi-GB file exhaust memory.
 pub const DEFAULT_MAX_FILE_MB: u64 = 128;
 
+/// What a non-regular file is, for messages.
+fn file_kind(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return "a device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if meta.is_dir() {
+        "a directory"
+    } else {
+        "not a plain file"
+    }
+}
+
 /// Reads a program, refusing files above `max_mb` megabytes: by their size
 /// before reading, and by reading at most one byte more than the limit, so a
 /// device or pipe without a size (`/dev/zero`) cannot exhaust memory either.
@@ -30,6 +53,15 @@ pub fn read_program(path: &Path, max_mb: u64) -> Result<Arc<[u8]>, String> {
             len.div_ceil(1024 * 1024)
         )
     };
+    // Opening a FIFO blocks until a writer comes, and a device may never end:
+    // only regular files are programs.
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err(format!(
+            "not a regular file ({}): partscope reads programs only from regular files",
+            file_kind(&meta)
+        ));
+    }
     let mut file = std::fs::File::open(path).map_err(|e| e.to_string())?;
     let len = file.metadata().map_err(|e| e.to_string())?.len();
     if len > limit {
