@@ -758,3 +758,29 @@ fn human_output_shows_control_bytes_visibly() {
     // The report still points at its own line.
     assert!(text.contains("p.ngc:3:1"), "{text}");
 }
+
+/// SARIF 2.1.0: columns are declared (code points), and a file under the
+/// current folder is a percent-encoded URI relative to `%SRCROOT%`.
+#[test]
+fn sarif_locations_are_relative_encoded_uris() {
+    let d = tempdir("sarif-uri");
+    let f = write(&d, "my part#1.ngc", b"G1 X1.2.3 F100\nM2\n");
+    let out = bin()
+        .current_dir(&d)
+        .args(["check", "--format", "sarif", "my part#1.ngc"])
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let run = &v["runs"][0];
+    assert_eq!(run["columnKind"], "unicodeCodePoints");
+    let root = format!("file://{}/", d.canonicalize().unwrap().display());
+    assert_eq!(
+        run["originalUriBaseIds"]["%SRCROOT%"]["uri"],
+        root.replace(' ', "%20")
+    );
+    assert_eq!(
+        run["results"][0]["locations"][0]["physicalLocation"]["artifactLocation"],
+        serde_json::json!({"uri": "my%20part%231.ngc", "uriBaseId": "%SRCROOT%"})
+    );
+    drop(f);
+}

@@ -203,7 +203,34 @@ fn json_of(l: &Located<'_>, r: &FileReport) -> Value {
     })
 }
 
+/// A SARIF artifact location: relative to `%SRCROOT%` (the current folder)
+/// for files under it, a `file://` URI otherwise, percent-encoded (RFC 3986).
+fn artifact_location(path: &str, root: Option<&std::path::Path>) -> Value {
+    let p = std::path::Path::new(path);
+    let abs = p.canonicalize().unwrap_or_else(|_| p.to_path_buf());
+    match root.and_then(|r| abs.strip_prefix(r).ok()) {
+        Some(rel) => {
+            json!({"uri": encode_uri_path(&rel.to_string_lossy()), "uriBaseId": "%SRCROOT%"})
+        }
+        None => json!({"uri": format!("file://{}", encode_uri_path(&abs.to_string_lossy()))}),
+    }
+}
+
+/// Percent-encodes a path for a URI: everything but unreserved characters and `/`.
+fn encode_uri_path(path: &str) -> String {
+    let mut out = String::with_capacity(path.len());
+    for b in path.replace('\\', "/").bytes() {
+        if b.is_ascii_alphanumeric() || b"-._~/".contains(&b) {
+            out.push(b as char);
+        } else {
+            out.push_str(&format!("%{b:02X}"));
+        }
+    }
+    out
+}
+
 fn sarif(located: &[Located<'_>]) -> Value {
+    let root = std::env::current_dir().and_then(|d| d.canonicalize()).ok();
     let rules: Vec<Value> = crate::rules::all()
         .iter()
         .map(|r| {
@@ -231,7 +258,7 @@ fn sarif(located: &[Located<'_>]) -> Value {
                 "message": {"text": l.d.message},
                 "locations": [{
                     "physicalLocation": {
-                        "artifactLocation": {"uri": l.path.replace('\\', "/")},
+                        "artifactLocation": artifact_location(&l.path, root.as_deref()),
                         "region": {
                             "startLine": l.line,
                             "startColumn": l.column,
@@ -254,6 +281,11 @@ fn sarif(located: &[Located<'_>]) -> Value {
                 "rules": rules,
             }},
             "results": results,
+            // Columns count characters (Unicode code points), as the other formats do.
+            "columnKind": "unicodeCodePoints",
+            "originalUriBaseIds": {
+                "%SRCROOT%": {"uri": root.as_ref().map(|r| format!("file://{}/", encode_uri_path(&r.to_string_lossy()))).unwrap_or_else(|| "file:///".into())}
+            },
         }]
     })
 }
