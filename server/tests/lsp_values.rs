@@ -244,3 +244,25 @@ fn ngc_values_and_oword_keywords() {
     assert_eq!(items(&mut c, 6, 9), vec!["endwhile"]);
     assert!(c.shutdown().success());
 }
+
+/// Hover on the first line says which dialect the file is read in and why:
+/// a FANUC program in a `.nc` file is visible as such in the editor.
+#[test]
+fn first_line_hover_names_the_dialect_and_why() {
+    let root = folder("dialect");
+    let mut c = start(&root);
+    let uri = open(
+        &mut c,
+        &root,
+        "part.nc",
+        "%\nO1234 (PART)\nG90 G00 X0 Y0\nM30\n%\n",
+    );
+    let (md, _) = hover(&mut c, &uri, 0, 0);
+    assert!(
+        md.contains("*Checked as fanuc: the `%` line 1 and program number O1234 on line 2*"),
+        "{md}"
+    );
+    // Other lines do not repeat it.
+    let (md, _) = hover(&mut c, &uri, 2, 1);
+    assert!(!md.contains("Checked as"), "{md}");
+}

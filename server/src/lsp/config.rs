@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use analyzer::settings::{dialect_directive, sniff_dialect};
+use analyzer::settings::{dialect_directive, sniff_dialect_why};
 use analyzer::{Config, Dialect, Settings};
 use serde_json::Value;
 
@@ -110,6 +110,8 @@ pub struct DocSettings {
     /// against its folder; read only inside the workspace).
     pub tool_table: Option<PathBuf>,
     pub var_file: Option<PathBuf>,
+    /// Why the document is read in its dialect.
+    pub dialect_reason: String,
 }
 
 /// Finds the nearest `partscope.toml` for `doc`, never looking above `root`
@@ -153,19 +155,24 @@ pub fn resolve(
         }
         config_path = Some(path);
     }
-    let dialect = config
-        .dialect
-        .as_deref()
-        .and_then(Dialect::parse)
-        .or_else(|| dialect_directive(text))
-        .or(client.dialect)
-        .or_else(|| {
-            sniff_dialect(
-                doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
-                text,
-            )
-        })
-        .unwrap_or(Dialect::Rs274ngc);
+    // The dialect and why it was chosen (shown in hover, as the CLI prints it).
+    let (dialect, dialect_reason) = match config.dialect.as_deref().and_then(Dialect::parse) {
+        Some(d) => (d, "`dialect` in partscope.toml".to_string()),
+        None => match dialect_directive(text) {
+            Some(d) => (d, "the first-line `(partscope: dialect=…)` comment".into()),
+            None => match client.dialect {
+                Some(d) => (d, "the editor's `partscope.dialect` setting".into()),
+                None => sniff_dialect_why(
+                    doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
+                    text,
+                )
+                .unwrap_or((
+                    Dialect::Rs274ngc,
+                    "no evidence for another dialect (the default)".into(),
+                )),
+            },
+        },
+    };
     if config.machine.is_empty() {
         match &client.machine {
             Some(MachineOption::Table(t)) => config.machine = t.clone(),
@@ -238,6 +245,7 @@ pub fn resolve(
     DocSettings {
         tool_table,
         var_file,
+        dialect_reason,
         settings,
         machine,
         config_path,

@@ -294,6 +294,16 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     if let Some(state) = block_state(snap, offset) {
         parts.push(state);
     }
+    // On the first line: which dialect the file is read in, and why, so that a
+    // wrong guess is visible.
+    if !snap.rope.bytes().take(offset as usize).any(|b| b == b'\n') {
+        parts.push(format!(
+            "*Checked as {}: {}*",
+            program.dialect.as_str(),
+            snap.doc.dialect_reason
+        ));
+        span.get_or_insert(Span::new(offset, offset));
+    }
     if parts.is_empty() {
         return None;
     }
