@@ -228,6 +228,20 @@ fn nesting_cases() -> Vec<Case> {
     }
     s.push_str("M30;\n");
     cases.push(case("fanuc goto chain", "fanuc", s, None));
+    // Whole-file rules: a long chain of subroutines each calling the next (the
+    // call-graph check was cubic) and many labels (the duplicate scan quadratic).
+    let mut s = String::new();
+    for i in 0..4000 {
+        s.push_str(&format!("o<s{i}> sub\no<s{}> call\no<s{i}> endsub\n", i + 1));
+    }
+    s.push_str("o<s4000> sub\no<s4000> endsub\no<s0> call\nM2\n");
+    cases.push(case("subroutine call chain", "rs274ngc", s, None));
+    let mut s = String::new();
+    for i in 0..40_000 {
+        s.push_str(&format!("o{i} if [1]\no{i} endif\n"));
+    }
+    s.push_str("M2\n");
+    cases.push(case("many o-word labels", "rs274ngc", s, None));
     // Runaway recursion: the call-depth limit (F003) stops it.
     cases.push(case(
         "o-word recursion",

@@ -1,5 +1,7 @@
 //! P008: RS274/NGC subroutine calls and O labels.
 
+use std::collections::{HashMap, HashSet};
+
 use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
@@ -101,9 +103,10 @@ impl Rule for OwordCalls {
         let mut open_do: Vec<String> = Vec::new();
         let mut current_sub: Option<String> = None;
         // Global writes already reported, per subroutine (once each).
-        let mut written: Vec<(String, String)> = Vec::new();
+        let mut written: HashSet<(String, String)> = HashSet::new();
         // Per subroutine: the highest local parameter #1–#30 it reads, with its span.
         let mut reads: Vec<(String, u32, Span)> = Vec::new();
+        let mut read_at: HashMap<String, usize> = HashMap::new();
         // Per call: (label, number of arguments).
         let mut arg_counts: Vec<(String, usize)> = Vec::new();
         // Plain blocks start with a letter and hold no O-word, M99, expression
@@ -140,10 +143,13 @@ impl Rule for OwordCalls {
                         };
                         if (1.0..=30.0).contains(&n.value) && n.value.fract() == 0.0 {
                             let v = n.value as u32;
-                            match reads.iter_mut().find(|(s, _, _)| s == sub) {
+                            match read_at.get(sub).and_then(|&i| reads.get_mut(i)) {
                                 Some(r) if r.1 >= v => {}
                                 Some(r) => *r = (sub.clone(), v, p.expr(id).span),
-                                None => reads.push((sub.clone(), v, p.expr(id).span)),
+                                None => {
+                                    read_at.insert(sub.clone(), reads.len());
+                                    reads.push((sub.clone(), v, p.expr(id).span));
+                                }
                             }
                         }
                     }
@@ -227,8 +233,7 @@ impl Rule for OwordCalls {
                             current_sub.clone().unwrap_or_default(),
                             p.str_of(p.expr(target).span).to_ascii_lowercase(),
                         );
-                        if global && !written.contains(&key) {
-                            written.push(key);
+                        if global && written.insert(key) {
                             out.push(Diagnostic::info(
                                 "P008",
                                 p.expr(target).span,
@@ -243,65 +248,57 @@ impl Rule for OwordCalls {
                 }
             }
         }
+        // Fewest arguments any call passes, per subroutine.
+        let mut fewest_args: HashMap<&str, usize> = HashMap::new();
+        for (l, n) in &arg_counts {
+            let e = fewest_args.entry(l.as_str()).or_insert(*n);
+            *e = (*e).min(*n);
+        }
         for (sub, highest, span) in &reads {
-            let passed: Vec<usize> = arg_counts
-                .iter()
-                .filter(|(l, _)| l == sub)
-                .map(|(_, n)| *n)
-                .collect();
-            if let Some(fewest) = passed.iter().min() {
-                if (*highest as usize) > *fewest {
+            if let Some(&fewest) = fewest_args.get(sub.as_str()) {
+                if (*highest as usize) > fewest {
                     out.push(Diagnostic::info(
                         "P008",
                         *span,
                         format!(
                             "o{sub} reads #{highest}, but a call passes only {fewest} argument{}: the parameter keeps whatever value it had.",
-                            if *fewest == 1 { "" } else { "s" }
+                            if fewest == 1 { "" } else { "s" }
                         ),
                     ));
                 }
             }
         }
-        for (j, (scope, l, span)) in openers.iter().enumerate() {
-            if let Some((_, _, first)) = openers[..j]
-                .iter()
-                .find(|(os, ol, _)| ol == l && os == scope)
-            {
-                out.push(
+        let mut first_opener: HashMap<(&str, &str), Span> = HashMap::new();
+        for (scope, l, span) in &openers {
+            match first_opener.entry((scope.as_str(), l.as_str())) {
+                std::collections::hash_map::Entry::Occupied(first) => out.push(
                     Diagnostic::warning("P008", *span, format!("Label o{l} already names another block; give every sub, loop and if its own label."))
-                        .with_related(*first, "first use of the label"),
-                );
+                        .with_related(*first.get(), "first use of the label"),
+                ),
+                std::collections::hash_map::Entry::Vacant(v) => {
+                    v.insert(*span);
+                }
             }
         }
+        let mut first_def: HashMap<&str, (u32, Span)> = HashMap::new();
+        for (l, pos, span) in &defs {
+            first_def.entry(l.as_str()).or_insert((*pos, *span));
+        }
         for (l, pos, span, _) in &calls {
-            if let Some((_, dpos, dspan)) = defs.iter().find(|(dl, _, _)| dl == l) {
-                if dpos > pos {
+            if let Some(&(dpos, dspan)) = first_def.get(l.as_str()) {
+                if dpos > *pos {
                     out.push(
                         Diagnostic::warning("P008", *span, format!("o{l} is called before its definition; define subroutines above their first call."))
-                            .with_related(*dspan, "definition"),
+                            .with_related(dspan, "definition"),
                     );
                 }
             }
         }
-        // Recursion in the static call graph.
+        // Recursion in the static call graph: a definition on a cycle of
+        // unconditional calls (strongly connected components, linear time).
+        let on_cycle = recursive_subs(&calls);
         for (name, _, dspan) in &defs {
-            let mut seen = vec![name.clone()];
-            let mut frontier = vec![name.clone()];
-            let mut recursive = false;
-            while let Some(f) = frontier.pop() {
-                for (callee, _, _, caller) in &calls {
-                    if caller.as_ref() != Some(&f) {
-                        continue;
-                    }
-                    if callee == name {
-                        recursive = true;
-                    } else if !seen.contains(callee) {
-                        seen.push(callee.clone());
-                        frontier.push(callee.clone());
-                    }
-                }
-            }
-            if recursive {
+            if on_cycle.contains(name.as_str()) {
                 out.push(Diagnostic::warning(
                     "P008",
                     *dspan,
@@ -310,4 +307,88 @@ impl Rule for OwordCalls {
             }
         }
     }
+}
+
+/// The subroutines on a cycle of the call graph whose edges are the
+/// unconditional calls `(callee, _, _, Some(caller))`: Tarjan's algorithm with
+/// an explicit stack, so deep call chains cost neither time nor native stack.
+fn recursive_subs(calls: &[(String, u32, Span, Option<String>)]) -> HashSet<&str> {
+    let mut id: HashMap<&str, usize> = HashMap::new();
+    let mut names: Vec<&str> = Vec::new();
+    let mut edges: Vec<Vec<usize>> = Vec::new();
+    let mut self_loop: Vec<bool> = Vec::new();
+    for (callee, _, _, caller) in calls {
+        let Some(caller) = caller.as_deref() else {
+            continue;
+        };
+        let a = *id.entry(caller).or_insert_with(|| {
+            names.push(caller);
+            edges.push(Vec::new());
+            self_loop.push(false);
+            names.len() - 1
+        });
+        let b = *id.entry(callee.as_str()).or_insert_with(|| {
+            names.push(callee.as_str());
+            edges.push(Vec::new());
+            self_loop.push(false);
+            names.len() - 1
+        });
+        if a == b {
+            self_loop[a] = true;
+        }
+        edges[a].push(b);
+    }
+    let n = names.len();
+    let mut index = vec![usize::MAX; n];
+    let mut low = vec![0usize; n];
+    let mut on_stack = vec![false; n];
+    let mut stack: Vec<usize> = Vec::new();
+    let mut next = 0usize;
+    let mut out = HashSet::new();
+    for root in 0..n {
+        if index[root] != usize::MAX {
+            continue;
+        }
+        // (node, next edge to look at)
+        let mut work: Vec<(usize, usize)> = vec![(root, 0)];
+        index[root] = next;
+        low[root] = next;
+        next += 1;
+        stack.push(root);
+        on_stack[root] = true;
+        while let Some(&mut (v, ref mut e)) = work.last_mut() {
+            if let Some(&w) = edges[v].get(*e) {
+                *e += 1;
+                if index[w] == usize::MAX {
+                    index[w] = next;
+                    low[w] = next;
+                    next += 1;
+                    stack.push(w);
+                    on_stack[w] = true;
+                    work.push((w, 0));
+                } else if on_stack[w] {
+                    low[v] = low[v].min(index[w]);
+                }
+                continue;
+            }
+            work.pop();
+            if let Some(&(u, _)) = work.last() {
+                low[u] = low[u].min(low[v]);
+            }
+            if low[v] == index[v] {
+                let mut component = Vec::new();
+                while let Some(w) = stack.pop() {
+                    on_stack[w] = false;
+                    component.push(w);
+                    if w == v {
+                        break;
+                    }
+                }
+                if component.len() > 1 || self_loop[v] {
+                    out.extend(component.into_iter().map(|w| names[w]));
+                }
+            }
+        }
+    }
+    out
 }
