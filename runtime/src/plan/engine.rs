@@ -331,7 +331,7 @@ impl Planner {
         let (term, tolerance) = match seg.mode {
             PathMode::ExactStop => (Term::Stop, 0.0),
             PathMode::ExactPath => (Term::Exact, 0.0),
-            PathMode::Blend { tolerance } => {
+            PathMode::Blend { tolerance, .. } => {
                 let tol = if tolerance > 0.0 {
                     tolerance
                 } else {
@@ -473,7 +473,11 @@ impl Planner {
                 let tt = tt_motion.max(tt_spiral);
                 let amax = if tt > 0.0 { total / tt } else { a_axes };
                 tc.ty = TcType::Circle;
-                tc.radius = radius;
+                tc.radius = if lcnc {
+                    helix_effective_radius(radius, &sub3(&e3, &center), &n, rise, sweep)
+                } else {
+                    radius
+                };
                 tc.target = total;
                 tc.maxvel = vmax;
                 tc.reqvel = vmax.min(feed_cap(seg.feed));
@@ -1163,10 +1167,33 @@ impl Planner {
     }
 }
 
+/// The radius LinuxCNC's planner takes for an arc's centripetal speed limit
+/// (`pmCircleEffectiveMinRadius`): the spiral's flattened radius plus the square of
+/// the whole helical rise over it. The rise is not divided by the angle, so a
+/// helix of several turns runs faster than its curvature allows; measured so.
+fn helix_effective_radius(
+    radius: f64,
+    end_from_center: &[f64; 3],
+    n: &[f64; 3],
+    rise: f64,
+    sweep: f64,
+) -> f64 {
+    let along = dot3(end_from_center, n);
+    let radial = [
+        end_from_center[0] - along * n[0],
+        end_from_center[1] - along * n[1],
+        end_from_center[2] - along * n[2],
+    ];
+    let dr = (norm3(&radial) - radius) / sweep.abs();
+    let inner = dr * dr + radius * radius;
+    let r_spiral = (inner * inner * inner).sqrt() / (inner + dr * dr);
+    rise * rise / r_spiral + r_spiral
+}
+
 /// A straight feed move of the linear axes in G64 with a tolerance.
 fn chainable(seg: &Segment) -> bool {
     matches!(seg.kind, SegmentKind::Line)
-        && matches!(seg.mode, PathMode::Blend { tolerance } if tolerance > 0.0)
+        && matches!(seg.mode, PathMode::Blend { naive, .. } if naive > 0.0)
         && seg.start[3..] == seg.end[3..]
 }
 

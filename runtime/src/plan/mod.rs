@@ -85,10 +85,20 @@ pub enum PathMode {
     /// LinuxCNC G61 ("exact path"): stop at corners, run through tangent joints.
     ExactPath,
     /// Continuous path (G64): round the corner within `tolerance` mm
-    /// (0 = as much as the geometry allows). In the `linuxcnc` model a non-zero
-    /// tolerance is also the naive-CAM tolerance (LinuxCNC's Q, which defaults to P):
-    /// consecutive straight feed moves that stay within it are joined into one.
-    Blend { tolerance: f64 },
+    /// (0 = as much as the geometry allows). `naive` is the `linuxcnc` model's
+    /// naive-CAM tolerance (LinuxCNC's Q, which defaults to P): consecutive straight
+    /// feed moves that stay within it are joined into one; 0 joins nothing.
+    Blend { tolerance: f64, naive: f64 },
+}
+
+impl PathMode {
+    /// G64 P`tolerance` without Q: the naive-CAM tolerance is the same.
+    pub fn blend(tolerance: f64) -> PathMode {
+        PathMode::Blend {
+            tolerance,
+            naive: tolerance,
+        }
+    }
 }
 
 /// One motion segment as produced by the interpreter.

@@ -207,6 +207,7 @@ impl Interp<'_, '_> {
             } else {
                 None
             },
+            naive_tolerance: (self.st.modal.path == 640 && self.ngc()).then(|| self.naive_tol * lu),
             file: self.file_id(),
             block: self.cur.1,
             line: self.cur_line,
