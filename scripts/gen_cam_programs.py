@@ -223,4 +223,24 @@ for plane in ("xy", "xz", "yz"):
         chain("capped_q", tag, "G64 Q" + q, plane, "mm", 100000, pts)
         chain("capped_none", tag, "G64", plane, "mm", 100000, pts)
 
+
+
+# 9. Arc-fitted CAM output: chains of small arcs whose chords deviate less than Q (the
+#    canonical layer feeds XY ones to the naive-CAM detector as lines) or more.
+for plane in ("xy", "xz", "yz"):
+    for r, step_deg, q, feed in ((5.0, 2.0, "0.01", 3000), (2.0, 10.0, "0.005", 6000),
+                                 (20.0, 1.0, "0.001", 100000)):
+        g = PLANES[plane][0]
+        lines = ["G21 G90 %s" % g, "G64 Q" + q, "G1 %s F%d" % (point(plane, r, 0), feed)]
+        ang = 0.0
+        n = int(min(300, 540 / step_deg))
+        for i in range(n):
+            ang += math.radians(step_deg)
+            # Alternate the centre side every 30 arcs: an S-curve of arcs.
+            lines.append("G3 %s %s" % (point(plane, r * math.cos(ang), r * math.sin(ang)),
+                                       offsets(plane, -r * math.cos(ang - math.radians(step_deg)),
+                                               -r * math.sin(ang - math.radians(step_deg)))))
+        tag = "%s_r%s_d%s_q%s_f%d" % (plane, fmt(r).replace(".", "p"), fmt(step_deg), q.replace(".", "p"), feed)
+        write("arcfit_q", tag, lines)
+
 print(len([f for f in os.listdir(OUT) if f.endswith(".ngc")]), "programs in", os.path.relpath(OUT))

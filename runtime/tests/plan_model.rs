@@ -505,13 +505,8 @@ fn naive_cam_joins_nearly_straight_g64p_moves() {
         (0..3)
             .map(|i| {
                 Event::Motion(
-                    Segment::line(
-                        pts[i],
-                        pts[i + 1],
-                        f(3000.0),
-                        PathMode::blend(tol),
-                    )
-                    .with_block(i as u32),
+                    Segment::line(pts[i], pts[i + 1], f(3000.0), PathMode::blend(tol))
+                        .with_block(i as u32),
                 )
             })
             .collect()

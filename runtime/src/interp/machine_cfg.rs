@@ -219,7 +219,9 @@ impl MachineCfg {
                 .and_then(num)
                 .or(axis_unit)
                 .unwrap_or(0.001),
-            block_skip: b("block_skip", false),
+            // LinuxCNC's task starts with block delete on (its canonical layer's
+            // default); the standalone rs274 starts with it off (`-b` toggles).
+            block_skip: b("block_skip", dialect == Dialect::Rs274ngc),
             param_unit,
             decimal_point_input: b("decimal_point_input", false),
             g73_retract: f("g73_retract", 1.0),

@@ -12,7 +12,7 @@ use super::servo::{self, Run, View};
 mod blend;
 mod chain;
 use super::{
-    cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
+    cross3, dist3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
 use blend::Circ;
@@ -184,6 +184,14 @@ impl Planner {
     pub fn push(&mut self, ev: Event, out: &mut dyn FnMut(SegmentTiming)) {
         match ev {
             Event::Motion(seg) => {
+                if self.lcnc() {
+                    if let Some(halves) = arc_as_lines(&seg) {
+                        for half in halves {
+                            self.push(Event::Motion(half), out);
+                        }
+                        return;
+                    }
+                }
                 if self.lcnc() && chainable(&seg) {
                     if !self.chain.is_empty() && !self.chain.linkable(&seg) {
                         self.flush_chain(out);
@@ -1188,6 +1196,59 @@ fn helix_effective_radius(
     let inner = dr * dr + radius * radius;
     let r_spiral = (inner * inner * inner).sqrt() / (inner + dr * dr);
     rise * rise / r_spiral + r_spiral
+}
+
+/// LinuxCNC's canonical layer feeds an XY arc whose chord deviates less than the
+/// naive-CAM tolerance to the naive-CAM detector as two lines through the arc's
+/// middle (`ARC_FEED`, `chord_deviation`). The deviation is taken over the arc's
+/// last turn only, as there.
+fn arc_as_lines(seg: &Segment) -> Option<[Segment; 2]> {
+    let SegmentKind::Arc {
+        center,
+        normal,
+        sweep,
+        ..
+    } = seg.kind
+    else {
+        return None;
+    };
+    let PathMode::Blend { naive, .. } = seg.mode else {
+        return None;
+    };
+    if naive <= 0.0 || normal[0] != 0.0 || normal[1] != 0.0 || seg.start[3..] != seg.end[3..] {
+        return None;
+    }
+    let (sx, sy) = (seg.start[0] - center[0], seg.start[1] - center[1]);
+    let r = sx.hypot(sy);
+    let ccw = (sweep >= 0.0) == (normal[2] >= 0.0);
+    let th1 = sy.atan2(sx);
+    let th2 = (seg.end[1] - center[1]).atan2(seg.end[0] - center[0]);
+    // The angle from start to end the way the arc turns, in (1e-5, 2π + 1e-5].
+    let mut dth = th2 - th1;
+    for _ in 0..2 {
+        if ccw && dth <= 1e-5 {
+            dth += std::f64::consts::TAU;
+        } else if !ccw && dth >= -1e-5 {
+            dth -= std::f64::consts::TAU;
+        }
+    }
+    let included = dth.abs();
+    if !(r * (1.0 - (included / 2.0).cos()) < naive) {
+        return None;
+    }
+    let mid_angle = th1 + dth / 2.0;
+    let mut mid = seg.start;
+    mid[0] = center[0] + r * mid_angle.cos();
+    mid[1] = center[1] + r * mid_angle.sin();
+    mid[2] = (seg.start[2] + seg.end[2]) / 2.0;
+    let half = |a: [f64; 6], b: [f64; 6]| Segment {
+        kind: SegmentKind::Line,
+        start: a,
+        end: b,
+        length: dist3(&[a[0], a[1], a[2]], &[b[0], b[1], b[2]]),
+        ..*seg
+    };
+    Some([half(seg.start, mid), half(mid, seg.end)])
 }
 
 /// A straight feed move of the linear axes in G64 with a tolerance.

@@ -20,8 +20,10 @@
 //!   a 10 % acceleration cut ("kink ratio") on both moves of a corner that is not
 //!   blended, G64 blend arcs for line-line, line-arc, arc-line and arc-arc corners (tolerance
 //!   P, or a quarter of the shorter move without P) that may swallow a short rest of
-//!   the previous line, joining of nearly collinear G64 P moves (the "naive CAM"
-//!   detector), the optimisation depth and lazy cut-off of the backward pass, and by
+//!   the previous line, joining of nearly collinear G64 moves within Q (the "naive
+//!   CAM" detector; Q defaults to P), which also takes an XY arc whose chord lies
+//!   within Q as two lines, the centripetal limit of helices on LinuxCNC's effective
+//!   radius (the whole rise, not the rise per radian), the optimisation depth and lazy cut-off of the backward pass, and by
 //!   default execution period by period with LinuxCNC's velocity update, ramps and
 //!   split cycles ([`MachineProfile::servo_simulation`]). All 142 measured goldens
 //!   in `tests/cycle_time` are reproduced within 1 ms.

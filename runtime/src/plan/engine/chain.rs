@@ -91,7 +91,10 @@ impl Chain {
         if self.ends.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
             return false;
         }
-        let PathMode::Blend { naive: tolerance, .. } = seg.mode else {
+        let PathMode::Blend {
+            naive: tolerance, ..
+        } = seg.mode
+        else {
             return false;
         };
         let b = xyz(&first.start);
@@ -229,7 +232,10 @@ mod tests {
         if chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
             return false;
         }
-        let PathMode::Blend { naive: tolerance, .. } = seg.mode else {
+        let PathMode::Blend {
+            naive: tolerance, ..
+        } = seg.mode
+        else {
             return false;
         };
         let b = xyz(&first.start);
