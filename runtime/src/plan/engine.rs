@@ -1233,7 +1233,9 @@ fn arc_as_lines(seg: &Segment) -> Option<[Segment; 2]> {
         }
     }
     let included = dth.abs();
-    if !(r * (1.0 - (included / 2.0).cos()) < naive) {
+    let deviation = r * (1.0 - (included / 2.0).cos());
+    // A NaN deviation (degenerate arc) keeps the arc.
+    if deviation.is_nan() || deviation >= naive {
         return None;
     }
     let mid_angle = th1 + dth / 2.0;
