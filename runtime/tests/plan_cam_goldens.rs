@@ -26,7 +26,7 @@ fn root() -> PathBuf {
 }
 
 /// The machines of `cam/regenerate.sh`: the profile, and the machine TOML the
-/// interpreter reads (`bdoff` = LinuxCNC's block delete switch off; it starts on).
+/// interpreter reads. LinuxCNC starts with block delete on (`bdoff`: switched off).
 fn machine(name: &str) -> (MachineProfile, &'static str) {
     let mut p = MachineProfile::default_for(Dialect::Rs274ngc);
     let (vel, acc, y, z) = match name {
@@ -44,7 +44,7 @@ fn machine(name: &str) -> (MachineProfile, &'static str) {
     let toml = if name == "m60bdoff" {
         "block_skip = false"
     } else {
-        ""
+        "block_skip = true"
     };
     (p, toml)
 }

@@ -219,9 +219,10 @@ impl MachineCfg {
                 .and_then(num)
                 .or(axis_unit)
                 .unwrap_or(0.001),
-            // LinuxCNC's task starts with block delete on (its canonical layer's
-            // default); the standalone rs274 starts with it off (`-b` toggles).
-            block_skip: b("block_skip", dialect == Dialect::Rs274ngc),
+            // Off, as in the standalone rs274 (`-b` toggles) that `--emit canon` is
+            // checked against; LinuxCNC's task starts with it on (its canonical
+            // layer's default), which a LinuxCNC machine profile sets.
+            block_skip: b("block_skip", false),
             param_unit,
             decimal_point_input: b("decimal_point_input", false),
             g73_retract: f("g73_retract", 1.0),
