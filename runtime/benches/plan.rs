@@ -26,7 +26,7 @@ fn segments() -> impl Iterator<Item = Segment> {
             q[0] += dir * step;
         }
         q[2] = 0.2 * (q[0] * 0.7).sin() * (q[1] * 0.3).cos();
-        let s = Segment::line(p, q, 50.0, PathMode::Blend { tolerance: 0.01 }).with_block(i as u32);
+        let s = Segment::line(p, q, 50.0, PathMode::blend(0.01)).with_block(i as u32);
         p = q;
         s
     })

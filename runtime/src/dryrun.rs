@@ -207,8 +207,10 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
     } else if m.exact_stop {
         PathMode::ExactStop
     } else {
+        let tolerance = m.blend_tolerance.unwrap_or(0.0);
         PathMode::Blend {
-            tolerance: m.blend_tolerance.unwrap_or(0.0),
+            tolerance,
+            naive: m.naive_tolerance.unwrap_or(tolerance),
         }
     };
     let straight = dist3(&xyz(&m.start), &xyz(&m.end));

@@ -99,6 +99,21 @@ pub enum PlannerModel {
     Scurve,
 }
 
+impl PlannerModel {
+    /// The controller a model reproduces, as measured (`tests/cycle_time`).
+    pub fn reference(&self) -> Option<&'static str> {
+        match self {
+            PlannerModel::Linuxcnc => Some(LINUXCNC_REFERENCE),
+            PlannerModel::Trapezoid | PlannerModel::Scurve => None,
+        }
+    }
+}
+
+/// The LinuxCNC the `linuxcnc` model was measured against: Debian's
+/// `linuxcnc-uspace` package, its trajectory planner module and servo period.
+pub const LINUXCNC_REFERENCE: &str =
+    "LinuxCNC 2.9.0~pre1+git20230208.f1270d6ed7 (commit f1270d6ed715), tpmod, servo period 1 ms";
+
 /// How G0 moves several axes at once.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]

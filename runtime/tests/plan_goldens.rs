@@ -92,11 +92,7 @@ fn read_program(text: &str) -> Vec<Event> {
                 900 => absolute = true,
                 910 => absolute = false,
                 610 => mode = PathMode::ExactPath,
-                640 => {
-                    mode = PathMode::Blend {
-                        tolerance: get('P').unwrap_or(0.0) * unit,
-                    }
-                }
+                640 => mode = PathMode::blend(get('P').unwrap_or(0.0) * unit),
                 0 | 10 | 20 | 30 => motion = (g.round()) as u32,
                 40 => dwell = get('P'),
                 _ => {}

@@ -6,7 +6,7 @@ use runtime::plan::profile::{scurve_ramp_time, trapezoid};
 use runtime::plan::{plan, Event, PathMode, Planner, Segment};
 
 const G61: PathMode = PathMode::ExactPath;
-const G64: PathMode = PathMode::Blend { tolerance: 0.0 };
+const G64: PathMode = PathMode::blend(0.0);
 
 /// The oracle's default machine: XYZ, 100 mm/s and 1000 mm/s² per axis, TRAJ 100 mm/s.
 fn lcnc_machine() -> MachineProfile {
@@ -505,13 +505,8 @@ fn naive_cam_joins_nearly_straight_g64p_moves() {
         (0..3)
             .map(|i| {
                 Event::Motion(
-                    Segment::line(
-                        pts[i],
-                        pts[i + 1],
-                        f(3000.0),
-                        PathMode::Blend { tolerance: tol },
-                    )
-                    .with_block(i as u32),
+                    Segment::line(pts[i], pts[i + 1], f(3000.0), PathMode::blend(tol))
+                        .with_block(i as u32),
                 )
             })
             .collect()
@@ -573,10 +568,8 @@ fn random_programs_plan_to_finite_monotonic_times() {
             let mode = match (rng.next() * 4.0) as u32 {
                 0 => PathMode::ExactStop,
                 1 => PathMode::ExactPath,
-                2 => PathMode::Blend { tolerance: 0.0 },
-                _ => PathMode::Blend {
-                    tolerance: rng.next() * 0.1,
-                },
+                2 => PathMode::blend(0.0),
+                _ => PathMode::blend(rng.next() * 0.1),
             };
             let scale = if rng.next() < 0.5 { 0.05 } else { 20.0 };
             let mut q = p;

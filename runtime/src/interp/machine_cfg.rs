@@ -219,6 +219,9 @@ impl MachineCfg {
                 .and_then(num)
                 .or(axis_unit)
                 .unwrap_or(0.001),
+            // Off, as in the standalone rs274 (`-b` toggles) that `--emit canon` is
+            // checked against; LinuxCNC's task starts with it on (its canonical
+            // layer's default), which a LinuxCNC machine profile sets.
             block_skip: b("block_skip", false),
             param_unit,
             decimal_point_input: b("decimal_point_input", false),

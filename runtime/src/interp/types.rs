@@ -135,6 +135,9 @@ pub struct Motion {
     /// joints (G61.1 and G09 are true exact stops).
     pub exact_path: bool,
     pub blend_tolerance: Option<f64>,
+    /// LinuxCNC G64 Q, mm: the naive-CAM tolerance; `None` when Q is not given
+    /// (it is then P).
+    pub naive_tolerance: Option<f64>,
     pub file: FileId,
     pub block: u32,
     pub line: u32,

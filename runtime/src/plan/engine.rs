@@ -12,7 +12,7 @@ use super::servo::{self, Run, View};
 mod blend;
 mod chain;
 use super::{
-    cross3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
+    cross3, dist3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
 use blend::Circ;
@@ -184,6 +184,14 @@ impl Planner {
     pub fn push(&mut self, ev: Event, out: &mut dyn FnMut(SegmentTiming)) {
         match ev {
             Event::Motion(seg) => {
+                if self.lcnc() {
+                    if let Some(halves) = arc_as_lines(&seg) {
+                        for half in halves {
+                            self.push(Event::Motion(half), out);
+                        }
+                        return;
+                    }
+                }
                 if self.lcnc() && chainable(&seg) {
                     if !self.chain.is_empty() && !self.chain.linkable(&seg) {
                         self.flush_chain(out);
@@ -331,7 +339,7 @@ impl Planner {
         let (term, tolerance) = match seg.mode {
             PathMode::ExactStop => (Term::Stop, 0.0),
             PathMode::ExactPath => (Term::Exact, 0.0),
-            PathMode::Blend { tolerance } => {
+            PathMode::Blend { tolerance, .. } => {
                 let tol = if tolerance > 0.0 {
                     tolerance
                 } else {
@@ -473,7 +481,11 @@ impl Planner {
                 let tt = tt_motion.max(tt_spiral);
                 let amax = if tt > 0.0 { total / tt } else { a_axes };
                 tc.ty = TcType::Circle;
-                tc.radius = radius;
+                tc.radius = if lcnc {
+                    helix_effective_radius(radius, &sub3(&e3, &center), &n, rise, sweep)
+                } else {
+                    radius
+                };
                 tc.target = total;
                 tc.maxvel = vmax;
                 tc.reqvel = vmax.min(feed_cap(seg.feed));
@@ -1163,10 +1175,88 @@ impl Planner {
     }
 }
 
+/// The radius LinuxCNC's planner takes for an arc's centripetal speed limit
+/// (`pmCircleEffectiveMinRadius`): the spiral's flattened radius plus the square of
+/// the whole helical rise over it. The rise is not divided by the angle, so a
+/// helix of several turns runs faster than its curvature allows; measured so.
+fn helix_effective_radius(
+    radius: f64,
+    end_from_center: &[f64; 3],
+    n: &[f64; 3],
+    rise: f64,
+    sweep: f64,
+) -> f64 {
+    let along = dot3(end_from_center, n);
+    let radial = [
+        end_from_center[0] - along * n[0],
+        end_from_center[1] - along * n[1],
+        end_from_center[2] - along * n[2],
+    ];
+    let dr = (norm3(&radial) - radius) / sweep.abs();
+    let inner = dr * dr + radius * radius;
+    let r_spiral = (inner * inner * inner).sqrt() / (inner + dr * dr);
+    rise * rise / r_spiral + r_spiral
+}
+
+/// LinuxCNC's canonical layer feeds an XY arc whose chord deviates less than the
+/// naive-CAM tolerance to the naive-CAM detector as two lines through the arc's
+/// middle (`ARC_FEED`, `chord_deviation`). The deviation is taken over the arc's
+/// last turn only, as there.
+fn arc_as_lines(seg: &Segment) -> Option<[Segment; 2]> {
+    let SegmentKind::Arc {
+        center,
+        normal,
+        sweep,
+        ..
+    } = seg.kind
+    else {
+        return None;
+    };
+    let PathMode::Blend { naive, .. } = seg.mode else {
+        return None;
+    };
+    if naive <= 0.0 || normal[0] != 0.0 || normal[1] != 0.0 || seg.start[3..] != seg.end[3..] {
+        return None;
+    }
+    let (sx, sy) = (seg.start[0] - center[0], seg.start[1] - center[1]);
+    let r = sx.hypot(sy);
+    let ccw = (sweep >= 0.0) == (normal[2] >= 0.0);
+    let th1 = sy.atan2(sx);
+    let th2 = (seg.end[1] - center[1]).atan2(seg.end[0] - center[0]);
+    // The angle from start to end the way the arc turns, in (1e-5, 2π + 1e-5].
+    let mut dth = th2 - th1;
+    for _ in 0..2 {
+        if ccw && dth <= 1e-5 {
+            dth += std::f64::consts::TAU;
+        } else if !ccw && dth >= -1e-5 {
+            dth -= std::f64::consts::TAU;
+        }
+    }
+    let included = dth.abs();
+    let deviation = r * (1.0 - (included / 2.0).cos());
+    // A NaN deviation (degenerate arc) keeps the arc.
+    if deviation.is_nan() || deviation >= naive {
+        return None;
+    }
+    let mid_angle = th1 + dth / 2.0;
+    let mut mid = seg.start;
+    mid[0] = center[0] + r * mid_angle.cos();
+    mid[1] = center[1] + r * mid_angle.sin();
+    mid[2] = (seg.start[2] + seg.end[2]) / 2.0;
+    let half = |a: [f64; 6], b: [f64; 6]| Segment {
+        kind: SegmentKind::Line,
+        start: a,
+        end: b,
+        length: dist3(&[a[0], a[1], a[2]], &[b[0], b[1], b[2]]),
+        ..*seg
+    };
+    Some([half(seg.start, mid), half(mid, seg.end)])
+}
+
 /// A straight feed move of the linear axes in G64 with a tolerance.
 fn chainable(seg: &Segment) -> bool {
     matches!(seg.kind, SegmentKind::Line)
-        && matches!(seg.mode, PathMode::Blend { tolerance } if tolerance > 0.0)
+        && matches!(seg.mode, PathMode::Blend { naive, .. } if naive > 0.0)
         && seg.start[3..] == seg.end[3..]
 }
 

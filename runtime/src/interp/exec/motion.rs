@@ -207,6 +207,8 @@ impl Interp<'_, '_> {
             } else {
                 None
             },
+            naive_tolerance: (self.st.modal.path == 640 && self.ngc())
+                .then_some(self.naive_tol * lu),
             file: self.file_id(),
             block: self.cur.1,
             line: self.cur_line,

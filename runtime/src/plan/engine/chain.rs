@@ -91,7 +91,10 @@ impl Chain {
         if self.ends.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
             return false;
         }
-        let PathMode::Blend { tolerance } = seg.mode else {
+        let PathMode::Blend {
+            naive: tolerance, ..
+        } = seg.mode
+        else {
             return false;
         };
         let b = xyz(&first.start);
@@ -229,7 +232,10 @@ mod tests {
         if chain.len() > 100 || seg.mode != last.mode || seg.feed != last.feed {
             return false;
         }
-        let PathMode::Blend { tolerance } = seg.mode else {
+        let PathMode::Blend {
+            naive: tolerance, ..
+        } = seg.mode
+        else {
             return false;
         };
         let b = xyz(&first.start);
@@ -262,7 +268,7 @@ mod tests {
     /// Feeds a path of moves to a `Chain` and to the reference the way the engine
     /// does, and returns how many decisions were made and how many the bound proved.
     fn compare(points: &[[f64; 3]], tolerance: f64, feeds: &[f64]) -> (usize, usize) {
-        let mode = PathMode::Blend { tolerance };
+        let mode = PathMode::blend(tolerance);
         let mut chain = Chain::default();
         let mut held: Vec<Segment> = Vec::new();
         let mut decisions = 0;
@@ -339,7 +345,7 @@ mod tests {
         assert_eq!(proofs, 298 - 2);
         // The 102nd move starts a new chain: 101 points is the most one holds.
         let mut chain = Chain::default();
-        let mode = PathMode::Blend { tolerance: 0.01 };
+        let mode = PathMode::blend(0.01);
         let mut joined = 0;
         for w in pts.windows(2) {
             let seg = Segment::line(w[0], w[1], 1.0, mode);
@@ -378,7 +384,7 @@ mod tests {
 
     #[test]
     fn non_finite_points_break_the_chain() {
-        let mode = PathMode::Blend { tolerance: 0.01 };
+        let mode = PathMode::blend(0.01);
         let mut chain = Chain::default();
         chain.push(Segment::line([0.0; 3], [1.0, 0.0, 0.0], 1.0, mode));
         let bad = Segment::line([1.0, 0.0, 0.0], [f64::NAN, 0.0, 0.0], 1.0, mode);
