@@ -1,0 +1,239 @@
+//! One diagnostic per fault. Some faults are seen by two layers (a static rule and
+//! the interpreter, or two static rules); [`TWINS`] declares those pairs and which
+//! code owns the fault, and [`drop_twins`] removes the other one where both point
+//! at the same text. Hosts reach it through [`crate::finish`] and [`crate::merge`].
+
+use crate::diagnostic::{Diagnostic, FileId};
+use crate::span::Span;
+
+/// The note the interpreter appends to an error after which it cannot go on.
+pub const STOP_SUFFIX: &str = " (the dry run stops here)";
+
+/// Two codes that report one fault when their spans overlap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Twin {
+    /// The code that stays.
+    pub keep: &'static str,
+    /// The code dropped where a `keep` diagnostic overlaps it.
+    pub drop: &'static str,
+    /// The fault both describe.
+    pub fault: &'static str,
+}
+
+/// The declared twin pairs. The static rule owns each fault: it is reported without
+/// a run (subprogram files, the editor before its dry run) and its message says what
+/// to do; the interpreter's twin is dropped, and its stop note moves onto the kept one.
+pub const TWINS: &[Twin] = &[
+    Twin {
+        keep: "W003",
+        drop: "A005",
+        fault: "an arc without R or I/J/K",
+    },
+    Twin {
+        keep: "W003",
+        drop: "X003",
+        fault: "a code without a word it needs (G4 without P, …)",
+    },
+    Twin {
+        keep: "W003",
+        drop: "C003",
+        fault: "a canned cycle without a word it needs (G76 without P, …)",
+    },
+    Twin {
+        keep: "W015",
+        drop: "X001",
+        fault: "a constant expression that cannot be evaluated",
+    },
+    Twin {
+        keep: "L003",
+        drop: "L010",
+        fault: "a `#` without a parameter",
+    },
+    Twin {
+        keep: "P006",
+        drop: "F005",
+        fault: "code after M2/M30",
+    },
+    Twin {
+        keep: "P005",
+        drop: "F006",
+        fault: "a program without an end",
+    },
+    Twin {
+        keep: "L011",
+        drop: "X003",
+        fault: "a `%` that is not a program end",
+    },
+    Twin {
+        keep: "L011",
+        drop: "P005",
+        fault: "a closing `%` without an opening one, read as the missing end",
+    },
+];
+
+/// Whether the twin list pairs `a` and `b`, either way round.
+pub fn are_twins(a: &str, b: &str) -> bool {
+    TWINS
+        .iter()
+        .any(|t| (t.keep == a && t.drop == b) || (t.keep == b && t.drop == a))
+}
+
+/// Whether two spans point at the same text: they share a byte, or an empty one
+/// (the end of the file) lies inside or at an end of the other.
+pub fn spans_meet(a: Span, b: Span) -> bool {
+    if a.start == a.end || b.start == b.end {
+        return a.start <= b.end && b.start <= a.end;
+    }
+    a.start < b.end && b.start < a.end
+}
+
+/// Removes each diagnostic whose code is a twin's `drop` where a diagnostic of its
+/// `keep` code meets it in the same file. The kept one takes the more severe severity
+/// and the dropped one's stop note, so exit codes and "the dry run stops here" stay.
+/// Order is kept. Idempotent.
+pub fn drop_twins(diagnostics: &mut Vec<Diagnostic>) {
+    let dropping = |c: &str| TWINS.iter().any(|t| t.drop == c);
+    if !diagnostics.iter().any(|d| dropping(d.code)) {
+        return;
+    }
+    // Per kept code and file: its spans sorted by start, with the running maximum
+    // end, so "some span starts before x ends and ends after x starts" is a search.
+    let mut keepers: Vec<(&'static str, FileId, Vec<(Span, usize)>)> = Vec::new();
+    for t in TWINS {
+        if keepers.iter().any(|k| k.0 == t.keep) {
+            continue;
+        }
+        for (i, d) in diagnostics.iter().enumerate() {
+            if d.code != t.keep {
+                continue;
+            }
+            match keepers.iter_mut().find(|k| k.0 == t.keep && k.1 == d.file) {
+                Some(k) => k.2.push((d.span, i)),
+                None => keepers.push((t.keep, d.file, vec![(d.span, i)])),
+            }
+        }
+    }
+    for k in &mut keepers {
+        k.2.sort_by_key(|(s, _)| (s.start, s.end));
+    }
+    let meeting = |keep: &str, file: FileId, span: Span| -> Option<usize> {
+        let k = keepers.iter().find(|k| k.0 == keep && k.1 == file)?;
+        let upto = k.2.partition_point(|(s, _)| s.start <= span.end);
+        k.2[..upto]
+            .iter()
+            .rev()
+            .find(|(s, _)| spans_meet(*s, span))
+            .map(|(_, i)| *i)
+    };
+    let mut merge_into: Vec<(usize, usize)> = Vec::new();
+    for (i, d) in diagnostics.iter().enumerate() {
+        let owner = TWINS
+            .iter()
+            .filter(|t| t.drop == d.code)
+            .find_map(|t| meeting(t.keep, d.file, d.span));
+        if let Some(o) = owner {
+            merge_into.push((i, o));
+        }
+    }
+    if merge_into.is_empty() {
+        return;
+    }
+    let mut owner_of: Vec<Option<usize>> = vec![None; diagnostics.len()];
+    for &(i, o) in &merge_into {
+        owner_of[i] = Some(o);
+    }
+    for &(i, o) in &merge_into {
+        // A dropped diagnostic's owner may itself be dropped (F006 under P005 under
+        // L011): what it carries goes to the first owner that stays.
+        let mut o = o;
+        for _ in 0..TWINS.len() {
+            match owner_of[o] {
+                Some(next) if next != i => o = next,
+                _ => break,
+            }
+        }
+        let (sev, stops) = {
+            let d = &diagnostics[i];
+            (d.severity, d.message.ends_with(STOP_SUFFIX))
+        };
+        let keep = &mut diagnostics[o];
+        keep.severity = keep.severity.max(sev);
+        if stops && !keep.message.ends_with(STOP_SUFFIX) {
+            keep.message.push_str(STOP_SUFFIX);
+        }
+    }
+    let mut n = 0;
+    diagnostics.retain(|_| {
+        n += 1;
+        owner_of[n - 1].is_none()
+    });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnostic::Severity;
+
+    fn d(code: &'static str, sev: Severity, a: u32, b: u32, msg: &str) -> Diagnostic {
+        Diagnostic::new(code, sev, Span::new(a, b), msg)
+    }
+
+    #[test]
+    fn the_static_twin_stays_with_the_stop_note() {
+        let mut v = vec![
+            d("W003", Severity::Error, 10, 12, "G4 needs P"),
+            d(
+                "X003",
+                Severity::Error,
+                10,
+                12,
+                "dwell time P word missing with G4 (the dry run stops here)",
+            ),
+            d(
+                "X003",
+                Severity::Error,
+                20,
+                22,
+                "other (the dry run stops here)",
+            ),
+        ];
+        drop_twins(&mut v);
+        let got: Vec<(&str, &str)> = v.iter().map(|d| (d.code, d.message.as_str())).collect();
+        assert_eq!(
+            got,
+            [
+                ("W003", "G4 needs P (the dry run stops here)"),
+                ("X003", "other (the dry run stops here)")
+            ]
+        );
+        let again = v.clone();
+        drop_twins(&mut v);
+        assert_eq!(v, again);
+    }
+
+    #[test]
+    fn the_end_of_file_meets_a_span_ending_there() {
+        let mut v = vec![
+            d("P005", Severity::Warning, 5, 30, "no end"),
+            d("F006", Severity::Error, 30, 30, "no end"),
+        ];
+        drop_twins(&mut v);
+        assert_eq!(v.len(), 1);
+        assert_eq!((v[0].code, v[0].severity), ("P005", Severity::Error));
+        // Adjacent spans are different text.
+        let mut w = vec![
+            d("W003", Severity::Error, 0, 2, "a"),
+            d("A005", Severity::Error, 2, 4, "b"),
+        ];
+        drop_twins(&mut w);
+        assert_eq!(w.len(), 2);
+    }
+
+    #[test]
+    fn every_code_is_kept_or_dropped_one_way() {
+        for t in TWINS {
+            assert_ne!(t.keep, t.drop);
+            assert!(!TWINS.iter().any(|u| u.keep == t.drop && u.drop == t.keep));
+        }
+    }
+}
