@@ -177,9 +177,7 @@ pub fn finish(
         diagnostics.retain(|d| d.code == MISMATCH && d.file == FileId(0));
     }
     diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
-    diagnostics.dedup_by(|a, b| {
-        a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message
-    });
+    twins::join_same_code(&mut diagnostics);
     twins::drop_twins(&mut diagnostics);
     limit_diagnostics(diagnostics, settings)
 }
@@ -200,7 +198,7 @@ pub fn merge(
 }
 
 /// How the "… and N more" diagnostics of [`limit_diagnostics`] begin.
-const MORE_PREFIX: &str = "… and ";
+pub(crate) const MORE_PREFIX: &str = "… and ";
 
 /// Keeps the first `settings.max_per_code` diagnostics of each code in each file
 /// and the first `settings.max_per_file` of each file, in the order given (sorted

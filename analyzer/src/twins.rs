@@ -20,9 +20,11 @@ pub struct Twin {
     pub fault: &'static str,
 }
 
-/// The declared twin pairs. The static rule owns each fault: it is reported without
-/// a run (subprogram files, the editor before its dry run) and its message says what
-/// to do; the interpreter's twin is dropped, and its stop note moves onto the kept one.
+/// The declared twin pairs. A static rule owns each fault it sees: it is reported
+/// without a run (subprogram files, the editor before its dry run) and its message
+/// says what to do; the interpreter's twin is dropped, and its stop note moves onto
+/// the kept one. Between two static rules, or two runtime ones, the more specific
+/// one stays.
 pub const TWINS: &[Twin] = &[
     Twin {
         keep: "W003",
@@ -69,6 +71,106 @@ pub const TWINS: &[Twin] = &[
         drop: "P005",
         fault: "a closing `%` without an opening one, read as the missing end",
     },
+    Twin {
+        keep: "W003",
+        drop: "C002",
+        fault: "a peck cycle without Q",
+    },
+    Twin {
+        keep: "W007",
+        drop: "C002",
+        fault: "a negative peck depth Q",
+    },
+    Twin {
+        keep: "W003",
+        drop: "F002",
+        fault: "M98 or G65 without P",
+    },
+    Twin {
+        keep: "W003",
+        drop: "F011",
+        fault: "a probe or motion code without axis words",
+    },
+    Twin {
+        keep: "W002",
+        drop: "A005",
+        fault: "an arc with both R and I/J/K",
+    },
+    Twin {
+        keep: "W002",
+        drop: "X008",
+        fault: "a D peck clearance LinuxCNC 2.9 does not accept",
+    },
+    Twin {
+        keep: "W005",
+        drop: "X003",
+        fault: "a word letter the machine or profile does not have",
+    },
+    Twin {
+        keep: "W007",
+        drop: "X002",
+        fault: "a minus sign on an M or G code",
+    },
+    Twin {
+        keep: "W007",
+        drop: "T007",
+        fault: "a negative offset number",
+    },
+    Twin {
+        keep: "G004",
+        drop: "X002",
+        fault: "a G code that does not exist",
+    },
+    Twin {
+        keep: "W016",
+        drop: "X001",
+        fault: "a write to a read-only parameter",
+    },
+    Twin {
+        keep: "W017",
+        drop: "X001",
+        fault: "EXISTS without a parameter",
+    },
+    Twin {
+        keep: "W020",
+        drop: "X003",
+        fault: "M98 in a block with a canned cycle's axis words",
+    },
+    Twin {
+        keep: "P001",
+        drop: "F007",
+        fault: "an O-word statement closing or returning from the wrong block",
+    },
+    Twin {
+        keep: "P002",
+        drop: "F007",
+        fault: "an END without its DO",
+    },
+    Twin {
+        keep: "P003",
+        drop: "F007",
+        fault: "a GOTO to a sequence number that does not exist",
+    },
+    Twin {
+        keep: "P008",
+        drop: "L005",
+        fault: "an O-word label written with the digit 0",
+    },
+    Twin {
+        keep: "P008",
+        drop: "L003",
+        fault: "an O-word label written with the digit 0 (its keyword read as words)",
+    },
+    Twin {
+        keep: "A007",
+        drop: "A001",
+        fault: "I/J/K in polar coordinate mode (the radius check then fails too)",
+    },
+    Twin {
+        keep: "C009",
+        drop: "F001",
+        fault: "rigid tapping with F0",
+    },
 ];
 
 /// Whether the twin list pairs `a` and `b`, either way round.
@@ -85,6 +187,42 @@ pub fn spans_meet(a: Span, b: Span) -> bool {
         return a.start <= b.end && b.start <= a.end;
     }
     a.start < b.end && b.start < a.end
+}
+
+/// One diagnostic per code and place: diagnostics of one code that start at the same
+/// place with the same message are one (the first stays); two of one code on the
+/// same span with different messages become one whose message says both. Expects
+/// the list sorted by file and start.
+pub fn join_same_code(diagnostics: &mut Vec<Diagnostic>) {
+    let mut out: Vec<Diagnostic> = Vec::with_capacity(diagnostics.len());
+    for d in diagnostics.drain(..) {
+        let same = out
+            .iter_mut()
+            .rev()
+            .take_while(|o| o.file == d.file && o.span.start == d.span.start)
+            .take(64)
+            .find(|o| o.code == d.code && (o.message == d.message || o.span == d.span));
+        match same {
+            Some(o) if o.message == d.message || o.message.contains(d.message.as_str()) => {
+                o.severity = o.severity.max(d.severity);
+            }
+            Some(o) => {
+                // A stop note belongs at the end of the joined message.
+                let stops = o.message.ends_with(STOP_SUFFIX) || d.message.ends_with(STOP_SUFFIX);
+                let first = o.message.trim_end_matches(STOP_SUFFIX).to_string();
+                let second = d.message.trim_end_matches(STOP_SUFFIX);
+                o.message = format!("{first}; {second}");
+                if stops {
+                    o.message.push_str(STOP_SUFFIX);
+                }
+                o.severity = o.severity.max(d.severity);
+                o.fixes.extend(d.fixes);
+                o.related.extend(d.related);
+            }
+            None => out.push(d),
+        }
+    }
+    *diagnostics = out;
 }
 
 /// Removes each diagnostic whose code is a twin's `drop` where a diagnostic of its
@@ -127,6 +265,10 @@ pub fn drop_twins(diagnostics: &mut Vec<Diagnostic>) {
     };
     let mut merge_into: Vec<(usize, usize)> = Vec::new();
     for (i, d) in diagnostics.iter().enumerate() {
+        // A "… and N more" summary stands for many: it stays.
+        if d.message.starts_with(crate::MORE_PREFIX) {
+            continue;
+        }
         let owner = TWINS
             .iter()
             .filter(|t| t.drop == d.code)
