@@ -233,3 +233,38 @@ fn the_listed_faults_give_one_diagnostic_each() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn both_rules_of_a_twin_say_who_reports() {
+    let doc = |code: &str| {
+        analyzer::rules::registry::lookup(code)
+            .or_else(|| {
+                runtime::rules::REGISTRY
+                    .iter()
+                    .copied()
+                    .find(|m| m.code == code)
+            })
+            .map(|m| m.doc)
+            .unwrap_or_else(|| panic!("{code} is not a rule"))
+    };
+    for t in analyzer::twins::TWINS {
+        let owner = format!(
+            "Reported by this rule, not {}, when both see {}",
+            t.drop, t.fault
+        );
+        let other = format!(
+            "Reported by {}, not this rule, when both see {}",
+            t.keep, t.fault
+        );
+        assert!(
+            doc(t.keep).contains(&owner),
+            "{} doc lacks: {owner}",
+            t.keep
+        );
+        assert!(
+            doc(t.drop).contains(&other),
+            "{} doc lacks: {other}",
+            t.drop
+        );
+    }
+}
