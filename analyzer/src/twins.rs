@@ -211,7 +211,9 @@ pub fn join_same_code(diagnostics: &mut Vec<Diagnostic>) {
                 let stops = o.message.ends_with(STOP_SUFFIX) || d.message.ends_with(STOP_SUFFIX);
                 let first = o.message.trim_end_matches(STOP_SUFFIX).to_string();
                 let second = d.message.trim_end_matches(STOP_SUFFIX);
-                o.message = format!("{first}; {second}");
+                // Sentences follow each other; fragments are joined with a semicolon.
+                let sep = if first.ends_with('.') { " " } else { "; " };
+                o.message = format!("{first}{sep}{second}");
                 if stops {
                     o.message.push_str(STOP_SUFFIX);
                 }
