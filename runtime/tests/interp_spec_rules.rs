@@ -291,7 +291,7 @@ fn g43_without_h_before_any_tool_change_has_no_offset() {
     assert_eq!(got.len(), 1, "{got:?}");
     assert_eq!(got[0].1, 17, "at the G43 word");
     assert!(got[0].0.starts_with(
-        "G43 without H applies the length of the tool in the spindle, but no tool has been loaded"
+        "G43 without H applies the length of the tool in the spindle, and none is loaded (tool 0)"
     ));
     // Valid: after a tool change G43 without H applies that tool's offset.
     assert_eq!(
