@@ -11,6 +11,7 @@ pub mod rules;
 pub mod settings;
 pub mod span;
 pub mod syntax;
+pub mod twins;
 
 pub use control::{control_signature, Control, Evidence, Signature};
 pub use diagnostic::{Diagnostic, FileId, Fix, Related, Severity, TextEdit};
@@ -176,14 +177,28 @@ pub fn finish(
         diagnostics.retain(|d| d.code == MISMATCH && d.file == FileId(0));
     }
     diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
-    diagnostics.dedup_by(|a, b| {
-        a.file == b.file && a.span == b.span && a.code == b.code && a.message == b.message
-    });
+    twins::join_same_code(&mut diagnostics);
+    twins::drop_twins(&mut diagnostics);
+    limit_diagnostics(diagnostics, settings)
+}
+
+/// Joins the static diagnostics of a file with its interpreter's, each already
+/// through [`finish`]: sorted by position (static first where they start
+/// together), one diagnostic per fault ([`twins::drop_twins`]) and bounded again.
+/// The one way every host (`check`, `run`, the language server) combines the two.
+pub fn merge(
+    mut diagnostics: Vec<Diagnostic>,
+    runtime: Vec<Diagnostic>,
+    settings: &Settings,
+) -> Vec<Diagnostic> {
+    diagnostics.extend(runtime);
+    diagnostics.sort_by_key(|d| (d.file, d.span.start));
+    twins::drop_twins(&mut diagnostics);
     limit_diagnostics(diagnostics, settings)
 }
 
 /// How the "… and N more" diagnostics of [`limit_diagnostics`] begin.
-const MORE_PREFIX: &str = "… and ";
+pub(crate) const MORE_PREFIX: &str = "… and ";
 
 /// Keeps the first `settings.max_per_code` diagnostics of each code in each file
 /// and the first `settings.max_per_file` of each file, in the order given (sorted

@@ -199,7 +199,9 @@ fn rapid_no_motion_in_a_subprogram_is_judged_over_every_pass() {
         "{sub}G0 X0 Y0 Z10\no100 call [10] [20]\no100 call [10] [20]\nM2\n"
     ));
     assert_eq!(codes(&out), Vec::<&str>::new());
-    // Called only at the position it goes to: it never moves, one note.
+    // Called only at the position it goes to: `G0 Z5` never moves, one note. The
+    // first motion, `G0 X[#1] Y[#2]`, positions the tool for each call and is not
+    // flagged although this caller is already there.
     let out = run_ngc(&format!(
         "{sub}G0 X10 Y20 Z5\no100 call [10] [20]\no100 call [10] [20]\nM2\n"
     ));
@@ -209,9 +211,23 @@ fn rapid_no_motion_in_a_subprogram_is_judged_over_every_pass() {
         .filter(|d| d.code == "F014")
         .map(|d| d.span.start)
         .collect();
-    assert_eq!(notes.len(), 2, "{:?}", out.diagnostics);
-    // One for `G0 X[#1] Y[#2]` (offset 9) and one for `G0 Z5`.
-    assert_eq!(notes[0], 9);
+    assert_eq!(notes, vec![24], "{:?}", out.diagnostics);
+}
+
+/// A subprogram whose first rapid goes where the caller already stands, called
+/// once: that rapid positions every call, and only a later useless rapid is noted.
+#[test]
+fn rapid_no_motion_spares_a_subprograms_positioning_move() {
+    let sub = "o100 sub\nG0 X10 Y20\nG1 Z-1 F100\nG0 Z5\nG0 Z5\no100 endsub\n";
+    let out = run_ngc(&format!("{sub}G0 X10 Y20 Z5\no100 call\nM2\n"));
+    let notes: Vec<u32> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "F014")
+        .map(|d| d.span.start)
+        .collect();
+    // Only the second `G0 Z5` (offset 38) does nothing.
+    assert_eq!(notes, vec![38], "{:?}", out.diagnostics);
 }
 
 /// LinuxCNC reads an I word with the G71/G72 lathe cycles (rs274 checks
@@ -255,4 +271,39 @@ fn fanuc_move_between_m29_and_the_tap_is_ps0203() {
     // Positioned before M29, the tap right after it, further holes in the cycle: no alarm.
     let ok = "G21 G90\nG00 X20. Y20.\nM03 S500\nM29 S500\nG84 Z-15. R5. F625.\nX40.\nG80\nM30\n";
     assert_eq!(found(&run_fanuc(ok, ""), ok, &["C004"]), vec![]);
+}
+
+/// LinuxCNC's G43 without H takes the tool in the spindle (spec/rs274ngc.md 3.12):
+/// after `T1 M6` that is tool 1; before any M6 it is tool 0, whose offset is zero.
+#[test]
+fn g43_without_h_before_any_tool_change_has_no_offset() {
+    let tools = "T1 P1 Z+25.0 D6.0\n";
+    let t003 = |text: &str| -> Vec<(String, u32)> {
+        run_with(Dialect::Rs274ngc, text, "", &[], Some(tools))
+            .diagnostics
+            .iter()
+            .filter(|d| d.code == "T003")
+            .map(|d| (d.message.clone(), d.span.start))
+            .collect()
+    };
+    // Invalid: no tool loaded yet, the offset is zero.
+    let got = t003("G21 G90\nG0 X0 Y0\nG43 Z10\nG0 Z5\nM2\n");
+    assert_eq!(got.len(), 1, "{got:?}");
+    assert_eq!(got[0].1, 17, "at the G43 word");
+    assert!(got[0].0.starts_with(
+        "G43 without H applies the length of the tool in the spindle, and none is loaded (tool 0)"
+    ));
+    // Valid: after a tool change G43 without H applies that tool's offset.
+    assert_eq!(
+        t003("G21 G90\nT1 M6\nG0 X0 Y0\nG43 Z10\nG0 Z5\nM2\n"),
+        vec![]
+    );
+    // Valid: M6 on the G43 line runs first (order of execution).
+    assert_eq!(
+        t003("G21 G90\nG0 X0 Y0\nT1 M6 G43 Z10\nG0 Z5\nM2\n"),
+        vec![]
+    );
+    // Valid: the H says which offset.
+    let with_h = t003("G21 G90\nT1 M6\nG0 X0 Y0\nG43 H1 Z10\nG0 Z5\nM2\n");
+    assert_eq!(with_h, vec![]);
 }

@@ -232,7 +232,10 @@ fn nesting_cases() -> Vec<Case> {
     // call-graph check was cubic) and many labels (the duplicate scan quadratic).
     let mut s = String::new();
     for i in 0..4000 {
-        s.push_str(&format!("o<s{i}> sub\no<s{}> call\no<s{i}> endsub\n", i + 1));
+        s.push_str(&format!(
+            "o<s{i}> sub\no<s{}> call\no<s{i}> endsub\n",
+            i + 1
+        ));
     }
     s.push_str("o<s4000> sub\no<s4000> endsub\no<s0> call\nM2\n");
     cases.push(case("subroutine call chain", "rs274ngc", s, None));

@@ -190,21 +190,22 @@ fn a_stopped_run_is_partial_in_run_output_and_in_the_code_lens() {
         v["stopped_at"],
         json!({"file": path.display().to_string(), "line": 4, "reason": "dwell time P word missing with G4"})
     );
-    let msgs: Vec<&str> = v["diagnostics"]
+    // One diagnostic for the fault: the static W003 stands for the interpreter's
+    // X003 and carries its stop note.
+    let msgs: Vec<(&str, &str)> = v["diagnostics"]
         .as_array()
         .unwrap()
         .iter()
-        .filter(|d| d["code"] == "X003")
-        .map(|d| d["message"].as_str().unwrap())
+        .map(|d| (d["code"].as_str().unwrap(), d["message"].as_str().unwrap()))
         .collect();
     assert_eq!(
         msgs,
-        vec!["dwell time P word missing with G4 (the dry run stops here)"]
+        vec![("W003", "G4 needs P: the dwell time in seconds (`Dwell time missing with G4`). Write for example `G4 P0.5`. (the dry run stops here)")]
     );
 
     let mut c = lsp_session(&root);
     let uri = open(&mut c, &path, "ngc");
-    c.diagnostics_become(&uri, 1, &[("W003", 3), ("X003", 3)]);
+    c.diagnostics_become(&uri, 1, &[("W003", 3)]);
     let lens = c.request(
         "textDocument/codeLens",
         json!({"textDocument": {"uri": uri}}),

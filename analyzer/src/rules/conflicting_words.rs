@@ -39,6 +39,10 @@ declare_rule! {
     /// Arcs: error in RS274/NGC and ServoWorks, warning in FANUC. `G51 P`+`I/J/K`: ServoWorks
     /// error. `G04 P`+`X`: ServoWorks warning. `G4` with `G2`/`G3`: `linuxcnc` error.
     ///
+    /// Reported by this rule, not A005, when both see an arc with both R and I/J/K on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not X008, when both see a D peck clearance LinuxCNC 2.9 does not accept on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW031, SW053, SW067, SW089, SW100, NGC114, NGC204, NGC222, NGC806, NGC823, FAN032, FAN152
     pub static CONFLICTING_WORDS = {
         code: "W002",

@@ -33,6 +33,8 @@ declare_rule! {
     /// ## Dialects
     /// All, error. Expressions that read parameters are checked when the program runs.
     ///
+    /// Reported by this rule, not X001, when both see a constant expression that cannot be evaluated on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC014, NGC015, NGC016, NGC017, FAN128, FAN129
     pub static CONSTANT_EXPRESSION = {
         code: "W015",

@@ -39,6 +39,8 @@ declare_rule! {
     /// ServoWorks: warning for unused words. FANUC: error for `M98`. Lines that continue a
     /// modal cycle without its code are checked by the runtime.
     ///
+    /// Reported by this rule, not X003, when both see M98 in a block with a canned cycle's axis words on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW132, NGC309, NGC314, NGC317, FAN083
     pub static CYCLE_WORDS = {
         code: "W020",

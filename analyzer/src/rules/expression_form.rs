@@ -34,6 +34,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC, error. Write `[0 - #1]` instead of `-#1` for `emc2`.
     ///
+    /// Reported by this rule, not X001, when both see EXISTS without a parameter on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC033, NGC616
     pub static EXPRESSION_FORM = {
         code: "W017",

@@ -43,6 +43,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC, error. Computed targets (`GOTO #1`) are checked when the program runs.
     ///
+    /// Reported by this rule, not F007, when both see a GOTO to a sequence number that does not exist on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN124, FAN125
     pub static GOTO_TARGET = {
         code: "P003",

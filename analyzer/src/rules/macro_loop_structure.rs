@@ -46,6 +46,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC, error. Each `O` program of a file is checked separately.
     ///
+    /// Reported by this rule, not F007, when both see an END without its DO on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN121, FAN122, FAN123
     pub static MACRO_LOOP_STRUCTURE = {
         code: "P002",

@@ -45,6 +45,18 @@ declare_rule! {
     /// without P or X is a valid exact stop and is not flagged. Errors, except the
     /// ServoWorks exponential-interpolation feeds (warning).
     ///
+    /// Reported by this rule, not A005, when both see an arc without R or I/J/K on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not X003, when both see a code without a word it needs (G4 without P, …) on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not C003, when both see a canned cycle without a word it needs (G76 without P, …) on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not C002, when both see a peck cycle without Q on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not F002, when both see M98 or G65 without P on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not F011, when both see a probe or motion code without axis words on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW020, SW028, SW032, SW046, SW060, SW066, SW068, SW075, SW080, SW095, SW099, SW101, SW105, SW114, SW129, NGC109, NGC115, NGC203, NGC218, NGC219, NGC223, NGC225, NGC300, NGC333, NGC409, NGC424, NGC508, NGC800, NGC801, NGC803, NGC804, NGC807, NGC810, NGC811, NGC812, NGC817, NGC818, FAN030, FAN040, FAN041, FAN042, FAN072
     pub static MISSING_REQUIRED_WORD = {
         code: "W003",

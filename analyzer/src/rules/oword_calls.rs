@@ -53,6 +53,10 @@ declare_rule! {
     /// RS274/NGC: error for too many arguments and for M99 in an `o… sub` (`linuxcnc`),
     /// warnings otherwise, info for the notes. Calls to subroutines in other files are resolved when the program runs.
     ///
+    /// Reported by this rule, not L005, when both see an O-word label written with the digit 0 on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not L003, when both see an O-word label written with the digit 0 (its keyword read as words) on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC606, NGC607, NGC608, NGC610, NGC613, NGC614, NGC617, NGC618
     pub static OWORD_CALLS = {
         code: "P008",

@@ -42,6 +42,8 @@ declare_rule! {
     /// RS274/NGC, error; a warning for a `while`, `do`, `if` or `repeat` left open with an
     /// M2/M30 after it, which rs274 runs to that end without looking for the closer.
     ///
+    /// Reported by this rule, not F007, when both see an O-word statement closing or returning from the wrong block on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC601, NGC602, NGC603, NGC604, NGC605
     pub static OWORD_STRUCTURE = {
         code: "P001",

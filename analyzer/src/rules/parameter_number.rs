@@ -36,6 +36,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC and FANUC, error. Computed indices are checked when the program runs.
     ///
+    /// Reported by this rule, not X001, when both see a write to a read-only parameter on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC018, NGC019, NGC029, FAN126, FAN127
     pub static PARAMETER_NUMBER = {
         code: "W016",

@@ -41,6 +41,10 @@ declare_rule! {
     /// RS274/NGC: error (files that only define subroutines are exempt). ServoWorks and
     /// FANUC: warning; files that contain `M99` are subprograms and need no `M30`.
     ///
+    /// Reported by this rule, not F006, when both see a program without an end on the same text (one diagnostic per fault).
+    ///
+    /// Reported by L011, not this rule, when both see a closing `%` without an opening one, read as the missing end on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW011, SW019, NGC024, NGC025, FAN010, FAN012
     pub static PROGRAM_END = {
         code: "P005",

@@ -98,6 +98,10 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
+    /// Reported by this rule, not L010, when both see a `#` without a parameter on the same text (one diagnostic per fault).
+    ///
+    /// Reported by P008, not this rule, when both see an O-word label written with the digit 0 (its keyword read as words) on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW014, NGC006, NGC030, FAN002
     pub static MISSING_VALUE = {
         code: "L003",
@@ -171,6 +175,8 @@ declare_rule! {
     /// (rs274 stops with `Bad character '\357' used`), information in FANUC and
     /// ServoWorks, whose manuals say nothing of it; the line after it is read as if the
     /// mark were not there.
+    ///
+    /// Reported by P008, not this rule, when both see an O-word label written with the digit 0 on the same text (one diagnostic per fault).
     ///
     /// Implements: SW008, NGC002, NGC011, NGC111
     pub static UNKNOWN_CHARACTER = {
@@ -313,6 +319,8 @@ declare_rule! {
     /// ## Dialects
     /// All, error.
     ///
+    /// Reported by L003, not this rule, when both see a `#` without a parameter on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC012, NGC013, NGC020, NGC027, NGC600, NGC611, NGC612, FAN130, FAN131, FAN132
     pub static BAD_EXPRESSION = {
         code: "L010",
@@ -348,6 +356,10 @@ declare_rule! {
     ///
     /// ## Dialects
     /// ServoWorks: warning. RS274/NGC and FANUC: error.
+    ///
+    /// Reported by this rule, not X003, when both see a `%` that is not a program end on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not P005, when both see a closing `%` without an opening one, read as the missing end on the same text (one diagnostic per fault).
     ///
     /// Implements: SW003
     pub static MISPLACED_PERCENT = {

@@ -35,6 +35,8 @@ declare_rule! {
     /// All, error; ServoWorks `E`/`U`/`V`/`W` axes that are configured get a warning.
     /// Words of a `G65`/`G66` macro call are arguments, not axes, and are not checked.
     ///
+    /// Reported by this rule, not X003, when both see a word letter the machine or profile does not have on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW015, SW016, NGC007, NGC231, FAN001
     pub static UNKNOWN_ADDRESS = {
         code: "W005",

@@ -37,6 +37,8 @@ declare_rule! {
     /// `G00.1` is flagged as undocumented. FANUC M codes are machine-defined and not
     /// checked. Codes listed in `rules.custom_codes` are accepted.
     ///
+    /// Reported by this rule, not X002, when both see a G code that does not exist on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW009, SW048, SW133, SW145, NGC104, NGC105, FAN020
     pub static UNKNOWN_CODE = {
         code: "G004",

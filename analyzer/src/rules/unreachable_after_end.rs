@@ -36,6 +36,8 @@ declare_rule! {
     /// ## Dialects
     /// ServoWorks and FANUC: warning; RS274/NGC: info (LinuxCNC never reads past M2, harmlessly). FANUC blocks whose sequence number is a `GOTO` target are reachable.
     ///
+    /// Reported by this rule, not F005, when both see code after M2/M30 on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW018, NGC026, FAN013
     pub static UNREACHABLE_AFTER_END = {
         code: "P006",

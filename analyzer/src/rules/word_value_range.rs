@@ -41,6 +41,12 @@ declare_rule! {
     /// All; errors where the control stops, warnings where it changes the value. Values
     /// given by parameters or expressions are checked when the program runs.
     ///
+    /// Reported by this rule, not C002, when both see a negative peck depth Q on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not X002, when both see a minus sign on an M or G code on the same text (one diagnostic per fault).
+    ///
+    /// Reported by this rule, not T007, when both see a negative offset number on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW022, SW030, SW040, SW041, SW044, SW045, SW054, SW061, SW062, SW063, SW065, SW073, SW091, SW102, SW110, SW122, SW123, SW130, SW136, SW137, SW138, SW140, SW141, SW143, NGC215, NGC224, NGC304, NGC305, NGC308, NGC332, NGC334, NGC401, NGC410, NGC413, NGC426, NGC500, NGC501, NGC502, NGC509, NGC809, FAN003, FAN005, FAN011, FAN073, FAN074, FAN076
     pub static WORD_VALUE_RANGE = {
         code: "W007",

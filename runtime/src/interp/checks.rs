@@ -696,6 +696,15 @@ impl Interp<'_, '_> {
                 if h != self.st.tool {
                     self.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'H'), format!("G43 H{h} applies the length of tool {h}, but tool {} is in the spindle", self.st.tool));
                 }
+            } else if self.st.tool == 0
+                && self.variant != Variant::Emc2
+                && !w.has_m(60)
+                && self.cfg.tools.get(&0).is_none_or(|t| t.length == 0.0)
+            {
+                // LinuxCNC's G43 without H takes the tool in the spindle (spec/rs274ngc.md
+                // 3.12); before any M6 (or after M61 Q0) that is tool 0, whose length is zero.
+                // A program may expect the tool already in the spindle: a note, not a warning.
+                self.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.g_span(430), "G43 without H applies the length of the tool in the spindle, and none is loaded (tool 0): the offset is zero; load the tool first (T… M6) or give H");
             }
         }
         if w.has(b'T') {

@@ -154,6 +154,9 @@ struct Frame {
     modal_call: bool,
     /// RS274/NGC: the state saved by M70/M73 at this call level.
     context: Option<context::SavedContext>,
+    /// Motions made before the call: the call's first motion is the one that
+    /// positions the tool for it, whatever the caller did before.
+    motions_at_call: usize,
 }
 
 /// The evaluated words of one block.

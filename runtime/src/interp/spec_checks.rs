@@ -467,7 +467,18 @@ impl Interp<'_, '_> {
             if m == 0 && w.has_g(0) && w.any_axis() && self.any_motion() {
                 let t = self.target(w);
                 let here = self.cur;
-                if dist(&t, &self.st.pos) < 1e-9 {
+                // A subprogram's first motion positions the tool for each call: that
+                // a caller is already there does not make it useless.
+                let made = self.motions_drained + self.out.motions.len();
+                let positions_call = self
+                    .frames
+                    .last()
+                    .is_some_and(|f| f.motions_at_call == made);
+                if positions_call {
+                    if self.spec.rapid_moved.insert(here) {
+                        self.withdraw_rapid_note(here, s);
+                    }
+                } else if dist(&t, &self.st.pos) < 1e-9 {
                     if self.spec.single_pass {
                         self.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
                     } else if !self.spec.rapid_moved.contains(&here)

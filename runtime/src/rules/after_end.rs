@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC and ServoWorks (files may hold subprograms after M30, which start with O and are not flagged). Warning.
     ///
+    /// Reported by P006, not this rule, when both see code after M2/M30 on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC026, FAN013
     pub static AFTER_END = {
         code: "F005",

@@ -28,6 +28,10 @@ declare_rule! {
     ///
     /// After this error (RS274/NGC; R with I/J/K in ServoWorks) the dry run continues as if the arc had been skipped with the tool at its programmed end point (no motion, no time). FANUC and ServoWorks without R or I/J/K: the dry run makes a straight feed move to the end point.
     ///
+    /// Reported by W003, not this rule, when both see an arc without R or I/J/K on the same text (one diagnostic per fault).
+    ///
+    /// Reported by W002, not this rule, when both see an arc with both R and I/J/K on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW031, SW032, NGC203, NGC204, NGC209
     pub static ARC_NO_CENTER = {
         code: "A005",

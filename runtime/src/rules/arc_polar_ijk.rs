@@ -28,6 +28,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC. Error.
     ///
+    /// Reported by this rule, not A001, when both see I/J/K in polar coordinate mode (the radius check then fails too) on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN038
     pub static ARC_POLAR_IJK = {
         code: "A007",

@@ -28,6 +28,8 @@ declare_rule! {
     ///
     /// After this error the dry run continues as if the block were a straight feed move to the programmed end point (the tool ends where the program says; with no feed rate the position is set there without a move).
     ///
+    /// Reported by A007, not this rule, when both see I/J/K in polar coordinate mode (the radius check then fails too) on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW038, NGC211, NGC212, FAN031
     pub static ARC_RADIUS_MISMATCH = {
         code: "A001",

@@ -28,6 +28,10 @@ declare_rule! {
     ///
     /// After this error the dry run continues as if the cycle block had been skipped with the tool over its hole (X/Y of the block) at the height it had.
     ///
+    /// Reported by W003, not this rule, when both see a peck cycle without Q on the same text (one diagnostic per fault).
+    ///
+    /// Reported by W007, not this rule, when both see a negative peck depth Q on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW121, NGC307, NGC308, FAN072
     pub static CYCLE_Q = {
         code: "C002",

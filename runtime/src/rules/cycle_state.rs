@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error.
     ///
+    /// Reported by W003, not this rule, when both see a canned cycle without a word it needs (G76 without P, …) on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC303, NGC304, NGC311, NGC313, NGC315, FAN024, NGC330, NGC331, NGC335, NGC336, NGC337
     pub static CYCLE_STATE = {
         code: "C003",

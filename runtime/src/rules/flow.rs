@@ -26,6 +26,12 @@ declare_rule! {
     ///
     /// The state after this error is undefined (where the control would go is unknown): the dry run stops here and says so in the message; the run's figures are partial.
     ///
+    /// Reported by P001, not this rule, when both see an O-word statement closing or returning from the wrong block on the same text (one diagnostic per fault).
+    ///
+    /// Reported by P002, not this rule, when both see an END without its DO on the same text (one diagnostic per fault).
+    ///
+    /// Reported by P003, not this rule, when both see a GOTO to a sequence number that does not exist on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN121, FAN122, FAN124, NGC601, NGC603, NGC605
     pub static FLOW = {
         code: "F007",

@@ -26,6 +26,14 @@ declare_rule! {
     ///
     /// After this error the dry run stops (the message says so) and the run's figures are partial, except where the message says the dry run goes on.
     ///
+    /// Reported by W003, not this rule, when both see a code without a word it needs (G4 without P, …) on the same text (one diagnostic per fault).
+    ///
+    /// Reported by L011, not this rule, when both see a `%` that is not a program end on the same text (one diagnostic per fault).
+    ///
+    /// Reported by W005, not this rule, when both see a word letter the machine or profile does not have on the same text (one diagnostic per fault).
+    ///
+    /// Reported by W020, not this rule, when both see M98 in a block with a canned cycle's axis words on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW024, SW026, NGC223, NGC231, NGC416, NGC417, NGC418
     pub static INTERP = {
         code: "X003",

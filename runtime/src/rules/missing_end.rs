@@ -23,6 +23,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC error, others warning.
     ///
+    /// Reported by P005, not this rule, when both see a program without an end on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW019, NGC024, FAN012
     pub static MISSING_END = {
         code: "F006",

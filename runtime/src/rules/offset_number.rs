@@ -24,6 +24,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC. Error.
     ///
+    /// Reported by W007, not this rule, when both see a negative offset number on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN156, FAN161
     pub static OFFSET_NUMBER = {
         code: "T007",

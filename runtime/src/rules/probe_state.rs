@@ -26,6 +26,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error.
     ///
+    /// Reported by W003, not this rule, when both see a probe or motion code without axis words on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC226, NGC227, NGC229
     pub static PROBE_STATE = {
         code: "F011",

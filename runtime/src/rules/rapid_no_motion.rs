@@ -6,7 +6,8 @@ declare_rule! {
     /// ## What it does
     /// Flags a G0 with axis words whose target is where the tool already is (after the first motion).
     /// A block that runs more than once (in a subprogram or a loop) is flagged only if it never
-    /// moves the tool on any pass.
+    /// moves the tool on any pass. A subprogram's first motion is never flagged: it positions the
+    /// tool for each call, wherever one caller already stands.
     ///
     /// ## Why is this bad?
     /// The block does nothing but costs a block; it often hides a wrong coordinate.

@@ -28,6 +28,8 @@ declare_rule! {
     /// ## Dialects
     /// FANUC. Error.
     ///
+    /// Reported by this rule, not F001, when both see rigid tapping with F0 on the same text (one diagnostic per fault).
+    ///
     /// Implements: FAN105, FAN106
     pub static RIGID_TAP_FEED = {
         code: "C009",

@@ -29,6 +29,8 @@ declare_rule! {
     ///
     /// After this error the dry run continues as if the call were not there: the block's remaining words are skipped and the run goes on with the next block.
     ///
+    /// Reported by W003, not this rule, when both see M98 or G65 without P on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW021, NGC609, FAN140
     pub static SUB_NOT_FOUND = {
         code: "F002",

@@ -4,7 +4,7 @@ use analyzer::declare_rule;
 
 declare_rule! {
     /// ## What it does
-    /// Flags M6 with no T since the start, a T replaced before any M6 used it, G43 with a negative H or an H other than the tool in the spindle, an M6 under G43 followed by Z motion without a new G43, and (ServoWorks) G43/G44 while TCP is on or a T change while length compensation is on without H.
+    /// Flags M6 with no T since the start, a T replaced before any M6 used it, G43 with a negative H or an H other than the tool in the spindle, LinuxCNC's G43 without H before any tool change (it applies the tool in the spindle: tool 0, offset zero, when none is loaded), an M6 under G43 followed by Z motion without a new G43, and (ServoWorks) G43/G44 while TCP is on or a T change while length compensation is on without H.
     ///
     /// ## Why is this bad?
     /// The machine cuts with a length offset that belongs to another tool, or the control refuses the block.

@@ -27,6 +27,10 @@ declare_rule! {
     ///
     /// After this error the dry run continues as if the block were not there (the rest of the block is skipped).
     ///
+    /// Reported by W007, not this rule, when both see a minus sign on an M or G code on the same text (one diagnostic per fault).
+    ///
+    /// Reported by G004, not this rule, when both see a G code that does not exist on the same text (one diagnostic per fault).
+    ///
     /// Implements: — (no catalogue id)
     pub static UNKNOWN_CODE = {
         code: "X002",

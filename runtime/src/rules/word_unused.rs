@@ -25,6 +25,8 @@ declare_rule! {
     /// ## Dialects
     /// RS274/NGC. Error; interpretation stops as in LinuxCNC.
     ///
+    /// Reported by W002, not this rule, when both see a D peck clearance LinuxCNC 2.9 does not accept on the same text (one diagnostic per fault).
+    ///
     /// Implements: NGC110, NGC814
     pub static WORD_UNUSED = {
         code: "X008",

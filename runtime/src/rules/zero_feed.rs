@@ -26,6 +26,8 @@ declare_rule! {
     ///
     /// After this error (RS274/NGC, where it is an error) the dry run continues as if the move had been skipped with the tool at its programmed end point (no motion, no time).
     ///
+    /// Reported by C009, not this rule, when both see rigid tapping with F0 on the same text (one diagnostic per fault).
+    ///
     /// Implements: SW047, NGC200, NGC228, NGC312, FAN039, FAN091, FAN037
     pub static ZERO_FEED = {
         code: "F001",

@@ -176,9 +176,7 @@ fn check_file(
     );
     let mut extra_files = Vec::new();
     if let Some((run_diagnostics, files)) = run {
-        diagnostics.extend(run_diagnostics);
-        diagnostics.sort_by_key(|d| (d.file, d.span.start));
-        diagnostics = analyzer::limit_diagnostics(diagnostics, &settings);
+        diagnostics = analyzer::merge(diagnostics, run_diagnostics, &settings);
         extra_files = output::read_extra_files(&files);
     }
     FileReport {

@@ -90,16 +90,6 @@ pub struct RunArgs {
     pub max_runtime_errors: Option<usize>,
 }
 
-/// The static and the runtime diagnostics together, in order and within the
-/// per-file limits.
-fn limited(
-    mut diagnostics: Vec<analyzer::Diagnostic>,
-    settings: &analyzer::Settings,
-) -> Vec<analyzer::Diagnostic> {
-    diagnostics.sort_by_key(|d| (d.file, d.span.start));
-    analyzer::limit_diagnostics(diagnostics, settings)
-}
-
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
     eprintln!("partscope: {msg}");
     ExitCode::from(2)
@@ -373,7 +363,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         && args.png.is_none()
     {
         // The static rules run beside the interpreter and planner (both only read the tree).
-        let (mut diagnostics, out, totals) = std::thread::scope(|scope| {
+        let (diagnostics, out, totals) = std::thread::scope(|scope| {
             let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
             let (out, totals) = plan_beside(&input, &profile);
             // A panic in the rules is passed on as if the rules had run on this thread.
@@ -381,12 +371,11 @@ pub fn run(args: RunArgs) -> ExitCode {
             (diagnostics, out, totals)
         });
         progress.finish();
-        diagnostics.extend(analyzer::finish(
-            &parsed.program,
+        let diagnostics = analyzer::merge(
+            diagnostics,
+            analyzer::finish(&parsed.program, &settings, out.diagnostics),
             &settings,
-            out.diagnostics,
-        ));
-        let diagnostics = limited(diagnostics, &settings);
+        );
         let report = FileReport {
             path: args.file.clone(),
             text,
@@ -416,13 +405,11 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
     let out = runtime::run_with_snapshots(&input, false);
     progress.stage("planning");
-    let mut diagnostics = analyzer::lint(&parsed, &settings);
-    diagnostics.extend(analyzer::finish(
-        &parsed.program,
+    let diagnostics = analyzer::merge(
+        analyzer::lint(&parsed, &settings),
+        analyzer::finish(&parsed.program, &settings, out.diagnostics.clone()),
         &settings,
-        out.diagnostics.clone(),
-    ));
-    let diagnostics = limited(diagnostics, &settings);
+    );
 
     if emit_canon {
         return emit_canon_output(&out, &parsed.program, &diagnostics, &args.file);

@@ -202,9 +202,16 @@ impl Snapshot {
             return &self.inc.analysis.diagnostics;
         };
         self.merged.get_or_init(|| {
-            let mut all = self.inc.analysis.diagnostics.clone();
-            all.extend(report.diagnostics.iter().cloned());
-            analyzer::finish(self.program(), &self.doc.settings, all)
+            let runtime = analyzer::finish(
+                self.program(),
+                &self.doc.settings,
+                report.diagnostics.to_vec(),
+            );
+            analyzer::merge(
+                self.inc.analysis.diagnostics.clone(),
+                runtime,
+                &self.doc.settings,
+            )
         })
     }
 

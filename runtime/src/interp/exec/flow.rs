@@ -379,6 +379,7 @@ impl Interp<'_, '_> {
             call_span: span,
             modal_call: false,
             context: None,
+            motions_at_call: self.motions_drained + self.out.motions.len(),
         });
         let start = if tb == u32::MAX { 0 } else { tb + 1 };
         Ok(Flow::Goto(tf, start))
@@ -485,6 +486,7 @@ impl Interp<'_, '_> {
             call_span: span,
             modal_call: false,
             context: None,
+            motions_at_call: self.motions_drained + self.out.motions.len(),
         });
         Ok(Flow::Goto(tf, tb))
     }

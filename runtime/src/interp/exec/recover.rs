@@ -46,7 +46,7 @@ fn recoverable(code: &str) -> bool {
 }
 
 /// Said at the end of the message of an error that stops the run.
-pub const STOP_SUFFIX: &str = " (the dry run stops here)";
+pub const STOP_SUFFIX: &str = analyzer::twins::STOP_SUFFIX;
 
 /// Per-block memory of failed expressions and of reads of tainted parameters.
 #[derive(Default)]
