@@ -155,22 +155,21 @@ pub fn resolve(
         }
         config_path = Some(path);
     }
-    // The dialect and why it was chosen (shown in hover, as the CLI prints it).
+    // The dialect and why it was chosen (shown in hover, as the CLI prints it):
+    // the config, the first-line directive, the editor's setting, the sniffer;
+    // `sniff_dialect_why` reads the directive itself.
     let (dialect, dialect_reason) = match config.dialect.as_deref().and_then(Dialect::parse) {
         Some(d) => (d, "`dialect` in partscope.toml".to_string()),
-        None => match dialect_directive(text) {
-            Some(d) => (d, "the first-line `(partscope: dialect=…)` comment".into()),
-            None => match client.dialect {
-                Some(d) => (d, "the editor's `partscope.dialect` setting".into()),
-                None => sniff_dialect_why(
-                    doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
-                    text,
-                )
-                .unwrap_or((
-                    Dialect::Rs274ngc,
-                    "no evidence for another dialect (the default)".into(),
-                )),
-            },
+        None => match client.dialect.filter(|_| dialect_directive(text).is_none()) {
+            Some(d) => (d, "the editor's `partscope.dialect` setting".into()),
+            None => sniff_dialect_why(
+                doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
+                text,
+            )
+            .unwrap_or((
+                Dialect::Rs274ngc,
+                "the default: nothing in the file names a dialect".into(),
+            )),
         },
     };
     if config.machine.is_empty() {

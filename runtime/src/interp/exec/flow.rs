@@ -725,29 +725,6 @@ impl Interp<'_, '_> {
 /// G65/G66 arguments: specification I, with the I/J/K sets of specification II.
 pub(super) fn macro_args(w: &Words) -> Vec<Option<f64>> {
     let mut args = vec![None; 34];
-    let map1 = |c: u8| -> Option<usize> {
-        Some(match c {
-            b'A' => 1,
-            b'B' => 2,
-            b'C' => 3,
-            b'D' => 7,
-            b'E' => 8,
-            b'F' => 9,
-            b'H' => 11,
-            b'M' => 13,
-            b'Q' => 17,
-            b'R' => 18,
-            b'S' => 19,
-            b'T' => 20,
-            b'U' => 21,
-            b'V' => 22,
-            b'W' => 23,
-            b'X' => 24,
-            b'Y' => 25,
-            b'Z' => 26,
-            _ => return None,
-        })
-    };
     let mut ijk_set = 0usize;
     let mut last_ijk = 0u8;
     for (c, v) in &w.ijk_order {
@@ -765,7 +742,7 @@ pub(super) fn macro_args(w: &Words) -> Vec<Option<f64>> {
             if n <= 33 {
                 args[n] = Some(*v);
             }
-        } else if let Some(n) = map1(*c) {
+        } else if let Some(n) = super::super::types::macro_argument_variable(*c) {
             args[n] = Some(*v);
         }
     }

@@ -32,7 +32,7 @@ pub(super) struct MachineVars {
     /// Set by the program (or the variable file) during this run.
     known: Vec<bool>,
     /// Set system variables (#1000 and above) in the order they were set.
-    set_system: Vec<usize>,
+    set_system: std::collections::BTreeSet<usize>,
     /// The first branch a value unknown to the dry run decided: the variable and
     /// the condition's line.
     pub(super) first_decision: Option<(usize, u32)>,
@@ -69,8 +69,8 @@ impl MachineVars {
             if let Some(k) = self.known.get_mut(n - RETAINED.start()) {
                 *k = true;
             }
-        } else if n >= SYSTEM && !self.set_system.contains(&n) {
-            self.set_system.push(n);
+        } else if n >= SYSTEM {
+            self.set_system.insert(n);
         }
     }
 
