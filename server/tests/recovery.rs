@@ -226,6 +226,26 @@ fn a_stopped_run_is_partial_in_run_output_and_in_the_code_lens() {
     assert!(c.shutdown().success());
 }
 
+/// rs274 puts the line number in front of some messages ("7: undefined O-word
+/// label: …"); the stop names its line already, so the reason does not repeat it.
+#[test]
+fn a_stop_reason_does_not_repeat_its_line_number() {
+    let root = workspace("stray_endwhile");
+    let path = root.join("stray.ngc");
+    std::fs::write(
+        &path,
+        "G21 G90\nG0 X0 Y0 Z5\nG1 X40 F300\no100 endwhile\nG1 Y30\nM2\n",
+    )
+    .unwrap();
+    let out = bin().arg("run").arg(&path).output().unwrap();
+    let human = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        human.contains("  stopped at line 4: undefined O-word label: 'o100 endwhile'\n"),
+        "{human}"
+    );
+}
+
 #[test]
 fn a_step_budget_makes_run_exit_1_with_a_partial_time() {
     let root = workspace("budget");

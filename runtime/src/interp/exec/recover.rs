@@ -233,7 +233,7 @@ impl Interp<'_, '_> {
                 span: d.span,
                 line: self.cur_line,
                 code: d.code,
-                reason: d.message.clone(),
+                reason: without_line_prefix(&d.message, self.cur_line).to_string(),
             });
         }
         // The budgets' messages say already that execution stopped.
@@ -313,3 +313,10 @@ impl Interp<'_, '_> {
 const MAX_REPEAT_LOCATIONS: usize = 20;
 const REPEAT_NOTE: &str = "the same fault again";
 const REPEAT_SUFFIX: &str = " (the same fault on ";
+
+/// `reason` without rs274's leading "N: " when N is the stop's own (0-based
+/// `line` + 1) line: the stop names its line already.
+fn without_line_prefix(reason: &str, line: u32) -> &str {
+    let prefix = format!("{}: ", line + 1);
+    reason.strip_prefix(prefix.as_str()).unwrap_or(reason)
+}
