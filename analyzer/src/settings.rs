@@ -383,6 +383,27 @@ pub fn sniff_dialect(path_ext: Option<&str>, text: &[u8]) -> Option<Dialect> {
     sniff_dialect_why(path_ext, text).map(|(d, _)| d)
 }
 
+/// [`sniff_dialect_why`] for a file name: when neither the extension nor the
+/// content decides, a FANUC-style program-number name (`O8502`, `O1234.NC`)
+/// does. Both hosts sniff through this.
+pub fn sniff_file_dialect_why(file_name: Option<&str>, text: &[u8]) -> Option<(Dialect, String)> {
+    let (stem, ext) = match file_name.and_then(|n| n.rsplit_once('.')) {
+        Some((stem, ext)) if !stem.is_empty() => (Some(stem), Some(ext)),
+        _ => (file_name, None),
+    };
+    sniff_dialect_why(ext, text).or_else(|| {
+        let stem = stem?;
+        program_number(stem.to_ascii_uppercase().as_bytes())
+            .filter(|_| stem.starts_with(['O', 'o']))
+            .map(|_| {
+                (
+                    Dialect::Fanuc,
+                    format!("the program-number file name `{stem}`"),
+                )
+            })
+    })
+}
+
 /// [`sniff_dialect`] with the evidence that decided it, in words a user can
 /// check ("program number O1000 on line 2"), so a wrong guess is visible.
 pub fn sniff_dialect_why(path_ext: Option<&str>, text: &[u8]) -> Option<(Dialect, String)> {
@@ -437,13 +458,11 @@ fn content_dialect(head: &[u8]) -> Option<(Dialect, String)> {
             fanuc = Some(format!("an `IF` statement on line {n}"));
         } else if contains(&code, b"GOTO") {
             fanuc = Some(format!("a `GOTO` on line {n}"));
-        } else if code.windows(4).any(|w| w == b"G65P" || w == b"G66P")
-            || code.windows(5).any(|w| w == b"G65 P" || w == b"G66 P")
-        {
+        } else if macro_call(&code) {
             fanuc = Some(format!("a G65/G66 macro call on line {n}"));
         } else if line.ends_with(b";") && code.len() > 1 {
             fanuc = Some(format!("blocks ending in `;` (line {n})"));
-        } else if let Some(head) = program_number(&code) {
+        } else if let Some(head) = program_number(without_sequence_number(&code)) {
             fanuc = Some(match percent_line {
                 Some(p) => format!("the `%` line {p} and program number {head} on line {n}"),
                 None => format!("program number {head} on line {n}"),
@@ -474,6 +493,37 @@ fn code_of_line(line: &[u8]) -> Vec<u8> {
         out.pop();
     }
     out
+}
+
+/// `G65 P…`/`G66 P…`, or a call by name (`G65 "PROBECONFIG"`, `G65 <NAME>`,
+/// written by controls of the FANUC family).
+fn macro_call(code: &[u8]) -> bool {
+    code.windows(3).enumerate().any(|(i, w)| {
+        (w == b"G65" || w == b"G66")
+            && code
+                .get(i.wrapping_sub(1))
+                .is_none_or(|b| !b.is_ascii_alphanumeric())
+            && {
+                let rest = &code[i + 3..];
+                let rest = rest.strip_prefix(b" ").unwrap_or(rest);
+                matches!(rest.first(), Some(b'P' | b'"' | b'<'))
+            }
+    })
+}
+
+/// The block without a leading `N` sequence number (`N0 O9999` is a program head).
+fn without_sequence_number(code: &[u8]) -> &[u8] {
+    match code.split_first() {
+        Some((b'N', rest)) => {
+            let digits = rest.iter().take_while(|b| b.is_ascii_digit()).count();
+            if digits > 0 {
+                rest[digits..].trim_ascii_start()
+            } else {
+                code
+            }
+        }
+        _ => code,
+    }
 }
 
 fn contains(hay: &[u8], needle: &[u8]) -> bool {
@@ -617,11 +667,52 @@ mod tests {
                 "a named parameter `#<…>` on line 1".into()
             ))
         );
+        // A program head behind a sequence number, a macro call by name.
+        assert_eq!(
+            why("%\nN0 O9999 (CHOOSER)\nM99\n%\n"),
+            Some((
+                Dialect::Fanuc,
+                "the `%` line 1 and program number O9999 on line 2".into()
+            ))
+        );
+        assert_eq!(
+            why("G94 G17\nG65 \"PROBECONFIG\" T#100\nM99\n"),
+            Some((Dialect::Fanuc, "a G65/G66 macro call on line 2".into()))
+        );
+        assert_eq!(why("G0 X1\nG65.1 X2\nG1 X3 F100\nM2\n"), None);
         // Nothing that only one dialect writes: the caller's default applies.
         assert_eq!(why("%\nG21 G90\nG1 X1 F100 (O1000)\nM2\n%\n"), None);
         assert_eq!(
             sniff_dialect_why(Some("NGC"), b"O1000\n"),
             Some((Dialect::Rs274ngc, "the `.ngc` extension".into()))
+        );
+    }
+
+    /// A FANUC program-number file name decides only when nothing else does.
+    #[test]
+    fn a_program_number_file_name_is_fanuc_evidence() {
+        let plain = b"#110 = 570\nG0 X1\nM99\n";
+        assert_eq!(
+            sniff_file_dialect_why(Some("O8502.NC"), plain),
+            Some((
+                Dialect::Fanuc,
+                "the program-number file name `O8502`".into()
+            ))
+        );
+        assert_eq!(
+            sniff_file_dialect_why(Some("o1234"), plain).map(|(d, _)| d),
+            Some(Dialect::Fanuc)
+        );
+        assert_eq!(sniff_file_dialect_why(Some("OUTLINE.nc"), plain), None);
+        assert_eq!(sniff_file_dialect_why(Some("O123456789.nc"), plain), None);
+        assert_eq!(
+            sniff_file_dialect_why(Some("O8502.ngc"), plain),
+            Some((Dialect::Rs274ngc, "the `.ngc` extension".into()))
+        );
+        assert_eq!(
+            sniff_file_dialect_why(Some("O100.nc"), b"o<probe> sub\no<probe> endsub\n")
+                .map(|(d, _)| d),
+            Some(Dialect::Rs274ngc)
         );
     }
 

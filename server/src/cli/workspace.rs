@@ -289,8 +289,8 @@ pub fn resolve_dialect(
     }
     // The directive, then the extension, then the content: the same order as
     // the language server (`sniff_dialect_why` is shared).
-    let ext = path.extension().and_then(|e| e.to_str());
-    analyzer::settings::sniff_dialect_why(ext, text).unwrap_or_else(|| {
+    let name = path.file_name().and_then(|e| e.to_str());
+    analyzer::settings::sniff_file_dialect_why(name, text).unwrap_or_else(|| {
         (
             Dialect::Rs274ngc,
             "the default: nothing in the file names a dialect".into(),

@@ -15,7 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
-use analyzer::settings::{dialect_directive, sniff_dialect_why};
+use analyzer::settings::{dialect_directive, sniff_file_dialect_why};
 use analyzer::{Config, Dialect, Settings};
 use serde_json::Value;
 
@@ -157,13 +157,13 @@ pub fn resolve(
     }
     // The dialect and why it was chosen (shown in hover, as the CLI prints it):
     // the config, the first-line directive, the editor's setting, the sniffer;
-    // `sniff_dialect_why` reads the directive itself.
+    // `sniff_file_dialect_why` reads the directive itself.
     let (dialect, dialect_reason) = match config.dialect.as_deref().and_then(Dialect::parse) {
         Some(d) => (d, "`dialect` in partscope.toml".to_string()),
         None => match client.dialect.filter(|_| dialect_directive(text).is_none()) {
             Some(d) => (d, "the editor's `partscope.dialect` setting".into()),
-            None => sniff_dialect_why(
-                doc.and_then(|d| d.extension()).and_then(|e| e.to_str()),
+            None => sniff_file_dialect_why(
+                doc.and_then(|d| d.file_name()).and_then(|e| e.to_str()),
                 text,
             )
             .unwrap_or((
