@@ -272,11 +272,49 @@ pub(crate) fn utf8_check(text: &[u8]) -> Option<Diagnostic> {
     ))
 }
 
+/// The byte order of UTF-16 text: a byte-order mark, or (without one) a NUL in
+/// every second byte of mostly ASCII text, as Windows editors save "Unicode".
+fn utf16_order(head: &[u8]) -> Option<&'static str> {
+    if head.starts_with(&[0xFF, 0xFE]) {
+        return Some("little-endian");
+    }
+    if head.starts_with(&[0xFE, 0xFF]) {
+        return Some("big-endian");
+    }
+    let pairs = head.len() / 2;
+    if pairs < 2 {
+        return None;
+    }
+    let nul_at = |odd: usize| {
+        head.chunks_exact(2)
+            .filter(|p| p[odd] == 0 && p[1 - odd] != 0)
+            .count()
+    };
+    if nul_at(1) * 10 >= pairs * 9 {
+        Some("little-endian")
+    } else if nul_at(0) * 10 >= pairs * 9 {
+        Some("big-endian")
+    } else {
+        None
+    }
+}
+
 /// A file is binary when its first 8 KiB hold a NUL byte or mostly non-text bytes.
 pub(crate) fn binary_check(text: &[u8]) -> Option<Diagnostic> {
     let head = &text[..text.len().min(8192)];
     if head.is_empty() {
         return None;
+    }
+    if let Some(order) = utf16_order(head) {
+        let bom = head.starts_with(&[0xFF, 0xFE]) || head.starts_with(&[0xFE, 0xFF]);
+        return Some(Diagnostic::error(
+            "L009",
+            Span::new(0, if bom { 2 } else { 1 }),
+            format!(
+                "the file is UTF-16 ({order}) text, which no control reads; save it as ASCII or \
+                 UTF-8. It was not analysed"
+            ),
+        ));
     }
     let nul = head.iter().position(|b| *b == 0);
     let odd = head

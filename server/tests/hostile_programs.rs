@@ -487,3 +487,43 @@ fn an_endless_loop_draws_an_svg_within_its_size_limit() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Windows editors save "Unicode" text as UTF-16, with or without a byte-order
+/// mark: one located L009 that names the encoding, not a binary-file guess.
+#[test]
+fn utf16_programs_get_one_diagnostic_naming_the_encoding() {
+    let dir = scratch("utf16");
+    let text = "G21 G90\r\nG0 X1 Y2\r\nM2\r\n";
+    let le: Vec<u8> = text.encode_utf16().flat_map(u16::to_le_bytes).collect();
+    let be: Vec<u8> = text.encode_utf16().flat_map(u16::to_be_bytes).collect();
+    let cases: [(&str, Vec<u8>, &str); 3] = [
+        (
+            "le-bom.ngc",
+            [&[0xFF, 0xFE][..], &le].concat(),
+            "little-endian",
+        ),
+        ("le.ngc", le, "little-endian"),
+        (
+            "be-bom.ngc",
+            [&[0xFE, 0xFF][..], &be].concat(),
+            "big-endian",
+        ),
+    ];
+    for (name, bytes, order) in cases {
+        std::fs::write(dir.join(name), bytes).expect("write");
+        let o = run(&["check", "--format", "json", name], &dir);
+        judge(&o, name);
+        let v = json(&o, name);
+        let diags = v.as_array().expect("a list of diagnostics");
+        assert_eq!(diags.len(), 1, "{name}: {diags:?}");
+        assert_eq!(diags[0]["code"], "L009", "{name}");
+        assert_eq!(diags[0]["line"], 1, "{name}");
+        assert_eq!(diags[0]["column"], 1, "{name}");
+        let msg = diags[0]["message"].as_str().unwrap_or_default();
+        assert!(
+            msg.starts_with(&format!("the file is UTF-16 ({order}) text")),
+            "{name}: {msg}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -509,9 +509,12 @@ declare_rule! {
     /// a compiled post-processor). Invalid UTF-8 usually means a file saved in a legacy code
     /// page; controls read only ASCII outside comments, and the comment text will show
     /// garbled in editors. A binary file is reported once and not analysed further.
+    /// UTF-16 text (what Windows editors save as "Unicode", with or without a
+    /// byte-order mark) is named as such, on the first bytes: re-saving it as ASCII
+    /// or UTF-8 is the fix, and no control reads it as it is.
     ///
     /// ## Dialects
-    /// All. Binary: error. Invalid UTF-8: warning.
+    /// All. Binary and UTF-16: error. Invalid UTF-8: warning.
     ///
     /// Implements:
     pub static NOT_TEXT = {
