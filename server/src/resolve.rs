@@ -17,6 +17,10 @@ pub struct FsResolver {
     dialect: Dialect,
     /// Directories of resolved files, by FileId (index 0 = main file).
     dirs: Mutex<Vec<PathBuf>>,
+    /// The size limit for every program read, in MB (`--max-file-size`).
+    max_mb: u64,
+    /// Files found but not read, by the name called: why.
+    refused: Mutex<Vec<(String, String)>>,
 }
 
 impl FsResolver {
@@ -42,7 +46,15 @@ impl FsResolver {
             search: Vec::new(),
             root,
             dialect,
+            max_mb: crate::cli::workspace::DEFAULT_MAX_FILE_MB,
+            refused: Mutex::new(Vec::new()),
         }
+    }
+
+    /// Called files obey the same size limit as the main program.
+    pub fn with_max_file_size(mut self, max_mb: u64) -> FsResolver {
+        self.max_mb = max_mb;
+        self
     }
 
     /// Adds the `SUBROUTINE_PATH` folders, searched after the caller's and the
@@ -93,6 +105,14 @@ impl Resolver for FsResolver {
         !self.search.is_empty()
     }
 
+    fn refused(&self, name: &str) -> Option<String> {
+        let refused = self.refused.lock().ok()?;
+        refused
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, why)| why.clone())
+    }
+
     fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile> {
         if name.is_empty() || name.contains(['/', '\\']) || name.contains("..") {
             return None;
@@ -119,7 +139,7 @@ impl Resolver for FsResolver {
                 let Some(canonical) = self.inside_root(&p) else {
                     continue;
                 };
-                if let Some(found) = self.load(&p, &canonical) {
+                if let Some(found) = self.load(name, &p, &canonical) {
                     return Some(found);
                 }
             }
@@ -135,7 +155,7 @@ impl Resolver for FsResolver {
                 .ok()
                 .and_then(|d| d.get(from.0 as usize).cloned())
                 .unwrap_or_else(|| self.main_dir.clone());
-            return self.by_program_head(&dir, number);
+            return self.by_program_head(name, &dir, number);
         }
         None
     }
@@ -144,8 +164,16 @@ impl Resolver for FsResolver {
 impl FsResolver {
     /// Reads a found file and records its folder as the one its own calls
     /// search first.
-    fn load(&self, path: &Path, canonical: &Path) -> Option<ResolvedFile> {
-        let text = std::fs::read(canonical).ok()?;
+    fn load(&self, name: &str, path: &Path, canonical: &Path) -> Option<ResolvedFile> {
+        let text = match crate::cli::workspace::read_program(canonical, self.max_mb) {
+            Ok(text) => text,
+            Err(why) => {
+                if let Ok(mut r) = self.refused.lock() {
+                    r.push((name.to_string(), format!("{}: {why}", file_name(path))));
+                }
+                return None;
+            }
+        };
         if let Ok(mut d) = self.dirs.lock() {
             d.push(
                 canonical
@@ -156,7 +184,7 @@ impl FsResolver {
         }
         Some(ResolvedFile {
             path: path.display().to_string(),
-            text: text.into(),
+            text,
         })
     }
 }
@@ -168,7 +196,7 @@ const HEAD_FILES: usize = 2000;
 
 impl FsResolver {
     /// The first file of `dir` whose first program head is `O<number>`.
-    fn by_program_head(&self, dir: &Path, number: u32) -> Option<ResolvedFile> {
+    fn by_program_head(&self, name: &str, dir: &Path, number: u32) -> Option<ResolvedFile> {
         let mut entries: Vec<PathBuf> = std::fs::read_dir(dir)
             .ok()?
             .filter_map(|e| e.ok())
@@ -197,7 +225,7 @@ impl FsResolver {
             if first_program_number(&head) != Some(number) {
                 continue;
             }
-            if let Some(found) = self.load(&p, &canonical) {
+            if let Some(found) = self.load(name, &p, &canonical) {
                 return Some(found);
             }
         }
@@ -262,4 +290,11 @@ pub fn project_root(file: &Path) -> PathBuf {
         Ok(cwd) if dir.starts_with(&cwd) => cwd,
         _ => dir,
     }
+}
+
+/// A path's last part, for messages (the full path is the user's own business).
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map(|f| f.to_string_lossy().into_owned())
+        .unwrap_or_else(|| path.display().to_string())
 }

@@ -322,3 +322,64 @@ fn the_lsp_says_when_a_file_is_too_large_for_the_dry_run() {
     );
     assert!(c.shutdown().success());
 }
+
+/// A called file obeys the size limit of the main program, in `check` and in
+/// the editor: the call gets one warning naming the file and the limit, and the
+/// run goes on without it.
+#[test]
+fn a_called_file_above_the_size_limit_is_not_read() {
+    let root = workspace("large_sub");
+    let main = root.join("main.ngc");
+    std::fs::write(&main, "G21 G90\no<big> call\nG0 X1\nM2\n").unwrap();
+    let mut big = String::from("o<big> sub\n");
+    while big.len() < (1 << 20) + 4096 {
+        big.push_str("G1 X1 Y2 F100\n");
+    }
+    big.push_str("o<big> endsub\nM2\n");
+    std::fs::write(root.join("big.ngc"), &big).unwrap();
+
+    let out = bin()
+        .args(["check", "--format", "json", "--max-file-size", "1"])
+        .arg(&main)
+        .output()
+        .unwrap();
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let found: Vec<(&str, u64, &str, &str)> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap(),
+                d["line"].as_u64().unwrap(),
+                d["severity"].as_str().unwrap(),
+                d["message"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(
+        found,
+        vec![(
+            "F002",
+            2,
+            "warning",
+            "the called file was not read, so the dry run skips the call: big.ngc: too large to analyse: 2 MB, above the limit of 1 MB (raise it with --max-file-size, or split the program)"
+        )]
+    );
+
+    let mut c = Client::spawn();
+    c.request(
+        "initialize",
+        json!({
+            "processId": null,
+            "rootUri": uri_of(&root),
+            "capabilities": {},
+            "workspaceFolders": [{"uri": uri_of(&root), "name": "ws"}],
+            "initializationOptions": {"maxRunFileSize": 4096},
+        }),
+    );
+    c.notify("initialized", json!({}));
+    let uri = open(&mut c, &main, "ngc");
+    c.diagnostics_become(&uri, 1, &[("F002", 1)]);
+    assert!(c.shutdown().success());
+}

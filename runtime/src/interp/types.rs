@@ -32,6 +32,12 @@ pub trait Resolver {
     fn searches_like_the_control(&self) -> bool {
         true
     }
+
+    /// Why the host found the file `name` names but would not read it (above its
+    /// size limit, not a regular file), when that is why `resolve` said `None`.
+    fn refused(&self, _name: &str) -> Option<String> {
+        None
+    }
 }
 
 /// How many executed blocks pass between two [`Resolver::cancelled`] polls.

@@ -146,7 +146,8 @@ fn check_file(
             .with_search(crate::resolve::subroutine_path(
                 &loaded.config.machine,
                 loaded.path.as_deref(),
-            ));
+            ))
+            .with_max_file_size(max_mb);
             let files = loaded.linuxcnc_files();
             for w in &files.warnings {
                 workspace::warn_once(w);

@@ -336,7 +336,8 @@ pub fn run(args: RunArgs) -> ExitCode {
     .with_search(crate::resolve::subroutine_path(
         &loaded.config.machine,
         loaded.path.as_deref(),
-    ));
+    ))
+    .with_max_file_size(max_mb);
     let emit_canon = args.emit == Some(Emit::Canon);
     let input = runtime::RunInput {
         program: &parsed.program,

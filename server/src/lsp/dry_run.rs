@@ -29,6 +29,8 @@ pub struct DryRunInput<'a> {
     /// The run of an earlier version of the document, which an incremental
     /// runner may continue from (it takes the run out).
     pub previous: Option<&'a PreviousRun>,
+    /// The dry-run size limit (bytes) of the document, which called files obey too.
+    pub max_file_size: usize,
 }
 
 /// A runner's own record of a run, kept for the next version's rerun.

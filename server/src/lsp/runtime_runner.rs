@@ -43,6 +43,10 @@ struct WorkspaceResolver<'a> {
     loaded: RefCell<Vec<Loaded>>,
     /// The request's cancellation, which the interpreter polls.
     cancel: &'a CancelFlag,
+    /// Called files above this size (bytes) are not read.
+    max_file_size: usize,
+    /// Files found but not read, by the name called: why.
+    refused: RefCell<Vec<(String, String)>>,
 }
 
 impl Resolver for WorkspaceResolver<'_> {
@@ -59,6 +63,19 @@ impl Resolver for WorkspaceResolver<'_> {
             &self.subroutine_path,
             self.roots,
         )?;
+        let len = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        if len > self.max_file_size as u64 {
+            self.refused.borrow_mut().push((
+                name.to_string(),
+                format!(
+                    "{}: {} bytes, above the dry-run size limit of {} bytes (the `maxRunFileSize` setting)",
+                    path.file_name().map(|f| f.to_string_lossy()).unwrap_or_default(),
+                    len,
+                    self.max_file_size
+                ),
+            ));
+            return None;
+        }
         let (canon, text) = workspace::read_confined(&path, self.roots)?;
         let path = canon.display().to_string();
         let text: Arc<[u8]> = Arc::from(text.into_bytes());
@@ -70,6 +87,14 @@ impl Resolver for WorkspaceResolver<'_> {
 
     fn cancelled(&self) -> bool {
         self.cancel.is_cancelled()
+    }
+
+    fn refused(&self, name: &str) -> Option<String> {
+        self.refused
+            .borrow()
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, why)| why.clone())
     }
 }
 
@@ -138,6 +163,8 @@ impl DryRunner for RuntimeRunner {
             roots: input.roots,
             loaded: RefCell::new(Vec::new()),
             cancel: input.cancel,
+            max_file_size: input.max_file_size,
+            refused: RefCell::new(Vec::new()),
         };
         // Missing or outside-the-workspace files leave the run without them, as
         // `partscope run` does for files a config names.
@@ -326,6 +353,7 @@ mod run_tests {
             roots: &[],
             cancel: &cancel,
             previous: None,
+            max_file_size: usize::MAX,
         };
         RuntimeRunner.run(&input).unwrap()
     }

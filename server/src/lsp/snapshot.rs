@@ -183,6 +183,7 @@ impl Snapshot {
             roots: &self.roots,
             cancel,
             previous: self.previous_run.as_deref(),
+            max_file_size: self.doc.max_run_file_size,
         };
         let report = self.runner.run(&input).map(Arc::new);
         if cancel.is_cancelled() {

@@ -332,6 +332,10 @@ impl Interp<'_, '_> {
                 None => (f, u32::MAX),
             }
         } else {
+            if let Some(why) = self.input.resolver.refused(key) {
+                self.st.skipped_call = true;
+                return Err(refused_call(span, &why));
+            }
             if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
                 // rs274 reads on to the end of the file looking for the definition
                 // and shows the last line it read.
@@ -454,6 +458,13 @@ impl Interp<'_, '_> {
                     (f, head.map(|h| h as u32 + 1).unwrap_or(0))
                 }
                 None => {
+                    let refused = self.input.resolver.refused(name).or_else(|| {
+                        number.and_then(|n| self.input.resolver.refused(&format!("{n:04}")))
+                    });
+                    if let Some(why) = refused {
+                        self.st.skipped_call = true;
+                        return Err(refused_call(span, &why));
+                    }
                     let what = if self.dialect == Dialect::Servoworks {
                         format!("subprogram O{name} (file O{name}.dat) not found")
                     } else {
@@ -747,4 +758,14 @@ pub(super) fn macro_args(w: &Words) -> Vec<Option<f64>> {
         }
     }
     args
+}
+
+/// The call of a file the host found but would not read: the dry run skips it.
+fn refused_call(span: Span, why: &str) -> Diagnostic {
+    Diagnostic::new(
+        codes::SUB_NOT_FOUND,
+        Severity::Warning,
+        span,
+        format!("the called file was not read, so the dry run skips the call: {why}"),
+    )
 }
