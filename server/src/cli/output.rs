@@ -207,7 +207,12 @@ fn json_of(l: &Located<'_>, r: &FileReport) -> Value {
 /// for files under it, a `file://` URI otherwise, percent-encoded (RFC 3986).
 fn artifact_location(path: &str, root: Option<&std::path::Path>) -> Value {
     let p = std::path::Path::new(path);
-    let abs = p.canonicalize().unwrap_or_else(|_| p.to_path_buf());
+    // A file that could not be read may not exist: made absolute without
+    // resolving links, so it keeps its place under the root.
+    let abs = p
+        .canonicalize()
+        .or_else(|_| std::path::absolute(p))
+        .unwrap_or_else(|_| p.to_path_buf());
     match root.and_then(|r| abs.strip_prefix(r).ok()) {
         Some(rel) => {
             json!({"uri": encode_uri_path(&rel.to_string_lossy()), "uriBaseId": "%SRCROOT%"})
