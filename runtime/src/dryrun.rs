@@ -104,9 +104,13 @@ pub fn profile_over(base: &MachineProfile, table: &toml::Table) -> Result<Machin
         }
         merged.insert(k.clone(), v.clone());
     }
-    toml::Value::Table(merged)
+    let profile: MachineProfile = toml::Value::Table(merged)
         .try_into()
-        .map_err(|e: toml::de::Error| format!("[machine]: {e}"))
+        .map_err(|e: toml::de::Error| format!("[machine]: {e}"))?;
+    profile
+        .check_ranges()
+        .map_err(|e| format!("[machine]: {e}"))?;
+    Ok(profile)
 }
 
 /// One toolpath polyline for previews: a motion sampled at a chord tolerance.

@@ -306,9 +306,11 @@ impl MachineProfile {
                 None => merged.insert(k, v),
             };
         }
-        toml::Value::Table(merged)
+        let profile: MachineProfile = toml::Value::Table(merged)
             .try_into()
-            .map_err(|e: toml::de::Error| e.to_string())
+            .map_err(|e: toml::de::Error| e.to_string())?;
+        profile.check_ranges()?;
+        Ok(profile)
     }
 
     /// Seconds an M code (`tenths`: its number × 10, 190 for M19) takes by
@@ -337,6 +339,120 @@ impl MachineProfile {
 
     /// Velocity, acceleration limits of the six program axes X Y Z A B C; an axis
     /// the machine lacks gets 0 (meaning "not present").
+    /// Every value outside the range the planner can use, each named by its key
+    /// (`Err` lists them all, `; `-separated). A negative feed cap or a NaN time
+    /// would make every cycle time meaningless rather than fail visibly.
+    pub fn check_ranges(&self) -> Result<(), String> {
+        fn positive(bad: &mut Vec<String>, key: &str, v: f64) {
+            if v.is_nan() || v <= 0.0 {
+                bad.push(format!("`{key}` = {v} must be greater than 0"));
+            }
+        }
+        fn in_range(bad: &mut Vec<String>, key: &str, v: f64, (lo, hi): (f64, f64), what: &str) {
+            if !(lo..=hi).contains(&v) {
+                bad.push(format!("`{key}` = {v} must be {what}"));
+            }
+        }
+        const TIME: (f64, f64) = (0.0, f64::MAX);
+        const OVERRIDE: (f64, f64) = (1e-3, 10.0);
+        let mut bad = Vec::new();
+        positive(&mut bad, "traj_max_velocity", self.traj_max_velocity);
+        positive(
+            &mut bad,
+            "traj_max_acceleration",
+            self.traj_max_acceleration,
+        );
+        for (key, v) in [
+            ("tool_change_time", self.tool_change_time),
+            ("tool_select_time", self.tool_select_time),
+            ("spindle_ramp_time", self.spindle_ramp_time),
+            ("spindle_ramp_per_1000rpm", self.spindle_ramp_per_1000rpm),
+            ("spindle_orient_time", self.spindle_orient_time),
+            ("coolant_time", self.coolant_time),
+            ("pallet_change_time", self.pallet_change_time),
+            ("m_code_time", self.m_code_time),
+            ("program_stop_time", self.program_stop_time),
+            ("in_position_time", self.in_position_time),
+            ("block_processing_time", self.block_processing_time),
+            ("circle_error_allowance", self.circle_error_allowance),
+            ("arc_radius_tolerance", self.arc_radius_tolerance),
+            ("default_blend_tolerance", self.default_blend_tolerance),
+        ] {
+            in_range(&mut bad, key, v, TIME, "0 or more (and finite)");
+        }
+        for (code, v) in &self.m_code_times {
+            let key = format!("m_code_times.{code}");
+            in_range(&mut bad, &key, *v, TIME, "0 or more (and finite)");
+        }
+        // The servo simulation costs one step per period of machine time.
+        let (period, fo, ro) = (self.servo_period, self.feed_override, self.rapid_override);
+        in_range(
+            &mut bad,
+            "servo_period",
+            period,
+            (1e-5, 1.0),
+            "between 0.00001 and 1 s",
+        );
+        in_range(
+            &mut bad,
+            "feed_override",
+            fo,
+            OVERRIDE,
+            "between 0.001 and 10 (1 = 100 %)",
+        );
+        in_range(
+            &mut bad,
+            "rapid_override",
+            ro,
+            OVERRIDE,
+            "between 0.001 and 10 (1 = 100 %)",
+        );
+        let kink = self.tangent_kink_ratio;
+        in_range(
+            &mut bad,
+            "tangent_kink_ratio",
+            kink,
+            (0.0, 1.0),
+            "between 0 and 1",
+        );
+        if self.lookahead > 100_000 {
+            bad.push(format!(
+                "`lookahead` = {} must be at most 100000 segments",
+                self.lookahead
+            ));
+        }
+        for a in &self.axes {
+            let l = a.letter;
+            positive(&mut bad, &format!("axes.{l}.max_velocity"), a.max_velocity);
+            positive(&mut bad, &format!("axes.{l}.rapid_rate"), a.rapid_rate);
+            positive(
+                &mut bad,
+                &format!("axes.{l}.max_acceleration"),
+                a.max_acceleration,
+            );
+            positive(&mut bad, &format!("axes.{l}.jerk"), a.jerk);
+            let key = format!("axes.{l}.machine_unit");
+            in_range(
+                &mut bad,
+                &key,
+                a.machine_unit,
+                (1e-9, 1.0),
+                "between 0.000000001 and 1",
+            );
+            if a.min_travel.is_nan() || a.max_travel.is_nan() || a.min_travel > a.max_travel {
+                bad.push(format!(
+                    "axes.{l}: `min_travel` = {} must not exceed `max_travel` = {}",
+                    a.min_travel, a.max_travel
+                ));
+            }
+        }
+        if bad.is_empty() {
+            Ok(())
+        } else {
+            Err(bad.join("; "))
+        }
+    }
+
     pub fn xyzabc_limits(&self) -> ([f64; 6], [f64; 6]) {
         let mut v = [0.0; 6];
         let mut a = [0.0; 6];
@@ -474,6 +590,7 @@ impl MachineProfile {
         if extras.linear_units.is_none() {
             extras.linear_units = Some("mm".to_string());
         }
+        p.check_ranges()?;
         Ok((p, extras))
     }
 }

@@ -698,6 +698,65 @@ fn unknown_selectors_and_levels_are_usage_errors() {
     );
 }
 
+/// Machine values the planner cannot use are configuration errors (exit 2) that
+/// name every bad key, in `run --machine`, in `run` and in `check` with a
+/// `partscope.toml`; a cycle time from a negative feed cap would be nonsense.
+#[test]
+fn machine_values_out_of_range_are_configuration_errors() {
+    let dir = tempdir("machine_ranges");
+    let prog = write(&dir, "p.ngc", b"G21 G90\nG1 X10 F100\nM2\n");
+    let machine = write(
+        &dir,
+        "m.toml",
+        b"[machine]\ntraj_max_velocity = -5.0\ntool_change_time = nan\nservo_period = 1e-9\n\n[[machine.axes]]\nletter = \"X\"\nmin_travel = 10.0\nmax_travel = -10.0\n",
+    );
+    let expected = "`traj_max_velocity` = -5 must be greater than 0; \
+        `tool_change_time` = NaN must be 0 or more (and finite); \
+        `servo_period` = 0.000000001 must be between 0.00001 and 1 s; \
+        axes.X: `min_travel` = 10 must not exceed `max_travel` = -10";
+    let out = bin()
+        .args(["run", "--machine"])
+        .arg(&machine)
+        .arg(&prog)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains(expected), "{err}");
+
+    std::fs::copy(&machine, dir.join("partscope.toml")).unwrap();
+    for cmd in ["run", "check"] {
+        let out = bin().arg(cmd).arg(&prog).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{cmd}");
+        let all = String::from_utf8_lossy(&out.stdout).to_string()
+            + &String::from_utf8_lossy(&out.stderr);
+        assert!(
+            all.contains("`traj_max_velocity` = -5 must be greater than 0"),
+            "{cmd}: {all}"
+        );
+    }
+    // The shipped example machines are in range.
+    std::fs::remove_file(dir.join("partscope.toml")).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    for m in [
+        "examples/machines/vmc.toml",
+        "examples/machines/router.toml",
+    ] {
+        let out = bin()
+            .args(["run", "--machine"])
+            .arg(root.join(m))
+            .arg(&prog)
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{m}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
+
 /// `run --svg`/`--png` never overwrite a file the run reads, and only regular
 /// files are read as programs (a FIFO would block the open for ever).
 #[cfg(unix)]

@@ -261,6 +261,10 @@ pub fn machine_table_with(
 pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let config = Config::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    // `check` does not plan, but a machine table `run` would refuse is a broken
+    // configuration for both: said once, up front.
+    runtime::dryrun::profile_from_table(&config.machine, Dialect::Rs274ngc)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(LoadedConfig {
         config,
         path: Some(path.to_path_buf()),
