@@ -320,6 +320,33 @@ impl Interp<'_, '_> {
     ) -> Result<(), Diagnostic> {
         let modal = self.st.modal.motion;
         let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
+        // Axis words with no motion code in the line while the modal motion is G80
+        // (also at power on): LinuxCNC has nothing to give them to (enhance_block).
+        // G10, G28, G30, G52 and G92 use them themselves; G43.1/G43.2 take them
+        // as the offset.
+        let group_1 = gm(&[
+            0, 10, 20, 30, 50, 51, 52, 53, 62, 330, 331, 382, 383, 384, 385, 700, 710, 711, 712,
+            720, 721, 722, 760, 800,
+        ]) || w.g.iter().any(|(g, _)| is_cycle(*g));
+        if modal == 800
+            && motion.is_none()
+            && !group_1
+            && w.any_axis()
+            && !gm(&[100, 280, 300, 520, 920, 431, 432])
+        {
+            let span = b"XYZABCUVW"
+                .iter()
+                .find(|c| w.has(**c))
+                .map(|c| w.sp(*c))
+                .unwrap_or(bspan);
+            return Err(self.err(
+                codes::WORD_UNUSED,
+                span,
+                "cannot use axis values without a g code that uses them: no motion mode is active \
+                 (G80, or none yet since the program start), so LinuxCNC stops here; give G0 or G1 \
+                 on this line",
+            ));
+        }
         let mm = |codes: &[u32]| codes.iter().any(|c| w.has_m(*c));
         let user_m = w.m.iter().any(|(m, _)| (1000..=1990).contains(m));
         // Splines and NURBS are not in the checks' motion list: an explicit code wins.
