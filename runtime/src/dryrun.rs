@@ -26,6 +26,7 @@ const INTERPRETER_KEYS: &[&str] = &[
     "integer_machine_unit",
     "sequence_number_digits",
     "program_number_digits",
+    "common_variables",
     "machine_unit",
     "block_skip",
     "decimal_point_input",

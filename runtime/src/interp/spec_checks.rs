@@ -213,8 +213,19 @@ impl Interp<'_, '_> {
                     let fanuc_local = self.dialect == Dialect::Fanuc && (1.0..=33.0).contains(&k);
                     let sw = self.dialect == Dialect::Servoworks && (1.0..1000.0).contains(&k);
                     let vacant = self.st.params.get(k as usize).copied().flatten().is_none();
-                    if !in_compare && (fanuc_local || sw) && vacant {
-                        let (sev, why) = if fanuc_local {
+                    // Set from a machine value the dry run does not know (`#24 = #516`):
+                    // not read before it is assigned.
+                    let machine_value = self
+                        .machine_vars
+                        .unknown_origin(k as usize, false)
+                        .is_some();
+                    // In a G65/G66 macro a local is an argument the caller may leave
+                    // out: it reads as 0 in arithmetic, which macros rely on.
+                    let macro_level = self.frames.last().is_some_and(|f| f.saved.is_some());
+                    if !in_compare && (fanuc_local || sw) && vacant && !machine_value {
+                        let (sev, why) = if fanuc_local && macro_level {
+                            (Severity::Info, "an argument the caller did not pass is vacant and reads as 0 in arithmetic")
+                        } else if fanuc_local {
                             (Severity::Warning, "a local variable that was not assigned at this level (nor passed as an argument) is vacant")
                         } else {
                             (
