@@ -397,6 +397,55 @@ pub struct StreamPlan {
     naive_s: f64,
     rapid: f64,
     motions: usize,
+    /// Per-block figures, when asked for ([`StreamPlan::with_blocks`]).
+    blocks: Option<StreamBlocks>,
+}
+
+/// What [`StreamPlan`] needs to put the planner's elements on their blocks:
+/// the motions the planner holds, by index, file and line, and the dwell and
+/// auxiliary time so far (the planner's clock counts motion only).
+#[derive(Debug, Default)]
+struct StreamBlocks {
+    acc: BlockAcc,
+    /// (motion index, file, line, length).
+    pending: std::collections::VecDeque<(u32, u32, u32, f64)>,
+    offset: f64,
+    last_end: f64,
+}
+
+impl StreamBlocks {
+    /// An element's timing: its motion is the first pending one of its index
+    /// (elements come in motion order; motions without one were joined into
+    /// a later element).
+    fn element(&mut self, t: &SegmentTiming) {
+        while let Some(&(i, file, line, mm)) = self.pending.front() {
+            if i > t.block {
+                break;
+            }
+            self.pending.pop_front();
+            if i == t.block {
+                self.acc.element(file, line, t, self.offset);
+            }
+            // Lengths as `plan_run` adds them: a motion without an element
+            // of its own is placed where the next element starts.
+            let at = t.start_s + self.offset;
+            self.acc.length(file, line, mm, at);
+            if i == t.block {
+                // Blend arcs report on the motion they round off: keep it.
+                self.pending.push_front((i, file, line, 0.0));
+                self.last_end = self.last_end.max(t.end_s + self.offset);
+                break;
+            }
+        }
+    }
+
+    /// Motions no element reported on (the end of the run).
+    fn drain(&mut self) {
+        while let Some((_, file, line, mm)) = self.pending.pop_front() {
+            let at = self.last_end;
+            self.acc.length(file, line, mm, at);
+        }
+    }
 }
 
 impl StreamPlan {
@@ -408,6 +457,7 @@ impl StreamPlan {
             naive_s: 0.0,
             rapid: profile.traj_max_velocity.max(1e-9),
             motions: 0,
+            blocks: None,
         }
     }
 
@@ -419,6 +469,13 @@ impl StreamPlan {
         StreamPlan::new(&cf)
     }
 
+    /// Also gathers the per-block figures of [`block_times`] (memory grows with
+    /// the program's line count, not with its motions).
+    pub fn with_blocks(mut self) -> StreamPlan {
+        self.blocks = Some(StreamBlocks::default());
+        self
+    }
+
     /// Feeds the next chunk of the run (see [`crate::interp::MotionSink`]).
     pub fn push(&mut self, motions: &[Motion], events: &[IEvent]) {
         let first = self.motions;
@@ -428,12 +485,12 @@ impl StreamPlan {
             servo,
             naive_s,
             rapid,
+            blocks,
             ..
         } = self;
         let Some(p) = planner.as_mut() else {
             return;
         };
-        let mut ignore = |_: SegmentTiming| {};
         let mut over = false;
         interleave(motions, events, first, &mut |e| {
             if over {
@@ -449,7 +506,34 @@ impl StreamPlan {
                     return;
                 }
             }
-            p.push(e, &mut ignore);
+            let Some(b) = blocks.as_mut() else {
+                p.push(e, &mut |_| {});
+                return;
+            };
+            let index = event_block(&e);
+            match e {
+                plan::Event::Motion(seg) => {
+                    if let Some(m) = index.checked_sub(first).and_then(|i| motions.get(i)) {
+                        b.pending
+                            .push_back((seg.block, m.file.0, m.line, seg.length));
+                    }
+                    p.push(e, &mut |t| b.element(&t));
+                }
+                _ => {
+                    let before = non_motion_s(p.totals());
+                    p.push(e, &mut |t| b.element(&t));
+                    let now = non_motion_s(p.totals());
+                    b.offset = now;
+                    if let Some(ev) = events.get(index) {
+                        let s = now - before;
+                        let t = p.totals();
+                        let at = t.motion_s + t.aux.in_position_s + before;
+                        let dwell = matches!(ev.kind, EventKind::Dwell(_));
+                        b.acc.event(ev.file.0, ev.line, dwell, at, s);
+                        b.last_end = b.last_end.max(at + s);
+                    }
+                }
+            }
         });
         if over {
             *planner = None;
@@ -459,8 +543,21 @@ impl StreamPlan {
     /// The totals, or `None` when the run passed the servo-simulation limit and must
     /// be planned again with [`StreamPlan::closed_form`].
     pub fn finish(self) -> Option<Totals> {
-        let mut ignore = |_: SegmentTiming| {};
-        self.planner.map(|p| p.finish(&mut ignore))
+        self.finish_with_blocks().map(|(t, _)| t)
+    }
+
+    /// [`StreamPlan::finish`] with the per-block figures (empty unless
+    /// [`StreamPlan::with_blocks`]).
+    pub fn finish_with_blocks(self) -> Option<(Totals, Vec<BlockTime>)> {
+        let p = self.planner?;
+        match self.blocks {
+            Some(mut b) => {
+                let totals = p.finish(&mut |t| b.element(&t));
+                b.drain();
+                Some((totals, b.acc.finish()))
+            }
+            None => Some((p.finish(&mut |_| {}), Vec::new())),
+        }
     }
 }
 
@@ -561,15 +658,16 @@ fn plan_run_stoppable(
     // Events happen at the end of the motion before them (the planner stops
     // first), after the events before them there.
     let mut event_times = Vec::with_capacity(out.events.len());
-    let mut last_end = 0.0;
+    let mut last_end: f64 = 0.0;
+    // The latest end of the motions before the event (a joined or empty motion
+    // has no time of its own).
+    let mut seen = 0;
+    let mut motion_end: f64 = 0.0;
     for (i, ev) in out.events.iter().enumerate() {
-        let motion_end = match ev.motion_index.checked_sub(1) {
-            None => 0.0,
-            Some(m) => motion_times
-                .get(m)
-                .map(|m| m.1)
-                .unwrap_or(totals.cycle_time_s),
-        };
+        while seen < ev.motion_index.min(motion_times.len()) {
+            motion_end = motion_end.max(motion_times[seen].1);
+            seen += 1;
+        }
         // Motion ends are on the program clock already; an event right after
         // another one starts when that one ends.
         let at = motion_end.max(last_end);
@@ -584,15 +682,14 @@ fn plan_run_stoppable(
         );
         last_end = at + s;
     }
-    let mut at = 0.0;
-    for (m, t) in out.motions.iter().zip(&motion_times) {
+    // A motion without an element of its own (joined into a later one, or
+    // empty) is placed where the next element starts.
+    let mut at = motion_times.iter().map(|t| t.1).fold(0.0, f64::max);
+    for (m, t) in out.motions.iter().zip(&motion_times).rev() {
         if t.1 > 0.0 {
             at = t.0;
         }
         blocks.length(m.file.0, m.line, segment_of(m, 0).length, at);
-        if t.1 > 0.0 {
-            at = t.1;
-        }
     }
     (
         DryRun {
