@@ -581,6 +581,96 @@ pub fn stream_totals<R>(
     (out, totals)
 }
 
+/// A change to the machine or the program that a what-if estimate plans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WhatIfKind {
+    /// The feed override at [`WHAT_IF_FEED_OVERRIDE`] times the profile's.
+    FeedOverride,
+    /// `G64 P`[`WHAT_IF_BLEND_TOLERANCE`] on every move (RS274/NGC).
+    Blend,
+    /// Every axis and the path accelerating [`WHAT_IF_ACCELERATION`] times faster.
+    Acceleration,
+}
+
+/// Feed override factor of [`WhatIfKind::FeedOverride`].
+pub const WHAT_IF_FEED_OVERRIDE: f64 = 1.2;
+/// Blend tolerance of [`WhatIfKind::Blend`], mm.
+pub const WHAT_IF_BLEND_TOLERANCE: f64 = 0.05;
+/// Acceleration factor of [`WhatIfKind::Acceleration`].
+pub const WHAT_IF_ACCELERATION: f64 = 2.0;
+
+/// A what-if estimate: the program planned again with one change.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WhatIf {
+    /// `feed_override`, `blend` or `acceleration`.
+    pub key: &'static str,
+    pub label: String,
+    pub cycle_time_s: f64,
+    pub motion_s: f64,
+}
+
+impl WhatIfKind {
+    pub const ALL: [WhatIfKind; 3] = [
+        WhatIfKind::FeedOverride,
+        WhatIfKind::Blend,
+        WhatIfKind::Acceleration,
+    ];
+
+    /// Whether the change means something on `dialect`'s control: `G64 P` is
+    /// RS274/NGC's.
+    pub fn applies(self, dialect: Dialect) -> bool {
+        self != WhatIfKind::Blend || dialect == Dialect::Rs274ngc
+    }
+}
+
+/// Plans `events` (from [`planner_events`]) again with one change and
+/// returns the totals' cycle and motion time. This costs one planner run.
+pub fn what_if(events: &[plan::Event], profile: &MachineProfile, kind: WhatIfKind) -> WhatIf {
+    let mut p = profile.clone();
+    let (key, label) = match kind {
+        WhatIfKind::FeedOverride => {
+            p.feed_override *= WHAT_IF_FEED_OVERRIDE;
+            (
+                "feed_override",
+                format!("feed override {:.0} %", p.feed_override * 100.0),
+            )
+        }
+        WhatIfKind::Blend => (
+            "blend",
+            format!("G64 P{WHAT_IF_BLEND_TOLERANCE} (mm) on every move"),
+        ),
+        WhatIfKind::Acceleration => {
+            for a in &mut p.axes {
+                a.max_acceleration *= WHAT_IF_ACCELERATION;
+            }
+            p.traj_max_acceleration *= WHAT_IF_ACCELERATION;
+            (
+                "acceleration",
+                format!("{WHAT_IF_ACCELERATION}× acceleration on every axis"),
+            )
+        }
+    };
+    if p.servo_simulation && naive_seconds(events, &p) > SERVO_SIMULATION_LIMIT_S {
+        p.servo_simulation = false;
+    }
+    let mut planner = plan::Planner::new(&p);
+    let mut ignore = |_: SegmentTiming| {};
+    for ev in events {
+        let mut ev = *ev;
+        if let (WhatIfKind::Blend, plan::Event::Motion(seg)) = (kind, &mut ev) {
+            seg.mode = PathMode::blend(WHAT_IF_BLEND_TOLERANCE);
+        }
+        planner.push(ev, &mut ignore);
+    }
+    let totals = planner.finish(&mut ignore);
+    WhatIf {
+        key,
+        label,
+        cycle_time_s: totals.cycle_time_s,
+        motion_s: totals.motion_s,
+    }
+}
+
 /// Plans a run.
 pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
     plan_run_stoppable(out, profile, &|| false).0

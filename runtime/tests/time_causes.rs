@@ -296,3 +296,40 @@ fn the_linuxcnc_model_splits_its_servo_periods_too() {
     assert_close(c.accel_s, t - 1.0);
     assert!((t - 1.05).abs() < 0.002, "{t}");
 }
+
+#[test]
+fn what_ifs_plan_again_with_one_change() {
+    // G1 X10, G1 Y10 at F3000 with exact stops on the trapezoid machine.
+    let p = machine();
+    let segs = [
+        Segment::line([0.0; 3], [10.0, 0.0, 0.0], f(3000.0), PathMode::ExactStop),
+        Segment::line(
+            [10.0, 0.0, 0.0],
+            [10.0, 10.0, 0.0],
+            f(3000.0),
+            PathMode::ExactStop,
+        ),
+    ];
+    let events: Vec<Event> = segs.iter().copied().map(Event::Motion).collect();
+    let at = |k| dryrun::what_if(&events, &p, k);
+    // As programmed: 2·(10/50 + 50/1000).
+    assert_close(plan(&p, events.iter().copied()).totals.cycle_time_s, 0.5);
+    // 120 %: 60 mm/s, 2·(10/60 + 60/1000).
+    let feed = at(dryrun::WhatIfKind::FeedOverride);
+    assert_eq!(feed.label, "feed override 120 %");
+    assert_close(feed.cycle_time_s, 2.0 * (10.0 / 60.0 + 0.06));
+    // 2000 mm/s²: 2·(10/50 + 50/2000).
+    assert_close(
+        at(dryrun::WhatIfKind::Acceleration).cycle_time_s,
+        2.0 * (0.2 + 0.025),
+    );
+    // G64 P0.05: the corner is taken at sqrt(a·r), r = P·sin45°/(1 − sin45°),
+    // instead of stopping; each move loses (50 − vc)/a·(1 − (50 + vc)/100)
+    // less than before.
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let vc = (1000.0 * 0.05 * s / (1.0 - s)).sqrt();
+    let corner = ramp_loss(vc, 50.0, 50.0, 1000.0);
+    let blend = at(dryrun::WhatIfKind::Blend);
+    assert_close(blend.cycle_time_s, 0.4 + 0.05 + 2.0 * corner);
+    assert!(!dryrun::WhatIfKind::Blend.applies(Dialect::Fanuc));
+}

@@ -44,6 +44,7 @@
 //! are not modelled.
 
 mod engine;
+pub mod explain;
 pub mod profile;
 mod servo;
 
