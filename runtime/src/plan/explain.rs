@@ -147,7 +147,7 @@ pub fn top_causes(t: &Totals, traj_max_velocity: f64) -> Vec<String> {
         if s > 0.0 {
             lines.push((
                 s,
-                format!("{who} add {:.3} s: {} of cutting time", s, percent(s, cut)),
+                format!("{who} cost {:.3} s: {} of cutting time", s, percent(s, cut)),
             ));
         }
     };
@@ -241,8 +241,8 @@ mod tests {
             top_causes(&t, 100.0),
             vec![
                 "1,842 segments shorter than 0.05 mm never reach F2000: 41 % of cutting time",
-                "ramps at the acceleration limit (1,900 moves, at starts, stops and short moves) add 30.000 s: 30 % of cutting time",
-                "12 moves slowed by corners (blending, exact stops) add 20.000 s: 20 % of cutting time",
+                "ramps at the acceleration limit (1,900 moves, at starts, stops and short moves) cost 30.000 s: 30 % of cutting time",
+                "12 moves slowed by corners (blending, exact stops) cost 20.000 s: 20 % of cutting time",
             ]
         );
     }
