@@ -91,7 +91,9 @@ fn feed_word(mm_per_s: f64) -> String {
 
 fn percent(part: f64, whole: f64) -> String {
     let p = 100.0 * part / whole;
-    if p >= 10.0 {
+    if p > 0.0 && p < 0.05 {
+        "< 0.1 %".to_string()
+    } else if p >= 10.0 {
         format!("{p:.0} %")
     } else {
         format!("{p:.1} %")

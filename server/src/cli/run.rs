@@ -863,9 +863,48 @@ fn write_summary(
     write!(w, ",\n  \"blocks\": [")?;
     for (i, b) in blocks.iter().enumerate() {
         w.write_all(if i == 0 { b"\n    " } else { b",\n    " })?;
-        serde_json::to_writer(&mut *w, &block_json(b)).map_err(std::io::Error::other)?;
+        write_block(w, b)?;
     }
     writeln!(w, "\n  ]\n}}")
+}
+
+/// A JSON number, or `null` for what JSON cannot hold (as serde_json writes it).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0.is_finite() {
+            // Rust prints the shortest text that reads back as the same f64.
+            write!(f, "{}", self.0)
+        } else {
+            f.write_str("null")
+        }
+    }
+}
+
+/// [`block_json`] written straight out: a long program has a block per line,
+/// and building a JSON value for each costs more than the planning.
+fn write_block(w: &mut impl Write, b: &dryrun::BlockTime) -> std::io::Result<()> {
+    write!(
+        w,
+        "{{\"line\":{},\"file\":{},\"start_s\":{},\"end_s\":{},\"time_s\":{},\"duration_s\":{},\"length_mm\":{},\"peak_feed\":{},\"causes\":{{",
+        u64::from(b.line) + 1,
+        b.file,
+        Num(b.start_s),
+        Num(b.end_s),
+        Num(b.time_s),
+        Num(b.duration_s),
+        Num(b.length_mm),
+        Num(b.peak_feed)
+    )?;
+    let mut first = true;
+    for (k, s) in block_parts(b) {
+        if s != 0.0 {
+            write!(w, "{}\"{k}\":{}", if first { "" } else { "," }, Num(s))?;
+            first = false;
+        }
+    }
+    w.write_all(b"}}")
 }
 
 /// `time_causes` of the JSON summary: the cycle time by cause (summing to
@@ -1323,5 +1362,43 @@ impl Drop for Progress {
             done.store(true, std::sync::atomic::Ordering::Relaxed);
             let _ = handle.join();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The per-line writer of `--format json` and the JSON value of
+    /// `--emit blocks-json` say the same, non-finite values as `null`.
+    #[test]
+    fn written_blocks_read_back_as_their_json_values() {
+        let b = dryrun::BlockTime {
+            file: 2,
+            line: 41,
+            start_s: 1.25,
+            end_s: 3.5000000000000004,
+            duration_s: 2.25,
+            length_mm: 0.1,
+            peak_feed: f64::INFINITY,
+            time_s: 2.25,
+            causes: runtime::plan::Causes {
+                feed_s: 1.0,
+                corner_s: 1e-20,
+                ..Default::default()
+            },
+            dwell_s: 1.25,
+            aux_s: 0.0,
+        };
+        let mut out = Vec::new();
+        write_block(&mut out, &b).unwrap();
+        let read: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(read, block_json(&b));
+        assert_eq!(read["line"], 42);
+        assert_eq!(read["peak_feed"], serde_json::Value::Null);
+        assert_eq!(
+            read["causes"],
+            json!({"feed_s": 1.0, "corner_s": 1e-20, "dwell_s": 1.25})
+        );
     }
 }
