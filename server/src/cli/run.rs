@@ -874,8 +874,9 @@ struct Num(f64);
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         if self.0.is_finite() {
-            // Rust prints the shortest text that reads back as the same f64.
-            write!(f, "{}", self.0)
+            // The shortest text that reads back as the same f64, with a point
+            // (`1.0`) as serde_json writes a float.
+            write!(f, "{:?}", self.0)
         } else {
             f.write_str("null")
         }
