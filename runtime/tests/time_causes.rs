@@ -333,3 +333,47 @@ fn what_ifs_plan_again_with_one_change() {
     assert_close(blend.cycle_time_s, 0.4 + 0.05 + 2.0 * corner);
     assert!(!dryrun::WhatIfKind::Blend.applies(Dialect::Fanuc));
 }
+
+/// On the CAM-shaped programs of `tests/cycle_time/cam/programs` (on
+/// the LinuxCNC model period by period) the causes are never negative and add
+/// up to the motion time, element by element and in sum.
+#[test]
+fn causes_add_up_on_cam_programs() {
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/cycle_time/cam/programs");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("cam programs")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ngc"))
+        .collect();
+    files.sort();
+    assert!(files.len() > 30, "{}", files.len());
+    let profile = MachineProfile::default_for(Dialect::Rs274ngc);
+    for path in &files {
+        let text = std::fs::read_to_string(path).expect("program");
+        let out = run_with(Dialect::Rs274ngc, &text, "block_skip = true", &[], None);
+        let r = plan(&profile, dryrun::planner_events(&out));
+        let name = path.display();
+        for t in &r.timings {
+            let c = &t.causes;
+            let parts = [
+                c.feed_s,
+                c.accel_s,
+                c.corner_s,
+                c.axis_cap_s,
+                c.traj_cap_s,
+                c.curve_cap_s,
+                c.servo_cap_s,
+                c.rapid_s,
+            ];
+            assert!(parts.iter().all(|s| *s >= 0.0), "{name}: {c:?}");
+        }
+        let sum: f64 = r.timings.iter().map(|t| t.causes.total_s()).sum();
+        let m = r.totals.motion_s;
+        assert!((sum - m).abs() <= 1e-9 * m.max(1.0), "{name}: {sum} vs {m}");
+        assert!(
+            (r.totals.causes.total_s() - m).abs() <= 1e-9 * m.max(1.0),
+            "{name}"
+        );
+    }
+}

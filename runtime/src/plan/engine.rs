@@ -1260,8 +1260,9 @@ impl Planner {
                 (vp - u) / a * (1.0 - (vp + u) / (2.0 * v_ref))
             };
             let (ls, le) = (lost(v0), lost(v_end));
+            // Clamped: rounding must not leave the other ramp a negative share.
             let start = if ls + le > 0.0 {
-                ramp * ls / (ls + le)
+                (ramp * ls / (ls + le)).min(ramp)
             } else {
                 ramp
             };
@@ -1271,10 +1272,11 @@ impl Planner {
             } else {
                 (0.0, start)
             };
+            let end = (ramp - start).max(0.0);
             let (ce, ae) = if corner(exit_corner) {
-                (ramp - start, 0.0)
+                (end, 0.0)
             } else {
-                (0.0, ramp - start)
+                (0.0, end)
             };
             c.corner_s += cs + ce;
             c.accel_s += as_ + ae;
