@@ -307,7 +307,7 @@ fn run_writes_pictures_and_block_times() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min")
+        Some("line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min,time_s,feed_s,accel_s,corner_s,axis_cap_s,traj_cap_s,curve_cap_s,servo_cap_s,rapid_s,dwell_s,aux_s")
     );
     // Line 4 is the 10 mm feed move; line 5 the half circle of radius 5 (5π mm).
     let row = |n: &str| {
@@ -844,4 +844,134 @@ fn sarif_locations_are_relative_encoded_uris() {
         serde_json::json!({"uri": "my%20part%231.ngc", "uriBaseId": "%SRCROOT%"})
     );
     drop(f);
+}
+
+/// `run` says where the time goes, by hand on the trapezoid planner (X, Y at
+/// 100 mm/s and 1000 mm/s², TRAJ 100 mm/s, exact stops):
+/// - G0 X10: a triangle up to 100 mm/s, 2·sqrt(10/1000) = 0.2 s of rapids;
+/// - G1 X60 F3000: 50 mm at 50 mm/s, 1 s at feed and v/a = 0.05 s of ramps;
+/// - G4 P2: 2 s of dwell;
+/// - G1 Y100 F12000: 200 mm/s capped to 100 by TRAJ: 0.5 s at feed, 0.5 s for
+///   the cap, 0.1 s of ramps.
+///
+/// The what-ifs: 120 % feed runs the F3000 move at 60 mm/s (50/60 + 0.06 s);
+/// G64 P0.05 changes nothing here (every move stops for the rapid, the dwell
+/// or the end); 2000 mm/s² lets the rapid reach 100 mm/s (10/100 + 0.05 s)
+/// and halves every ramp.
+#[test]
+fn run_says_where_the_time_goes() {
+    let d = tempdir("causes");
+    let f = write(
+        &d,
+        "hand.ngc",
+        b"G21 G90 G94 G61.1\nG0 X10\nG1 X60 F3000\nG4 P2\nG1 X60 Y100 F12000\nM2\n",
+    );
+    let m = write(&d, "m.toml", b"[machine]\nplanner = \"trapezoid\"\n");
+    let run = |extra: &[&str]| {
+        let out = bin()
+            .args(["run", f.to_str().unwrap(), "--machine", m.to_str().unwrap()])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let human = run(&[]);
+    let section: Vec<&str> = human
+        .lines()
+        .skip_while(|l| *l != "  where the time goes")
+        .take_while(|l| *l != "  slowest blocks")
+        .collect();
+    assert_eq!(
+        section,
+        [
+            "  where the time goes",
+            "  cutting at programmed feed            00:01.500   34.5 %",
+            "  limited by acceleration               00:00.150    3.4 %",
+            "  limited by the TRAJ velocity cap      00:00.500   11.5 %",
+            "  rapids                                00:00.200    4.6 %",
+            "  dwell                                 00:02.000   46.0 %",
+            "  - 1 move programmed above the TRAJ velocity cap of F6000 cost 0.500 s: 23 % of cutting time",
+            "  - ramps at the acceleration limit (2 moves, at starts, stops and short moves) cost 0.150 s: 7.0 % of cutting time",
+            "",
+            "  what if (planned again)",
+            "  feed override 120 %                   00:04.193     -0.157 s  (-3.6 %)",
+            "  G64 P0.05 (mm) on every move          00:04.350     +0.000 s  (+0.0 %)",
+            "  2× acceleration on every axis         00:04.225     -0.125 s  (-2.9 %)",
+            "",
+        ],
+        "{human}"
+    );
+    assert!(
+        human.contains(
+            "  line 4           2.000 s       0.00 mm  peak        0 mm/min  dwell 100 %"
+        ),
+        "{human}"
+    );
+
+    let v: serde_json::Value = serde_json::from_str(&run(&["--format", "json"])).unwrap();
+    let close = |key: &str, got: &serde_json::Value, want: f64| {
+        let g = got.as_f64().unwrap_or(f64::NAN);
+        assert!((g - want).abs() < 1e-9, "{key}: got {g}, want {want}");
+    };
+    let c = &v["time_causes"];
+    for (k, want) in [
+        ("feed_s", 1.5),
+        ("accel_s", 0.15),
+        ("corner_s", 0.0),
+        ("traj_cap_s", 0.5),
+        ("axis_cap_s", 0.0),
+        ("rapid_s", 0.2),
+        ("dwell_s", 2.0),
+        ("auxiliary_s", 0.0),
+    ] {
+        close(k, &c[k], want);
+    }
+    close("cycle_time_s", &v["cycle_time_s"], 4.35);
+    assert_eq!(c["moves"]["traj_cap"], 1);
+    let what: Vec<(String, f64)> = v["what_if"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| {
+            (
+                w["key"].as_str().unwrap().to_string(),
+                w["cycle_time_s"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    let want = [
+        ("feed_override", 0.2 + 50.0 / 60.0 + 0.06 + 2.0 + 1.1),
+        ("blend", 4.35),
+        ("acceleration", 0.15 + 1.025 + 2.0 + 1.05),
+    ];
+    assert_eq!(what.len(), 3);
+    for ((k, got), (wk, w)) in what.iter().zip(want) {
+        assert_eq!(k, wk);
+        close(k, &serde_json::json!(got), w);
+    }
+    // Per block: time on the program clock and its causes.
+    let blocks = v["blocks"].as_array().unwrap();
+    let lines: Vec<u64> = blocks.iter().map(|b| b["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [2, 3, 4, 5]);
+    close("line 3 feed", &blocks[1]["causes"]["feed_s"], 1.0);
+    close("line 3 accel", &blocks[1]["causes"]["accel_s"], 0.05);
+    close("line 4 start", &blocks[2]["start_s"], 1.25);
+    close("line 4 dwell", &blocks[2]["causes"]["dwell_s"], 2.0);
+    close("line 5 start", &blocks[3]["start_s"], 3.25);
+    close("line 5 cap", &blocks[3]["causes"]["traj_cap_s"], 0.5);
+    close("line 5 end", &blocks[3]["end_s"], 4.35);
+    assert_eq!(blocks[3]["causes"].as_object().unwrap().len(), 3);
+
+    // Without what-ifs the JSON streams, with the same figures.
+    let s: serde_json::Value =
+        serde_json::from_str(&run(&["--format", "json", "--what-if", "off"])).unwrap();
+    assert_eq!(s["what_if"], serde_json::Value::Null);
+    assert_eq!(s["time_causes"], v["time_causes"]);
+    assert_eq!(s["blocks"], v["blocks"]);
 }

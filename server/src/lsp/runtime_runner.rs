@@ -320,8 +320,18 @@ impl DryRunner for RuntimeRunner {
         // continues from.
         out.canon = Vec::new();
         let values = out.values.clone().map(Arc::new);
+        let blocks = plan
+            .as_ref()
+            .map(|p| p.blocks.iter().filter(|b| b.file == 0).cloned().collect())
+            .unwrap_or_default();
+        let breakdown = plan
+            .as_ref()
+            .zip(profile.as_ref())
+            .map(|(p, prof)| super::dry_run::Breakdown::of(&p.totals, prof.traj_max_velocity));
         Some(RunReport {
             values,
+            blocks,
+            breakdown,
             segments,
             timing,
             tool_changes,
