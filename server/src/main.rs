@@ -2,6 +2,7 @@
 
 mod cli;
 mod lsp;
+mod page;
 mod picture;
 mod resolve;
 mod rules;

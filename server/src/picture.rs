@@ -1,7 +1,11 @@
-//! Pictures of a toolpath: SVG (isometric view plus top/front/side views) and PNG.
+//! Pictures of a toolpath: SVG (isometric view plus top/front/side views), and
+//! PNG as that SVG rasterised by resvg, so both show the same drawing.
 
 use std::fmt::Write as _;
 use std::path::Path;
+
+use resvg::tiny_skia;
+use resvg::usvg::{self, fontdb};
 
 use runtime::dryrun::{DryRun, Toolpath};
 
@@ -293,63 +297,49 @@ pub fn svg(
     Ok(cut)
 }
 
-pub fn png(tp: &Toolpath, path: &Path) -> Result<(), String> {
-    use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
-    let (w, h, views) = layout();
-    let mut pm = Pixmap::new(w as u32, h as u32).ok_or("cannot allocate the picture")?;
-    pm.fill(Color::from_rgba8(250, 250, 250, 255));
-    let (fmin, fmax) = feed_range(tp);
-    for (view, bx) in views {
-        let f = Frame::new(tp, view, bx);
-        let mut frame = PathBuilder::new();
-        frame.push_rect(
-            tiny_skia::Rect::from_xywh(
-                (bx.0 + 2.0) as f32,
-                bx.1 as f32,
-                (bx.2 - 4.0) as f32,
-                (bx.3 - 2.0) as f32,
-            )
-            .ok_or("bad frame")?,
-        );
-        if let Some(p) = frame.finish() {
-            let mut paint = Paint::default();
-            paint.set_color_rgba8(221, 221, 221, 255);
-            pm.stroke_path(&p, &paint, &Stroke::default(), Transform::identity(), None);
-        }
-        for seg in &tp.segments {
-            let mut pb = PathBuilder::new();
-            let mut first = true;
-            for p in &seg.points {
-                let (x, y) = f.map(*p);
-                if !(x.is_finite() && y.is_finite()) {
-                    continue;
-                }
-                if first {
-                    pb.move_to(x as f32, y as f32);
-                    first = false;
-                } else {
-                    pb.line_to(x as f32, y as f32);
-                }
-            }
-            let Some(path) = pb.finish() else { continue };
-            let mut paint = Paint {
-                anti_alias: true,
-                ..Paint::default()
-            };
-            let mut stroke = Stroke {
-                width: 1.2,
-                ..Stroke::default()
-            };
-            if seg.kind == "rapid" {
-                paint.set_color_rgba8(224, 64, 64, 180);
-                stroke.width = 0.8;
-                stroke.dash = StrokeDash::new(vec![4.0, 3.0], 0.0);
-            } else {
-                let (r, g, b) = feed_colour(seg.feed, fmin, fmax);
-                paint.set_color_rgba8(r, g, b, 255);
-            }
-            pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
-        }
-    }
-    pm.save_png(path).map_err(|e| e.to_string())
+/// Families tried, in order, for the picture's `sans-serif` text; the first
+/// installed one is used, else any installed family.
+const SANS_SERIF: &[&str] = &[
+    "DejaVu Sans",
+    "Liberation Sans",
+    "Noto Sans",
+    "Arial",
+    "Helvetica",
+    "FreeSans",
+];
+
+/// The system's fonts (the folders fontdb searches: fontconfig's on Linux),
+/// with `sans-serif` mapped to an installed family. `None` when no font is
+/// installed.
+fn system_fonts() -> Option<fontdb::Database> {
+    let mut db = fontdb::Database::new();
+    db.load_system_fonts();
+    let installed = |name: &str| {
+        db.faces()
+            .any(|f| f.families.iter().any(|(family, _)| family == name))
+    };
+    let family = match SANS_SERIF.iter().find(|name| installed(name)) {
+        Some(name) => name.to_string(),
+        None => db.faces().next()?.families.first()?.0.clone(),
+    };
+    db.set_sans_serif_family(family);
+    Some(db)
+}
+
+/// Rasterises an SVG picture made by [`svg`] into a PNG file at its own size,
+/// text included when the system has a font. Returns whether it had one.
+pub fn png(svg: &[u8], path: &Path) -> Result<bool, String> {
+    let fonts = system_fonts();
+    let has_fonts = fonts.is_some();
+    let options = usvg::Options {
+        fontdb: std::sync::Arc::new(fonts.unwrap_or_default()),
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_data(svg, &options).map_err(|e| e.to_string())?;
+    let size = tree.size().to_int_size();
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("cannot allocate the picture")?;
+    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    pixmap.save_png(path).map_err(|e| e.to_string())?;
+    Ok(has_fonts)
 }
