@@ -96,6 +96,33 @@ pub fn write(out: &mut impl Write, result: &impl Serialize, title: &str) -> io::
     out.write_all(tail.as_bytes())
 }
 
+/// How many of `segments`, from the first, take at most `max_bytes` as JSON.
+pub fn segments_within(segments: &[impl Serialize], max_bytes: u64) -> usize {
+    let mut size = Count(0);
+    for (i, s) in segments.iter().enumerate() {
+        // One byte more for the comma between segments.
+        size.0 += 1;
+        if serde_json::to_writer(&mut size, s).is_err() || size.0 > max_bytes {
+            return i;
+        }
+    }
+    segments.len()
+}
+
+/// Counts the bytes written to it.
+struct Count(u64);
+
+impl Write for Count {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.0 += buf.len() as u64;
+        Ok(buf.len())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
 /// Passes JSON on with `<`, `>` and `&` written as `\u003c`, `\u003e` and
 /// `\u0026`, and U+2028/U+2029 as `\u2028`/`\u2029`: inside a `<script>`
 /// element no `</script>` or `<!--` can then end or bend the data block, and
@@ -216,6 +243,15 @@ mod tests {
         assert_eq!(back["data"]["stopped_at"]["reason"], hostile);
         assert_eq!(back["title"], title);
         assert!(p.contains("<title>&lt;b&gt;x&lt;/b&gt;.ngc — Partscope toolpath</title>"));
+    }
+
+    #[test]
+    fn segments_within_counts_their_json() {
+        let segs = vec![serde_json::json!([1, 2]); 4];
+        // `[1,2]` is 5 bytes, and each takes one more for its comma.
+        assert_eq!(segments_within(&segs, 23), 3);
+        assert_eq!(segments_within(&segs, 24), 4);
+        assert_eq!(segments_within(&segs, 5), 0);
     }
 
     #[test]

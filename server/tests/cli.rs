@@ -1013,3 +1013,55 @@ fn run_png_is_the_svg_picture_with_its_text() {
         .count();
     assert!(near > 3, "feed move at {x},{y} not drawn");
 }
+
+/// `--max-html-mb` bounds the page's toolpath: the drawing stops at a segment,
+/// the title and a warning say where, the figures stay the whole run's.
+#[test]
+fn run_html_page_is_cut_to_its_size_limit() {
+    let d = tempdir("html-cut");
+    let mut program = String::from("G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\n");
+    for i in 0..20_000 {
+        program.push_str(&format!("G1 X{} Y{} F1200\n", i % 97, i % 89));
+    }
+    program.push_str("M2\n");
+    let f = write(&d, "long.ngc", program.as_bytes());
+    let html = d.join("long.html");
+    let run = |mb: &str| {
+        bin()
+            .args(["run", f.to_str().unwrap(), "--html", html.to_str().unwrap()])
+            .args(["--max-html-mb", mb, "--format", "json"])
+            .output()
+            .unwrap()
+    };
+    let whole = run("64");
+    let page = std::fs::read_to_string(&html).unwrap();
+    let full = page_data(&page);
+    assert_eq!(full["title"], "long.ngc");
+    assert_eq!(
+        full["data"]["toolpath"]["segments"]
+            .as_array()
+            .unwrap()
+            .len(),
+        20_002
+    );
+    assert_eq!(whole.status.code(), Some(0));
+    let out = run("0");
+    let page = std::fs::read_to_string(&html).unwrap();
+    let cut = page_data(&page);
+    assert_eq!(cut["data"]["toolpath"]["segments"], serde_json::json!([]));
+    assert_eq!(
+        cut["title"],
+        "long.ngc — toolpath cut off at line 2 to keep the page under 0 MB (--max-html-mb)"
+    );
+    assert_eq!(cut["data"]["cycle_time_s"], full["data"]["cycle_time_s"]);
+    assert_eq!(cut["data"]["distance_mm"], full["data"]["distance_mm"]);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warning = v["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["message"].as_str().unwrap().contains("--max-html-mb"))
+        .expect("a warning names the limit");
+    assert_eq!(warning["code"], "F004");
+    assert_eq!(warning["line"], 2);
+}

@@ -69,6 +69,10 @@ pub struct RunArgs {
     /// preview and this run's result (no network access, no other files).
     #[arg(long)]
     pub html: Option<PathBuf>,
+    /// Largest toolpath data in the HTML page, in MB (default 64); a longer toolpath
+    /// is cut off with a warning, and the page's title says where.
+    #[arg(long)]
+    pub max_html_mb: Option<u64>,
     /// Step budget: blocks executed before a runaway program is stopped (default: a
     /// million plus a hundred per block of the file).
     #[arg(long)]
@@ -93,6 +97,9 @@ pub struct RunArgs {
     #[arg(long)]
     pub max_runtime_errors: Option<usize>,
 }
+
+/// Largest toolpath data written into an HTML page by default, in MB.
+const DEFAULT_MAX_HTML_MB: u64 = 64;
 
 impl RunArgs {
     /// The files the run writes besides its standard output, with their flags.
@@ -505,7 +512,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
     if let Some(html) = &args.html {
         // The result `partscope/dryRun` gives the editor's preview, made by the same code.
-        let result = crate::lsp::dry_run_result(
+        let mut result = crate::lsp::dry_run_result(
             &parsed.program,
             &args.file,
             &out,
@@ -513,11 +520,31 @@ pub fn run(args: RunArgs) -> ExitCode {
             &dry,
             &resolver.loaded(),
         );
-        let title = args
+        let mut title = args
             .file
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_else(|| args.file.display().to_string());
+        // The figures stay those of the whole run; only the drawing is cut short.
+        let max_mb = args.max_html_mb.unwrap_or(DEFAULT_MAX_HTML_MB);
+        let segments = &mut result.toolpath.segments;
+        let keep = crate::page::segments_within(segments, max_mb.saturating_mul(1 << 20));
+        if keep < segments.len() {
+            let line = segments[keep].line;
+            segments.truncate(keep);
+            title = format!(
+                "{title} — toolpath cut off at line {} to keep the page under {max_mb} MB (--max-html-mb)",
+                line + 1
+            );
+            let at = analyzer::LineIndex::new(&text)
+                .line_start(line)
+                .unwrap_or(0);
+            report.diagnostics.push(Diagnostic::warning(
+                runtime::rules::codes::STEP_BUDGET,
+                Span::new(at, at),
+                format!("the HTML page's toolpath is cut off here to keep it under {max_mb} MB; raise the limit with --max-html-mb"),
+            ));
+        }
         let written = write_replacing(html, |tmp| {
             let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
             let mut w = std::io::BufWriter::new(f);

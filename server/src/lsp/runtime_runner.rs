@@ -351,7 +351,7 @@ pub fn dry_run_result(
     let rope = ropey::Rope::from_str(&text);
     let uri = std::path::absolute(path)
         .ok()
-        .and_then(|p| Uri::from_file_path(p))
+        .and_then(Uri::from_file_path)
         .or_else(|| "file:///".parse().ok());
     let diagnostics = match &uri {
         Some(uri) => report
