@@ -1065,3 +1065,60 @@ fn run_html_page_is_cut_to_its_size_limit() {
     assert_eq!(warning["code"], "F004");
     assert_eq!(warning["line"], 2);
 }
+
+/// A picture cut off by `--max-svg-mb` shows the same moves in every view, and
+/// the PNG (the same picture) is cut at the same line.
+#[test]
+fn a_cut_off_picture_draws_the_same_moves_in_every_view() {
+    let d = tempdir("svg-cut");
+    let mut program = String::from("G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\n");
+    for i in 0..20_000 {
+        program.push_str(&format!("G1 X{} Y{} Z-{} F1200\n", i % 97, i % 89, i % 3));
+    }
+    program.push_str("M2\n");
+    let f = write(&d, "long.ngc", program.as_bytes());
+    let (svg, png) = (d.join("long.svg"), d.join("long.png"));
+    let run = |flag: &str, out: &Path| {
+        let o = bin()
+            .args([
+                "run",
+                f.to_str().unwrap(),
+                "--format",
+                "json",
+                "--max-svg-mb",
+                "1",
+            ])
+            .args([flag, out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["diagnostics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|d| d["message"].as_str().unwrap().contains("--max-svg-mb"))
+            .map(|d| d["line"].clone())
+            .expect("a warning names the limit")
+    };
+    let svg_cut = run("--svg", &svg);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.len() <= 1 << 20, "{} bytes", text.len());
+    let per_view: Vec<usize> = text
+        .split(r##"font-size="12" fill="#666">"##)
+        .skip(1)
+        .map(|view| view.matches("<polyline").count())
+        .collect();
+    assert_eq!(per_view.len(), 4);
+    assert!(per_view.iter().all(|&n| n == per_view[0]), "{per_view:?}");
+    // The moves drawn are the first ones, up to the line the warning names.
+    let drawn = per_view[0] as u64;
+    assert!(drawn > 1000 && drawn < 20_002, "{drawn}");
+    assert_eq!(
+        svg_cut,
+        drawn + 2,
+        "segment {drawn} is on line {}",
+        drawn + 2
+    );
+    assert!(text.contains(&format!("toolpath cut off at line {}", drawn + 2)));
+    assert_eq!(run("--png", &png), svg_cut);
+}
