@@ -4,6 +4,7 @@
 
 pub mod cli;
 pub mod lsp;
+pub mod page;
 pub mod picture;
 pub mod resolve;
 pub mod rules;

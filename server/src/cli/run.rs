@@ -82,9 +82,17 @@ pub struct RunArgs {
     /// off with a warning.
     #[arg(long)]
     pub max_svg_mb: Option<u64>,
-    /// Write a PNG picture of the toolpath.
+    /// Write a PNG picture of the toolpath (the SVG picture, rasterised).
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// Write one self-contained HTML page with the toolpath viewer of the VS Code
+    /// preview and this run's result (no network access, no other files).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
+    /// Largest toolpath data in the HTML page, in MB (default 64); a longer toolpath
+    /// is cut off with a warning, and the page's title says where.
+    #[arg(long)]
+    pub max_html_mb: Option<u64>,
     /// Step budget: blocks executed before a runaway program is stopped (default: a
     /// million plus a hundred per block of the file).
     #[arg(long)]
@@ -108,6 +116,20 @@ pub struct RunArgs {
     /// (default 100, `[rules] max_runtime_errors`).
     #[arg(long)]
     pub max_runtime_errors: Option<usize>,
+}
+
+/// Largest toolpath data written into an HTML page by default, in MB.
+const DEFAULT_MAX_HTML_MB: u64 = 64;
+
+impl RunArgs {
+    /// The files the run writes besides its standard output, with their flags.
+    fn outputs(&self) -> [(&'static str, Option<&PathBuf>); 3] {
+        [
+            ("--svg", self.svg.as_ref()),
+            ("--png", self.png.as_ref()),
+            ("--html", self.html.as_ref()),
+        ]
+    }
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -154,7 +176,7 @@ fn write_replacing<T>(
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
-    for (flag, out) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+    for (flag, out) in args.outputs() {
         if let Err(e) = guard_output(flag, out, &[&args.file]) {
             return fail(e);
         }
@@ -385,8 +407,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
     if args.format == RunFormat::Json
         && args.emit.is_none()
-        && args.svg.is_none()
-        && args.png.is_none()
+        && args.outputs().iter().all(|(_, o)| o.is_none())
         && !what_if_asked
     {
         // The static rules run beside the interpreter and planner (both only read the tree).
@@ -469,51 +490,111 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     let read: Vec<&Path> = out.files.iter().map(Path::new).collect();
-    for (flag, o) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+    for (flag, o) in args.outputs() {
         if let Err(e) = guard_output(flag, o, &read) {
             return fail(e);
         }
     }
-    if let Some(svg) = &args.svg {
+    if args.svg.is_some() || args.png.is_some() {
         let tp = dryrun::toolpath_on(&out, 0.01, &profile);
         let max_mb = args
             .max_svg_mb
             .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
-        let written = write_replacing(svg, |tmp| {
-            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-            let mut w = std::io::BufWriter::new(f);
-            let title = args.file.display().to_string();
-            let cut =
-                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))
+        let max_bytes = max_mb.saturating_mul(1 << 20);
+        let title = args.file.display().to_string();
+        let mut cut = None;
+        if let Some(svg) = &args.svg {
+            let written = write_replacing(svg, |tmp| {
+                let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+                let mut w = std::io::BufWriter::new(f);
+                let cut = crate::picture::svg(&mut w, &tp, &title, &dry, max_bytes)
                     .map_err(|e| e.to_string())?;
-            w.flush().map_err(|e| e.to_string())?;
-            Ok(cut)
-        });
-        match written {
-            Ok(Some((line, file))) => {
-                // Located at the first line left out of the picture (the start of the
-                // main file when that line is in a subprogram file).
-                let at = if file == 0 {
-                    analyzer::LineIndex::new(&text)
-                        .line_start(line)
-                        .unwrap_or(0)
-                } else {
-                    0
-                };
-                report.diagnostics.push(Diagnostic::warning(
-                    runtime::rules::codes::STEP_BUDGET,
-                    Span::new(at, at),
-                    format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
-                ));
+                w.flush().map_err(|e| e.to_string())?;
+                Ok(cut)
+            });
+            match written {
+                Ok(c) => cut = c,
+                Err(e) => return fail(format_args!("{}: {e}", svg.display())),
             }
-            Ok(None) => {}
-            Err(e) => return fail(format_args!("{}: {e}", svg.display())),
+        }
+        if let Some(png) = &args.png {
+            // The PNG is the SVG picture rasterised: one drawing, text and legend included.
+            let mut svg = Vec::new();
+            let drawn = crate::picture::svg(&mut svg, &tp, &title, &dry, max_bytes)
+                .map_err(|e| e.to_string())
+                .and_then(|c| {
+                    cut = cut.or(c);
+                    write_replacing(png, |tmp| crate::picture::png(&svg, tmp))
+                });
+            match drawn {
+                Ok(true) => {}
+                Ok(false) => workspace::warn_once(
+                    "no font is installed, so the PNG picture has no text (install one, e.g. fonts-dejavu-core)",
+                ),
+                Err(e) => return fail(format_args!("{}: {e}", png.display())),
+            }
+        }
+        if let Some((line, file)) = cut {
+            // Located at the first line left out of the picture (the start of the
+            // main file when that line is in a subprogram file).
+            let at = if file == 0 {
+                analyzer::LineIndex::new(&text)
+                    .line_start(line)
+                    .unwrap_or(0)
+            } else {
+                0
+            };
+            report.diagnostics.push(Diagnostic::warning(
+                runtime::rules::codes::STEP_BUDGET,
+                Span::new(at, at),
+                format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
+            ));
         }
     }
-    if let Some(png) = &args.png {
-        let tp = dryrun::toolpath_on(&out, 0.01, &profile);
-        if let Err(e) = write_replacing(png, |tmp| crate::picture::png(&tp, tmp)) {
-            return fail(format_args!("{}: {e}", png.display()));
+    if let Some(html) = &args.html {
+        // The result `partscope/dryRun` gives the editor's preview, made by the same code.
+        let mut result = crate::lsp::dry_run_result(
+            &parsed.program,
+            &args.file,
+            &out,
+            &profile,
+            &dry,
+            &resolver.loaded(),
+        );
+        let mut title = args
+            .file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| args.file.display().to_string());
+        // The figures stay those of the whole run; only the drawing is cut short.
+        let max_mb = args.max_html_mb.unwrap_or(DEFAULT_MAX_HTML_MB);
+        let segments = &mut result.toolpath.segments;
+        let keep = crate::page::segments_within(segments, max_mb.saturating_mul(1 << 20));
+        if keep < segments.len() {
+            let line = segments[keep].line;
+            segments.truncate(keep);
+            title = format!(
+                "{title} — toolpath cut off at line {} to keep the page under {max_mb} MB (--max-html-mb)",
+                line + 1
+            );
+            let at = analyzer::LineIndex::new(&text)
+                .line_start(line)
+                .unwrap_or(0);
+            report.diagnostics.push(Diagnostic::warning(
+                runtime::rules::codes::STEP_BUDGET,
+                Span::new(at, at),
+                format!("the HTML page's toolpath is cut off here to keep it under {max_mb} MB; raise the limit with --max-html-mb"),
+            ));
+        }
+        let written = write_replacing(html, |tmp| {
+            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+            let mut w = std::io::BufWriter::new(f);
+            crate::page::write(&mut w, &result, &title)
+                .and_then(|_| w.flush())
+                .map_err(|e| e.to_string())
+        });
+        if let Err(e) = written {
+            return fail(format_args!("{}: {e}", html.display()));
         }
     }
     let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
