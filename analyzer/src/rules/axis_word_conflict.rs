@@ -35,7 +35,9 @@ declare_rule! {
     ///
     /// ## Dialects
     /// RS274/NGC: error (`G80` next to a group-0 axis code is fine). FANUC: warning; `G53`
-    /// with `G00`/`G01` is the normal machine-coordinate move and is not flagged.
+    /// with `G00`/`G01` is the normal machine-coordinate move and is not flagged, and
+    /// `G28`/`G30` with `G00` (`G91 G28 G00 X0 Y0`, which moves at rapid anyway) is
+    /// information.
     /// ServoWorks: not checked (the manual is silent).
     ///
     /// Implements: NGC106, NGC108, NGC805, FAN027
@@ -93,11 +95,14 @@ impl Rule for AxisWordConflict {
                 if first_axis.is_none() {
                     return;
                 }
-                Diagnostic::warning(
-                    "W004",
-                    m.span,
-                    format!("{gname} takes the axis words of this block; {mname} only becomes the modal motion and does not move. Put the {mname} move in its own block."),
-                )
+                let text = format!("{gname} takes the axis words of this block; {mname} only becomes the modal motion and does not move. Put the {mname} move in its own block.");
+                // `G91 G28 G00 X0 Y0` is a shop idiom: G28 moves at rapid anyway and
+                // the G00 only sets the mode, so nothing the block says is lost.
+                if mn.0 == 0 && matches!(gn.0, 280 | 300) {
+                    Diagnostic::info("W004", m.span, text)
+                } else {
+                    Diagnostic::warning("W004", m.span, text)
+                }
             };
             out.push(diag.with_related(g0.span, "group-00 code that uses the axis words"));
             return;

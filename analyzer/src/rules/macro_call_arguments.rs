@@ -13,7 +13,8 @@ declare_rule! {
     /// come before its arguments; on FANUC the letters G and N cannot be arguments (a G
     /// code *before* the call is the block's own code, not an argument),
     /// argument specification I (letters) and II (repeated I/J/K) should not be mixed, and
-    /// argument values other than zero should have a decimal point.
+    /// argument values other than zero should have a decimal point (except at H, D, M, S
+    /// and T, addresses that never take one and pass their number as written).
     ///
     /// ## Why is this bad?
     /// ServoWorks requires `G65` first in the block. FANUC raises PS0129 for a G word
@@ -105,6 +106,9 @@ impl Rule for MacroCallArguments {
                             format!("`{text}` after the macro call is not an argument: N is a sequence number and belongs at the start of the block."),
                         )),
                         b'G' | b'N' | b'P' | b'L' | b'O' => {}
+                        // Addresses that never take a decimal point (H, D, M, S, T:
+                        // fanuc.md §1.8) pass their number as written.
+                        b'H' | b'D' | b'M' | b'S' | b'T' => {}
                         _ => {
                             // Zero is zero in every increment.
                             if w.num().is_some_and(|n| !n.has_point && n.value != 0.0) {

@@ -34,7 +34,7 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// ServoWorks and FANUC: warning; RS274/NGC: info (LinuxCNC never reads past M2, harmlessly). FANUC blocks whose sequence number is a `GOTO` target are reachable.
+    /// ServoWorks: warning; FANUC: info (shops start blocks after M30 from the cursor or by a sequence-number search, one entry point per tool); RS274/NGC: info (LinuxCNC never reads past M2, harmlessly). FANUC blocks whose sequence number is a `GOTO` target are reachable.
     ///
     /// Reported by this rule, not F005, when both see code after M2/M30 on the same text (one diagnostic per fault).
     ///
@@ -147,10 +147,17 @@ impl Rule for UnreachableAfterEnd {
         let mut ended: Option<&'static str> = None;
         let mut sub_depth = 0i32;
         let mut run: Option<(crate::span::Span, usize)> = None;
+        // FANUC shops start blocks after M30 from the cursor or by a sequence-number
+        // search (one entry point per tool): information there.
+        let sev = if d == Dialect::Fanuc {
+            Severity::Info
+        } else {
+            Severity::Warning
+        };
         let flush =
             |run: &mut Option<(crate::span::Span, usize)>, end: &str, out: &mut Vec<Diagnostic>| {
                 if let Some((span, n)) = run.take() {
-                    out.push(unreachable(span, n, end, Severity::Warning));
+                    out.push(unreachable(span, n, end, sev));
                 }
             };
         for seg in cx.segments() {

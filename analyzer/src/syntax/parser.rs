@@ -1512,20 +1512,34 @@ impl<'p> Cx<'p> {
                 let w = Span::new(self.pos as u32, j as u32)
                     .slice(self.text)
                     .to_ascii_uppercase();
-                let op = match w.as_slice() {
-                    b"MOD" => BinOp::Mod,
-                    b"AND" => BinOp::And,
-                    b"OR" => BinOp::Or,
-                    b"XOR" => BinOp::Xor,
-                    b"EQ" => BinOp::Eq,
-                    b"NE" => BinOp::Ne,
-                    b"GT" => BinOp::Gt,
-                    b"GE" => BinOp::Ge,
-                    b"LT" => BinOp::Lt,
-                    b"LE" => BinOp::Le,
-                    _ => return None,
+                let named = |w: &[u8]| match w {
+                    b"MOD" => Some(BinOp::Mod),
+                    b"AND" => Some(BinOp::And),
+                    b"OR" => Some(BinOp::Or),
+                    b"XOR" => Some(BinOp::Xor),
+                    b"EQ" => Some(BinOp::Eq),
+                    b"NE" => Some(BinOp::Ne),
+                    b"GT" => Some(BinOp::Gt),
+                    b"GE" => Some(BinOp::Ge),
+                    b"LT" => Some(BinOp::Lt),
+                    b"LE" => Some(BinOp::Le),
+                    _ => None,
                 };
-                (op, j - self.pos)
+                if let Some(op) = named(&w) {
+                    (op, j - self.pos)
+                } else {
+                    // An operator glued to the function after it (`GEABS[#2]`,
+                    // `ANDSQRT[…]`): the controls read the letters up to the `[`.
+                    let glued = self.at(j) == Some(b'[');
+                    [3, 2]
+                        .into_iter()
+                        .filter(|n| glued && w.len() > *n)
+                        .find_map(|n| {
+                            let rest = std::str::from_utf8(&w[n..]).ok()?;
+                            crate::syntax::Func::from_name(rest)?;
+                            Some((named(&w[..n])?, n))
+                        })?
+                }
             }
             _ => return None,
         };

@@ -339,7 +339,12 @@ impl Interp<'_, '_> {
                 self.after_end_reported = true;
                 self.diag(
                     codes::AFTER_END,
-                    Severity::Warning,
+                    if self.dialect == Dialect::Fanuc {
+                        // An operator may start there (cursor, sequence-number search).
+                        Severity::Info
+                    } else {
+                        Severity::Warning
+                    },
                     block.span,
                     "code after the program end is never executed",
                 );

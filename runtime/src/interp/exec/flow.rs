@@ -670,7 +670,12 @@ impl Interp<'_, '_> {
             }
             self.diag(
                 codes::AFTER_END,
-                Severity::Warning,
+                if self.dialect == Dialect::Fanuc {
+                    // An operator may start there (cursor, sequence-number search).
+                    Severity::Info
+                } else {
+                    Severity::Warning
+                },
                 b.span,
                 "code after the program end (M02/M30) is never executed",
             );
