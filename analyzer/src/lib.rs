@@ -6,6 +6,7 @@
 pub mod control;
 pub mod diagnostic;
 pub mod dialect;
+pub mod fixes;
 pub mod incremental;
 pub mod rules;
 pub mod settings;
