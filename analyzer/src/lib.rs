@@ -8,6 +8,7 @@ pub mod diagnostic;
 pub mod dialect;
 pub mod fixes;
 pub mod incremental;
+pub mod names;
 pub mod rules;
 pub mod settings;
 pub mod span;
