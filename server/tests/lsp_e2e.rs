@@ -950,3 +950,76 @@ fn rename_without_file_operations_edits_the_calls_only() {
     );
     c.shutdown();
 }
+
+#[test]
+fn formatting_renumbers_spaces_and_upper_cases() {
+    let root = workspace("format");
+    std::fs::write(
+        root.join("fanuc/fmt.nc"),
+        "%\nO1000;\nN1 g0  x1. (keep  this);\nN2 #1=#1+1;\nIF [#1 LT 3] GOTO 2;\nM30;\n%\n",
+    )
+    .unwrap();
+    let mut c = Client::spawn();
+    initialize(
+        &mut c,
+        &root,
+        json!({"format": {"numbers": "renumber", "start": 100}}),
+    );
+    let (uri, text) = open(&mut c, &root.join("fanuc/fmt.nc"), "fanuc");
+    c.diagnostics(&uri, 1);
+    let apply = |edits: &Value| -> String {
+        // Back to front, each edit on one line.
+        let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
+        let mut es: Vec<&Value> = edits.as_array().unwrap().iter().collect();
+        es.sort_by_key(|e| {
+            let s = &e["range"]["start"];
+            std::cmp::Reverse((
+                s["line"].as_u64().unwrap(),
+                s["character"].as_u64().unwrap(),
+            ))
+        });
+        for e in es {
+            let r = &e["range"];
+            let line = r["start"]["line"].as_u64().unwrap() as usize;
+            assert_eq!(r["end"]["line"].as_u64().unwrap() as usize, line);
+            let (a, b) = (
+                r["start"]["character"].as_u64().unwrap() as usize,
+                r["end"]["character"].as_u64().unwrap() as usize,
+            );
+            lines[line].replace_range(a..b, e["newText"].as_str().unwrap());
+        }
+        lines.join("\n")
+    };
+    // The client's defaults: renumber from 100 with step 10; the GOTO follows.
+    let r = c.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true}}),
+    );
+    assert_eq!(
+        apply(&r),
+        "%\nO1000;\nN100 G0 X1. (keep  this);\nN110 #1=#1+1;\nIF [#1 LT 3] GOTO 110;\nM30;\n%\n"
+    );
+    // The request's properties win: block numbers removed but the GOTO target kept.
+    let r = c.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true,
+               "partscope.numbers": "remove", "partscope.spacing": "none"}}),
+    );
+    assert_eq!(
+        apply(&r),
+        "%\nO1000;\nG0X1. (keep  this);\nN2 #1=#1+1;\nIF [#1 LT 3] GOTO 2;\nM30;\n%\n"
+    );
+    let r = c.request_full(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true,
+               "partscope.numbers": "sometimes"}}),
+    );
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("keep, renumber, add or remove"),
+        "{r}"
+    );
+    c.shutdown();
+}

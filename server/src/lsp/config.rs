@@ -36,6 +36,9 @@ pub struct ClientOptions {
     pub ignore: Vec<String>,
     pub max_file_size: Option<usize>,
     pub max_run_file_size: Option<usize>,
+    /// The `format` object: defaults of document formatting (`numbers`,
+    /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
+    pub format: Option<Value>,
 }
 
 #[derive(Debug, Clone)]
@@ -90,6 +93,7 @@ impl ClientOptions {
                 .get("maxRunFileSize")
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
+            format: v.get("format").filter(|f| f.is_object()).cloned(),
         }
     }
 }

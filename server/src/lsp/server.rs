@@ -30,7 +30,9 @@ use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
 use super::position::{apply_change, offset_to_position, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
-use super::{actions, completion, goto, hover, rename, semantic, signature, symbols, workspace};
+use super::{
+    actions, completion, formatting, goto, hover, rename, semantic, signature, symbols, workspace,
+};
 
 /// How long edits must pause before diagnostics are recomputed: not at all.
 /// An edit costs an incremental update (milliseconds), analyses of one
@@ -184,6 +186,7 @@ impl Backend {
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
         o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
+        o.format = c.format.clone().or(o.format);
         o
     }
 
@@ -575,6 +578,7 @@ fn capabilities() -> ServerCapabilities {
             work_done_progress_options: Default::default(),
         })),
         document_symbol_provider: Some(OneOf::Left(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
         folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
         semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
             SemanticTokensOptions {
@@ -873,6 +877,21 @@ impl LanguageServer for Backend {
             })
             .await?;
             Ok(Some(locs))
+        })
+        .await
+    }
+
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        guarded("formatting", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let defaults = Self::client_options(&self.lock()).format;
+            let props = params.options.properties;
+            blocking(move || formatting::format(&snap, defaults.as_ref(), &props))
+                .await?
+                .map(Some)
+                .map_err(Error::invalid_params)
         })
         .await
     }
