@@ -813,14 +813,17 @@ fn large_files_publish_static_diagnostics_first_then_the_run() {
     assert!(c.shutdown().success());
 }
 
-/// A file name and the (line, start, end) of each edit for it, in order.
-fn edits_by_file(ops: &[Value]) -> Vec<(String, Vec<(u64, u64, u64, String)>)> {
+/// One edit on one line: (line, start character, end character, new text).
+type LineEdit = (u64, u64, u64, String);
+
+/// A file name and each edit for it, in order.
+fn edits_by_file(ops: &[Value]) -> Vec<(String, Vec<LineEdit>)> {
     ops.iter()
         .filter(|op| op.get("textDocument").is_some())
         .map(|op| {
             let name = op["textDocument"]["uri"].as_str().unwrap();
             let name = name.rsplit('/').next().unwrap().to_string();
-            let mut edits: Vec<(u64, u64, u64, String)> = op["edits"]
+            let mut edits: Vec<LineEdit> = op["edits"]
                 .as_array()
                 .unwrap()
                 .iter()
