@@ -134,6 +134,22 @@ fn editor_session_over_stdio() {
     let edits = &actions[0]["edit"]["changes"][&uri];
     assert_eq!(edits[0]["newText"], ")");
     assert_eq!(edits[0]["range"]["start"], pos(2, 15));
+    // On save, `source.fixAll`: every fix of the file in one action.
+    let r = c.request(
+        "textDocument/codeAction",
+        json!({
+            "textDocument": {"uri": uri},
+            "range": {"start": pos(0, 0), "end": pos(0, 0)},
+            "context": {"diagnostics": [], "only": ["source.fixAll"]}
+        }),
+    );
+    let actions = r.as_array().unwrap();
+    assert_eq!(actions.len(), 1, "{r}");
+    assert_eq!(actions[0]["kind"], "source.fixAll");
+    assert_eq!(
+        actions[0]["edit"]["changes"][&uri],
+        json!([{"range": {"start": pos(2, 15), "end": pos(2, 15)}, "newText": ")"}])
+    );
 
     // Hover on the G1 of line 4: the code's documentation for rs274ngc.
     let h = c.request(

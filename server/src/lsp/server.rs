@@ -589,7 +589,10 @@ fn capabilities() -> ServerCapabilities {
             },
         )),
         code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
-            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            code_action_kinds: Some(vec![
+                CodeActionKind::QUICKFIX,
+                CodeActionKind::SOURCE_FIX_ALL,
+            ]),
             ..Default::default()
         })),
         inlay_hint_provider: Some(OneOf::Left(true)),
@@ -1013,8 +1016,19 @@ impl LanguageServer for Backend {
                 return Ok(None);
             };
             let range = params.range;
+            // Source actions only when asked for, as clients do on save.
+            let fix_all = params.context.only.as_ref().is_some_and(|only| {
+                only.iter()
+                    .any(|k| *k == CodeActionKind::SOURCE_FIX_ALL || *k == CodeActionKind::SOURCE)
+            });
             Ok(Some(
-                blocking(move || actions::code_actions(&snap, range)).await?,
+                blocking(move || {
+                    if fix_all {
+                        return actions::fix_all(&snap).into_iter().collect();
+                    }
+                    actions::code_actions(&snap, range)
+                })
+                .await?,
             ))
         })
         .await
