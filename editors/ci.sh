@@ -22,6 +22,8 @@ run() {
   fi
 }
 
+# `npm test` includes the browser tests that need the server (stopped-run, html-page): they
+# read PARTSCOPE_BIN from the environment and skip without it.
 vscode() {
   cd "$here/vscode"
   npm ci --no-audit --no-fund
@@ -88,6 +90,10 @@ skipped=0
 if [[ -n "${PARTSCOPE_BIN:-}" ]] && ! has_lsp; then
   echo "::: editors: SKIPPED the Neovim/Emacs LSP tests: '$PARTSCOPE_BIN --help' lists no 'lsp' subcommand"
   skipped=1
+fi
+
+if [[ -n "${PARTSCOPE_BIN:-}" ]] && command -v python3 >/dev/null && python3 -c 'import tomllib' 2>/dev/null; then
+  run "helix: toolpath key against $PARTSCOPE_BIN" "$here/helix/test.sh" "$PARTSCOPE_BIN"
 fi
 
 if [[ -n "${PARTSCOPE_BIN:-}" && $skipped -eq 0 ]]; then

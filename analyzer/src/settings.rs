@@ -67,8 +67,14 @@ pub struct Settings {
     pub integer_machine_unit: bool,
     /// FANUC sequence-number digits: 5, or 8 with the 8-digit sequence number option.
     pub sequence_number_digits: u8,
-    /// FANUC program-number digits: 4, or 8 with the 8-digit program number option.
-    pub program_number_digits: u8,
+    /// FANUC program-number digits: 4, or 8 with the 8-digit program number option;
+    /// `None` (not configured): a program head beyond 4 digits is taken as the
+    /// option's and said once, as information.
+    pub program_number_digits: Option<u8>,
+    /// FANUC: the last common variable of the #100 range: 199 (standard) or 499
+    /// (the additional common variables option); `None` (not configured): a use of
+    /// #200–#499 is taken as the option's and said once, as information.
+    pub common_variables_end: Option<u16>,
     /// Diagnostics of one code reported per file; the rest become one
     /// "… and N more" (see [`crate::limit_diagnostics`]).
     pub max_per_code: usize,
@@ -97,7 +103,8 @@ impl Settings {
             axes: vec!['X', 'Y', 'Z', 'A', 'B', 'C'],
             integer_machine_unit: false,
             sequence_number_digits: 5,
-            program_number_digits: 4,
+            program_number_digits: None,
+            common_variables_end: None,
             max_per_code: DEFAULT_MAX_PER_CODE,
             max_per_file: DEFAULT_MAX_PER_FILE,
             max_runtime_errors: DEFAULT_MAX_RUNTIME_ERRORS,
@@ -158,20 +165,29 @@ impl Settings {
             s.integer_machine_unit = v;
         }
         // FANUC options that widen the number formats (spec fanuc.md §1.5, §1.6).
-        for (key, standard, slot) in [
-            ("sequence_number_digits", 5, &mut s.sequence_number_digits),
-            ("program_number_digits", 4, &mut s.program_number_digits),
-        ] {
+        let digits = |key: &str, standard: i64| -> Result<Option<u8>, String> {
             match config.machine.get(key) {
-                None => {}
-                Some(toml::Value::Integer(n)) if *n == standard || *n == 8 => *slot = *n as u8,
-                Some(v) => {
-                    return Err(format!(
+                None => Ok(None),
+                Some(toml::Value::Integer(n)) if *n == standard || *n == 8 => Ok(Some(*n as u8)),
+                Some(v) => Err(format!(
                     "machine.{key} = {v}: the control has {standard} digits, or 8 with the option"
-                ))
-                }
+                )),
             }
+        };
+        if let Some(n) = digits("sequence_number_digits", 5)? {
+            s.sequence_number_digits = n;
         }
+        s.program_number_digits = digits("program_number_digits", 4)?;
+        s.common_variables_end = match config.machine.get("common_variables") {
+            None => None,
+            Some(toml::Value::Integer(n)) if *n == 199 || *n == 499 => Some(*n as u16),
+            Some(v) => {
+                return Err(format!(
+                    "machine.common_variables = {v}: the last common variable of the #100 \
+                     range, 199 (standard) or 499 (additional common variables option)"
+                ))
+            }
+        };
         Ok(s)
     }
 

@@ -14,7 +14,8 @@
 ;;   (require 'partscope)
 ;;   (add-hook 'partscope-gcode-mode-hook #'eglot-ensure)   ; or #'lsp-deferred
 ;;
-;; M-x partscope-dry-run shows the cycle time; M-x partscope-explain-rule runs
+;; M-x partscope-dry-run shows the cycle time; M-x partscope-toolpath opens the toolpath
+;; in the browser (`partscope run FILE --html PAGE'); M-x partscope-explain-rule runs
 ;; `partscope rule CODE'.
 
 ;;; Code:
@@ -48,6 +49,11 @@
 (defcustom partscope-ignore nil
   "Rule codes or prefixes to silence."
   :type '(repeat string))
+
+(defcustom partscope-open-command nil
+  "Command that opens the page `partscope-toolpath' writes; its file is appended.
+nil: the system's opener, xdg-open (open on macOS, start on Windows)."
+  :type '(choice (const :tag "System opener" nil) (repeat string)))
 
 (defconst partscope-file-extensions
   '("nc" "ngc" "tap" "cnc" "gcode" "eia" "dat" "min" "mpf" "fnc" "sw")
@@ -226,6 +232,46 @@ Uses eglot or lsp-mode, whichever manages the buffer."
                      ("distance" . ,(format "%.1f mm" (or (funcall get :distance_mm) 0)))
                      ("segments" . ,(format "%d" (length segs)))))
         (princ (format "%-14s%14s\n" (car row) (cdr row)))))))
+
+(defun partscope--opener ()
+  "The command that opens a file in the browser, as a list."
+  (or partscope-open-command
+      (pcase system-type
+        ('darwin '("open"))
+        ('windows-nt '("cmd" "/c" "start" ""))
+        (_ '("xdg-open")))))
+
+(defun partscope-toolpath (&optional on-written)
+  "Open the toolpath of the current file in the browser.
+Runs `partscope run FILE --html PAGE' with PAGE a temporary file,
+then opens PAGE with `partscope-open-command'.  ON-WRITTEN, when
+given, is called with PAGE instead.  The page shows the file as saved."
+  (interactive)
+  (let ((file (or buffer-file-name (user-error "Partscope: this buffer has no file; save it first")))
+        (page (make-temp-file "partscope-" nil ".html"))
+        (errors (generate-new-buffer " *partscope toolpath*")))
+    (when (buffer-modified-p)
+      (message "Partscope: the buffer has unsaved changes; the page shows the file as saved"))
+    (make-process
+     :name "partscope-toolpath"
+     :command (list (car partscope-server-command) "run" file "--html" page)
+     :buffer nil
+     :stderr errors
+     :noquery t
+     :sentinel
+     (lambda (proc _event)
+       (unless (process-live-p proc)
+         ;; `run' exits 1 for a program with errors or a partial run, and writes the page then too.
+         (if (and (<= (process-exit-status proc) 1)
+                  (> (or (file-attribute-size (file-attributes page)) 0) 0))
+             (if on-written
+                 (funcall on-written page)
+               (let ((cmd (partscope--opener)))
+                 (apply #'call-process (car cmd) nil 0 nil (append (cdr cmd) (list page)))))
+           (message "Partscope: `partscope run --html' failed (%d): %s"
+                    (process-exit-status proc)
+                    (string-trim (with-current-buffer errors (buffer-string)))))
+         (run-at-time 0 nil (lambda () (when (buffer-live-p errors) (kill-buffer errors)))))))))
 
 (defun partscope-explain-rule (code)
   "Show the documentation of rule CODE (`partscope rule CODE')."

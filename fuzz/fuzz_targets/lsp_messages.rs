@@ -1,8 +1,7 @@
 //! Arbitrary JSON-RPC messages and edit sequences through the language
 //! server's own handlers, in process.
 //!
-//! The server's `lsp` module is compiled into this target from its source (the
-//! server is a binary crate, so it cannot be a dependency) and driven through
+//! The server's `lsp` module (from the `partscope` library) is driven through
 //! `lsp::service()`, the service `partscope lsp` serves over stdio, on a
 //! current-thread tokio runtime whose clock is paused: debounce and wait timers
 //! then fire as soon as nothing else can run, so one execution takes
@@ -19,9 +18,7 @@
 //! handler that panics is reported even though the session would survive it.
 #![no_main]
 
-#[allow(dead_code, unused_imports)]
-#[path = "../../server/src/lsp/mod.rs"]
-mod lsp;
+use partscope::lsp;
 
 use std::sync::OnceLock;
 use std::time::Duration;

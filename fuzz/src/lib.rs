@@ -19,7 +19,7 @@ pub fn check_tree(program: &Program, input: &[u8]) {
     }
     let len = input.len() as u32;
     for b in &program.blocks {
-        assert!(b.span.start <= b.span.end && b.span.end <= b.end.end && b.end.end <= len);
+        assert!(b.span.start <= b.span.end && b.span.end <= b.end().end && b.end().end <= len);
         for it in program.items_of(b) {
             assert!(it.span.start >= b.span.start && it.span.end <= b.span.end);
         }
@@ -127,8 +127,13 @@ pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     assert!(t.is_finite() && t >= 0.0, "cycle time {t}");
     if t < 60.0 {
         profile.servo_simulation = true;
-        let servo = runtime::dryrun::plan_run(&out, &profile).totals.cycle_time_s;
-        assert!(servo.is_finite() && servo >= 0.0, "servo cycle time {servo}");
+        let servo = runtime::dryrun::plan_run(&out, &profile)
+            .totals
+            .cycle_time_s;
+        assert!(
+            servo.is_finite() && servo >= 0.0,
+            "servo cycle time {servo}"
+        );
     }
     let _ = runtime::dryrun::toolpath(&out, 0.05);
 }

@@ -12,7 +12,7 @@ use serde::Serialize;
 use crate::interp::{Event as IEvent, EventKind, Motion, MotionKind, RunOutput};
 use crate::machine::{MachineProfile, RapidPositioning};
 use crate::plan::{
-    self, cross3, dist3, dot3, sub3, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
+    self, cross3, dist3, dot3, sub3, Causes, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
 };
 
 /// Keys of `[machine]` that the interpreter or the host reads and the planner
@@ -26,6 +26,7 @@ const INTERPRETER_KEYS: &[&str] = &[
     "integer_machine_unit",
     "sequence_number_digits",
     "program_number_digits",
+    "common_variables",
     "machine_unit",
     "block_skip",
     "decimal_point_input",
@@ -152,16 +153,30 @@ pub struct BlockTime {
     pub length_mm: f64,
     /// Highest path speed reached in the block, mm/min.
     pub peak_feed: f64,
+    /// The block's share of the cycle time: its motion time by cause (parabolic
+    /// blends overlap moves, so this can be less than `duration_s`) plus its
+    /// dwell and auxiliary time.
+    pub time_s: f64,
+    pub causes: Causes,
+    pub dwell_s: f64,
+    /// Auxiliary time of the block's events (tool change, spindle, M codes, stops).
+    pub aux_s: f64,
 }
 
 /// What a dry run computes.
 #[derive(Debug, Clone, Default)]
 pub struct DryRun {
     pub totals: Totals,
-    /// Per executed motion (index = motion index), start and end time.
+    /// Per executed motion (index = motion index): start and end on the
+    /// program's clock (dwell and auxiliary time included), and peak speed.
     pub motion_times: Vec<(f64, f64, f64)>,
     /// Program time at which each interpreter event happens (same order as `RunOutput::events`).
     pub event_times: Vec<f64>,
+    /// Seconds each interpreter event takes (dwell, auxiliary), same order as
+    /// `RunOutput::events`.
+    pub event_seconds: Vec<f64>,
+    /// Per-block times and causes ([`block_times`]).
+    pub blocks: Vec<BlockTime>,
 }
 
 /// The sweep angle (radians, signed: + counter-clockwise about `normal`) of an arc motion.
@@ -291,9 +306,10 @@ pub fn planner_events(out: &RunOutput) -> Vec<plan::Event> {
     evs
 }
 
-/// The planner event of an interpreter event, if it takes machine time.
-fn planner_event(ev: &IEvent) -> Option<plan::Event> {
-    let block = u32::MAX;
+/// The planner event of an interpreter event, if it takes machine time; its
+/// `block` is `index`, the event's place in the list it came from.
+fn planner_event(ev: &IEvent, index: usize) -> Option<plan::Event> {
+    let block = index as u32;
     Some(match &ev.kind {
         EventKind::Dwell(s) => plan::Event::Dwell {
             seconds: s.max(0.0),
@@ -329,17 +345,17 @@ fn interleave(
     first_index: usize,
     emit: &mut dyn FnMut(plan::Event),
 ) {
-    let mut e = events.iter().peekable();
+    let mut e = events.iter().enumerate().peekable();
     for (i, m) in motions.iter().enumerate() {
-        while let Some(ev) = e.next_if(|ev| ev.motion_index <= i) {
-            if let Some(pe) = planner_event(ev) {
+        while let Some((k, ev)) = e.next_if(|(_, ev)| ev.motion_index <= i) {
+            if let Some(pe) = planner_event(ev, k) {
                 emit(pe);
             }
         }
         emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32)));
     }
-    for ev in e {
-        if let Some(pe) = planner_event(ev) {
+    for (k, ev) in e {
+        if let Some(pe) = planner_event(ev, k) {
             emit(pe);
         }
     }
@@ -386,6 +402,55 @@ pub struct StreamPlan {
     naive_s: f64,
     rapid: f64,
     motions: usize,
+    /// Per-block figures, when asked for ([`StreamPlan::with_blocks`]).
+    blocks: Option<StreamBlocks>,
+}
+
+/// What [`StreamPlan`] needs to put the planner's elements on their blocks:
+/// the motions the planner holds, by index, file and line, and the dwell and
+/// auxiliary time so far (the planner's clock counts motion only).
+#[derive(Debug, Default)]
+struct StreamBlocks {
+    acc: BlockAcc,
+    /// (motion index, file, line, length).
+    pending: std::collections::VecDeque<(u32, u32, u32, f64)>,
+    offset: f64,
+    last_end: f64,
+}
+
+impl StreamBlocks {
+    /// An element's timing: its motion is the first pending one of its index
+    /// (elements come in motion order; motions without one were joined into
+    /// a later element).
+    fn element(&mut self, t: &SegmentTiming) {
+        while let Some(&(i, file, line, mm)) = self.pending.front() {
+            if i > t.block {
+                break;
+            }
+            self.pending.pop_front();
+            if i == t.block {
+                self.acc.element(file, line, t, self.offset);
+            }
+            // Lengths as `plan_run` adds them: a motion without an element
+            // of its own is placed where the next element starts.
+            let at = t.start_s + self.offset;
+            self.acc.length(file, line, mm, at);
+            if i == t.block {
+                // Blend arcs report on the motion they round off: keep it.
+                self.pending.push_front((i, file, line, 0.0));
+                self.last_end = self.last_end.max(t.end_s + self.offset);
+                break;
+            }
+        }
+    }
+
+    /// Motions no element reported on (the end of the run).
+    fn drain(&mut self) {
+        while let Some((_, file, line, mm)) = self.pending.pop_front() {
+            let at = self.last_end;
+            self.acc.length(file, line, mm, at);
+        }
+    }
 }
 
 impl StreamPlan {
@@ -397,6 +462,7 @@ impl StreamPlan {
             naive_s: 0.0,
             rapid: profile.traj_max_velocity.max(1e-9),
             motions: 0,
+            blocks: None,
         }
     }
 
@@ -408,6 +474,13 @@ impl StreamPlan {
         StreamPlan::new(&cf)
     }
 
+    /// Also gathers the per-block figures of [`block_times`] (memory grows with
+    /// the program's line count, not with its motions).
+    pub fn with_blocks(mut self) -> StreamPlan {
+        self.blocks = Some(StreamBlocks::default());
+        self
+    }
+
     /// Feeds the next chunk of the run (see [`crate::interp::MotionSink`]).
     pub fn push(&mut self, motions: &[Motion], events: &[IEvent]) {
         let first = self.motions;
@@ -417,12 +490,12 @@ impl StreamPlan {
             servo,
             naive_s,
             rapid,
+            blocks,
             ..
         } = self;
         let Some(p) = planner.as_mut() else {
             return;
         };
-        let mut ignore = |_: SegmentTiming| {};
         let mut over = false;
         interleave(motions, events, first, &mut |e| {
             if over {
@@ -438,7 +511,34 @@ impl StreamPlan {
                     return;
                 }
             }
-            p.push(e, &mut ignore);
+            let Some(b) = blocks.as_mut() else {
+                p.push(e, &mut |_| {});
+                return;
+            };
+            let index = event_block(&e);
+            match e {
+                plan::Event::Motion(seg) => {
+                    if let Some(m) = index.checked_sub(first).and_then(|i| motions.get(i)) {
+                        b.pending
+                            .push_back((seg.block, m.file.0, m.line, seg.length));
+                    }
+                    p.push(e, &mut |t| b.element(&t));
+                }
+                _ => {
+                    let before = non_motion_s(p.totals());
+                    p.push(e, &mut |t| b.element(&t));
+                    let now = non_motion_s(p.totals());
+                    b.offset = now;
+                    if let Some(ev) = events.get(index) {
+                        let s = now - before;
+                        let t = p.totals();
+                        let at = t.motion_s + t.aux.in_position_s + before;
+                        let dwell = matches!(ev.kind, EventKind::Dwell(_));
+                        b.acc.event(ev.file.0, ev.line, dwell, at, s);
+                        b.last_end = b.last_end.max(at + s);
+                    }
+                }
+            }
         });
         if over {
             *planner = None;
@@ -448,8 +548,21 @@ impl StreamPlan {
     /// The totals, or `None` when the run passed the servo-simulation limit and must
     /// be planned again with [`StreamPlan::closed_form`].
     pub fn finish(self) -> Option<Totals> {
-        let mut ignore = |_: SegmentTiming| {};
-        self.planner.map(|p| p.finish(&mut ignore))
+        self.finish_with_blocks().map(|(t, _)| t)
+    }
+
+    /// [`StreamPlan::finish`] with the per-block figures (empty unless
+    /// [`StreamPlan::with_blocks`]).
+    pub fn finish_with_blocks(self) -> Option<(Totals, Vec<BlockTime>)> {
+        let p = self.planner?;
+        match self.blocks {
+            Some(mut b) => {
+                let totals = p.finish(&mut |t| b.element(&t));
+                b.drain();
+                Some((totals, b.acc.finish()))
+            }
+            None => Some((p.finish(&mut |_| {}), Vec::new())),
+        }
     }
 }
 
@@ -471,6 +584,96 @@ pub fn stream_totals<R>(
     // A closed-form planner has no limit to pass.
     let totals = plan.finish().unwrap_or_default();
     (out, totals)
+}
+
+/// A change to the machine or the program that a what-if estimate plans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum WhatIfKind {
+    /// The feed override at [`WHAT_IF_FEED_OVERRIDE`] times the profile's.
+    FeedOverride,
+    /// `G64 P`[`WHAT_IF_BLEND_TOLERANCE`] on every move (RS274/NGC).
+    Blend,
+    /// Every axis and the path accelerating [`WHAT_IF_ACCELERATION`] times faster.
+    Acceleration,
+}
+
+/// Feed override factor of [`WhatIfKind::FeedOverride`].
+pub const WHAT_IF_FEED_OVERRIDE: f64 = 1.2;
+/// Blend tolerance of [`WhatIfKind::Blend`], mm.
+pub const WHAT_IF_BLEND_TOLERANCE: f64 = 0.05;
+/// Acceleration factor of [`WhatIfKind::Acceleration`].
+pub const WHAT_IF_ACCELERATION: f64 = 2.0;
+
+/// A what-if estimate: the program planned again with one change.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct WhatIf {
+    /// `feed_override`, `blend` or `acceleration`.
+    pub key: &'static str,
+    pub label: String,
+    pub cycle_time_s: f64,
+    pub motion_s: f64,
+}
+
+impl WhatIfKind {
+    pub const ALL: [WhatIfKind; 3] = [
+        WhatIfKind::FeedOverride,
+        WhatIfKind::Blend,
+        WhatIfKind::Acceleration,
+    ];
+
+    /// Whether the change means something on `dialect`'s control: `G64 P` is
+    /// RS274/NGC's.
+    pub fn applies(self, dialect: Dialect) -> bool {
+        self != WhatIfKind::Blend || dialect == Dialect::Rs274ngc
+    }
+}
+
+/// Plans `events` (from [`planner_events`]) again with one change and
+/// returns the totals' cycle and motion time. This costs one planner run.
+pub fn what_if(events: &[plan::Event], profile: &MachineProfile, kind: WhatIfKind) -> WhatIf {
+    let mut p = profile.clone();
+    let (key, label) = match kind {
+        WhatIfKind::FeedOverride => {
+            p.feed_override *= WHAT_IF_FEED_OVERRIDE;
+            (
+                "feed_override",
+                format!("feed override {:.0} %", p.feed_override * 100.0),
+            )
+        }
+        WhatIfKind::Blend => (
+            "blend",
+            format!("G64 P{WHAT_IF_BLEND_TOLERANCE} (mm) on every move"),
+        ),
+        WhatIfKind::Acceleration => {
+            for a in &mut p.axes {
+                a.max_acceleration *= WHAT_IF_ACCELERATION;
+            }
+            p.traj_max_acceleration *= WHAT_IF_ACCELERATION;
+            (
+                "acceleration",
+                format!("{WHAT_IF_ACCELERATION}× acceleration on every axis"),
+            )
+        }
+    };
+    if p.servo_simulation && naive_seconds(events, &p) > SERVO_SIMULATION_LIMIT_S {
+        p.servo_simulation = false;
+    }
+    let mut planner = plan::Planner::new(&p);
+    let mut ignore = |_: SegmentTiming| {};
+    for ev in events {
+        let mut ev = *ev;
+        if let (WhatIfKind::Blend, plan::Event::Motion(seg)) = (kind, &mut ev) {
+            seg.mode = PathMode::blend(WHAT_IF_BLEND_TOLERANCE);
+        }
+        planner.push(ev, &mut ignore);
+    }
+    let totals = planner.finish(&mut ignore);
+    WhatIf {
+        key,
+        label,
+        cycle_time_s: totals.cycle_time_s,
+        motion_s: totals.motion_s,
+    }
 }
 
 /// Plans a run.
@@ -499,6 +702,8 @@ fn plan_run_stoppable(
 ) -> (DryRun, bool) {
     let events = planner_events(out);
     let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
+    let mut event_seconds: Vec<f64> = vec![0.0; out.events.len()];
+    let mut blocks = BlockAcc::default();
     // Period-by-period execution costs time in proportion to machine time; beyond
     // SERVO_SIMULATION_LIMIT_S of (naively estimated) motion the closed-form profiles,
     // within a few milliseconds of it per move, keep long jobs fast.
@@ -508,13 +713,20 @@ fn plan_run_stoppable(
     }
     let profile = &profile;
     let mut planner = plan::Planner::new(profile);
+    // The planner's clock counts motion only; the dwell and auxiliary time
+    // before an element puts it on the program's clock.
+    let offset = std::cell::Cell::new(0.0);
     let mut record = |t: SegmentTiming| {
+        let off = offset.get();
         if let Some(slot) = motion_times.get_mut(t.block as usize) {
             if slot.1 == 0.0 {
-                slot.0 = t.start_s;
+                slot.0 = t.start_s + off;
             }
-            slot.1 = slot.1.max(t.end_s);
+            slot.1 = slot.1.max(t.end_s + off);
             slot.2 = slot.2.max(t.peak_speed);
+        }
+        if let Some(m) = out.motions.get(t.block as usize) {
+            blocks.element(m.file.0, m.line, &t, off);
         }
     };
     let mut stopped = false;
@@ -523,30 +735,171 @@ fn plan_run_stoppable(
             stopped = true;
             break;
         }
+        let before = match ev {
+            plan::Event::Motion(_) => None,
+            _ => Some(non_motion_s(planner.totals())),
+        };
+        let index = event_block(&ev);
         planner.push(ev, &mut record);
+        if let Some(before) = before {
+            let now = non_motion_s(planner.totals());
+            offset.set(now);
+            if let Some(slot) = event_seconds.get_mut(index) {
+                *slot += now - before;
+            }
+        }
     }
     let totals = planner.finish(&mut record);
-    // Events happen at the end of the motion before them (the planner stops first).
+    // Events happen at the end of the motion before them (the planner stops
+    // first), after the events before them there.
     let mut event_times = Vec::with_capacity(out.events.len());
-    for ev in &out.events {
-        let t = if ev.motion_index == 0 {
-            0.0
-        } else {
-            motion_times
-                .get(ev.motion_index - 1)
-                .map(|m| m.1)
-                .unwrap_or(totals.cycle_time_s)
-        };
-        event_times.push(t);
+    let mut last_end: f64 = 0.0;
+    // The latest end of the motions before the event (a joined or empty motion
+    // has no time of its own).
+    let mut seen = 0;
+    let mut motion_end: f64 = 0.0;
+    for (i, ev) in out.events.iter().enumerate() {
+        while seen < ev.motion_index.min(motion_times.len()) {
+            motion_end = motion_end.max(motion_times[seen].1);
+            seen += 1;
+        }
+        // Motion ends are on the program clock already; an event right after
+        // another one starts when that one ends.
+        let at = motion_end.max(last_end);
+        let s = event_seconds.get(i).copied().unwrap_or(0.0);
+        event_times.push(at);
+        blocks.event(
+            ev.file.0,
+            ev.line,
+            matches!(ev.kind, EventKind::Dwell(_)),
+            at,
+            s,
+        );
+        last_end = at + s;
+    }
+    // A motion without an element of its own (joined into a later one, or
+    // empty) is placed where the next element starts.
+    let mut at = motion_times.iter().map(|t| t.1).fold(0.0, f64::max);
+    for (m, t) in out.motions.iter().zip(&motion_times).rev() {
+        if t.1 > 0.0 {
+            at = t.0;
+        }
+        blocks.length(m.file.0, m.line, segment_of(m, 0).length, at);
     }
     (
         DryRun {
             totals,
             motion_times,
             event_times,
+            event_seconds,
+            blocks: blocks.finish(),
         },
         stopped,
     )
+}
+
+/// Time spent outside motion so far: dwell and auxiliary time (in-position
+/// settling belongs to the motion, whose clock it advances).
+fn non_motion_s(t: &Totals) -> f64 {
+    t.dwell_s + t.tool_change_s + t.other_s - t.aux.in_position_s
+}
+
+/// Per-block figures gathered as the planner reports elements: the main
+/// file's blocks by line in a vector, other files' in a map.
+#[derive(Debug, Default)]
+pub struct BlockAcc {
+    main: Vec<Option<BlockTime>>,
+    other: BTreeMap<(u32, u32), BlockTime>,
+}
+
+impl BlockAcc {
+    fn slot(&mut self, file: u32, line: u32, at: f64) -> &mut BlockTime {
+        let fresh = || BlockTime {
+            file,
+            line,
+            start_s: at,
+            end_s: at,
+            duration_s: 0.0,
+            length_mm: 0.0,
+            peak_feed: 0.0,
+            time_s: 0.0,
+            causes: Causes::default(),
+            dwell_s: 0.0,
+            aux_s: 0.0,
+        };
+        if file == 0 {
+            let i = line as usize;
+            if self.main.len() <= i {
+                self.main.resize(i + 1, None);
+            }
+            self.main[i].get_or_insert_with(fresh)
+        } else {
+            self.other.entry((file, line)).or_insert_with(fresh)
+        }
+    }
+
+    /// A planner element of a motion on (`file`, `line`); `offset` moves its
+    /// times from the planner's motion clock to the program's.
+    pub fn element(&mut self, file: u32, line: u32, t: &SegmentTiming, offset: f64) {
+        let (start, end) = (t.start_s + offset, t.end_s + offset);
+        let b = self.slot(file, line, start);
+        b.start_s = b.start_s.min(start);
+        b.end_s = b.end_s.max(end);
+        b.duration_s += (end - start).max(0.0);
+        b.peak_feed = b.peak_feed.max(t.peak_speed * 60.0);
+        b.causes.add(&t.causes);
+        b.time_s += t.causes.total_s();
+    }
+
+    /// An event of `s` seconds starting at `at` (dwell, or auxiliary time).
+    pub fn event(&mut self, file: u32, line: u32, dwell: bool, at: f64, s: f64) {
+        if s <= 0.0 {
+            return;
+        }
+        let b = self.slot(file, line, at);
+        b.start_s = b.start_s.min(at);
+        b.end_s = b.end_s.max(at + s);
+        if dwell {
+            b.dwell_s += s;
+        } else {
+            b.aux_s += s;
+        }
+        b.time_s += s;
+    }
+
+    /// A motion's programmed length, also for one the planner joined into a
+    /// later element; `at` is where a block that gets no element starts.
+    pub fn length(&mut self, file: u32, line: u32, mm: f64, at: f64) {
+        self.slot(file, line, at).length_mm += mm;
+    }
+
+    /// The blocks in the order they first ran.
+    pub fn finish(self) -> Vec<BlockTime> {
+        let mut v: Vec<BlockTime> = self
+            .main
+            .into_iter()
+            .flatten()
+            .chain(self.other.into_values())
+            .collect();
+        v.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+        v
+    }
+}
+
+/// The `block` of a planner event: the motion index of a motion, the
+/// interpreter event's index of anything else.
+fn event_block(ev: &plan::Event) -> usize {
+    let b = match ev {
+        plan::Event::Motion(s) => s.block,
+        plan::Event::Dwell { block, .. }
+        | plan::Event::ToolChange { block, .. }
+        | plan::Event::SpindleStart { block, .. }
+        | plan::Event::SpindleStop { block }
+        | plan::Event::ProgramStop { block, .. }
+        | plan::Event::MCode { block, .. }
+        | plan::Event::ToolSelect { block, .. } => *block,
+    };
+    b as usize
 }
 
 /// Samples motions into polylines with at most `chord` mm deviation on arcs;
@@ -676,26 +1029,9 @@ fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) 
     tp
 }
 
-/// Per-block times (summed over the motions of each (file, line)).
-pub fn block_times(out: &RunOutput, dry: &DryRun) -> Vec<BlockTime> {
-    let mut by_line: BTreeMap<(u32, u32), BlockTime> = BTreeMap::new();
-    for (m, t) in out.motions.iter().zip(&dry.motion_times) {
-        let e = by_line.entry((m.file.0, m.line)).or_insert(BlockTime {
-            file: m.file.0,
-            line: m.line,
-            start_s: t.0,
-            end_s: t.1,
-            duration_s: 0.0,
-            length_mm: 0.0,
-            peak_feed: 0.0,
-        });
-        e.start_s = e.start_s.min(t.0);
-        e.end_s = e.end_s.max(t.1);
-        e.duration_s += (t.1 - t.0).max(0.0);
-        e.length_mm += segment_of(m, 0).length;
-        e.peak_feed = e.peak_feed.max(t.2 * 60.0);
-    }
-    let mut v: Vec<BlockTime> = by_line.into_values().collect();
-    v.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
-    v
+/// Per-block times (summed over the motions and events of each (file, line)),
+/// on the program's clock, in the order the blocks first ran; a block appears
+/// when it moves or its events take time.
+pub fn block_times(_out: &RunOutput, dry: &DryRun) -> Vec<BlockTime> {
+    dry.blocks.clone()
 }

@@ -138,3 +138,52 @@ fn streamed_totals_equal_buffered_fanuc() {
     assert_eq!(nb, ns);
     assert_eq!(buffered, streamed);
 }
+
+/// The streamed per-block figures (`StreamPlan::with_blocks`) are the buffered
+/// ones (`block_times`): times on the program clock, causes, dwell, auxiliary
+/// time and lengths, across chunk boundaries and G64 chains the planner joins.
+#[test]
+fn streamed_blocks_equal_buffered_blocks() {
+    let mut text = String::from("G21 G90 G64 P0.01 Q0.01\nM6 T1\nG0 X0 Y0 Z1\nG1 Z0 F600\n");
+    for i in 0..6000 {
+        let x = (i % 100) as f64 * 0.05;
+        let y = (i / 100) as f64 * 0.5;
+        writeln!(text, "G1 X{x:.3} Y{y:.3} F1800").unwrap();
+        if i % 1500 == 0 {
+            text.push_str("G4 P0.5\n");
+        }
+    }
+    text.push_str("G0 Z5\nM2\n");
+    let dialect = Dialect::Rs274ngc;
+    let p = program(dialect, &text);
+    let settings = Settings::new(dialect);
+    let machine: toml::Table = toml::from_str("tool_change_time = 3.0").unwrap();
+    let profile = dryrun::profile_from_table(&machine, dialect).unwrap();
+    let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
+    let dry = dryrun::plan_run(&buffered, &profile);
+    let mut plan = StreamPlan::new(&profile).with_blocks();
+    runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| plan.push(m, e));
+    let (totals, blocks) = plan.finish_with_blocks().unwrap();
+    assert_eq!(totals, dry.totals);
+    let want = dryrun::block_times(&buffered, &dry);
+    assert_eq!(blocks.len(), want.len());
+    for (a, b) in blocks.iter().zip(&want) {
+        let same = |x: f64, y: f64| (x - y).abs() <= 1e-9 * (1.0 + y.abs());
+        assert_eq!((a.file, a.line), (b.file, b.line));
+        assert!(
+            same(a.start_s, b.start_s) && same(a.end_s, b.end_s) && same(a.time_s, b.time_s),
+            "{a:?}\n{b:?}"
+        );
+        assert!(
+            same(a.length_mm, b.length_mm) && same(a.dwell_s, b.dwell_s),
+            "{a:?}\n{b:?}"
+        );
+        assert!(same(a.aux_s, b.aux_s) && same(a.causes.total_s(), b.causes.total_s()));
+    }
+    let sum: f64 = want.iter().map(|b| b.time_s).sum();
+    assert!(
+        (sum - dry.totals.cycle_time_s).abs() < 1e-6,
+        "{sum} {}",
+        dry.totals.cycle_time_s
+    );
+}

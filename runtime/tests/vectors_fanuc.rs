@@ -719,3 +719,46 @@ fn wait_loop_on_a_machine_variable() {
     let out = run_fanuc("N1 GOTO 1;\nM30;\n", "");
     assert_eq!(out.diagnostics[0].severity, analyzer::Severity::Warning);
 }
+
+/// Real shops' macros (corpus classes N3–N6, hold-out fn39/fn51): a machine value
+/// the dry run cannot know is neither vacant nor a certain alarm, also after it
+/// was copied into a local; M29 without any tap in the file is a builder's M code.
+#[test]
+fn machine_values_copied_and_used_are_not_certain_faults() {
+    let found = |text: &str| -> Vec<(String, u32, analyzer::Severity)> {
+        let out = run_fanuc(text, "");
+        let idx = analyzer::LineIndex::new(text.as_bytes());
+        out.diagnostics
+            .iter()
+            .map(|d| {
+                (
+                    d.code.to_string(),
+                    idx.line_col(d.span.start).0 + 1,
+                    d.severity,
+                )
+            })
+            .collect()
+    };
+    use analyzer::Severity::Info;
+    // A feed from a retained common: no zero-feed alarm, no vacant word, here or
+    // on the next feed move; a vacant #100-range common still is both.
+    assert_eq!(found("%\nO1\nG91 G01 X5. F#610\nG01 X5.\nM30\n%\n"), vec![]);
+    let vacant = found("%\nO1\nG91 G01 X5. F#111\nM30\n%\n");
+    let codes: Vec<&str> = vacant.iter().map(|(c, _, _)| c.as_str()).collect();
+    assert_eq!(codes, vec!["X005", "F001"]);
+    // The skip position after G31, copied into a common, decides a branch: the
+    // alarm behind it depends on the machine.
+    let skip = "%\nO4\nG90 G0 X0 Y0\nG31 X30. F200.\n#110 = #5061\nIF [#110 EQ 30.] GOTO 10\n#3000 = 1 (NO TOUCH)\nN10 M30\n%\n";
+    assert_eq!(found(skip), vec![("X004".to_string(), 7, Info)]);
+    // A local set from a retained common is assigned, not read before it is.
+    assert_eq!(
+        found("%\nO5\n#24 = #516\nG91 G01 X[#24] F100.\nM30\n%\n"),
+        vec![]
+    );
+    // M29 in a file without G84/G74 is not rigid tapping (parameter 5210's default
+    // code is a conveyor on some machines).
+    assert_eq!(
+        found("%\nO6\nM29 (CONVEYOR)\nG91 G01 X5. F300.\nM30\n%\n"),
+        vec![]
+    );
+}

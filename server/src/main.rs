@@ -1,13 +1,7 @@
 //! `partscope`: lint, dry-run and language server for CNC part programs.
 
-mod cli;
-mod lsp;
-mod picture;
-mod resolve;
-mod rules;
-
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    cli::main()
+    partscope::cli::main()
 }

@@ -1,9 +1,13 @@
-//! Pictures of a toolpath: SVG (isometric view plus top/front/side views) and PNG.
+//! Pictures of a toolpath: SVG (isometric view plus top/front/side views), and
+//! PNG as that SVG rasterised by resvg, so both show the same drawing.
 
 use std::fmt::Write as _;
 use std::path::Path;
 
-use runtime::dryrun::{DryRun, Toolpath};
+use resvg::tiny_skia;
+use resvg::usvg::{self, fontdb};
+
+use runtime::dryrun::{DryRun, Toolpath, ToolpathSegment};
 
 /// A view: projects a 3D point to 2D (x right, y up).
 #[derive(Clone, Copy)]
@@ -164,6 +168,72 @@ fn esc(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
+/// The attributes of `seg`'s polyline after its points, closing the element: rapids
+/// dashed, feed moves coloured by their feed within `feeds` and tagged with their line.
+fn style(seg: &ToolpathSegment, feeds: (f64, f64)) -> String {
+    if seg.kind == "rapid" {
+        return r##"" fill="none" stroke="#e04040" stroke-width="0.8" stroke-dasharray="4 3" opacity="0.7"/>"##.to_string() + "\n";
+    }
+    let (r, g, b) = feed_colour(seg.feed, feeds.0, feeds.1);
+    format!(
+        "\" fill=\"none\" stroke=\"rgb({r},{g},{b})\" stroke-width=\"1.2\" data-line=\"{}\"/>\n",
+        seg.line + 1
+    )
+}
+
+/// Characters `format!("{x:.2}")` takes at most (rounding may carry into a new digit).
+fn fixed2_len(x: f64) -> u64 {
+    let int = (x.abs() + 0.005).floor();
+    let mut digits = 1;
+    let mut p = 10.0;
+    while int >= p {
+        digits += 1;
+        p *= 10.0;
+    }
+    u64::from(x.is_sign_negative()) + digits + 3
+}
+
+/// The points of `seg` in the view of `f` that can be drawn.
+fn screen_points<'a>(
+    seg: &'a ToolpathSegment,
+    f: &'a Frame,
+) -> impl Iterator<Item = (f64, f64)> + 'a {
+    seg.points
+        .iter()
+        .map(|p| f.map(*p))
+        .filter(|(x, y)| x.is_finite() && y.is_finite())
+}
+
+/// Bytes at most that [`polyline`] appends for `seg` in the view of `f`, with
+/// `style` its [`style`].
+fn polyline_len(seg: &ToolpathSegment, f: &Frame, style: &str) -> u64 {
+    let (mut len, mut n) = (0u64, 0u64);
+    for (x, y) in screen_points(seg, f) {
+        len += fixed2_len(x) + 1 + fixed2_len(y) + 1;
+        n += 1;
+    }
+    if n < 2 {
+        return 0;
+    }
+    r#"<polyline points=""#.len() as u64 + len - 1 + style.len() as u64
+}
+
+/// Appends the polyline of `seg` in the view of `f`, closed by `style`; nothing for a
+/// segment with fewer than two points that can be drawn.
+fn polyline(s: &mut String, seg: &ToolpathSegment, f: &Frame, style: &str) {
+    if screen_points(seg, f).nth(1).is_none() {
+        return;
+    }
+    s.push_str(r#"<polyline points=""#);
+    for (i, (x, y)) in screen_points(seg, f).enumerate() {
+        if i > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{x:.2},{y:.2}");
+    }
+    s.push_str(style);
+}
+
 /// Largest SVG written by default, in MB: beyond it the picture is cut off, see
 /// [`svg`].
 pub const DEFAULT_MAX_SVG_MB: u64 = 32;
@@ -181,10 +251,8 @@ pub fn svg(
     let (w, h, views) = layout();
     let (fmin, fmax) = feed_range(tp);
     let mut s = String::new();
-    // Bytes handed to `out`; the legend after the toolpath takes under 8 KB.
-    let mut written = 0u64;
+    // The legend after the toolpath takes under 8 KB.
     let budget = max_bytes.saturating_sub(8192);
-    let mut cut: Option<(u32, u32)> = None;
     let _ = writeln!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="sans-serif">"#
@@ -200,8 +268,26 @@ pub fn svg(
         t.rapid_s,
         t.distance_mm
     );
-    for (view, bx) in views {
-        let f = Frame::new(tp, view, bx);
+    let frames: Vec<(View, Rect, Frame)> = views
+        .into_iter()
+        .map(|(view, bx)| (view, bx, Frame::new(tp, view, bx)))
+        .collect();
+    // Every view draws the same segments: as many, from the first, as fit in all views
+    // together (each view's frame and name take under 300 bytes).
+    let mut size = (s.len() + 300 * frames.len()) as u64;
+    let mut limit = tp.segments.len();
+    for (i, seg) in tp.segments.iter().enumerate() {
+        let style = style(seg, (fmin, fmax));
+        size += frames
+            .iter()
+            .map(|(_, _, f)| polyline_len(seg, f, &style))
+            .sum::<u64>();
+        if size > budget {
+            limit = i;
+            break;
+        }
+    }
+    for (view, bx, f) in &frames {
         let _ = writeln!(
             s,
             r##"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#ddd"/>"##,
@@ -217,45 +303,16 @@ pub fn svg(
             bx.1 + 14.0,
             view.name()
         );
-        for seg in &tp.segments {
+        for seg in &tp.segments[..limit] {
             if s.len() > 1 << 16 {
                 out.write_all(s.as_bytes())?;
-                written += s.len() as u64;
                 s.clear();
             }
-            // A polyline takes at most 24 bytes a point and 200 besides.
-            let need = 200 + 24 * seg.points.len() as u64;
-            if cut.is_some() || written + s.len() as u64 + need > budget {
-                cut = cut.or(Some((seg.line, seg.file)));
-                break;
-            }
-            let pts: Vec<String> = seg
-                .points
-                .iter()
-                .map(|p| f.map(*p))
-                .filter(|(x, y)| x.is_finite() && y.is_finite())
-                .map(|(x, y)| format!("{x:.2},{y:.2}"))
-                .collect();
-            if pts.len() < 2 {
-                continue;
-            }
-            if seg.kind == "rapid" {
-                let _ = writeln!(
-                    s,
-                    r##"<polyline points="{}" fill="none" stroke="#e04040" stroke-width="0.8" stroke-dasharray="4 3" opacity="0.7"/>"##,
-                    pts.join(" ")
-                );
-            } else {
-                let (r, g, b) = feed_colour(seg.feed, fmin, fmax);
-                let _ = writeln!(
-                    s,
-                    r#"<polyline points="{}" fill="none" stroke="rgb({r},{g},{b})" stroke-width="1.2" data-line="{}"/>"#,
-                    pts.join(" "),
-                    seg.line + 1
-                );
-            }
+            polyline(&mut s, seg, f, &style(seg, (fmin, fmax)));
         }
     }
+    // The first segment left out.
+    let cut = tp.segments.get(limit).map(|seg| (seg.line, seg.file));
     // Legend: rapids and the feed colour ramp.
     let ly = h - 22.0;
     let _ = writeln!(
@@ -293,63 +350,94 @@ pub fn svg(
     Ok(cut)
 }
 
-pub fn png(tp: &Toolpath, path: &Path) -> Result<(), String> {
-    use tiny_skia::{Color, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform};
-    let (w, h, views) = layout();
-    let mut pm = Pixmap::new(w as u32, h as u32).ok_or("cannot allocate the picture")?;
-    pm.fill(Color::from_rgba8(250, 250, 250, 255));
-    let (fmin, fmax) = feed_range(tp);
-    for (view, bx) in views {
-        let f = Frame::new(tp, view, bx);
-        let mut frame = PathBuilder::new();
-        frame.push_rect(
-            tiny_skia::Rect::from_xywh(
-                (bx.0 + 2.0) as f32,
-                bx.1 as f32,
-                (bx.2 - 4.0) as f32,
-                (bx.3 - 2.0) as f32,
-            )
-            .ok_or("bad frame")?,
-        );
-        if let Some(p) = frame.finish() {
-            let mut paint = Paint::default();
-            paint.set_color_rgba8(221, 221, 221, 255);
-            pm.stroke_path(&p, &paint, &Stroke::default(), Transform::identity(), None);
-        }
-        for seg in &tp.segments {
-            let mut pb = PathBuilder::new();
-            let mut first = true;
-            for p in &seg.points {
-                let (x, y) = f.map(*p);
-                if !(x.is_finite() && y.is_finite()) {
-                    continue;
-                }
-                if first {
-                    pb.move_to(x as f32, y as f32);
-                    first = false;
-                } else {
-                    pb.line_to(x as f32, y as f32);
-                }
-            }
-            let Some(path) = pb.finish() else { continue };
-            let mut paint = Paint {
-                anti_alias: true,
-                ..Paint::default()
-            };
-            let mut stroke = Stroke {
-                width: 1.2,
-                ..Stroke::default()
-            };
-            if seg.kind == "rapid" {
-                paint.set_color_rgba8(224, 64, 64, 180);
-                stroke.width = 0.8;
-                stroke.dash = StrokeDash::new(vec![4.0, 3.0], 0.0);
-            } else {
-                let (r, g, b) = feed_colour(seg.feed, fmin, fmax);
-                paint.set_color_rgba8(r, g, b, 255);
-            }
-            pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+/// Families tried, in order, for the picture's `sans-serif` text; the first
+/// installed one is used, else any installed family.
+const SANS_SERIF: &[&str] = &[
+    "DejaVu Sans",
+    "Liberation Sans",
+    "Noto Sans",
+    "Arial",
+    "Helvetica",
+    "FreeSans",
+];
+
+/// The system's fonts (the folders fontdb searches: fontconfig's on Linux),
+/// with `sans-serif` mapped to an installed family. `None` when no font is
+/// installed.
+fn system_fonts() -> Option<fontdb::Database> {
+    let mut db = fontdb::Database::new();
+    db.load_system_fonts();
+    let installed = |name: &str| {
+        db.faces()
+            .any(|f| f.families.iter().any(|(family, _)| family == name))
+    };
+    let family = match SANS_SERIF.iter().find(|name| installed(name)) {
+        Some(name) => name.to_string(),
+        None => db.faces().next()?.families.first()?.0.clone(),
+    };
+    db.set_sans_serif_family(family);
+    Some(db)
+}
+
+/// Rasterises an SVG picture made by [`svg`] into a PNG file at its own size,
+/// text included when the system has a font. Returns whether it had one.
+pub fn png(svg: &[u8], path: &Path) -> Result<bool, String> {
+    let fonts = system_fonts();
+    let has_fonts = fonts.is_some();
+    let options = usvg::Options {
+        fontdb: std::sync::Arc::new(fonts.unwrap_or_default()),
+        ..usvg::Options::default()
+    };
+    let tree = usvg::Tree::from_data(svg, &options).map_err(|e| e.to_string())?;
+    let size = tree.size().to_int_size();
+    let mut pixmap =
+        tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("cannot allocate the picture")?;
+    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    pixmap.save_png(path).map_err(|e| e.to_string())?;
+    Ok(has_fonts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fixed2_len_bounds_the_formatted_length() {
+        for x in [
+            0.0, -0.0, 0.004, -0.001, 9.994, 9.995, 9.996, 99.999, 100.0, -123.456, 1e6, 1e15,
+            -9999.995, 0.5, 1e-9,
+        ] {
+            let real = format!("{x:.2}").len() as u64;
+            let bound = fixed2_len(x);
+            assert!(real <= bound && bound <= real + 1, "{x}: {real} vs {bound}");
         }
     }
-    pm.save_png(path).map_err(|e| e.to_string())
+
+    #[test]
+    fn polyline_len_bounds_the_polyline() {
+        let tp = Toolpath {
+            segments: vec![ToolpathSegment {
+                kind: "feed",
+                line: 41,
+                file: 0,
+                feed: 800.0,
+                tool: 1,
+                points: vec![[0.0, 0.0, 0.0], [-12.345, 99.999, 3.0], [1e4, 5.0, -7.0]],
+            }],
+            ..Toolpath::default()
+        };
+        for (view, bx) in layout().2 {
+            let f = Frame::new(&tp, view, bx);
+            let seg = &tp.segments[0];
+            let style = style(seg, (100.0, 1000.0));
+            let mut s = String::new();
+            polyline(&mut s, seg, &f, &style);
+            let bound = polyline_len(seg, &f, &style);
+            assert!(s.ends_with("data-line=\"42\"/>\n"), "{s}");
+            assert!(
+                s.len() as u64 <= bound && bound <= s.len() as u64 + 6,
+                "{s}: {bound}"
+            );
+        }
+    }
 }

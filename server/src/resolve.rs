@@ -21,6 +21,8 @@ pub struct FsResolver {
     max_mb: u64,
     /// Files found but not read, by the name called: why.
     refused: Mutex<Vec<(String, String)>>,
+    /// Every file handed to the interpreter: (name as called, path, text).
+    loaded: Mutex<Vec<crate::lsp::Loaded>>,
 }
 
 impl FsResolver {
@@ -42,6 +44,7 @@ impl FsResolver {
             .unwrap_or_else(|| main_dir.clone());
         FsResolver {
             dirs: Mutex::new(vec![main_dir.clone()]),
+            loaded: Mutex::new(Vec::new()),
             main_dir,
             search: Vec::new(),
             root,
@@ -114,6 +117,21 @@ impl Resolver for FsResolver {
     }
 
     fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile> {
+        let found = self.find(name, from)?;
+        if let Ok(mut l) = self.loaded.lock() {
+            l.push((name.to_string(), found.path.clone(), found.text.clone()));
+        }
+        Some(found)
+    }
+}
+
+impl FsResolver {
+    /// The files the run loaded, in order: (name as called, path, text).
+    pub fn loaded(&self) -> Vec<crate::lsp::Loaded> {
+        self.loaded.lock().map(|l| l.clone()).unwrap_or_default()
+    }
+
+    fn find(&self, name: &str, from: FileId) -> Option<ResolvedFile> {
         if name.is_empty() || name.contains(['/', '\\']) || name.contains("..") {
             return None;
         }

@@ -307,7 +307,7 @@ fn run_writes_pictures_and_block_times() {
     let mut lines = csv.lines();
     assert_eq!(
         lines.next(),
-        Some("line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min")
+        Some("line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min,time_s,feed_s,accel_s,corner_s,axis_cap_s,traj_cap_s,curve_cap_s,servo_cap_s,rapid_s,dwell_s,aux_s")
     );
     // Line 4 is the 10 mm feed move; line 5 the half circle of radius 5 (5π mm).
     let row = |n: &str| {
@@ -765,10 +765,28 @@ fn outputs_never_overwrite_inputs_and_fifos_are_refused() {
     let dir = tempdir("outputs");
     let prog = write(&dir, "p.ngc", b"G21 G90\nG0 X1\nM2\n");
     let p = prog.to_str().unwrap();
-    for flag in ["--svg", "--png"] {
+    for flag in ["--svg", "--png", "--html"] {
         let out = bin().args(["run", p, flag, p]).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{flag}");
         assert_eq!(std::fs::read(&prog).unwrap(), b"G21 G90\nG0 X1\nM2\n");
+    }
+    // Nor a subprogram file the run loaded.
+    let caller = write(&dir, "caller.ngc", b"G21 G90\no<lib> call\nM2\n");
+    let lib = write(&dir, "lib.ngc", b"o<lib> sub\nG0 X2\no<lib> endsub\n");
+    for flag in ["--svg", "--png", "--html"] {
+        let out = bin()
+            .args(["run", caller.to_str().unwrap(), flag, lib.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flag}");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("that is a file the run reads"),
+            "{flag}"
+        );
+        assert_eq!(
+            std::fs::read(&lib).unwrap(),
+            b"o<lib> sub\nG0 X2\no<lib> endsub\n"
+        );
     }
     let svg = dir.join("p.svg");
     let out = bin()
@@ -844,4 +862,452 @@ fn sarif_locations_are_relative_encoded_uris() {
         serde_json::json!({"uri": "my%20part%231.ngc", "uriBaseId": "%SRCROOT%"})
     );
     drop(f);
+}
+
+/// `run` says where the time goes, by hand on the trapezoid planner (X, Y at
+/// 100 mm/s and 1000 mm/s², TRAJ 100 mm/s, exact stops):
+/// - G0 X10: a triangle up to 100 mm/s, 2·sqrt(10/1000) = 0.2 s of rapids;
+/// - G1 X60 F3000: 50 mm at 50 mm/s, 1 s at feed and v/a = 0.05 s of ramps;
+/// - G4 P2: 2 s of dwell;
+/// - G1 Y100 F12000: 200 mm/s capped to 100 by TRAJ: 0.5 s at feed, 0.5 s for
+///   the cap, 0.1 s of ramps.
+///
+/// The what-ifs: 120 % feed runs the F3000 move at 60 mm/s (50/60 + 0.06 s);
+/// G64 P0.05 changes nothing here (every move stops for the rapid, the dwell
+/// or the end); 2000 mm/s² lets the rapid reach 100 mm/s (10/100 + 0.05 s)
+/// and halves every ramp.
+#[test]
+fn run_says_where_the_time_goes() {
+    let d = tempdir("causes");
+    let f = write(
+        &d,
+        "hand.ngc",
+        b"G21 G90 G94 G61.1\nG0 X10\nG1 X60 F3000\nG4 P2\nG1 X60 Y100 F12000\nM2\n",
+    );
+    let m = write(&d, "m.toml", b"[machine]\nplanner = \"trapezoid\"\n");
+    let run = |extra: &[&str]| {
+        let out = bin()
+            .args(["run", f.to_str().unwrap(), "--machine", m.to_str().unwrap()])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(
+            out.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let human = run(&[]);
+    let section: Vec<&str> = human
+        .lines()
+        .skip_while(|l| *l != "  where the time goes")
+        .take_while(|l| *l != "  slowest blocks")
+        .collect();
+    assert_eq!(
+        section,
+        [
+            "  where the time goes",
+            "  cutting at programmed feed            00:01.500   34.5 %",
+            "  limited by acceleration               00:00.150    3.4 %",
+            "  limited by the TRAJ velocity cap      00:00.500   11.5 %",
+            "  rapids                                00:00.200    4.6 %",
+            "  dwell                                 00:02.000   46.0 %",
+            "  - 1 move programmed above the TRAJ velocity cap of F6000 cost 0.500 s: 23 % of cutting time",
+            "  - ramps at the acceleration limit (2 moves, at starts, stops and short moves) cost 0.150 s: 7.0 % of cutting time",
+            "",
+            "  what if (planned again)",
+            "  feed override 120 %                   00:04.193     -0.157 s  (-3.6 %)",
+            "  G64 P0.05 (mm) on every move          00:04.350     +0.000 s  (+0.0 %)",
+            "  2× acceleration on every axis         00:04.225     -0.125 s  (-2.9 %)",
+            "",
+        ],
+        "{human}"
+    );
+    assert!(
+        human.contains(
+            "  line 4           2.000 s       0.00 mm  peak        0 mm/min  dwell 100 %"
+        ),
+        "{human}"
+    );
+
+    let v: serde_json::Value = serde_json::from_str(&run(&["--format", "json"])).unwrap();
+    let close = |key: &str, got: &serde_json::Value, want: f64| {
+        let g = got.as_f64().unwrap_or(f64::NAN);
+        assert!((g - want).abs() < 1e-9, "{key}: got {g}, want {want}");
+    };
+    let c = &v["time_causes"];
+    for (k, want) in [
+        ("feed_s", 1.5),
+        ("accel_s", 0.15),
+        ("corner_s", 0.0),
+        ("traj_cap_s", 0.5),
+        ("axis_cap_s", 0.0),
+        ("rapid_s", 0.2),
+        ("dwell_s", 2.0),
+        ("auxiliary_s", 0.0),
+    ] {
+        close(k, &c[k], want);
+    }
+    close("cycle_time_s", &v["cycle_time_s"], 4.35);
+    assert_eq!(c["moves"]["traj_cap"], 1);
+    let what: Vec<(String, f64)> = v["what_if"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| {
+            (
+                w["key"].as_str().unwrap().to_string(),
+                w["cycle_time_s"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    let want = [
+        ("feed_override", 0.2 + 50.0 / 60.0 + 0.06 + 2.0 + 1.1),
+        ("blend", 4.35),
+        ("acceleration", 0.15 + 1.025 + 2.0 + 1.05),
+    ];
+    assert_eq!(what.len(), 3);
+    for ((k, got), (wk, w)) in what.iter().zip(want) {
+        assert_eq!(k, wk);
+        close(k, &serde_json::json!(got), w);
+    }
+    // Per block: time on the program clock and its causes.
+    let blocks = v["blocks"].as_array().unwrap();
+    let lines: Vec<u64> = blocks.iter().map(|b| b["line"].as_u64().unwrap()).collect();
+    assert_eq!(lines, [2, 3, 4, 5]);
+    close("line 3 feed", &blocks[1]["causes"]["feed_s"], 1.0);
+    close("line 3 accel", &blocks[1]["causes"]["accel_s"], 0.05);
+    close("line 4 start", &blocks[2]["start_s"], 1.25);
+    close("line 4 dwell", &blocks[2]["causes"]["dwell_s"], 2.0);
+    close("line 5 start", &blocks[3]["start_s"], 3.25);
+    close("line 5 cap", &blocks[3]["causes"]["traj_cap_s"], 0.5);
+    close("line 5 end", &blocks[3]["end_s"], 4.35);
+    assert_eq!(blocks[3]["causes"].as_object().unwrap().len(), 3);
+
+    // Without what-ifs the JSON streams, with the same figures.
+    let s: serde_json::Value =
+        serde_json::from_str(&run(&["--format", "json", "--what-if", "off"])).unwrap();
+    assert_eq!(s["what_if"], serde_json::Value::Null);
+    assert_eq!(s["time_causes"], v["time_causes"]);
+    assert_eq!(s["blocks"], v["blocks"]);
+}
+
+/// The JSON of the data block in a page written by `run --html`.
+fn page_data(page: &str) -> Value {
+    let open = r#"<script type="application/json" id="partscope-data">"#;
+    let start = page.find(open).expect("the page has a data block") + open.len();
+    let len = page[start..].find("</script>").unwrap();
+    serde_json::from_str(&page[start..start + len]).unwrap()
+}
+
+/// `run --html` writes one page holding the viewer and the dry run the editor's
+/// preview gets, and nothing that would be fetched.
+#[test]
+fn run_html_page_holds_the_dry_run_and_fetches_nothing() {
+    let d = tempdir("html");
+    let f = write(
+        &d,
+        "rect & <b>.ngc",
+        b"G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\nG1 X40 F1200\nG1 Y20\nG1 X0\nG1 Y0\nG0 Z5\nM2\n",
+    );
+    let html = d.join("rect.html");
+    let out = bin()
+        .args(["run", f.to_str().unwrap(), "--html", html.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert!(page.starts_with("<!DOCTYPE html>"));
+    assert!(page.contains("<title>rect &amp; &lt;b&gt;.ngc — Partscope toolpath</title>"));
+    // Style and script are inline; nothing names another file or a server.
+    assert!(page.contains("<style>") && page.contains("global.PartscopePreview = Preview;"));
+    for external in ["http://", "https://", " src=", " href=", "@import", "url("] {
+        assert!(!page.contains(external), "the page holds {external}");
+    }
+    assert!(page.contains("default-src 'none'"));
+    let v = page_data(&page);
+    assert_eq!(v["title"], "rect & <b>.ngc");
+    let data = &v["data"];
+    let summary = bin()
+        .args(["run", f.to_str().unwrap(), "--format", "json"])
+        .output()
+        .unwrap();
+    let summary: Value = serde_json::from_slice(&summary.stdout).unwrap();
+    assert_eq!(data["cycle_time_s"], summary["cycle_time_s"]);
+    assert_eq!(data["cutting_s"], summary["cutting_s"]);
+    assert_eq!(data["complete"], true);
+    assert_eq!(data["stopped_at"], Value::Null);
+    assert_eq!(data["distance_mm"], 135.0);
+    assert_eq!(
+        data["toolpath"]["bounds"],
+        serde_json::json!({"min": [0.0, 0.0, 0.0], "max": [40.0, 20.0, 5.0]})
+    );
+    let segs: Vec<(String, u64, f64)> = data["toolpath"]["segments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            (
+                s["kind"].as_str().unwrap().to_string(),
+                s["line"].as_u64().unwrap(),
+                s["feed"].as_f64().unwrap(),
+            )
+        })
+        .collect();
+    let want: Vec<(String, u64, f64)> = [
+        ("rapid", 1, 0.0),
+        ("feed", 2, 600.0),
+        ("feed", 3, 1200.0),
+        ("feed", 4, 1200.0),
+        ("feed", 5, 1200.0),
+        ("feed", 6, 1200.0),
+        ("rapid", 7, 0.0),
+    ]
+    .iter()
+    .map(|(k, l, f)| (k.to_string(), *l, *f))
+    .collect();
+    assert_eq!(segs, want);
+    assert_eq!(
+        data["toolpath"]["segments"][3]["points"],
+        serde_json::json!([[40.0, 0.0, 0.0], [40.0, 20.0, 0.0]])
+    );
+}
+
+/// A run that stops in a called file says so on the page, at the call, and a
+/// reason holding `</script>` cannot end the data block.
+#[test]
+fn run_html_page_of_a_stopped_run_names_the_call() {
+    let d = tempdir("html-stop");
+    let main = write(
+        &d,
+        "main.ngc",
+        b"G21 G90\nG0 X0 Y0 Z5\no<sub> call\nG1 X10 F500\nM2\n",
+    );
+    write(
+        &d,
+        "sub.ngc",
+        b"o<sub> sub\nG1 X5 F500\n(abort, </script><script>alert 1)\no<sub> endsub\n",
+    );
+    let html = d.join("main.html");
+    let out = bin()
+        .args([
+            "run",
+            main.to_str().unwrap(),
+            "--html",
+            html.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let page = std::fs::read_to_string(&html).unwrap();
+    assert_eq!(
+        page.matches("</script>").count(),
+        2,
+        "data block and viewer only"
+    );
+    let data = &page_data(&page)["data"];
+    assert_eq!(data["complete"], false);
+    assert_eq!(data["stopped_at"]["line"], 2, "{}", data["stopped_at"]);
+    let reason = data["stopped_at"]["reason"].as_str().unwrap();
+    assert!(
+        reason.contains("</script><script>alert 1") && reason.contains("(in sub.ngc, line 3)"),
+        "{reason}"
+    );
+}
+
+/// `--png` is the `--svg` picture rasterised: the title and the legend's text,
+/// which only text colours, are there, and the toolpath lies where the SVG
+/// draws it.
+#[test]
+fn run_png_is_the_svg_picture_with_its_text() {
+    use resvg::tiny_skia::Pixmap;
+    let d = tempdir("png");
+    let f = write(
+        &d,
+        "p.ngc",
+        b"G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\nG1 X10 F1200\nG2 X20 Y0 I5 J0\nG0 Z5\nM2\n",
+    );
+    let (svg, png) = (d.join("p.svg"), d.join("p.png"));
+    let out = bin()
+        .args([
+            "run",
+            f.to_str().unwrap(),
+            "--svg",
+            svg.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let pm = Pixmap::load_png(&png).unwrap();
+    assert_eq!((pm.width(), pm.height()), (1200, 800));
+    let pixel = |x: u32, y: u32| {
+        let p = pm.pixel(x, y).unwrap();
+        (p.red(), p.green(), p.blue())
+    };
+    // Pixels of a box darker than the picture's #fafafa backdrop by more than a shade.
+    let dark = |x0: u32, y0: u32, x1: u32, y1: u32| {
+        (y0..y1)
+            .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+            .filter(|&(x, y)| pixel(x, y).0 < 160)
+            .count()
+    };
+    // The title line (font size 18, baseline 30) and the legend's labels (12, baseline 782).
+    assert!(
+        dark(16, 14, 400, 36) > 300,
+        "title: {}",
+        dark(16, 14, 400, 36)
+    );
+    assert!(dark(62, 770, 100, 786) > 40, "rapid label");
+    assert!(dark(310, 770, 460, 786) > 150, "feed label");
+    // Where nothing is drawn the backdrop stays.
+    assert_eq!(dark(1000, 4, 1196, 44), 0);
+    assert_eq!(pixel(1100, 20), (250, 250, 250));
+    // The first feed polyline of the SVG is drawn at its own coordinates in the PNG.
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let poly = text
+        .lines()
+        .find(|l| l.contains("data-line"))
+        .expect("a feed move");
+    let points = poly.split("points=\"").nth(1).unwrap();
+    let (x, y) = points.split(' ').next().unwrap().split_once(',').unwrap();
+    let (x, y): (f64, f64) = (x.parse().unwrap(), y.parse().unwrap());
+    let near = (-2..=2)
+        .flat_map(|dy| (-2..=2).map(move |dx| (dx, dy)))
+        .map(|(dx, dy)| {
+            pixel(
+                (x.round() as i64 + dx) as u32,
+                (y.round() as i64 + dy) as u32,
+            )
+        })
+        .filter(|&(r, g, b)| (r, g, b) != (250, 250, 250))
+        .count();
+    assert!(near > 3, "feed move at {x},{y} not drawn");
+}
+
+/// `--max-html-mb` bounds the page's toolpath: the drawing stops at a segment,
+/// the title and a warning say where, the figures stay the whole run's.
+#[test]
+fn run_html_page_is_cut_to_its_size_limit() {
+    let d = tempdir("html-cut");
+    let mut program = String::from("G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\n");
+    for i in 0..20_000 {
+        program.push_str(&format!("G1 X{} Y{} F1200\n", i % 97, i % 89));
+    }
+    program.push_str("M2\n");
+    let f = write(&d, "long.ngc", program.as_bytes());
+    let html = d.join("long.html");
+    let run = |mb: &str| {
+        bin()
+            .args(["run", f.to_str().unwrap(), "--html", html.to_str().unwrap()])
+            .args(["--max-html-mb", mb, "--format", "json"])
+            .output()
+            .unwrap()
+    };
+    let whole = run("64");
+    let page = std::fs::read_to_string(&html).unwrap();
+    let full = page_data(&page);
+    assert_eq!(full["title"], "long.ngc");
+    assert_eq!(
+        full["data"]["toolpath"]["segments"]
+            .as_array()
+            .unwrap()
+            .len(),
+        20_002
+    );
+    assert_eq!(whole.status.code(), Some(0));
+    let out = run("0");
+    let page = std::fs::read_to_string(&html).unwrap();
+    let cut = page_data(&page);
+    assert_eq!(cut["data"]["toolpath"]["segments"], serde_json::json!([]));
+    assert_eq!(
+        cut["title"],
+        "long.ngc — toolpath cut off at line 2 to keep the page under 0 MB (--max-html-mb)"
+    );
+    assert_eq!(cut["data"]["cycle_time_s"], full["data"]["cycle_time_s"]);
+    assert_eq!(cut["data"]["distance_mm"], full["data"]["distance_mm"]);
+    let v: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let warning = v["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|d| d["message"].as_str().unwrap().contains("--max-html-mb"))
+        .expect("a warning names the limit");
+    assert_eq!(warning["code"], "F004");
+    assert_eq!(warning["line"], 2);
+}
+
+/// A picture cut off by `--max-svg-mb` shows the same moves in every view, and
+/// the PNG (the same picture) is cut at the same line.
+#[test]
+fn a_cut_off_picture_draws_the_same_moves_in_every_view() {
+    let d = tempdir("svg-cut");
+    let mut program = String::from("G21 G90 G17\nG0 X0 Y0 Z5\nG1 Z0 F600\n");
+    for i in 0..20_000 {
+        program.push_str(&format!("G1 X{} Y{} Z-{} F1200\n", i % 97, i % 89, i % 3));
+    }
+    program.push_str("M2\n");
+    let f = write(&d, "long.ngc", program.as_bytes());
+    let (svg, png) = (d.join("long.svg"), d.join("long.png"));
+    let run = |flag: &str, out: &Path| {
+        let o = bin()
+            .args([
+                "run",
+                f.to_str().unwrap(),
+                "--format",
+                "json",
+                "--max-svg-mb",
+                "1",
+            ])
+            .args([flag, out.to_str().unwrap()])
+            .output()
+            .unwrap();
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["diagnostics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|d| d["message"].as_str().unwrap().contains("--max-svg-mb"))
+            .map(|d| d["line"].clone())
+            .expect("a warning names the limit")
+    };
+    let svg_cut = run("--svg", &svg);
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.len() <= 1 << 20, "{} bytes", text.len());
+    let per_view: Vec<usize> = text
+        .split(r##"font-size="12" fill="#666">"##)
+        .skip(1)
+        .map(|view| view.matches("<polyline").count())
+        .collect();
+    assert_eq!(per_view.len(), 4);
+    assert!(per_view.iter().all(|&n| n == per_view[0]), "{per_view:?}");
+    // The moves drawn are the first ones, up to the line the warning names.
+    let drawn = per_view[0] as u64;
+    assert!(drawn > 1000 && drawn < 20_002, "{drawn}");
+    assert_eq!(
+        svg_cut,
+        drawn + 2,
+        "segment {drawn} is on line {}",
+        drawn + 2
+    );
+    assert!(text.contains(&format!("toolpath cut off at line {}", drawn + 2)));
+    assert_eq!(run("--png", &png), svg_cut);
 }

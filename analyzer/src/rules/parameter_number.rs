@@ -6,7 +6,7 @@ use crate::dialect::Dialect;
 use crate::syntax::{Expr, ExprId, Func, ItemKind};
 
 use super::util::{block_exprs, expr_nodes, is_emc2, near_integer};
-use super::{BlockCx, Interest, Rule, RuleMeta};
+use super::{BlockCx, Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
     /// ## What it does
@@ -69,6 +69,26 @@ impl Rule for ParameterNumber {
         &PARAMETER_NUMBER
     }
 
+    /// FANUC #200–#499 exist with the additional common variables option: without
+    /// a `machine.common_variables` setting the program's use of them is the
+    /// evidence, said once per file at the first use.
+    fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
+        let p = cx.program;
+        if p.dialect != Dialect::Fanuc || cx.settings.common_variables_end.is_some() {
+            return;
+        }
+        let first = p.exprs.iter().find(|node| {
+            matches!(node.expr, Expr::Var { index } if matches!(p.expr(index).expr,
+                Expr::Num(n) if (200.0..=499.0).contains(&n.value) && n.value.fract() == 0.0))
+        });
+        if let Some(node) = first {
+            let text = p.str_of(node.span).into_owned();
+            out.push(Diagnostic::info("W016", node.span, format!(
+                "`{text}` is a common variable of the additional common variables option (#100–#499; the standard control has #100–#199): checked as if the control has it. Set machine.common_variables = 199 or 499 to say which."
+            )));
+        }
+    }
+
     /// Only parameter references and assignments are read.
     fn interest(&self, _: &crate::Settings) -> Interest {
         Interest::OTHER
@@ -119,8 +139,11 @@ impl Rule for ParameterNumber {
                     Dialect::Rs274ngc if v.round() < 1.0 || v.round() > max => {
                         Some(format!("Parameter number out of range: `{text}`; this profile has parameters 1 to {max}."))
                     }
-                    Dialect::Fanuc if v < 0.0 || v.fract() != 0.0 || (34.0..=99.0).contains(&v) || (200.0..=499.0).contains(&v) => Some(format!(
+                    Dialect::Fanuc if v < 0.0 || v.fract() != 0.0 || (34.0..=99.0).contains(&v) => Some(format!(
                         "`{text}` is not a variable of the control (alarm PS0115): locals are #1–#33, commons #100–#199 and #500–#999, system variables from #1000."
+                    )),
+                    Dialect::Fanuc if (200.0..=499.0).contains(&v) && cx.settings.common_variables_end == Some(199) => Some(format!(
+                        "`{text}` is not a variable of this control (alarm PS0115): machine.common_variables = 199 says it has commons #100–#199 only (499 with the additional common variables option)."
                     )),
                     _ => None,
                 };

@@ -489,14 +489,18 @@ impl Rule for WordValueRange {
                         number: Some(n), ..
                     } = item.kind
                     {
-                        let max = 10u32.pow(u32::from(cx.settings.program_number_digits)) - 1;
+                        let digits = cx.settings.program_number_digits;
+                        let max = 10u32.pow(u32::from(digits.unwrap_or(8))) - 1;
                         if !(1..=max).contains(&n) {
-                            let option = if max == 9999 && n > max {
-                                " (or set machine.program_number_digits = 8 for the 8-digit program number option)"
-                            } else {
-                                ""
+                            let range = match digits {
+                                None => "1 to 9999 (1 to 99999999 with the 8-digit program number option)".to_string(),
+                                Some(4) if n > max => format!("1 to {max} (or set machine.program_number_digits = 8 for the 8-digit program number option)"),
+                                Some(_) => format!("1 to {max}"),
                             };
-                            k.out.push(Diagnostic::error("W007", item.span, format!("Program number O{n}: FANUC program numbers are 1 to {max} (alarm PS0074){option}.")));
+                            k.out.push(Diagnostic::error("W007", item.span, format!("Program number O{n}: FANUC program numbers are {range} (alarm PS0074).")));
+                        } else if digits.is_none() && n > 9999 {
+                            // The program is the evidence the shop's control has the option.
+                            k.out.push(Diagnostic::info("W007", item.span, format!("Program number O{n} needs the 8-digit program number option (the standard control takes 1 to 9999): checked as if the control has it. Set machine.program_number_digits = 4 or 8 to say which.")));
                         }
                     }
                 }

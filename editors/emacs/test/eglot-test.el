@@ -36,6 +36,18 @@
                                (flymake-start)
                                (flymake-diagnostics)))
   (partscope-test-finish nil "no diagnostics arrived for a sample with known errors"))
+;; M-x partscope-toolpath writes the page with `partscope run --html' (here handed to a
+;; function instead of the browser).
+(let (written)
+  (with-current-buffer (get-file-buffer (getenv "PARTSCOPE_SAMPLE"))
+    (partscope-toolpath (lambda (page) (setq written page))))
+  (unless (partscope-test-wait (lambda () written))
+    (partscope-test-finish nil "partscope-toolpath wrote no page"))
+  (let ((page (with-temp-buffer (insert-file-contents written) (buffer-string))))
+    ;; The sample's one drawn move: the rapid of line 3 to X0 Y0 Z5.
+    (unless (and (string-match-p "id=\"partscope-data\"" page)
+                 (string-match-p (regexp-quote "\"points\":[[0.0,0.0,0.0],[0.0,0.0,5.0]]") page))
+      (partscope-test-finish nil (format "the page lacks the sample's dry run: %s" (substring page 0 200))))))
 (goto-char (point-min))
 (search-forward "G21")
 (backward-char 2)

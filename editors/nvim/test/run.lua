@@ -22,8 +22,14 @@ local function remaining()
   return math.max(0, deadline - (vim.uv or vim.loop).now())
 end
 
+-- The toolpath page is "opened" by copying it here (in one rename, so it is whole once there).
+local opened = vim.fn.fnamemodify(sample, ":h") .. "/opened.html"
 local ok, err = pcall(function()
-  require("partscope").setup({ cmd = { bin, "lsp" }, keymaps = { rename = false } })
+  require("partscope").setup({
+    cmd = { bin, "lsp" },
+    keymaps = { rename = false },
+    open_cmd = { "sh", "-c", 'cp "$1" "$0.tmp" && mv "$0.tmp" "$0"', opened },
+  })
 end)
 if not ok then
   finish(false, "setup() raised: " .. tostring(err))
@@ -120,6 +126,25 @@ if type(gd) ~= "table" or gd.buffer ~= 1 then
 end
 if vim.fn.maparg("<leader>rn", "n") ~= "" then
   finish(false, "<leader>rn is mapped although setup() left rename out")
+  return
+end
+
+-- :PartscopeToolpath writes the page with `partscope run --html` and hands it to the opener.
+if vim.fn.maparg("<leader>pt", "n") == "" then
+  finish(false, "no buffer mapping for <leader>pt (toolpath)")
+  return
+end
+vim.cmd("PartscopeToolpath")
+if not vim.wait(remaining(), function()
+  return vim.fn.filereadable(opened) == 1
+end, 50) then
+  finish(false, ":PartscopeToolpath opened no page within " .. timeout_ms .. " ms")
+  return
+end
+local page = table.concat(vim.fn.readfile(opened), "\n")
+-- The sample's one drawn move: the rapid of line 3 to X0 Y0 Z5.
+if not page:find('id="partscope-data"', 1, true) or not page:find('"points":[[0.0,0.0,0.0],[0.0,0.0,5.0]]', 1, true) then
+  finish(false, "the opened page lacks the sample's dry run: " .. page:sub(1, 200))
   return
 end
 

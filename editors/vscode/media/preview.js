@@ -12,7 +12,9 @@
 //
 // In a plain browser (no `acquireVsCodeApi`), posted messages are appended to
 // `window.partscopeOutbox` and dispatched as a `partscope-post` CustomEvent, and
-// `preview.html?sample=<url>` loads a dry-run JSON file directly.
+// `preview.html?sample=<url>` loads a dry-run JSON file directly. A page written by
+// `partscope run --html` holds `{data, title}` in `<script type="application/json"
+// id="partscope-data">` and shows it at once.
 (function (global) {
   "use strict";
 
@@ -874,8 +876,17 @@
       });
     }
 
+    // A page written by `partscope run --html` carries its result in a JSON data block.
+    var embedded = byId("partscope-data");
     var sample = new URLSearchParams(global.location.search).get("sample");
-    if (!vscode && sample) {
+    if (embedded) {
+      try {
+        var page = JSON.parse(embedded.textContent);
+        load(page.data, page.title);
+      } catch (e) {
+        showMessage("Could not read the embedded dry run: " + e);
+      }
+    } else if (!vscode && sample) {
       fetch(sample)
         .then(function (r) {
           return r.json();

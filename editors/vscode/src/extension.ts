@@ -32,6 +32,7 @@ interface InitOptions {
   machine: string | null;
   select: string[];
   ignore: string[];
+  blockTimes: string;
 }
 
 function config(): vscode.WorkspaceConfiguration {
@@ -61,6 +62,7 @@ export function initializationOptions(): InitOptions {
     machine: resolveInWorkspace(c.get<string | null>("machine") ?? null),
     select: c.get<string[]>("select") ?? [],
     ignore: c.get<string[]>("ignore") ?? [],
+    blockTimes: c.get<string>("blockTimes") ?? "block",
   };
 }
 

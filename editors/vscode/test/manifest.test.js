@@ -30,6 +30,7 @@ test("the G-code language covers the issue's file extensions and has its grammar
 test("settings match the server's initializationOptions", () => {
   const props = Object.keys(pkg.contributes.configuration.properties).sort();
   assert.deepEqual(props, [
+    "partscope.blockTimes",
     "partscope.dialect",
     "partscope.ignore",
     "partscope.machine",

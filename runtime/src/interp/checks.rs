@@ -1081,7 +1081,7 @@ impl Interp<'_, '_> {
         let near_half = (165.0..=195.0).contains(&sweep);
         let near_full = ngc && sweep >= 345.0;
         if near_half || near_full {
-            self.diag(codes::ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
+            self.diag(codes::ARC_ILL_CONDITIONED, Severity::Info, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
         }
         Ok(())
     }

@@ -54,6 +54,9 @@ pub struct FileEntry<'a> {
     /// The file branches to sequence numbers (GOTO, IF … GOTO, M99 P, M97 P), so a
     /// numbered block may run although nothing before it leads there.
     pub branches: bool,
+    /// The file holds a tapping cycle (G84 or G74): only then is its M29 the
+    /// rigid-tapping M code (on some machines M29 is a builder's M code).
+    pub taps: bool,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -85,6 +88,7 @@ impl<'a> FileEntry<'a> {
             loops: HashMap::new(),
             error_blocks: Default::default(),
             branches: false,
+            taps: false,
         };
         f.index();
         let p = f.prog.clone();
@@ -125,6 +129,12 @@ impl<'a> FileEntry<'a> {
                     }
                     ItemKind::Macro(MacroStmt::Goto { .. } | MacroStmt::IfGoto { .. }) => {
                         self.branches = true;
+                    }
+                    ItemKind::Word(w)
+                        if w.letter == b'G'
+                            && w.num().is_some_and(|n| n.value == 84.0 || n.value == 74.0) =>
+                    {
+                        self.taps = true;
                     }
                     ItemKind::Word(w)
                         if w.letter == b'P'

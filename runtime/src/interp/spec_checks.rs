@@ -213,8 +213,19 @@ impl Interp<'_, '_> {
                     let fanuc_local = self.dialect == Dialect::Fanuc && (1.0..=33.0).contains(&k);
                     let sw = self.dialect == Dialect::Servoworks && (1.0..1000.0).contains(&k);
                     let vacant = self.st.params.get(k as usize).copied().flatten().is_none();
-                    if !in_compare && (fanuc_local || sw) && vacant {
-                        let (sev, why) = if fanuc_local {
+                    // Set from a machine value the dry run does not know (`#24 = #516`):
+                    // not read before it is assigned.
+                    let machine_value = self
+                        .machine_vars
+                        .unknown_origin(k as usize, false)
+                        .is_some();
+                    // In a G65/G66 macro a local is an argument the caller may leave
+                    // out: it reads as 0 in arithmetic, which macros rely on.
+                    let macro_level = self.frames.last().is_some_and(|f| f.saved.is_some());
+                    if !in_compare && (fanuc_local || sw) && vacant && !machine_value {
+                        let (sev, why) = if fanuc_local && macro_level {
+                            (Severity::Info, "an argument the caller did not pass is vacant and reads as 0 in arithmetic")
+                        } else if fanuc_local {
                             (Severity::Warning, "a local variable that was not assigned at this level (nor passed as an argument) is vacant")
                         } else {
                             (
@@ -320,6 +331,33 @@ impl Interp<'_, '_> {
     ) -> Result<(), Diagnostic> {
         let modal = self.st.modal.motion;
         let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
+        // Axis words with no motion code in the line while the modal motion is G80
+        // (also at power on): LinuxCNC has nothing to give them to (enhance_block).
+        // G10, G28, G30, G52 and G92 use them themselves; G43.1/G43.2 take them
+        // as the offset.
+        let group_1 = gm(&[
+            0, 10, 20, 30, 50, 51, 52, 53, 62, 330, 331, 382, 383, 384, 385, 700, 710, 711, 712,
+            720, 721, 722, 760, 800,
+        ]) || w.g.iter().any(|(g, _)| is_cycle(*g));
+        if modal == 800
+            && motion.is_none()
+            && !group_1
+            && w.any_axis()
+            && !gm(&[100, 280, 300, 520, 920, 431, 432])
+        {
+            let span = b"XYZABCUVW"
+                .iter()
+                .find(|c| w.has(**c))
+                .map(|c| w.sp(*c))
+                .unwrap_or(bspan);
+            return Err(self.err(
+                codes::WORD_UNUSED,
+                span,
+                "cannot use axis values without a g code that uses them: no motion mode is active \
+                 (G80, or none yet since the program start), so LinuxCNC stops here; give G0 or G1 \
+                 on this line",
+            ));
+        }
         let mm = |codes: &[u32]| codes.iter().any(|c| w.has_m(*c));
         let user_m = w.m.iter().any(|(m, _)| (1000..=1990).contains(m));
         // Splines and NURBS are not in the checks' motion list: an explicit code wins.

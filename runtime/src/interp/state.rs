@@ -148,7 +148,8 @@ pub struct Repeated {
 impl Modal {
     pub fn power_on(servoworks: bool, fanuc: bool) -> Modal {
         Modal {
-            motion: 0,
+            // LinuxCNC starts with G80 (no motion mode); FANUC and ServoWorks with G00.
+            motion: if servoworks || fanuc { 0 } else { 800 },
             plane: 170,
             inch: false,
             incremental: false,

@@ -12,7 +12,7 @@ use super::servo::{self, Run, View};
 mod blend;
 mod chain;
 use super::{
-    cross3, dist3, dot3, norm3, sub3, unit3, Event, MachineProfile, PathMode, PlannerModel,
+    cross3, dist3, dot3, norm3, sub3, unit3, Causes, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
 use blend::Circ;
@@ -92,6 +92,12 @@ struct Tc {
     dogleg: bool,
     /// Path length travelled, when it differs from `target` (dog-leg rapids).
     travel: Option<f64>,
+    /// Programmed feed, mm/s (infinite without one): what the time causes
+    /// measure the element against.
+    feed: f64,
+    /// The speed the axis velocity limits alone allow, mm/s (an arc's
+    /// centripetal limit can be lower).
+    axis_vel: f64,
     /// Servo-period execution state.
     run: Run,
 }
@@ -140,6 +146,8 @@ pub struct Planner {
     chain: Chain,
     /// Spindle speed, rpm: positive clockwise, negative counter-clockwise.
     spindle_rpm: f64,
+    /// The speed where the last executed element ended was set by a corner.
+    entry_corner: bool,
 }
 
 impl Planner {
@@ -172,6 +180,7 @@ impl Planner {
             totals: Totals::default(),
             chain: Chain::default(),
             spindle_rpm: 0.0,
+            entry_corner: false,
         }
     }
 
@@ -278,6 +287,11 @@ impl Planner {
         let t = self.p.spindle_ramp_time + self.p.spindle_ramp_per_1000rpm * change / 1000.0;
         self.totals.aux.spindle_s += t;
         self.totals.other_s += t;
+    }
+
+    /// The totals so far: motion time counts only the elements executed yet.
+    pub fn totals(&self) -> &Totals {
+        &self.totals
     }
 
     /// Runs out the queue and returns the totals.
@@ -396,6 +410,12 @@ impl Planner {
             optimized: false,
             dogleg: false,
             travel: None,
+            feed: if seg.feed > 0.0 && !rapid {
+                seg.feed
+            } else {
+                f64::INFINITY
+            },
+            axis_vel: f64::INFINITY,
             run: Run::default(),
         };
         let feed_cap = |v: f64| if v > 0.0 { v } else { f64::INFINITY };
@@ -427,6 +447,7 @@ impl Planner {
                 };
                 tc.target = dtot;
                 tc.maxvel = vmax;
+                tc.axis_vel = vmax;
                 tc.reqvel = if rapid {
                     vmax
                 } else {
@@ -476,6 +497,8 @@ impl Planner {
                 let t_spiral = planar / v_planar;
                 let t_max = t_motion.max(t_spiral);
                 let vmax = if t_max > 0.0 { total / t_max } else { v_planar };
+                let t_axes = t_motion.max(planar / v_axes);
+                tc.axis_vel = if t_axes > 0.0 { total / t_axes } else { v_axes };
                 let tt_motion = axis_time(&self.acc, &|_| true);
                 let tt_spiral = planar / a_axes;
                 let tt = tt_motion.max(tt_spiral);
@@ -555,6 +578,7 @@ impl Planner {
                 };
                 tc.ty = TcType::Path;
                 tc.target = seg.length;
+                tc.axis_vel = v_axes;
                 tc.maxvel = v_axes.min(v_curv);
                 tc.reqvel = tc.maxvel.min(feed_cap(seg.feed));
                 tc.maxaccel = a_axes;
@@ -1135,7 +1159,9 @@ impl Planner {
     ) {
         let l = tc.target;
         let travelled = tc.travel.unwrap_or(l);
+        let causes = self.attribute(tc, added, v0, v_peak, v_end);
         let tot = &mut self.totals;
+        tot.causes.add(&causes);
         tot.motion_s += added;
         if tc.rapid {
             tot.rapid_s += added;
@@ -1162,7 +1188,144 @@ impl Planner {
             peak_speed: v_peak,
             exit_speed: v_end,
             length: l,
+            causes,
         });
+    }
+
+    /// Splits the `added` seconds of an executed element by cause (see
+    /// [`super::Causes`]) from its profile: entry speed `v0`, peak `v_peak`,
+    /// exit `v_end`, and the planner's own target speed and acceleration.
+    /// The element is no longer in the queue; its successor is at the front.
+    fn attribute(&mut self, tc: &Tc, added: f64, v0: f64, v_peak: f64, v_end: f64) -> Causes {
+        let mut c = Causes::default();
+        let exit_corner = self.exit_corner(tc, v_end);
+        let entry_corner = std::mem::replace(&mut self.entry_corner, exit_corner);
+        if tc.rapid {
+            c.rapid_s = added;
+            return c;
+        }
+        let l = tc.target;
+        let v = self.real_target_vel(tc);
+        let t = added.max(0.0);
+        if !(v > 0.0 && l > 0.0 && t.is_finite()) {
+            c.accel_s = t;
+            return c;
+        }
+        // Without a programmed feed the target speed is all there is to reach.
+        let f = if tc.feed.is_finite() {
+            (tc.feed * self.p.feed_override).max(v)
+        } else {
+            v
+        };
+        // A cap below the feed costs time only where the element reaches it;
+        // below it the ramps are measured against the feed itself.
+        let reached = v_peak >= v * (1.0 - 1e-3);
+        let v_ref = if reached { v } else { f };
+        let cap = if reached {
+            (l / v - l / f).clamp(0.0, t)
+        } else {
+            0.0
+        };
+        // Rounding leaves a trace of a cap where there is none.
+        let cap = if cap > t * 1e-9 { cap } else { 0.0 };
+        let ramp = (t - l / v_ref).clamp(0.0, t - cap);
+        c.feed_s = t - cap - ramp;
+        let counts = &mut self.totals.cause_counts;
+        if cap > 0.0 {
+            let slot = if tc.ty == TcType::Blend {
+                &mut c.corner_s
+            } else if !tc.pure_rotary && !tc.dogleg && v >= self.p.traj_max_velocity {
+                counts.traj_cap += 1;
+                &mut c.traj_cap_s
+            } else if v * self.cycle <= l * (1.0 + 1e-9)
+                && v * self.cycle * MIN_SEGMENT_CYCLES >= l * (1.0 - 1e-9)
+            {
+                counts.servo_cap += 1;
+                &mut c.servo_cap_s
+            } else if v < tc.axis_vel * (1.0 - 1e-9) {
+                counts.curve_cap += 1;
+                &mut c.curve_cap_s
+            } else {
+                counts.axis_cap += 1;
+                &mut c.axis_cap_s
+            };
+            *slot += cap;
+        }
+        if ramp > 0.0 {
+            // Time each ramp takes beyond running its distance at the target speed.
+            let a = tc.tangential_accel().max(1e-9);
+            let vp = v_peak.min(v);
+            let lost = |u: f64| {
+                let u = u.clamp(0.0, vp);
+                (vp - u) / a * (1.0 - (vp + u) / (2.0 * v_ref))
+            };
+            let (ls, le) = (lost(v0), lost(v_end));
+            // Clamped: rounding must not leave the other ramp a negative share.
+            let start = if ls + le > 0.0 {
+                (ramp * ls / (ls + le)).min(ramp)
+            } else {
+                ramp
+            };
+            let corner = |at_corner: bool| at_corner || tc.ty == TcType::Blend;
+            let (cs, as_) = if corner(entry_corner) {
+                (start, 0.0)
+            } else {
+                (0.0, start)
+            };
+            let end = (ramp - start).max(0.0);
+            let (ce, ae) = if corner(exit_corner) {
+                (end, 0.0)
+            } else {
+                (0.0, end)
+            };
+            c.corner_s += cs + ce;
+            c.accel_s += as_ + ae;
+            if as_ + ae > 0.0 {
+                counts.accel += 1;
+            }
+            if cs + ce > 0.0 || (tc.ty == TcType::Blend && cap > 0.0) {
+                counts.corner += 1;
+            }
+        } else if tc.ty == TcType::Blend && cap > 0.0 {
+            counts.corner += 1;
+        }
+        if tc.ty != TcType::Blend && !reached {
+            let first = counts.short == 0;
+            counts.short += 1;
+            counts.short_s += t;
+            counts.short_max_mm = counts.short_max_mm.max(l);
+            counts.short_feed_min = if first {
+                f
+            } else {
+                counts.short_feed_min.min(f)
+            };
+            counts.short_feed_max = counts.short_feed_max.max(f);
+        }
+        c
+    }
+
+    /// Whether the speed at the end of `tc` (just executed) was set by a corner:
+    /// an exact stop or exact-path stop between two feed moves, a parabolic
+    /// blend, a tangent junction held at its corner speed, or a blend arc.
+    /// A stop where motion ends or turns into a rapid is not a corner.
+    fn exit_corner(&self, tc: &Tc, v_end: f64) -> bool {
+        let Some(next) = self.queue.front() else {
+            return false;
+        };
+        if tc.ty == TcType::Blend {
+            return true;
+        }
+        match tc.term {
+            Term::Stop | Term::Exact => !(next.rapid != tc.rapid || next.dogleg || tc.dogleg),
+            Term::Parabolic => true,
+            Term::Tangent => {
+                let at = v_end * (1.0 + 1e-6) + 1e-9;
+                let kink = tc.kink_vel >= 0.0
+                    && tc.kink_vel <= at
+                    && tc.kink_vel < self.real_target_vel(tc) * (1.0 - 1e-9);
+                kink || (next.ty == TcType::Blend && self.real_target_vel(next) <= at)
+            }
+        }
     }
 
     fn jerk(&self) -> f64 {

@@ -44,6 +44,7 @@
 //! are not modelled.
 
 mod engine;
+pub mod explain;
 pub mod profile;
 mod servo;
 
@@ -279,6 +280,87 @@ pub struct SegmentTiming {
     pub exit_speed: f64,
     /// Length actually travelled on this element, mm.
     pub length: f64,
+    /// Where this element's time went; the parts sum to the time it added to
+    /// `motion_s`.
+    pub causes: Causes,
+}
+
+/// Motion time by cause, s, read off the planner's velocity profile of each
+/// element: the time the element would take at its programmed feed, the time a
+/// speed cap below that feed adds (by which cap), and the time its ramps add
+/// below the cap, charged to the corner (blend, exact stop, corner speed) when
+/// the junction's corner limit set the speed there and to acceleration
+/// otherwise (a start from rest, or a move too short to reach speed). Rapids
+/// are one cause. The parts of an element sum to its time.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct Causes {
+    /// Cutting at the programmed feed (with the feed override).
+    pub feed_s: f64,
+    /// Ramps limited by acceleration: starts and stops, moves too short to reach speed.
+    pub accel_s: f64,
+    /// Ramps to a corner's speed (blend, exact stop, tangent kink) and blend arcs
+    /// slower than the feed.
+    pub corner_s: f64,
+    /// An axis velocity limit below the feed.
+    pub axis_cap_s: f64,
+    /// `[TRAJ]MAX_LINEAR_VELOCITY` (the path speed cap) below the feed.
+    pub traj_cap_s: f64,
+    /// The centripetal limit of an arc or curve below the feed.
+    pub curve_cap_s: f64,
+    /// A move so short that it cannot run in fewer servo periods at the feed.
+    pub servo_cap_s: f64,
+    /// Rapid positioning.
+    pub rapid_s: f64,
+}
+
+impl Causes {
+    /// The sum of every cause.
+    pub fn total_s(&self) -> f64 {
+        self.feed_s
+            + self.accel_s
+            + self.corner_s
+            + self.axis_cap_s
+            + self.traj_cap_s
+            + self.curve_cap_s
+            + self.servo_cap_s
+            + self.rapid_s
+    }
+
+    /// Adds `o` cause by cause.
+    pub fn add(&mut self, o: &Causes) {
+        self.feed_s += o.feed_s;
+        self.accel_s += o.accel_s;
+        self.corner_s += o.corner_s;
+        self.axis_cap_s += o.axis_cap_s;
+        self.traj_cap_s += o.traj_cap_s;
+        self.curve_cap_s += o.curve_cap_s;
+        self.servo_cap_s += o.servo_cap_s;
+        self.rapid_s += o.rapid_s;
+    }
+}
+
+/// How many feed elements each cause touched, and the feed elements that never
+/// reach their target speed, for sentences like "1,842 segments shorter than
+/// 0.05 mm never reach F2000".
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct CauseCounts {
+    /// Elements with acceleration time.
+    pub accel: u64,
+    /// Elements with corner time.
+    pub corner: u64,
+    pub axis_cap: u64,
+    pub traj_cap: u64,
+    pub curve_cap: u64,
+    pub servo_cap: u64,
+    /// Feed elements whose peak speed stays below their target speed.
+    pub short: u64,
+    /// Their time, s.
+    pub short_s: f64,
+    /// The longest of them, mm.
+    pub short_max_mm: f64,
+    /// The lowest and highest programmed feed among them (with the override), mm/s.
+    pub short_feed_min: f64,
+    pub short_feed_max: f64,
 }
 
 /// Per-tool breakdown.
@@ -309,6 +391,9 @@ pub struct Totals {
     /// than the programmed length; dog-leg rapids are longer than the line).
     pub distance_mm: f64,
     pub per_tool: BTreeMap<u32, ToolTotals>,
+    /// Motion time by cause (sums to `motion_s`).
+    pub causes: Causes,
+    pub cause_counts: CauseCounts,
 }
 
 /// Auxiliary time by category, s, and how many events made it.

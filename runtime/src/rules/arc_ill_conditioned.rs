@@ -24,7 +24,10 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// RS274/NGC, FANUC. Warning.
+    /// RS274/NGC, FANUC. Information for the sweep: the controls run such arcs, and a
+    /// CAM post's exact half circle (`G3 X0 Y10 R5` from X0 Y0) is common and right;
+    /// the advice matters where end points are rounded. Warning for a radius over a
+    /// million times the chord, whose centre cannot be computed exactly at all.
     ///
     /// Implements: NGC213, FAN034
     pub static ARC_ILL_CONDITIONED = {

@@ -23,7 +23,10 @@ declare_rule! {
     /// ```
     ///
     /// ## Dialects
-    /// FANUC (warning, locals), ServoWorks (info).
+    /// FANUC (warning, locals; information inside a G65/G66 macro, where a local is an
+    /// argument the caller may leave out and reads as 0 in arithmetic; nothing for a
+    /// local set from a machine value the dry run does not know, `#24 = #516`),
+    /// ServoWorks (info).
     ///
     /// Implements: SW017, FAN144
     pub static VACANT_READ = {

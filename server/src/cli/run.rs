@@ -19,6 +19,21 @@ pub enum RunFormat {
     Json,
 }
 
+/// When `run` plans the what-if estimates.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WhatIfArg {
+    /// For programs up to 1 MiB that make at most 200 000 motions.
+    Auto,
+    On,
+    Off,
+}
+
+/// Largest program (bytes) and run (motions) `--what-if auto` plans again: each
+/// estimate costs one more planner run, and a larger `--format json` run streams
+/// instead of keeping the motions a rerun needs.
+const WHAT_IF_AUTO_BYTES: usize = 1 << 20;
+const WHAT_IF_AUTO_MOTIONS: usize = 200_000;
+
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Emit {
     /// Per-block times as CSV (line, start, end, length, peak feed).
@@ -47,6 +62,11 @@ pub struct RunArgs {
     pub feed_override: Option<String>,
     #[arg(long, value_enum, default_value = "human")]
     pub format: RunFormat,
+    /// What-if estimates, each planned again: feed override 120 %, G64 P0.05 on
+    /// every move (rs274ngc), 2x acceleration. `auto`: for programs up to 1 MiB
+    /// and 200 000 motions.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub what_if: WhatIfArg,
     #[arg(long, value_enum)]
     pub emit: Option<Emit>,
     /// LinuxCNC tool table (`.tbl`).
@@ -62,9 +82,17 @@ pub struct RunArgs {
     /// off with a warning.
     #[arg(long)]
     pub max_svg_mb: Option<u64>,
-    /// Write a PNG picture of the toolpath.
+    /// Write a PNG picture of the toolpath (the SVG picture, rasterised).
     #[arg(long)]
     pub png: Option<PathBuf>,
+    /// Write one self-contained HTML page with the toolpath viewer of the VS Code
+    /// preview and this run's result (no network access, no other files).
+    #[arg(long)]
+    pub html: Option<PathBuf>,
+    /// Largest toolpath data in the HTML page, in MB (default 64); a longer toolpath
+    /// is cut off with a warning, and the page's title says where.
+    #[arg(long)]
+    pub max_html_mb: Option<u64>,
     /// Step budget: blocks executed before a runaway program is stopped (default: a
     /// million plus a hundred per block of the file).
     #[arg(long)]
@@ -88,6 +116,20 @@ pub struct RunArgs {
     /// (default 100, `[rules] max_runtime_errors`).
     #[arg(long)]
     pub max_runtime_errors: Option<usize>,
+}
+
+/// Largest toolpath data written into an HTML page by default, in MB.
+const DEFAULT_MAX_HTML_MB: u64 = 64;
+
+impl RunArgs {
+    /// The files the run writes besides its standard output, with their flags.
+    fn outputs(&self) -> [(&'static str, Option<&PathBuf>); 3] {
+        [
+            ("--svg", self.svg.as_ref()),
+            ("--png", self.png.as_ref()),
+            ("--html", self.html.as_ref()),
+        ]
+    }
 }
 
 fn fail(msg: impl std::fmt::Display) -> ExitCode {
@@ -134,7 +176,7 @@ fn write_replacing<T>(
 }
 
 pub fn run(args: RunArgs) -> ExitCode {
-    for (flag, out) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+    for (flag, out) in args.outputs() {
         if let Err(e) = guard_output(flag, out, &[&args.file]) {
             return fail(e);
         }
@@ -358,18 +400,23 @@ pub fn run(args: RunArgs) -> ExitCode {
     progress.stage("interpreting");
     // The JSON summary needs only the totals: the planner then consumes the motions as
     // the interpreter produces them, and memory stays flat however long the program.
+    let what_if_asked = match args.what_if {
+        WhatIfArg::On => true,
+        WhatIfArg::Off => false,
+        WhatIfArg::Auto => text.len() <= WHAT_IF_AUTO_BYTES,
+    };
     if args.format == RunFormat::Json
         && args.emit.is_none()
-        && args.svg.is_none()
-        && args.png.is_none()
+        && args.outputs().iter().all(|(_, o)| o.is_none())
+        && !what_if_asked
     {
         // The static rules run beside the interpreter and planner (both only read the tree).
-        let (diagnostics, out, totals) = std::thread::scope(|scope| {
+        let (diagnostics, out, totals, blocks) = std::thread::scope(|scope| {
             let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
-            let (out, totals) = plan_beside(&input, &profile);
+            let (out, totals, blocks) = plan_beside(&input, &profile);
             // A panic in the rules is passed on as if the rules had run on this thread.
             let diagnostics = lint.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-            (diagnostics, out, totals)
+            (diagnostics, out, totals, blocks)
         });
         progress.finish();
         let diagnostics = analyzer::merge(
@@ -387,18 +434,21 @@ pub fn run(args: RunArgs) -> ExitCode {
         };
         let dry = DryRun {
             totals,
+            blocks,
             ..DryRun::default()
         };
         let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
+        let what_ifs = match args.what_if {
+            WhatIfArg::Off => WhatIfs::Off,
+            _ => WhatIfs::Skipped(format!(
+                "the program is larger than {} KiB; --what-if on plans them",
+                WHAT_IF_AUTO_BYTES >> 10
+            )),
+        };
         let stdout = std::io::stdout();
         let mut w = std::io::BufWriter::new(stdout.lock());
-        let res = serde_json::to_writer_pretty(
-            &mut w,
-            &summary_json(&dry, &report, &stop, &profile_name),
-        )
-        .map_err(std::io::Error::other)
-        .and_then(|_| writeln!(w))
-        .and_then(|_| w.flush());
+        let summary = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
+        let res = write_summary(&mut w, summary, &dry.blocks, &out.files).and_then(|_| w.flush());
         if let Err(e) = res {
             return fail(format_args!("cannot write output: {e}"));
         }
@@ -417,6 +467,17 @@ pub fn run(args: RunArgs) -> ExitCode {
     }
 
     let dry = dryrun::plan_run(&out, &profile);
+    let what_ifs = if !what_if_asked {
+        WhatIfs::Off
+    } else if args.what_if == WhatIfArg::Auto && out.motions.len() > WHAT_IF_AUTO_MOTIONS {
+        WhatIfs::Skipped(format!(
+            "the run makes more than {} motions; --what-if on plans them",
+            runtime::plan::explain::thousands(WHAT_IF_AUTO_MOTIONS as u64)
+        ))
+    } else {
+        progress.stage("what if");
+        WhatIfs::Ran(what_ifs(&out, &profile, dialect))
+    };
     progress.finish();
     let extra_files = output::read_extra_files(&out.files);
     let mut report = FileReport {
@@ -429,51 +490,111 @@ pub fn run(args: RunArgs) -> ExitCode {
     };
 
     let read: Vec<&Path> = out.files.iter().map(Path::new).collect();
-    for (flag, o) in [("--svg", args.svg.as_ref()), ("--png", args.png.as_ref())] {
+    for (flag, o) in args.outputs() {
         if let Err(e) = guard_output(flag, o, &read) {
             return fail(e);
         }
     }
-    if let Some(svg) = &args.svg {
+    if args.svg.is_some() || args.png.is_some() {
         let tp = dryrun::toolpath_on(&out, 0.01, &profile);
         let max_mb = args
             .max_svg_mb
             .unwrap_or(crate::picture::DEFAULT_MAX_SVG_MB);
-        let written = write_replacing(svg, |tmp| {
-            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
-            let mut w = std::io::BufWriter::new(f);
-            let title = args.file.display().to_string();
-            let cut =
-                crate::picture::svg(&mut w, &tp, &title, &dry, max_mb.saturating_mul(1 << 20))
+        let max_bytes = max_mb.saturating_mul(1 << 20);
+        let title = args.file.display().to_string();
+        let mut cut = None;
+        if let Some(svg) = &args.svg {
+            let written = write_replacing(svg, |tmp| {
+                let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+                let mut w = std::io::BufWriter::new(f);
+                let cut = crate::picture::svg(&mut w, &tp, &title, &dry, max_bytes)
                     .map_err(|e| e.to_string())?;
-            w.flush().map_err(|e| e.to_string())?;
-            Ok(cut)
-        });
-        match written {
-            Ok(Some((line, file))) => {
-                // Located at the first line left out of the picture (the start of the
-                // main file when that line is in a subprogram file).
-                let at = if file == 0 {
-                    analyzer::LineIndex::new(&text)
-                        .line_start(line)
-                        .unwrap_or(0)
-                } else {
-                    0
-                };
-                report.diagnostics.push(Diagnostic::warning(
-                    runtime::rules::codes::STEP_BUDGET,
-                    Span::new(at, at),
-                    format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
-                ));
+                w.flush().map_err(|e| e.to_string())?;
+                Ok(cut)
+            });
+            match written {
+                Ok(c) => cut = c,
+                Err(e) => return fail(format_args!("{}: {e}", svg.display())),
             }
-            Ok(None) => {}
-            Err(e) => return fail(format_args!("{}: {e}", svg.display())),
+        }
+        if let Some(png) = &args.png {
+            // The PNG is the SVG picture rasterised: one drawing, text and legend included.
+            let mut svg = Vec::new();
+            let drawn = crate::picture::svg(&mut svg, &tp, &title, &dry, max_bytes)
+                .map_err(|e| e.to_string())
+                .and_then(|c| {
+                    cut = cut.or(c);
+                    write_replacing(png, |tmp| crate::picture::png(&svg, tmp))
+                });
+            match drawn {
+                Ok(true) => {}
+                Ok(false) => workspace::warn_once(
+                    "no font is installed, so the PNG picture has no text (install one, e.g. fonts-dejavu-core)",
+                ),
+                Err(e) => return fail(format_args!("{}: {e}", png.display())),
+            }
+        }
+        if let Some((line, file)) = cut {
+            // Located at the first line left out of the picture (the start of the
+            // main file when that line is in a subprogram file).
+            let at = if file == 0 {
+                analyzer::LineIndex::new(&text)
+                    .line_start(line)
+                    .unwrap_or(0)
+            } else {
+                0
+            };
+            report.diagnostics.push(Diagnostic::warning(
+                runtime::rules::codes::STEP_BUDGET,
+                Span::new(at, at),
+                format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
+            ));
         }
     }
-    if let Some(png) = &args.png {
-        let tp = dryrun::toolpath_on(&out, 0.01, &profile);
-        if let Err(e) = write_replacing(png, |tmp| crate::picture::png(&tp, tmp)) {
-            return fail(format_args!("{}: {e}", png.display()));
+    if let Some(html) = &args.html {
+        // The result `partscope/dryRun` gives the editor's preview, made by the same code.
+        let mut result = crate::lsp::dry_run_result(
+            &parsed.program,
+            &args.file,
+            &out,
+            &profile,
+            &dry,
+            &resolver.loaded(),
+        );
+        let mut title = args
+            .file
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| args.file.display().to_string());
+        // The figures stay those of the whole run; only the drawing is cut short.
+        let max_mb = args.max_html_mb.unwrap_or(DEFAULT_MAX_HTML_MB);
+        let segments = &mut result.toolpath.segments;
+        let keep = crate::page::segments_within(segments, max_mb.saturating_mul(1 << 20));
+        if keep < segments.len() {
+            let line = segments[keep].line;
+            segments.truncate(keep);
+            title = format!(
+                "{title} — toolpath cut off at line {} to keep the page under {max_mb} MB (--max-html-mb)",
+                line + 1
+            );
+            let at = analyzer::LineIndex::new(&text)
+                .line_start(line)
+                .unwrap_or(0);
+            report.diagnostics.push(Diagnostic::warning(
+                runtime::rules::codes::STEP_BUDGET,
+                Span::new(at, at),
+                format!("the HTML page's toolpath is cut off here to keep it under {max_mb} MB; raise the limit with --max-html-mb"),
+            ));
+        }
+        let written = write_replacing(html, |tmp| {
+            let f = std::fs::File::create(tmp).map_err(|e| e.to_string())?;
+            let mut w = std::io::BufWriter::new(f);
+            crate::page::write(&mut w, &result, &title)
+                .and_then(|_| w.flush())
+                .map_err(|e| e.to_string())
+        });
+        if let Err(e) = written {
+            return fail(format_args!("{}: {e}", html.display()));
         }
     }
     let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
@@ -483,19 +604,26 @@ pub fn run(args: RunArgs) -> ExitCode {
         Some(Emit::Blocks) => {
             let mut r = writeln!(
                 w,
-                "line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min"
+                "line,start_s,end_s,duration_s,length_mm,peak_feed_mm_min,time_s,{}",
+                CSV_CAUSES.join(",")
             );
             for b in dryrun::block_times(&out, &dry) {
                 if r.is_ok() {
+                    let causes: Vec<String> = block_parts(&b)
+                        .iter()
+                        .map(|(_, s)| format!("{s:.6}"))
+                        .collect();
                     r = writeln!(
                         w,
-                        "{},{:.6},{:.6},{:.6},{:.6},{:.3}",
+                        "{},{:.6},{:.6},{:.6},{:.6},{:.3},{:.6},{}",
                         b.line + 1,
                         b.start_s,
                         b.end_s,
                         b.duration_s,
                         b.length_mm,
-                        b.peak_feed
+                        b.peak_feed,
+                        b.time_s,
+                        causes.join(",")
                     );
                 }
             }
@@ -503,8 +631,8 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
         Some(Emit::BlocksJson) => {
             let v: Vec<_> = dryrun::block_times(&out, &dry)
-                .into_iter()
-                .map(|b| json!({"line": b.line + 1, "file": b.file, "start_s": b.start_s, "end_s": b.end_s, "duration_s": b.duration_s, "length_mm": b.length_mm, "peak_feed": b.peak_feed}))
+                .iter()
+                .map(block_json)
                 .collect();
             serde_json::to_writer_pretty(&mut w, &v)
                 .map_err(std::io::Error::other)
@@ -518,10 +646,8 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
         Some(Emit::Canon) | None => match args.format {
             RunFormat::Json => {
-                let v = summary_json(&dry, &report, &stop, &profile_name);
-                serde_json::to_writer_pretty(&mut w, &v)
-                    .map_err(std::io::Error::other)
-                    .and_then(|_| writeln!(w))
+                let v = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
+                write_summary(&mut w, v, &dry.blocks, &out.files)
             }
             RunFormat::Human => human(
                 &mut w,
@@ -531,6 +657,8 @@ pub fn run(args: RunArgs) -> ExitCode {
                 &report,
                 &stop,
                 &profile_name,
+                &what_ifs,
+                &profile,
             ),
         },
     };
@@ -551,7 +679,11 @@ const PLAN_QUEUE: usize = 4;
 fn plan_beside(
     input: &runtime::RunInput<'_>,
     profile: &MachineProfile,
-) -> (runtime::RunOutput, runtime::plan::Totals) {
+) -> (
+    runtime::RunOutput,
+    runtime::plan::Totals,
+    Vec<dryrun::BlockTime>,
+) {
     let pass = |plan: dryrun::StreamPlan| {
         std::thread::scope(|scope| {
             type Chunk = (Vec<runtime::Motion>, Vec<runtime::Event>);
@@ -566,7 +698,7 @@ fn plan_beside(
                     e.clear();
                     let _ = back_tx.send((m, e));
                 }
-                plan.finish()
+                plan.finish_with_blocks()
             });
             let out = runtime::run_streaming_owned(input, &mut |m, e| {
                 // The full buffers go to the planner; emptied ones come back.
@@ -583,11 +715,12 @@ fn plan_beside(
             (out, totals)
         })
     };
-    match pass(dryrun::StreamPlan::new(profile)) {
-        (out, Some(totals)) => (out, totals),
+    match pass(dryrun::StreamPlan::new(profile).with_blocks()) {
+        (out, Some((totals, blocks))) => (out, totals, blocks),
         (_, None) => {
-            let (out, totals) = pass(dryrun::StreamPlan::closed_form(profile));
-            (out, totals.unwrap_or_default())
+            let (out, r) = pass(dryrun::StreamPlan::closed_form(profile).with_blocks());
+            let (totals, blocks) = r.unwrap_or_default();
+            (out, totals, blocks)
         }
     }
 }
@@ -714,11 +847,177 @@ fn auxiliary_json(a: &runtime::plan::Auxiliary) -> serde_json::Value {
     })
 }
 
+/// The what-if estimates of a run: planned, skipped (and why), or not asked for.
+enum WhatIfs {
+    Ran(Vec<dryrun::WhatIf>),
+    Skipped(String),
+    Off,
+}
+
+/// Plans the what-if estimates that apply to the dialect, side by side.
+fn what_ifs(
+    out: &runtime::RunOutput,
+    profile: &MachineProfile,
+    dialect: analyzer::Dialect,
+) -> Vec<dryrun::WhatIf> {
+    let events = dryrun::planner_events(out);
+    let kinds: Vec<dryrun::WhatIfKind> = dryrun::WhatIfKind::ALL
+        .into_iter()
+        .filter(|k| k.applies(dialect))
+        .collect();
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = kinds
+            .iter()
+            .map(|k| {
+                let events = &events;
+                scope.spawn(move || dryrun::what_if(events, profile, *k))
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
+            .collect()
+    })
+}
+
+/// Cause columns of `--emit blocks`, in [`block_parts`] order.
+const CSV_CAUSES: [&str; 10] = [
+    "feed_s",
+    "accel_s",
+    "corner_s",
+    "axis_cap_s",
+    "traj_cap_s",
+    "curve_cap_s",
+    "servo_cap_s",
+    "rapid_s",
+    "dwell_s",
+    "aux_s",
+];
+
+/// A block's time by cause, keyed as in [`CSV_CAUSES`].
+fn block_parts(b: &dryrun::BlockTime) -> [(&'static str, f64); 10] {
+    let c = &b.causes;
+    [
+        ("feed_s", c.feed_s),
+        ("accel_s", c.accel_s),
+        ("corner_s", c.corner_s),
+        ("axis_cap_s", c.axis_cap_s),
+        ("traj_cap_s", c.traj_cap_s),
+        ("curve_cap_s", c.curve_cap_s),
+        ("servo_cap_s", c.servo_cap_s),
+        ("rapid_s", c.rapid_s),
+        ("dwell_s", b.dwell_s),
+        ("aux_s", b.aux_s),
+    ]
+}
+
+/// One block for JSON: 1-based line, file (0 = the program, n = `files[n-1]`),
+/// times on the program clock, and the causes that took time (others are 0).
+fn block_json(b: &dryrun::BlockTime) -> serde_json::Value {
+    let causes: serde_json::Map<String, serde_json::Value> = block_parts(b)
+        .into_iter()
+        .filter(|(_, s)| *s != 0.0)
+        .map(|(k, s)| (k.to_string(), json!(s)))
+        .collect();
+    json!({"line": b.line + 1, "file": b.file, "start_s": b.start_s, "end_s": b.end_s,
+           "time_s": b.time_s, "duration_s": b.duration_s, "length_mm": b.length_mm,
+           "peak_feed": b.peak_feed, "causes": causes})
+}
+
+/// Writes the summary object with `blocks` and `files` added, one block per
+/// line: a long program has a block for every line, and one object per line
+/// keeps the output a fraction of its pretty-printed size.
+fn write_summary(
+    w: &mut impl Write,
+    summary: serde_json::Value,
+    blocks: &[dryrun::BlockTime],
+    files: &[String],
+) -> std::io::Result<()> {
+    let mut head = serde_json::to_string_pretty(&summary).map_err(std::io::Error::other)?;
+    // A pretty-printed object ends with "\n}".
+    if head.ends_with("\n}") {
+        head.truncate(head.len() - 2);
+    } else {
+        return writeln!(w, "{head}");
+    }
+    write!(w, "{head},\n  \"files\": ")?;
+    serde_json::to_writer(&mut *w, files).map_err(std::io::Error::other)?;
+    write!(w, ",\n  \"blocks\": [")?;
+    for (i, b) in blocks.iter().enumerate() {
+        w.write_all(if i == 0 { b"\n    " } else { b",\n    " })?;
+        write_block(w, b)?;
+    }
+    writeln!(w, "\n  ]\n}}")
+}
+
+/// A JSON number, or `null` for what JSON cannot hold (as serde_json writes it).
+struct Num(f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.0.is_finite() {
+            // The shortest text that reads back as the same f64, with a point
+            // (`1.0`) as serde_json writes a float.
+            write!(f, "{:?}", self.0)
+        } else {
+            f.write_str("null")
+        }
+    }
+}
+
+/// [`block_json`] written straight out: a long program has a block per line,
+/// and building a JSON value for each costs more than the planning.
+fn write_block(w: &mut impl Write, b: &dryrun::BlockTime) -> std::io::Result<()> {
+    write!(
+        w,
+        "{{\"line\":{},\"file\":{},\"start_s\":{},\"end_s\":{},\"time_s\":{},\"duration_s\":{},\"length_mm\":{},\"peak_feed\":{},\"causes\":{{",
+        u64::from(b.line) + 1,
+        b.file,
+        Num(b.start_s),
+        Num(b.end_s),
+        Num(b.time_s),
+        Num(b.duration_s),
+        Num(b.length_mm),
+        Num(b.peak_feed)
+    )?;
+    let mut first = true;
+    for (k, s) in block_parts(b) {
+        if s != 0.0 {
+            write!(w, "{}\"{k}\":{}", if first { "" } else { "," }, Num(s))?;
+            first = false;
+        }
+    }
+    w.write_all(b"}}")
+}
+
+/// `time_causes` of the JSON summary: the cycle time by cause (summing to
+/// `cycle_time_s`) and how many moves each cause touched.
+fn causes_json(t: &runtime::plan::Totals) -> serde_json::Value {
+    let mut m: serde_json::Map<String, serde_json::Value> = runtime::plan::explain::parts(t)
+        .iter()
+        .map(|p| (p.key.to_string(), json!(p.seconds)))
+        .collect();
+    let n = &t.cause_counts;
+    m.insert(
+        "moves".into(),
+        json!({"accel": n.accel, "corner": n.corner, "axis_cap": n.axis_cap, "traj_cap": n.traj_cap,
+               "curve_cap": n.curve_cap, "servo_cap": n.servo_cap}),
+    );
+    m.insert(
+        "short_moves".into(),
+        json!({"count": n.short, "time_s": n.short_s, "max_length_mm": n.short_max_mm,
+               "min_feed": n.short_feed_min * 60.0, "max_feed": n.short_feed_max * 60.0}),
+    );
+    serde_json::Value::Object(m)
+}
+
 fn summary_json(
     dry: &DryRun,
     report: &FileReport,
     stop: &Stop,
     profile_name: &str,
+    what_ifs: &WhatIfs,
+    profile: &MachineProfile,
 ) -> serde_json::Value {
     let t = &dry.totals;
     let per_tool: serde_json::Map<String, serde_json::Value> = t
@@ -754,6 +1053,16 @@ fn summary_json(
         "auxiliary": auxiliary_json(&t.aux),
         "distance_mm": t.distance_mm,
         "per_tool": per_tool,
+        "time_causes": causes_json(t),
+        "top_causes": runtime::plan::explain::top_causes(t, profile.traj_max_velocity),
+        "what_if": match what_ifs {
+            WhatIfs::Ran(v) => json!(v),
+            _ => serde_json::Value::Null,
+        },
+        "what_if_skipped": match what_ifs {
+            WhatIfs::Skipped(why) => json!(why),
+            _ => serde_json::Value::Null,
+        },
         "partial": stop.partial,
         "complete": !stop.partial,
         "stopped_at": stop.at.as_ref().map(|(file, line, reason)| json!({"file": file, "line": line, "reason": reason})),
@@ -810,6 +1119,7 @@ fn hms(s: f64) -> String {
     }
 }
 
+#[allow(clippy::too_many_arguments)]
 fn human(
     w: &mut impl Write,
     file: &Path,
@@ -818,6 +1128,8 @@ fn human(
     report: &FileReport,
     stop: &Stop,
     profile_name: &str,
+    what_ifs: &WhatIfs,
+    profile: &MachineProfile,
 ) -> std::io::Result<()> {
     let t = &dry.totals;
     writeln!(w, "{}", file.display())?;
@@ -908,8 +1220,9 @@ fn human(
             )?;
         }
     }
+    where_the_time_goes(w, t, what_ifs, profile)?;
     let mut blocks = dryrun::block_times(out, dry);
-    blocks.sort_by(|a, b| b.duration_s.total_cmp(&a.duration_s));
+    blocks.sort_by(|a, b| b.time_s.total_cmp(&a.time_s));
     if !blocks.is_empty() {
         writeln!(w, "\n  slowest blocks")?;
         for b in blocks.iter().take(5) {
@@ -924,13 +1237,28 @@ fn human(
                         .unwrap_or("?")
                 )
             };
+            // The cause that took most of the block's time, when it is not the feed.
+            let (key, most) =
+                block_parts(b)
+                    .into_iter()
+                    .fold(("", 0.0), |m, p| if p.1 > m.1 { p } else { m });
+            let why = if key.is_empty() || key == "feed_s" || b.time_s <= 0.0 {
+                String::new()
+            } else {
+                format!(
+                    "  {} {:.0} %",
+                    key.trim_end_matches("_s").replace('_', " "),
+                    100.0 * most / b.time_s
+                )
+            };
             writeln!(
                 w,
-                "  line {:<7} {:>9.3} s  {:>9.2} mm  peak {:>8.0} mm/min{}",
+                "  line {:<7} {:>9.3} s  {:>9.2} mm  peak {:>8.0} mm/min{}{}",
                 b.line + 1,
-                b.duration_s,
+                b.time_s,
                 b.length_mm,
                 b.peak_feed,
+                why,
                 name
             )?;
         }
@@ -951,6 +1279,51 @@ fn human(
             "\n  {errors} error(s), {warnings} warning(s): run `partscope check {}` for details",
             file.display()
         )?;
+    }
+    Ok(())
+}
+
+/// The cycle time by cause, the top causes in words and the what-if estimates.
+fn where_the_time_goes(
+    w: &mut impl Write,
+    t: &runtime::plan::Totals,
+    what_ifs: &WhatIfs,
+    profile: &MachineProfile,
+) -> std::io::Result<()> {
+    use runtime::plan::explain;
+    if t.cycle_time_s <= 0.0 || !t.cycle_time_s.is_finite() {
+        return Ok(());
+    }
+    writeln!(w, "\n  where the time goes")?;
+    for p in explain::parts(t).iter().filter(|p| p.seconds > 0.0) {
+        writeln!(
+            w,
+            "  {:<34} {:>12}  {:>5.1} %",
+            p.label,
+            hms(p.seconds),
+            100.0 * p.seconds / t.cycle_time_s
+        )?;
+    }
+    for line in explain::top_causes(t, profile.traj_max_velocity) {
+        writeln!(w, "  - {line}")?;
+    }
+    match what_ifs {
+        WhatIfs::Ran(v) if !v.is_empty() => {
+            writeln!(w, "\n  what if (planned again)")?;
+            for e in v {
+                let d = e.cycle_time_s - t.cycle_time_s;
+                writeln!(
+                    w,
+                    "  {:<34} {:>12}  {:>+9.3} s  ({:+.1} %)",
+                    e.label,
+                    hms(e.cycle_time_s),
+                    d,
+                    100.0 * d / t.cycle_time_s
+                )?;
+            }
+        }
+        WhatIfs::Skipped(why) => writeln!(w, "\n  what if: not planned ({why})")?,
+        _ => {}
     }
     Ok(())
 }
@@ -1072,5 +1445,43 @@ impl Drop for Progress {
             done.store(true, std::sync::atomic::Ordering::Relaxed);
             let _ = handle.join();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The per-line writer of `--format json` and the JSON value of
+    /// `--emit blocks-json` say the same, non-finite values as `null`.
+    #[test]
+    fn written_blocks_read_back_as_their_json_values() {
+        let b = dryrun::BlockTime {
+            file: 2,
+            line: 41,
+            start_s: 1.25,
+            end_s: 3.5000000000000004,
+            duration_s: 2.25,
+            length_mm: 0.1,
+            peak_feed: f64::INFINITY,
+            time_s: 2.25,
+            causes: runtime::plan::Causes {
+                feed_s: 1.0,
+                corner_s: 1e-20,
+                ..Default::default()
+            },
+            dwell_s: 1.25,
+            aux_s: 0.0,
+        };
+        let mut out = Vec::new();
+        write_block(&mut out, &b).unwrap();
+        let read: serde_json::Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(read, block_json(&b));
+        assert_eq!(read["line"], 42);
+        assert_eq!(read["peak_feed"], serde_json::Value::Null);
+        assert_eq!(
+            read["causes"],
+            json!({"feed_s": 1.0, "corner_s": 1e-20, "dwell_s": 1.25})
+        );
     }
 }

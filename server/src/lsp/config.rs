@@ -39,6 +39,29 @@ pub struct ClientOptions {
     /// The `format` object: defaults of document formatting (`numbers`,
     /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
     pub format: Option<Value>,
+    /// What the inlay hints show of each block's time (`blockTimes`).
+    pub block_times: Option<BlockTimes>,
+}
+
+/// The per-block time in inlay hints: `block` (the block's own time, the
+/// default), `cumulative` (the program time when it ends) or `off`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum BlockTimes {
+    #[default]
+    Block,
+    Cumulative,
+    Off,
+}
+
+impl BlockTimes {
+    pub fn parse(s: &str) -> Option<BlockTimes> {
+        match s.to_ascii_lowercase().as_str() {
+            "block" | "on" | "true" => Some(BlockTimes::Block),
+            "cumulative" => Some(BlockTimes::Cumulative),
+            "off" | "none" | "false" => Some(BlockTimes::Off),
+            _ => None,
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -94,6 +117,12 @@ impl ClientOptions {
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
             format: v.get("format").filter(|f| f.is_object()).cloned(),
+            block_times: match v.get("blockTimes") {
+                Some(Value::String(s)) => BlockTimes::parse(s),
+                Some(Value::Bool(true)) => Some(BlockTimes::Block),
+                Some(Value::Bool(false)) => Some(BlockTimes::Off),
+                _ => None,
+            },
         }
     }
 }

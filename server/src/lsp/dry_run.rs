@@ -97,6 +97,72 @@ pub struct RunReport {
     /// The values the document's expressions took (hover), kept apart from
     /// `run` because the next version's run takes that.
     pub values: Option<Arc<runtime::ValueRecord>>,
+    /// The document's blocks that take time (inlay hints, hover), by line.
+    pub blocks: Vec<runtime::dryrun::BlockTime>,
+    /// Where the time goes: the cycle time by cause and the top causes in words
+    /// (when planned).
+    pub breakdown: Option<Breakdown>,
+}
+
+/// The cycle time by cause ([`runtime::plan::explain`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Breakdown {
+    /// `feed_s`, `accel_s`, … → seconds; they sum to the cycle time.
+    pub parts: std::collections::BTreeMap<&'static str, f64>,
+    /// Plain-words labels of `parts`, in the order `partscope run` prints them.
+    #[serde(skip)]
+    pub labels: Vec<(&'static str, &'static str)>,
+    /// The causes that cost the most cutting time, in words.
+    pub top_causes: Vec<String>,
+}
+
+impl Breakdown {
+    pub fn of(totals: &runtime::plan::Totals, traj_max_velocity: f64) -> Breakdown {
+        let parts = runtime::plan::explain::parts(totals);
+        Breakdown {
+            parts: parts.iter().map(|p| (p.key, p.seconds)).collect(),
+            labels: parts.iter().map(|p| (p.key, p.label)).collect(),
+            top_causes: runtime::plan::explain::top_causes(totals, traj_max_velocity),
+        }
+    }
+
+    /// Markdown: one line per part that takes time, then the top causes.
+    pub fn markdown(&self) -> String {
+        let mut md = String::from("**Where the time goes**\n\n");
+        for (key, label) in &self.labels {
+            let s = self.parts.get(key).copied().unwrap_or(0.0);
+            if s > 0.0 {
+                md.push_str(&format!("- {label}: {s:.3} s\n"));
+            }
+        }
+        for c in &self.top_causes {
+            md.push_str(&format!("\n{c}  "));
+        }
+        md
+    }
+
+    /// The block's time by cause in words (`1.000 s at feed, 0.050 s acceleration`).
+    pub fn of_block(b: &runtime::dryrun::BlockTime) -> String {
+        let c = &b.causes;
+        let parts = [
+            (c.feed_s, "at feed"),
+            (c.accel_s, "acceleration"),
+            (c.corner_s, "corners"),
+            (c.axis_cap_s, "axis velocity"),
+            (c.traj_cap_s, "TRAJ velocity cap"),
+            (c.curve_cap_s, "arc acceleration"),
+            (c.servo_cap_s, "servo period"),
+            (c.rapid_s, "rapid"),
+            (b.dwell_s, "dwell"),
+            (b.aux_s, "auxiliary"),
+        ];
+        parts
+            .iter()
+            .filter(|(s, _)| *s > 0.0)
+            .map(|(s, w)| format!("{s:.3} s {w}"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
 }
 
 /// Where a run stopped early, in the document.
@@ -158,6 +224,9 @@ pub struct DryRunResult {
     pub complete: bool,
     /// Where and why it stopped (`null` when complete).
     pub stopped_at: Option<StoppedAt>,
+    /// The cycle time by cause and the top causes in words (`null` when no
+    /// planner ran).
+    pub breakdown: Option<Breakdown>,
 }
 
 /// Builds the preview result from a run report.
@@ -199,6 +268,7 @@ pub fn summarize(
         diagnostics,
         complete: report.stopped.is_none(),
         stopped_at: report.stopped.clone(),
+        breakdown: report.breakdown.clone(),
     }
 }
 
@@ -279,6 +349,8 @@ mod tests {
             run: Default::default(),
             stopped: None,
             values: None,
+            blocks: vec![],
+            breakdown: None,
         };
         let r = summarize(7, &report, vec![]);
         assert_eq!(r.version, 7);

@@ -302,6 +302,10 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             program.dialect.as_str(),
             snap.doc.dialect_reason
         ));
+        // The cycle-time lens sits on this line: where its time goes.
+        if let Some(b) = snap.cached_run().and_then(|r| r.breakdown.clone()) {
+            parts.push(b.markdown());
+        }
         span.get_or_insert(Span::new(offset, offset));
     }
     if parts.is_empty() {
@@ -330,12 +334,27 @@ fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
         .filter(|(a, _)| snap.doc.settings.axes.contains(a))
         .map(|(a, v)| format!("{a}{v:.3}"))
         .collect();
-    Some(format!(
+    let mut md = format!(
         "After this block: `{}`  \nPosition: `{}`  \nF{} S{} T{}",
         s.modal.join(" "),
         pos.join(" "),
         s.feed,
         s.spindle,
         s.tool
-    ))
+    );
+    // The block's planned time, summed over its executions, and its causes.
+    let line = snap.rope.try_byte_to_line(offset as usize).ok()? as u32;
+    if let Some(b) = report
+        .blocks
+        .iter()
+        .find(|b| b.line == line && b.time_s > 0.0)
+    {
+        md.push_str(&format!(
+            "  \nTime: {} ({}), ends at {}",
+            super::server::block_seconds(b.time_s),
+            super::dry_run::Breakdown::of_block(b),
+            super::server::format_duration(b.end_s)
+        ));
+    }
+    Some(md)
 }

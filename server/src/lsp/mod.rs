@@ -57,7 +57,8 @@
 //! [{kind: "rapid"|"feed"|"arc", line, feed, tool, points: [[x,y,z]…]}],
 //! bounds: {min, max}}, diagnostics}`. Times are `null` when the `[machine]`
 //! table is not a valid planner profile; error -32001 when no run is possible
-//! (cancelled), -32603 in syntax-only mode.
+//! (cancelled), -32603 in syntax-only mode. `partscope run --html` embeds the
+//! same result, made by the same conversion ([`dry_run_result`]), in its page.
 
 mod actions;
 mod completion;
@@ -84,6 +85,7 @@ use std::process::ExitCode;
 
 use tower_lsp_server::{ClientSocket, LspService};
 
+pub use runtime_runner::{dry_run_result, Loaded};
 pub use server::Backend;
 
 /// Builds the protocol service `run` serves over stdio. It is public so an

@@ -10,12 +10,18 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use analyzer::{Dialect, FileId};
-use runtime::{dryrun, EventKind, ResolvedFile, Resolver, RunInput};
+use runtime::dryrun::{self, DryRun};
+use runtime::machine::MachineProfile;
+use runtime::{EventKind, ResolvedFile, Resolver, RunInput};
+
+use tower_lsp_server::ls_types::Uri;
 
 use super::dry_run::{
-    CancelFlag, DryRunInput, DryRunner, RunReport, Segment, SegmentKind, StoppedAt, Timing,
+    summarize, CancelFlag, DryRunInput, DryRunResult, DryRunner, RunReport, Segment, SegmentKind,
+    StoppedAt, Timing,
 };
 use super::nav::{self, Sym};
+use super::snapshot::lsp_diagnostic;
 use super::workspace;
 
 /// Upper bound on executed blocks per run (loops and calls included).
@@ -30,7 +36,7 @@ pub const STEP_BUDGET: u64 = 20_000;
 const CHORD_TOLERANCE: f64 = 0.01;
 
 /// A file the resolver loaded: (name as called, path, text).
-type Loaded = (String, String, Arc<[u8]>);
+pub type Loaded = (String, String, Arc<[u8]>);
 
 /// Resolves subprogram names to files next to the document, in
 /// `subroutine_path`, or at the top of a workspace folder.
@@ -233,28 +239,7 @@ impl DryRunner for RuntimeRunner {
         // and the plan itself come from `runtime::dryrun`.
         // A `[machine]` table the planner cannot read leaves the run without times.
         let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
-        let tp = match &profile {
-            Some(p) => dryrun::toolpath_on(&out, CHORD_TOLERANCE, p),
-            None => dryrun::toolpath(&out, CHORD_TOLERANCE),
-        };
-        let segments: Vec<Segment> = tp
-            .segments
-            .iter()
-            .zip(&out.motions)
-            .enumerate()
-            .map(|(i, (t, m))| Segment {
-                kind: match t.kind {
-                    "rapid" => SegmentKind::Rapid,
-                    "arc" => SegmentKind::Arc,
-                    _ => SegmentKind::Feed,
-                },
-                line: t.line,
-                feed: t.feed,
-                tool: t.tool,
-                points: t.points.clone(),
-                length: dryrun::segment_of(m, i as u32).length,
-            })
-            .collect();
+        let segments = segments_of(&out, profile.as_ref());
         if input.cancel.is_cancelled() {
             return None;
         }
@@ -264,72 +249,158 @@ impl DryRunner for RuntimeRunner {
             })?),
             None => None,
         };
-        let timing = plan.as_ref().map(|p| Timing {
-            rapid_s: p.totals.rapid_s,
-            cutting_s: p.totals.cutting_s,
-            dwell_s: p.totals.dwell_s,
-            tool_change_s: p.totals.tool_change_s,
-            other_s: p.totals.other_s,
-            cycle_time_s: p.totals.cycle_time_s,
-            motion_s: p.totals.motion_s,
-        });
-        let tool_changes = out
-            .events
-            .iter()
-            .enumerate()
-            .filter(|(_, e)| e.file == FileId(0) && matches!(e.kind, EventKind::ToolChange { .. }))
-            .map(|(i, e)| {
-                (
-                    e.line,
-                    plan.as_ref().and_then(|p| p.event_times.get(i).copied()),
-                )
-            })
-            .collect();
         let loaded = resolver.loaded.borrow();
-        let diagnostics = out
-            .diagnostics
-            .iter()
-            .filter_map(|d| {
-                if d.file == FileId(0) {
-                    Some(d.clone())
-                } else {
-                    onto_call_site(input.program, d, &out.files, &loaded)
-                }
-            })
-            .collect();
-        let stopped = out.stopped.as_ref().and_then(|s| {
-            if s.file == FileId(0) {
-                return Some(StoppedAt {
-                    line: s.line,
-                    reason: s.reason.clone(),
-                });
-            }
-            // A stop inside a called file is shown on the document's call.
-            let d = analyzer::Diagnostic::new(s.code, analyzer::Severity::Info, s.span, &s.reason)
-                .in_file(s.file);
-            let moved = onto_call_site(input.program, &d, &out.files, &loaded)?;
-            Some(StoppedAt {
-                line: analyzer::LineIndex::new(&input.program.text)
-                    .line_col(moved.span.start)
-                    .0,
-                reason: moved.message,
-            })
-        });
-        drop(loaded);
+        let report = report_of(input.program, &out, segments, plan.as_ref(), &loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
-        let values = out.values.clone().map(Arc::new);
+        let blocks = plan
+            .as_ref()
+            .map(|p| p.blocks.iter().filter(|b| b.file == 0).cloned().collect())
+            .unwrap_or_default();
+        let breakdown = plan
+            .as_ref()
+            .zip(profile.as_ref())
+            .map(|(p, prof)| super::dry_run::Breakdown::of(&p.totals, prof.traj_max_velocity));
         Some(RunReport {
-            values,
-            segments,
-            timing,
-            tool_changes,
-            diagnostics,
+            blocks,
+            breakdown,
             run: Arc::new(std::sync::Mutex::new(Some(out))),
-            stopped,
+            ..report
         })
     }
+}
+
+/// The toolpath of a run as preview segments: arcs sampled at the preview's
+/// chord tolerance, rapids as `profile` moves them (straight without one).
+pub fn segments_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>) -> Vec<Segment> {
+    let tp = match profile {
+        Some(p) => dryrun::toolpath_on(out, CHORD_TOLERANCE, p),
+        None => dryrun::toolpath(out, CHORD_TOLERANCE),
+    };
+    tp.segments
+        .iter()
+        .zip(&out.motions)
+        .enumerate()
+        .map(|(i, (t, m))| Segment {
+            kind: match t.kind {
+                "rapid" => SegmentKind::Rapid,
+                "arc" => SegmentKind::Arc,
+                _ => SegmentKind::Feed,
+            },
+            line: t.line,
+            feed: t.feed,
+            tool: t.tool,
+            points: t.points.clone(),
+            length: dryrun::segment_of(m, i as u32).length,
+        })
+        .collect()
+}
+
+/// The report of a finished run of `program`, as the language server keeps it
+/// (without the run itself, which the caller keeps or not): times from `plan`,
+/// tool changes, the run's diagnostics and stop in the document (those in a
+/// called file moved onto its call, found in `loaded`). Shared with
+/// `partscope run --html`, whose page holds what the preview gets.
+pub fn report_of(
+    program: &analyzer::syntax::Program,
+    out: &runtime::RunOutput,
+    segments: Vec<Segment>,
+    plan: Option<&DryRun>,
+    loaded: &[Loaded],
+) -> RunReport {
+    let timing = plan.map(|p| Timing {
+        rapid_s: p.totals.rapid_s,
+        cutting_s: p.totals.cutting_s,
+        dwell_s: p.totals.dwell_s,
+        tool_change_s: p.totals.tool_change_s,
+        other_s: p.totals.other_s,
+        cycle_time_s: p.totals.cycle_time_s,
+        motion_s: p.totals.motion_s,
+    });
+    let tool_changes = out
+        .events
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| e.file == FileId(0) && matches!(e.kind, EventKind::ToolChange { .. }))
+        .map(|(i, e)| (e.line, plan.and_then(|p| p.event_times.get(i).copied())))
+        .collect();
+    let diagnostics = out
+        .diagnostics
+        .iter()
+        .filter_map(|d| {
+            if d.file == FileId(0) {
+                Some(d.clone())
+            } else {
+                onto_call_site(program, d, &out.files, loaded)
+            }
+        })
+        .collect();
+    let stopped = out.stopped.as_ref().and_then(|s| {
+        if s.file == FileId(0) {
+            return Some(StoppedAt {
+                line: s.line,
+                reason: s.reason.clone(),
+            });
+        }
+        // A stop inside a called file is shown on the document's call.
+        let d = analyzer::Diagnostic::new(s.code, analyzer::Severity::Info, s.span, &s.reason)
+            .in_file(s.file);
+        let moved = onto_call_site(program, &d, &out.files, loaded)?;
+        Some(StoppedAt {
+            line: analyzer::LineIndex::new(&program.text)
+                .line_col(moved.span.start)
+                .0,
+            reason: moved.message,
+        })
+    });
+    RunReport {
+        values: out.values.clone().map(Arc::new),
+        segments,
+        timing,
+        tool_changes,
+        diagnostics,
+        run: Arc::default(),
+        stopped,
+        blocks: Vec::new(),
+        breakdown: None,
+    }
+}
+
+/// The `partscope/dryRun` result of a run the command line made
+/// (`partscope run --html`): the request's own conversion, from the
+/// program's run, plan and loaded files instead of an open document.
+pub fn dry_run_result(
+    program: &analyzer::syntax::Program,
+    path: &std::path::Path,
+    out: &runtime::RunOutput,
+    profile: &MachineProfile,
+    plan: &DryRun,
+    loaded: &[Loaded],
+) -> DryRunResult {
+    let segments = segments_of(out, Some(profile));
+    let report = report_of(program, out, segments, Some(plan), loaded);
+    // Ranges are counted in a rope of the text; an invalid byte becomes one `?`
+    // (not U+FFFD, three bytes) so byte offsets stay those of the file.
+    let mut text = String::with_capacity(program.text.len());
+    for chunk in program.text.utf8_chunks() {
+        text.push_str(chunk.valid());
+        text.extend(std::iter::repeat_n('?', chunk.invalid().len()));
+    }
+    let rope = ropey::Rope::from_str(&text);
+    let uri = std::path::absolute(path)
+        .ok()
+        .and_then(Uri::from_file_path)
+        .or_else(|| "file:///".parse().ok());
+    let diagnostics = match &uri {
+        Some(uri) => report
+            .diagnostics
+            .iter()
+            .filter_map(|d| serde_json::to_value(lsp_diagnostic(uri, &rope, d)).ok())
+            .collect(),
+        None => Vec::new(),
+    };
+    summarize(0, &report, diagnostics)
 }
 
 #[cfg(test)]

@@ -25,7 +25,7 @@ use tower_lsp_server::jsonrpc::{Error, ErrorCode, Result};
 use tower_lsp_server::ls_types::*;
 use tower_lsp_server::{Client, LanguageServer};
 
-use super::config::ClientOptions;
+use super::config::{BlockTimes, ClientOptions};
 use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
 use super::position::{apply_change, offset_to_position, position_to_offset, span_to_range};
@@ -140,6 +140,17 @@ fn planned_run(snap: &Snapshot) -> Option<Arc<dry_run::RunReport>> {
     })
 }
 
+/// A block's own time: milliseconds below ten seconds, then `m:ss.s`.
+pub fn block_seconds(s: f64) -> String {
+    if s < 10.0 {
+        format!("{s:.3} s")
+    } else if s < 60.0 {
+        format!("{s:.2} s")
+    } else {
+        format_duration(s)
+    }
+}
+
 /// `m:ss.s`, or `h:mm:ss` from an hour on.
 pub fn format_duration(s: f64) -> String {
     if !s.is_finite() || s < 0.0 {
@@ -187,6 +198,7 @@ impl Backend {
         o.max_file_size = c.max_file_size.or(o.max_file_size);
         o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
         o.format = c.format.clone().or(o.format);
+        o.block_times = c.block_times.or(o.block_times);
         o
     }
 
@@ -1035,42 +1047,71 @@ impl LanguageServer for Backend {
     }
 
     async fn inlay_hint(&self, params: InlayHintParams) -> Result<Option<Vec<InlayHint>>> {
-        // The program time at each tool change, from the planned run.
+        // Each block's time (or the program time when it ends) and the program
+        // time at each tool change, from the planned run.
         guarded("inlayHint", async {
             let Some(snap) = self.snapshot(&params.text_document.uri).await else {
                 return Ok(None);
             };
+            let mode = Self::client_options(&self.lock())
+                .block_times
+                .unwrap_or_default();
             let range = params.range;
             blocking(move || {
                 let Some(report) = planned_run(&snap) else {
                     return Some(Vec::new());
                 };
-                let hints = report
+                let in_range = |line: u32| range.start.line <= line && line <= range.end.line;
+                let end_of_line = |line: u32| {
+                    let line_start = snap.rope.try_line_to_byte(line as usize).ok()?;
+                    let text = snap.rope.get_line(line as usize)?.to_string();
+                    let content = text.trim_end_matches(['\r', '\n']);
+                    Some(offset_to_position(&snap.rope, line_start + content.len()))
+                };
+                let hint = |pos: Position, label: String, tooltip: Option<String>| InlayHint {
+                    position: pos,
+                    label: InlayHintLabel::String(label),
+                    kind: None,
+                    text_edits: None,
+                    tooltip: tooltip.map(InlayHintTooltip::String),
+                    padding_left: Some(true),
+                    padding_right: None,
+                    data: None,
+                };
+                let mut hints: Vec<(u32, u8, InlayHint)> = report
                     .tool_changes
                     .iter()
-                    .filter(|(line, _)| range.start.line <= *line && *line <= range.end.line)
+                    .filter(|(line, _)| in_range(*line))
                     .filter_map(|(line, t)| {
                         let t = (*t)?;
-                        let line_start = snap.rope.try_line_to_byte(*line as usize).ok()?;
-                        let text = snap.rope.line(*line as usize).to_string();
-                        let content = text.trim_end_matches(['\r', '\n']);
-                        let pos = offset_to_position(&snap.rope, line_start + content.len());
-                        Some(InlayHint {
-                            position: pos,
-                            label: InlayHintLabel::String(format!(
-                                "tool change at {}",
-                                format_duration(t)
-                            )),
-                            kind: None,
-                            text_edits: None,
-                            tooltip: None,
-                            padding_left: Some(true),
-                            padding_right: None,
-                            data: None,
-                        })
+                        let label = format!("tool change at {}", format_duration(t));
+                        Some((*line, 0, hint(end_of_line(*line)?, label, None)))
                     })
                     .collect();
-                Some(hints)
+                if mode != BlockTimes::Off {
+                    for b in report.blocks.iter().filter(|b| in_range(b.line)) {
+                        if b.time_s <= 0.0 {
+                            continue;
+                        }
+                        let Some(pos) = end_of_line(b.line) else {
+                            continue;
+                        };
+                        let label = match mode {
+                            BlockTimes::Cumulative => {
+                                format!("ends at {}", format_duration(b.end_s))
+                            }
+                            _ => block_seconds(b.time_s),
+                        };
+                        let tip = format!(
+                            "{}; ends at {}",
+                            dry_run::Breakdown::of_block(b),
+                            format_duration(b.end_s)
+                        );
+                        hints.push((b.line, 1, hint(pos, label, Some(tip))));
+                    }
+                }
+                hints.sort_by_key(|(line, order, _)| (*line, *order));
+                Some(hints.into_iter().map(|(_, _, h)| h).collect())
             })
             .await
         })

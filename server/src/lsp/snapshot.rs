@@ -53,6 +53,33 @@ pub struct Inputs {
     pub previous: Option<Arc<Snapshot>>,
 }
 
+/// Converts one analyzer diagnostic of the document `uri` holding `rope`.
+pub fn lsp_diagnostic(uri: &Uri, rope: &Rope, d: &analyzer::Diagnostic) -> LspDiagnostic {
+    let related: Vec<DiagnosticRelatedInformation> = d
+        .related
+        .iter()
+        .filter(|r| r.file == analyzer::FileId(0))
+        .map(|r| DiagnosticRelatedInformation {
+            location: Location {
+                uri: uri.clone(),
+                range: span_to_range(rope, r.span),
+            },
+            message: r.message.clone(),
+        })
+        .collect();
+    LspDiagnostic {
+        range: span_to_range(rope, d.span),
+        severity: Some(severity(d.severity)),
+        code: Some(NumberOrString::String(d.code.to_string())),
+        code_description: rule_href(d.code).map(|href| CodeDescription { href }),
+        source: Some("partscope".to_string()),
+        message: d.message.clone(),
+        related_information: (!related.is_empty()).then_some(related),
+        tags: None,
+        data: None,
+    }
+}
+
 /// Resolves settings and analyses one document version. Blocking: call it on
 /// a blocking thread.
 pub fn analyze(inputs: Inputs) -> Snapshot {
@@ -237,29 +264,7 @@ impl Snapshot {
 
     /// Converts one analyzer diagnostic of this document.
     pub fn to_lsp(&self, d: &analyzer::Diagnostic) -> LspDiagnostic {
-        let related: Vec<DiagnosticRelatedInformation> = d
-            .related
-            .iter()
-            .filter(|r| r.file == analyzer::FileId(0))
-            .map(|r| DiagnosticRelatedInformation {
-                location: Location {
-                    uri: self.uri.clone(),
-                    range: span_to_range(&self.rope, r.span),
-                },
-                message: r.message.clone(),
-            })
-            .collect();
-        LspDiagnostic {
-            range: span_to_range(&self.rope, d.span),
-            severity: Some(severity(d.severity)),
-            code: Some(NumberOrString::String(d.code.to_string())),
-            code_description: rule_href(d.code).map(|href| CodeDescription { href }),
-            source: Some("partscope".to_string()),
-            message: d.message.clone(),
-            related_information: (!related.is_empty()).then_some(related),
-            tags: None,
-            data: None,
-        }
+        lsp_diagnostic(&self.uri, &self.rope, d)
     }
 
     /// The diagnostics of this document (those located in other files are left

@@ -26,8 +26,12 @@ M.defaults = {
   on_attach = nil,
   capabilities = nil,
   handlers = nil,
-  -- Define :PartscopeDryRun, :PartscopeRule and :PartscopeRestart.
+  -- Define :PartscopeDryRun, :PartscopeToolpath, :PartscopeRule and :PartscopeRestart.
   commands = true,
+  -- :PartscopeToolpath writes `partscope run FILE --html PAGE` to a temporary file and opens
+  -- it with this command (the page's path is appended): nil picks the system opener
+  -- (xdg-open, open on macOS, start on Windows).
+  open_cmd = nil,
   -- Set 'omnifunc' to the LSP completion (<C-x><C-o>) in attached buffers.
   omnifunc = true,
   -- Buffer-local mappings: false (none), true (the defaults below) or a table of
@@ -42,6 +46,7 @@ M.default_keymaps = {
   code_action = "<leader>ca",
   rename = "<leader>rn",
   dry_run = "<leader>pd",
+  toolpath = "<leader>pt",
   rule = "<leader>pr",
 }
 
@@ -108,6 +113,9 @@ local actions = {
   end,
   dry_run = function()
     vim.cmd("PartscopeDryRun")
+  end,
+  toolpath = function()
+    vim.cmd("PartscopeToolpath")
   end,
   rule = function()
     vim.cmd("PartscopeRule")
@@ -295,6 +303,68 @@ local function show_dry_run()
   end)
 end
 
+--- The command that opens a file in the browser: `open_cmd`, else the system's opener.
+function M.opener()
+  if config.open_cmd then
+    return config.open_cmd
+  end
+  if vim.fn.has("mac") == 1 then
+    return { "open" }
+  end
+  if vim.fn.has("win32") == 1 then
+    return { "cmd", "/c", "start", "" }
+  end
+  return { "xdg-open" }
+end
+
+--- Writes the toolpath page of `bufnr`'s file (`partscope run FILE --html PAGE`, PAGE a
+--- temporary file) and calls `callback(err, page)` when it is written.
+function M.toolpath_page(bufnr, callback)
+  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+  local file = vim.api.nvim_buf_get_name(bufnr)
+  if file == "" or vim.fn.filereadable(file) == 0 then
+    callback("the buffer has no file on disk; write it first", nil)
+    return
+  end
+  local page = vim.fn.tempname() .. ".html"
+  local stderr = {}
+  local job = vim.fn.jobstart({ config.cmd[1], "run", file, "--html", page }, {
+    stderr_buffered = true,
+    on_stderr = function(_, data)
+      stderr = data or {}
+    end,
+    on_exit = function(_, code)
+      -- `run` exits 1 for a program with errors or a partial run; the page is written then too.
+      if code <= 1 and vim.fn.filereadable(page) == 1 then
+        callback(nil, page)
+      else
+        callback(("`partscope run --html` failed (%d): %s"):format(code, table.concat(stderr, " ")), nil)
+      end
+    end,
+  })
+  if job <= 0 then
+    callback("cannot run " .. config.cmd[1], nil)
+  end
+end
+
+local function open_toolpath()
+  local bufnr = vim.api.nvim_get_current_buf()
+  if vim.bo[bufnr].modified then
+    notify("the buffer has unsaved changes; the page shows the file as saved", vim.log.levels.WARN)
+  end
+  M.toolpath_page(bufnr, function(err, page)
+    if err then
+      notify(err, vim.log.levels.ERROR)
+      return
+    end
+    local cmd = vim.deepcopy(M.opener())
+    table.insert(cmd, page)
+    if vim.fn.jobstart(cmd, { detach = true }) <= 0 then
+      notify(("cannot run %q to open %s"):format(cmd[1], page), vim.log.levels.ERROR)
+    end
+  end)
+end
+
 local function show_rule(code)
   if code == nil or code == "" then
     -- Default to the code of a diagnostic on the cursor line.
@@ -324,6 +394,9 @@ end
 
 local function define_commands()
   vim.api.nvim_create_user_command("PartscopeDryRun", show_dry_run, { desc = "Partscope: cycle time of this buffer" })
+  vim.api.nvim_create_user_command("PartscopeToolpath", open_toolpath, {
+    desc = "Partscope: open this file's toolpath in the browser",
+  })
   vim.api.nvim_create_user_command("PartscopeRule", function(o)
     show_rule(o.args)
   end, { nargs = "?", desc = "Partscope: explain a rule code" })

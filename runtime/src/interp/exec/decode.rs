@@ -110,9 +110,18 @@ impl Interp<'_, '_> {
                 }
                 match &it.kind {
                     ItemKind::Assign { target, value } => {
-                        let v = self.eval(&prog, *value)?;
+                        let (v, (unknown, _)) = self.eval_reading(&prog, *value);
+                        let v = v?;
                         let tainted = self.taint.last.get();
                         self.assign(&prog, *target, v, it.span, tainted)?;
+                        if let Expr::Var { index } = prog.expr(*target).expr {
+                            // The target now stands for the machine value it read.
+                            if let Ok(Some(n)) = self.eval(&prog, index) {
+                                if n >= 0.0 {
+                                    self.machine_vars.derive(n as usize, unknown);
+                                }
+                            }
+                        }
                     }
                     ItemKind::Macro(m) => match *m {
                         MacroStmt::IfThen { cond } => {
@@ -176,9 +185,14 @@ impl Interp<'_, '_> {
         for it in items {
             match &it.kind {
                 ItemKind::Word(word) => {
+                    let mut machine_value = None;
                     let val = match word.value {
                         WordValue::Num(n) => Some(n.value),
-                        WordValue::Expr(e) => self.eval(&prog, e)?,
+                        WordValue::Expr(e) => {
+                            let (v, (unknown, _)) = self.eval_reading(&prog, e);
+                            machine_value = unknown;
+                            v?
+                        }
                         WordValue::Name(s) => {
                             w.pname = Some(prog.str_of(s).into_owned());
                             None
@@ -186,9 +200,18 @@ impl Interp<'_, '_> {
                         WordValue::Missing => None,
                     };
                     let point = word.num().is_none_or(|n| n.has_point);
+                    if word.letter == b'F' && !word.comma {
+                        // A feed from a machine value (`F#650`): the dry run cannot
+                        // know it, so a zero feed after it is no certain alarm.
+                        self.mark_taint(|| "F".into(), val.is_none() && machine_value.is_some());
+                    }
                     let Some(val) = val else {
-                        // FANUC/ServoWorks: a vacant value drops the word (FAN141).
-                        if !self.ngc() && matches!(word.value, WordValue::Expr(_)) {
+                        // FANUC/ServoWorks: a vacant value drops the word (FAN141);
+                        // a machine value the dry run does not know is not vacant.
+                        if !self.ngc()
+                            && matches!(word.value, WordValue::Expr(_))
+                            && machine_value.is_none()
+                        {
                             let letter = word.letter as char;
                             self.diag(codes::VACANT_WORD, Severity::Warning, it.span, format!("the value of {letter} is vacant (an unset variable): the control omits the whole {letter} word; set the variable or leave the word out"));
                         }

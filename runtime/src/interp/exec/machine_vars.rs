@@ -39,6 +39,9 @@ pub(super) struct MachineVars {
     /// The latest condition that tested a shared variable: the variable, the
     /// condition's line and the step.
     last_shared_test: Option<(usize, u32, u64)>,
+    /// Variables the program computed from a machine value it could not know
+    /// (`#110 = #5061` after G31), and that value's variable.
+    derived: std::collections::BTreeMap<usize, usize>,
 }
 
 impl MachineVars {
@@ -62,6 +65,28 @@ impl MachineVars {
                 .unwrap_or(true);
         }
         n >= SYSTEM && !self.set_system.contains(&n)
+    }
+
+    /// The machine value `#n` stands for when the dry run does not know it: `n`
+    /// itself, read as vacant, or the one it was computed from.
+    pub(super) fn unknown_origin(&self, n: usize, vacant: bool) -> Option<usize> {
+        if let Some(origin) = self.derived.get(&n) {
+            return Some(*origin);
+        }
+        (vacant && self.unknown(n)).then_some(n)
+    }
+
+    /// `#n` was set from an expression that read `from`, a machine value the dry
+    /// run does not know (or from known values, `None`).
+    pub(super) fn derive(&mut self, n: usize, from: Option<usize>) {
+        match from {
+            Some(origin) if origin != n => {
+                self.derived.insert(n, origin);
+            }
+            _ => {
+                self.derived.remove(&n);
+            }
+        }
     }
 
     pub(super) fn assigned(&mut self, n: usize) {

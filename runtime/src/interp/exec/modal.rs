@@ -230,7 +230,10 @@ impl Interp<'_, '_> {
             };
             self.diag(codes::RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
         }
-        if w.has_m(290) {
+        // M29 is the rigid-tapping code (parameter 5210's default) only where a tap
+        // follows: without any G84/G74 in the file it is a builder's M code.
+        let taps = self.files.get(self.cur.0).is_some_and(|f| f.taps);
+        if w.has_m(290) && taps {
             let span =
                 w.m.iter()
                     .find(|m| m.0 == 290)

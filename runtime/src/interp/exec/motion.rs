@@ -266,7 +266,9 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn check_feed(&mut self, span: Span) -> Result<(), Diagnostic> {
-        if self.st.feed <= 0.0 {
+        // `F#650` with a value only the machine knows (`machine_vars.rs`).
+        let machine_feed = self.st.tainted.iter().any(|k| k == "F");
+        if self.st.feed <= 0.0 && !machine_feed {
             let msg = match self.dialect {
                 Dialect::Rs274ngc => {
                     "cannot feed with zero feed rate: program F before the first feed move"

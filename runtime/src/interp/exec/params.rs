@@ -214,8 +214,10 @@ impl VarSource for Vars<'_> {
         let v = self.st.params.get(n as usize).copied().flatten();
         if self.dialect == Dialect::Fanuc {
             let n = n as usize;
-            if v.is_none() && self.machine.unknown(n) && self.machine_read.get().is_none() {
-                self.machine_read.set(Some(n));
+            if self.machine_read.get().is_none() {
+                if let Some(origin) = self.machine.unknown_origin(n, v.is_none()) {
+                    self.machine_read.set(Some(origin));
+                }
             }
             if machine_vars::shared(n) && self.shared_read.get().is_none() {
                 self.shared_read.set(Some(n));

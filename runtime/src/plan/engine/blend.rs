@@ -150,6 +150,8 @@ impl Planner {
             optimized: false,
             dogleg: false,
             travel: None,
+            feed: prev.feed,
+            axis_vel: prev.axis_vel,
             run: Run::default(),
         }
     }

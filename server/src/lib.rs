@@ -1,0 +1,10 @@
+//! `partscope`: lint, dry-run and language server for CNC part programs. The
+//! binary (`main.rs`) is only `cli::main`; the library lets the fuzz targets and
+//! benchmarks drive the CLI and the language server in process.
+
+pub mod cli;
+pub mod lsp;
+pub mod page;
+pub mod picture;
+pub mod resolve;
+pub mod rules;

@@ -1,0 +1,14 @@
+%
+O8700 (SPOT UP TO THREE POINTS GIVEN AS I/J/K SETS: I X, J Y, K DEPTH; A R-LEVEL, B FEED)
+#30 = 0
+WHILE [#30 LT 3] DO1
+#31 = 4 + #30 * 3
+IF [#[#31] EQ #0] GOTO 50
+G0 X#[#31] Y#[#31 + 1]
+G0 Z#1
+G1 Z#[#31 + 2] F#2
+G0 Z#1
+#30 = #30 + 1
+END1
+N50 M99
+%
