@@ -6,7 +6,10 @@
 pub mod control;
 pub mod diagnostic;
 pub mod dialect;
+pub mod fixes;
+pub mod format;
 pub mod incremental;
+pub mod names;
 pub mod rules;
 pub mod settings;
 pub mod span;

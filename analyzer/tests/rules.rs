@@ -326,3 +326,227 @@ mod robustness {
         }
     }
 }
+
+/// Ruff's rule for fixes, over mutated fixture programs in every dialect:
+/// applying all fixes settles (a last round finds nothing to fix), and the
+/// fixed program has no diagnostic code more often than the original had it.
+mod fixes_converge {
+    use super::{fixtures, settings_for};
+    use analyzer::dialect::Dialect;
+    use analyzer::fixes::fix_all;
+    use analyzer::{analyze, Settings};
+    use proptest::prelude::*;
+    use std::collections::BTreeMap;
+    use std::sync::OnceLock;
+
+    fn corpus() -> &'static [(String, std::path::PathBuf, Vec<u8>)] {
+        static C: OnceLock<Vec<(String, std::path::PathBuf, Vec<u8>)>> = OnceLock::new();
+        C.get_or_init(|| {
+            fixtures()
+                .into_iter()
+                .map(|(code, path)| {
+                    let text = std::fs::read(&path).expect("read fixture");
+                    (code, path, text)
+                })
+                .collect()
+        })
+    }
+
+    /// Lines and words the mutations insert: fixable faults of every rule
+    /// with a fix, and the end codes that a fix may duplicate.
+    const INSERTS: &[&str] = &[
+        "G04 P1.5",
+        "g04 p2.5",
+        "G05 P1",
+        "G08 P3",
+        "G04 X2",
+        "M3.0 S1000.",
+        "G1 X1 X2",
+        "G0 G1 X1",
+        "G0 G0 X1",
+        "N10 G1 X1",
+        "O100",
+        "G65 P9010 A1 B2",
+        "G1 X 1 . 5",
+        "M98 POne2",
+        "(open",
+        "M30",
+        "M2",
+        "M99",
+        "%",
+        "x1.",
+        "",
+    ];
+
+    #[derive(Debug, Clone)]
+    enum Mutation {
+        DeleteLine(usize),
+        DuplicateLine(usize),
+        InsertLine(usize, usize),
+        AppendToLine(usize, usize),
+        Lowercase(usize),
+        DropEnd,
+    }
+
+    fn mutation() -> impl Strategy<Value = Mutation> {
+        prop_oneof![
+            any::<usize>().prop_map(Mutation::DeleteLine),
+            any::<usize>().prop_map(Mutation::DuplicateLine),
+            (any::<usize>(), 0..INSERTS.len()).prop_map(|(a, b)| Mutation::InsertLine(a, b)),
+            (any::<usize>(), 0..INSERTS.len()).prop_map(|(a, b)| Mutation::AppendToLine(a, b)),
+            any::<usize>().prop_map(Mutation::Lowercase),
+            Just(Mutation::DropEnd),
+        ]
+    }
+
+    fn mutate(text: &[u8], ms: &[Mutation]) -> Vec<u8> {
+        let text = String::from_utf8_lossy(text).into_owned();
+        let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
+        for m in ms {
+            let n = lines.len().max(1);
+            match m {
+                Mutation::DeleteLine(i) if lines.len() > 1 => {
+                    lines.remove(i % lines.len());
+                }
+                Mutation::DuplicateLine(i) if !lines.is_empty() => {
+                    let l = lines[i % lines.len()].clone();
+                    lines.insert(i % lines.len(), l);
+                }
+                Mutation::InsertLine(i, k) => lines.insert(i % n, INSERTS[*k].to_string()),
+                Mutation::AppendToLine(i, k) if !lines.is_empty() => {
+                    let j = i % lines.len();
+                    lines[j] = format!("{} {}", lines[j], INSERTS[*k]);
+                }
+                Mutation::Lowercase(i) if !lines.is_empty() => {
+                    let j = i % lines.len();
+                    lines[j] = lines[j].to_ascii_lowercase();
+                }
+                Mutation::DropEnd => {
+                    lines.retain(|l| {
+                        let u = l.trim().trim_end_matches(';').to_ascii_uppercase();
+                        !matches!(u.as_str(), "M30" | "M2" | "M02" | "%")
+                    });
+                }
+                _ => {}
+            }
+        }
+        lines.join("\n").into_bytes()
+    }
+
+    /// Where an offset of the text after `edits` was before them (an offset
+    /// inside an inserted text maps to where the insertion began).
+    fn map_back(offset: u32, edits: &[analyzer::TextEdit]) -> u32 {
+        let mut delta: i64 = 0;
+        for e in edits {
+            let new_start = e.span.start as i64 + delta;
+            let new_end = new_start + e.new_text.len() as i64;
+            if (offset as i64) < new_start {
+                break;
+            }
+            if (offset as i64) < new_end {
+                return e.span.start;
+            }
+            delta += e.new_text.len() as i64 - e.span.len() as i64;
+        }
+        (offset as i64 - delta).max(0) as u32
+    }
+
+    /// One round of fixes must not add a diagnostic. A syntax error hides the
+    /// block rules of its line, so a diagnostic on a line that held one before
+    /// the round is unmasked by its fix, not added by it.
+    fn round_adds(
+        text: &[u8],
+        before: &[analyzer::Diagnostic],
+        edits: &[analyzer::TextEdit],
+        after: &[analyzer::Diagnostic],
+    ) -> Option<String> {
+        let index = analyzer::LineIndex::new(text);
+        let masked: std::collections::BTreeSet<u32> = before
+            .iter()
+            .filter(|d| d.code.starts_with('L') && d.severity == analyzer::Severity::Error)
+            .map(|d| index.line_col(d.span.start).0)
+            .collect();
+        let mut had: BTreeMap<&str, usize> = BTreeMap::new();
+        for d in before {
+            *had.entry(d.code).or_insert(0) += 1;
+        }
+        let mut now: BTreeMap<&str, usize> = BTreeMap::new();
+        for d in after {
+            let line = index.line_col(map_back(d.span.start, edits)).0;
+            if masked.contains(&line) && !d.code.starts_with('L') {
+                continue;
+            }
+            // W023 notes explain correct code (`G04 P1500`: milliseconds); they
+            // report no fault, so a fix that writes such code adds none.
+            if d.code == "W023" {
+                continue;
+            }
+            *now.entry(d.code).or_insert(0) += 1;
+        }
+        now.into_iter()
+            .find(|(c, n)| *n > had.get(c).copied().unwrap_or(0))
+            .map(|(c, n)| format!("{c} ({} -> {n})", had.get(c).copied().unwrap_or(0)))
+    }
+
+    fn check(text: &[u8], settings: &Settings) -> Result<(), String> {
+        let mut text = text.to_vec();
+        let original = text.clone();
+        let mut diags = analyze(text.clone(), settings).diagnostics;
+        for _ in 0..analyzer::fixes::MAX_ROUNDS {
+            let edits = analyzer::fixes::compatible_edits(&diags);
+            let next = analyzer::fixes::apply_edits(&text, &edits);
+            if edits.is_empty() || next == text {
+                // fix_all, which hosts call, takes the same rounds.
+                let all = fix_all(&original, settings);
+                if !all.settled || all.text != text {
+                    return Err("fix_all does not take the same rounds".into());
+                }
+                return Ok(());
+            }
+            let after = analyze(next.clone(), settings).diagnostics;
+            if let Some(added) = round_adds(&text, &diags, &edits, &after) {
+                return Err(format!(
+                    "fixes add {added}:\n--- before\n{}\n--- after\n{}",
+                    String::from_utf8_lossy(&text),
+                    String::from_utf8_lossy(&next)
+                ));
+            }
+            text = next;
+            diags = after;
+        }
+        Err(format!(
+            "fixes did not settle in {} rounds:\n{}",
+            analyzer::fixes::MAX_ROUNDS,
+            String::from_utf8_lossy(&text)
+        ))
+    }
+
+    /// Every fixture as it is, in every dialect.
+    #[test]
+    fn fixtures_as_they_are() {
+        let mut failures = Vec::new();
+        for (code, path, text) in corpus() {
+            for dialect in Dialect::ALL {
+                let settings = settings_for(path, dialect, code);
+                if let Err(e) = check(text, &settings) {
+                    failures.push(format!("{} as {dialect:?}: {e}", path.display()));
+                }
+            }
+        }
+        assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        #[test]
+        fn mutated_fixtures(pick in any::<usize>(), d in 0usize..3, ms in prop::collection::vec(mutation(), 1..6)) {
+            let corpus = corpus();
+            let (code, path, text) = &corpus[pick % corpus.len()];
+            let settings = settings_for(path, Dialect::ALL[d], code);
+            let text = mutate(text, &ms);
+            if let Err(e) = check(&text, &settings) {
+                prop_assert!(false, "{} as {:?}: {}", path.display(), Dialect::ALL[d], e);
+            }
+        }
+    }
+}

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Headless Neovim check of editors/nvim against a partscope binary:
 #   editors/nvim/test.sh [path-to-partscope]
-# Exits 0 only when the server published diagnostics for a sample with known errors AND
-# answered a hover with content, within 20 s. Needs `nvim` (0.7 or later) on PATH.
+# Exits 0 only when the server published diagnostics for a sample with known errors,
+# answered a hover with content, renamed a subroutine across two files and formatted a
+# file as expected, within 20 s. Needs `nvim` (0.7 or later) on PATH.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

@@ -134,6 +134,22 @@ fn editor_session_over_stdio() {
     let edits = &actions[0]["edit"]["changes"][&uri];
     assert_eq!(edits[0]["newText"], ")");
     assert_eq!(edits[0]["range"]["start"], pos(2, 15));
+    // On save, `source.fixAll`: every fix of the file in one action.
+    let r = c.request(
+        "textDocument/codeAction",
+        json!({
+            "textDocument": {"uri": uri},
+            "range": {"start": pos(0, 0), "end": pos(0, 0)},
+            "context": {"diagnostics": [], "only": ["source.fixAll"]}
+        }),
+    );
+    let actions = r.as_array().unwrap();
+    assert_eq!(actions.len(), 1, "{r}");
+    assert_eq!(actions[0]["kind"], "source.fixAll");
+    assert_eq!(
+        actions[0]["edit"]["changes"][&uri],
+        json!([{"range": {"start": pos(2, 15), "end": pos(2, 15)}, "newText": ")"}])
+    );
 
     // Hover on the G1 of line 4: the code's documentation for rs274ngc.
     let h = c.request(
@@ -811,4 +827,218 @@ fn large_files_publish_static_diagnostics_first_then_the_run() {
         vec![("F001".to_string(), 1), ("L003".to_string(), 5)]
     );
     assert!(c.shutdown().success());
+}
+
+/// One edit on one line: (line, start character, end character, new text).
+type LineEdit = (u64, u64, u64, String);
+
+/// A file name and each edit for it, in order.
+fn edits_by_file(ops: &[Value]) -> Vec<(String, Vec<LineEdit>)> {
+    ops.iter()
+        .filter(|op| op.get("textDocument").is_some())
+        .map(|op| {
+            let name = op["textDocument"]["uri"].as_str().unwrap();
+            let name = name.rsplit('/').next().unwrap().to_string();
+            let mut edits: Vec<LineEdit> = op["edits"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|e| {
+                    let r = &e["range"];
+                    (
+                        r["start"]["line"].as_u64().unwrap(),
+                        r["start"]["character"].as_u64().unwrap(),
+                        r["end"]["character"].as_u64().unwrap(),
+                        e["newText"].as_str().unwrap().to_string(),
+                    )
+                })
+                .collect();
+            edits.sort();
+            (name, edits)
+        })
+        .collect()
+}
+
+#[test]
+fn rename_a_subroutine_across_two_files_and_its_file() {
+    let root = workspace("rename");
+    let mut c = Client::spawn();
+    let caps = json!({
+        "workspace": {"workspaceEdit": {"documentChanges": true, "resourceOperations": ["create", "rename", "delete"]}},
+    });
+    let init = c.request(
+        "initialize",
+        json!({"processId": null, "rootUri": uri_of(&root), "capabilities": caps,
+               "workspaceFolders": [{"uri": uri_of(&root), "name": "ws"}]}),
+    );
+    c.notify("initialized", json!({}));
+    assert_eq!(
+        init["capabilities"]["renameProvider"]["prepareProvider"],
+        json!(true)
+    );
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    c.diagnostics(&uri, 1);
+
+    // The label under the cursor is what prepareRename offers.
+    let r = c.request(
+        "textDocument/prepareRename",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 4)}),
+    );
+    assert_eq!(r, json!({"start": pos(1, 0), "end": pos(1, 8)}));
+
+    let r = c.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 4), "newName": "peck"}),
+    );
+    let ops = r["documentChanges"].as_array().unwrap();
+    let label = |line| (line, 1, 8, "<peck>".to_string());
+    assert_eq!(
+        edits_by_file(ops),
+        vec![
+            ("main.ngc".to_string(), vec![label(1)]),
+            ("drill.ngc".to_string(), vec![label(0), label(3)]),
+        ]
+    );
+    // The open document's edit names its version; the file on disk's does not.
+    assert_eq!(ops[0]["textDocument"]["version"], json!(1));
+    assert_eq!(ops[1]["textDocument"]["version"], json!(null));
+    // The file is renamed after its text is edited.
+    let last = ops.last().unwrap();
+    assert_eq!(last["kind"], json!("rename"));
+    assert_eq!(last["oldUri"], json!(uri_of(&root.join("drill.ngc"))));
+    assert_eq!(last["newUri"], json!(uri_of(&root.join("peck.ngc"))));
+
+    // A named parameter: renamed in this file only, brackets kept.
+    let r = c.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri}, "position": pos(5, 8), "newName": "cut"}),
+    );
+    assert_eq!(
+        edits_by_file(r["documentChanges"].as_array().unwrap()),
+        vec![(
+            "main.ngc".to_string(),
+            vec![(4, 2, 7, "cut".to_string()), (5, 7, 12, "cut".to_string())]
+        )]
+    );
+
+    // FANUC-style numbered variables are memory cells: refused with the reason.
+    let (drill, _) = open(&mut c, &root.join("drill.ngc"), "ngc");
+    let r = c.request_full(
+        "textDocument/prepareRename",
+        json!({"textDocument": {"uri": drill}, "position": pos(1, 13)}),
+    );
+    let msg = r["error"]["message"].as_str().unwrap_or_default();
+    assert!(msg.contains("memory cells"), "{r}");
+    // A name already in use would merge two subroutines.
+    std::fs::write(root.join("peck.ngc"), "o<peck> sub\no<peck> endsub\n").unwrap();
+    let r = c.request_full(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 4), "newName": "peck"}),
+    );
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("exists already"),
+        "{r}"
+    );
+    c.shutdown();
+}
+
+#[test]
+fn rename_without_file_operations_edits_the_calls_only() {
+    let root = workspace("rename-plain");
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
+    c.diagnostics(&uri, 1);
+    let r = c.request(
+        "textDocument/rename",
+        json!({"textDocument": {"uri": uri}, "position": pos(1, 4), "newName": "o<Peck>"}),
+    );
+    let changes = r["changes"].as_object().unwrap();
+    let mut files: Vec<&str> = changes
+        .keys()
+        .map(|k| k.rsplit('/').next().unwrap())
+        .collect();
+    files.sort();
+    assert_eq!(files, vec!["drill.ngc", "main.ngc"]);
+    assert_eq!(
+        changes[&uri_of(&root.join("main.ngc"))][0]["newText"],
+        json!("<Peck>")
+    );
+    c.shutdown();
+}
+
+#[test]
+fn formatting_renumbers_spaces_and_upper_cases() {
+    let root = workspace("format");
+    std::fs::write(
+        root.join("fanuc/fmt.nc"),
+        "%\nO1000;\nN1 g0  x1. (keep  this);\nN2 #1=#1+1;\nIF [#1 LT 3] GOTO 2;\nM30;\n%\n",
+    )
+    .unwrap();
+    let mut c = Client::spawn();
+    initialize(
+        &mut c,
+        &root,
+        json!({"format": {"numbers": "renumber", "start": 100}}),
+    );
+    let (uri, text) = open(&mut c, &root.join("fanuc/fmt.nc"), "fanuc");
+    c.diagnostics(&uri, 1);
+    let apply = |edits: &Value| -> String {
+        // Back to front, each edit on one line.
+        let mut lines: Vec<String> = text.split('\n').map(str::to_string).collect();
+        let mut es: Vec<&Value> = edits.as_array().unwrap().iter().collect();
+        es.sort_by_key(|e| {
+            let s = &e["range"]["start"];
+            std::cmp::Reverse((
+                s["line"].as_u64().unwrap(),
+                s["character"].as_u64().unwrap(),
+            ))
+        });
+        for e in es {
+            let r = &e["range"];
+            let line = r["start"]["line"].as_u64().unwrap() as usize;
+            assert_eq!(r["end"]["line"].as_u64().unwrap() as usize, line);
+            let (a, b) = (
+                r["start"]["character"].as_u64().unwrap() as usize,
+                r["end"]["character"].as_u64().unwrap() as usize,
+            );
+            lines[line].replace_range(a..b, e["newText"].as_str().unwrap());
+        }
+        lines.join("\n")
+    };
+    // The client's defaults: renumber from 100 with step 10; the GOTO follows.
+    let r = c.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true}}),
+    );
+    assert_eq!(
+        apply(&r),
+        "%\nO1000;\nN100 G0 X1. (keep  this);\nN110 #1=#1+1;\nIF [#1 LT 3] GOTO 110;\nM30;\n%\n"
+    );
+    // The request's properties win: block numbers removed but the GOTO target kept.
+    let r = c.request(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true,
+               "partscope.numbers": "remove", "partscope.spacing": "none"}}),
+    );
+    assert_eq!(
+        apply(&r),
+        "%\nO1000;\nG0X1. (keep  this);\nN2 #1=#1+1;\nIF [#1 LT 3] GOTO 2;\nM30;\n%\n"
+    );
+    let r = c.request_full(
+        "textDocument/formatting",
+        json!({"textDocument": {"uri": uri}, "options": {"tabSize": 4, "insertSpaces": true,
+               "partscope.numbers": "sometimes"}}),
+    );
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .unwrap_or_default()
+            .contains("keep, renumber, add or remove"),
+        "{r}"
+    );
+    c.shutdown();
 }

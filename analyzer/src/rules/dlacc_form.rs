@@ -1,8 +1,9 @@
 //! W008: ServoWorks G05/G08 forms that the control ignores.
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
+use crate::span::Span;
 
 use super::util::{lit, word_item};
 use super::{BlockCx, Interest, Rule, RuleMeta};
@@ -80,11 +81,31 @@ impl Rule for DlaccForm {
             let got = p
                 .map(|(i, _)| format!("`{}`", cx.program.str_of(i.span)))
                 .unwrap_or_else(|| "no P".into());
-            out.push(Diagnostic::warning(
+            // The fix switches look-ahead on, which is what a program writing
+            // `G05 P1` (the FANUC AI contour form) means.
+            let edit = match p {
+                Some((i, _)) => TextEdit {
+                    span: i.span,
+                    new_text: format!("P{on}"),
+                },
+                None => TextEdit {
+                    span: Span::new(c.span.end, c.span.end),
+                    new_text: format!(" P{on}"),
+                },
+            };
+            let d = Diagnostic::warning(
                 "W008",
                 c.span,
                 format!("{name} with {got} is ignored: look-ahead is switched only by `{name} P{on}` (on) or `{name} P0` (off)."),
-            ));
+            );
+            // Other codes in the block may read the same P (G08, G54.1 P1); the
+            // fix is certain only when this code is alone.
+            let both = cx.codes.len() > 1;
+            out.push(if both {
+                d
+            } else {
+                d.with_fix(format!("Write `{name} P{on}` (look-ahead on)"), vec![edit])
+            });
         }
     }
 }

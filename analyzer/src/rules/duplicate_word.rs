@@ -103,12 +103,20 @@ impl Rule for DuplicateWord {
                     item.span,
                     format!("Multiple {l} words on one line: each letter may appear once. Remove one, or split the line."),
                 ),
-                Dialect::Servoworks => Diagnostic::warning(
-                    "W001",
-                    item.span,
-                    format!("{l} appears twice in this block; ServoWorks uses only the first one and ignores `{text}`. If this is a second block, put it on its own line."),
-                )
-                .with_fix(format!("Remove the ignored `{text}`"), vec![TextEdit { span: removal_span(cx.program, item.span), new_text: String::new() }]),
+                Dialect::Servoworks => {
+                    let d = Diagnostic::warning(
+                        "W001",
+                        item.span,
+                        format!("{l} appears twice in this block; ServoWorks uses only the first one and ignores `{text}`. If this is a second block, put it on its own line."),
+                    );
+                    // The text of the block decides how P is read (a name after
+                    // M98), so removing an ignored M98 would change another word.
+                    if text.to_ascii_uppercase().contains("98") && w.letter == b'M' {
+                        d
+                    } else {
+                        d.with_fix(format!("Remove the ignored `{text}`"), vec![TextEdit { span: removal_span(cx.program, item.span), new_text: String::new() }])
+                    }
+                }
                 Dialect::Fanuc => Diagnostic::warning(
                     "W001",
                     item.span,

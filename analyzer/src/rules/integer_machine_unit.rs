@@ -1,7 +1,7 @@
 //! W022: ServoWorks integer coordinates under "Integer Programming with Machine Unit".
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
 use super::{BlockCx, Rule, RuleMeta};
@@ -78,7 +78,7 @@ impl Rule for IntegerMachineUnit {
                     "W022",
                     item.span,
                     format!("`{text}` has no decimal point, so with Integer Programming with Machine Unit it counts machine units, not mm or inches. Write `{text}.0` if you mean {}.", n.value),
-                ));
+                ).with_fix(format!("Write `{text}.0`"), vec![TextEdit { span: crate::Span::new(item.span.end, item.span.end), new_text: ".0".into() }]));
             }
         }
     }

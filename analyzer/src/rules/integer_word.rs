@@ -1,11 +1,34 @@
 //! W006: decimal values in words that must be integers.
 
 use crate::declare_rule;
-use crate::diagnostic::{Diagnostic, Severity};
+use crate::diagnostic::{Diagnostic, Severity, TextEdit};
 use crate::dialect::Dialect;
 
 use super::util::{has, is_drilling_cycle, near_integer};
 use super::{BlockCx, Interest, Rule, RuleMeta};
+
+/// The replacement word a message names, as a fix (upper-case letter, so that
+/// a lower-case `p1.5` is mended in one step). None when the value cannot be
+/// written as the integer the message asks for.
+fn replace_fix(span: crate::Span, letter: char, value: f64) -> Option<(String, Vec<TextEdit>)> {
+    if !value.is_finite() || value.abs() >= 1e15 {
+        return None;
+    }
+    // `-0` is not a number a programmer writes.
+    let v = if value == 0.0 { 0.0 } else { value };
+    let new_text = format!("{letter}{v}");
+    Some((
+        format!("Write `{new_text}`"),
+        vec![TextEdit { span, new_text }],
+    ))
+}
+
+fn with_replacement(d: Diagnostic, fix: Option<(String, Vec<TextEdit>)>) -> Diagnostic {
+    match fix {
+        Some((title, edits)) => d.with_fix(title, edits),
+        None => d,
+    }
+}
 
 declare_rule! {
     /// ## What it does
@@ -75,6 +98,9 @@ impl Rule for IntegerWord {
             .any(|c| c.letter == 'G' && c.num.is_some_and(|n| is_drilling_cycle(d, n.0)));
         let dwell = has(cx, 'G', 40);
         let macro_call = has(cx, 'G', 650) || has(cx, 'G', 660) || has(cx, 'G', 661);
+        // P, K, L, R and Q are read by each code of the block (G51 P2.0 G04
+        // P1.5): a rewrite is certain only when one code reads them.
+        let shared = |l: u8| matches!(l, b'P' | b'K' | b'L' | b'R' | b'Q') && cx.codes.len() > 1;
         for (item, w) in cx.words() {
             if w.comma {
                 continue;
@@ -92,10 +118,15 @@ impl Rule for IntegerWord {
                     {
                         continue;
                     }
-                    let msg = if dwell && w.letter == b'P' {
-                        format!("`{}`: G04 P is an integer number of milliseconds and takes no decimal point (alarm PS0007). Write `P{}`, or use X in seconds.", text(), (n.value * 1000.0).round())
+                    let replacement = if dwell && w.letter == b'P' {
+                        (n.value * 1000.0).round()
                     } else {
-                        format!("`{}`: address {l} takes an integer without a decimal point (alarm PS0007). Write `{l}{}`.", text(), n.value.round())
+                        n.value.round()
+                    };
+                    let msg = if dwell && w.letter == b'P' {
+                        format!("`{}`: G04 P is an integer number of milliseconds and takes no decimal point (alarm PS0007). Write `P{}`, or use X in seconds.", text(), replacement)
+                    } else {
+                        format!("`{}`: address {l} takes an integer without a decimal point (alarm PS0007). Write `{l}{}`.", text(), replacement)
                     };
                     // The digest grades M/S/T literals (FAN147) below the other addresses (FAN004).
                     let sev = if matches!(w.letter, b'M' | b'S' | b'T') {
@@ -103,7 +134,11 @@ impl Rule for IntegerWord {
                     } else {
                         Severity::Error
                     };
-                    out.push(Diagnostic::new("W006", sev, item.span, msg));
+                    let fix = replace_fix(item.span, l, replacement).filter(|_| !shared(w.letter));
+                    out.push(with_replacement(
+                        Diagnostic::new("W006", sev, item.span, msg),
+                        fix,
+                    ));
                 }
                 Dialect::Servoworks => {
                     let int_here = match w.letter {
@@ -114,18 +149,31 @@ impl Rule for IntegerWord {
                         _ => false,
                     };
                     if int_here && n.has_point {
-                        let msg = if dwell && w.letter == b'P' {
-                            format!("`{}`: G04 P is milliseconds and must be an integer without a decimal point. Write `P{}`, or use `X{}` (seconds).", text(), (n.value * 1000.0).round(), n.value)
+                        let ms = dwell && w.letter == b'P';
+                        let replacement = if ms {
+                            (n.value * 1000.0).round()
                         } else {
-                            format!("`{}`: {l} must be an integer here; ServoWorks reads a number with a decimal point differently. Write `{l}{}`.", text(), n.value.round())
+                            n.value.round()
                         };
-                        out.push(Diagnostic::warning("W006", item.span, msg));
+                        let msg = if ms {
+                            format!("`{}`: G04 P is milliseconds and must be an integer without a decimal point. Write `P{}`, or use `X{}` (seconds).", text(), replacement, n.value)
+                        } else {
+                            format!("`{}`: {l} must be an integer here; ServoWorks reads a number with a decimal point differently. Write `{l}{}`.", text(), replacement)
+                        };
+                        // `S2_1500.` names its spindle in the word; no fix rewrites that.
+                        let fix = replace_fix(item.span, l, replacement)
+                            .filter(|_| w.spindle.is_none() && !shared(w.letter));
+                        out.push(with_replacement(
+                            Diagnostic::warning("W006", item.span, msg),
+                            fix,
+                        ));
                     } else if dwell && w.letter == b'X' && !n.has_point {
+                        let new_text = format!("X{:.1}", n.value);
                         out.push(Diagnostic::warning(
                             "W006",
                             item.span,
-                            format!("`{}`: G04 X is the dwell in seconds and is written with a decimal point. Write `X{:.1}` (or P in milliseconds).", text(), n.value),
-                        ));
+                            format!("`{}`: G04 X is the dwell in seconds and is written with a decimal point. Write `{new_text}` (or P in milliseconds).", text()),
+                        ).with_fix(format!("Write `{new_text}`"), vec![TextEdit { span: item.span, new_text }]));
                     }
                 }
                 Dialect::Rs274ngc => {

@@ -1,7 +1,7 @@
 //! W012: word order and argument letters of a G65 macro call.
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 
 use super::util::has;
@@ -116,7 +116,7 @@ impl Rule for MacroCallArguments {
                                     "W012",
                                     i.span,
                                     format!("`{text}`: a macro argument without a decimal point is read in the least input increment of its address (A1 may arrive as 0.001). Write `{text}.`."),
-                                ));
+                                ).with_fix(format!("Write `{text}.`"), vec![TextEdit { span: crate::Span::new(i.span.end, i.span.end), new_text: ".".into() }]));
                             }
                         }
                     }

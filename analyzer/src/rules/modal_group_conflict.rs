@@ -188,6 +188,38 @@ fn split_fix(cx: &BlockCx<'_>, item: usize) -> Option<TextEdit> {
     if !clean || cx.block.skip().is_some() {
         return None;
     }
+    // The codes left behind stand alone on their line: the split is only
+    // certain for G0/G1 and mode settings that take no words (a G92, G04, arc
+    // or canned cycle alone would lack them, W003).
+    // The 2007 seed wants axis words with a lone G0/G1 too.
+    let lone_motion_ok = !super::util::is_emc2(cx.settings);
+    let alone_is_complete = before.iter().all(|i| match i.kind {
+        ItemKind::Word(w) => w.num().is_some_and(|n| {
+            let v = (n.value * 10.0).round() as i64;
+            (lone_motion_ok && matches!(v, 0 | 10))
+                || matches!(
+                    v,
+                    150 | 160 | 170 | 180 | 190 | 200 | 210 | 400 | 490 | 500 | 540
+                        ..=599
+                            | 610
+                            | 640
+                            | 670
+                            | 690
+                            | 800
+                            | 900
+                            | 910
+                            | 930
+                            | 940
+                            | 950
+                            | 980
+                            | 990
+                )
+        }),
+        _ => true,
+    });
+    if !alone_is_complete {
+        return None;
+    }
     let at = items.get(item)?.span.start;
     let mut start = at as usize;
     while start > 0 && matches!(cx.program.text.get(start - 1), Some(b' ') | Some(b'\t')) {

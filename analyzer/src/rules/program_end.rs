@@ -1,13 +1,13 @@
 //! P005: a program that does not end properly.
 
 use crate::declare_rule;
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, TextEdit};
 use crate::dialect::Dialect;
 use crate::span::Span;
 use crate::syntax::{BlockKind, ItemKind, Program};
 
 use super::macro_loop_structure::literal;
-use super::util::{fanuc_call_start, has_code_items, lit};
+use super::util::{append_block_edit, fanuc_call_start, has_code_items, lit};
 use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -59,9 +59,16 @@ declare_rule! {
 pub struct ProgramEnd;
 
 /// Whether the block holds one of the M codes (whole numbers).
+/// ServoWorks runs only the first M word of a block (W001), so only that one counts there.
 fn has_m(p: &Program, b: &crate::syntax::Block, ms: &[f64]) -> bool {
-    p.words(b)
-        .any(|(_, w)| w.letter == b'M' && !w.comma && lit(w).is_some_and(|v| ms.contains(&v)))
+    let mut m_words = p.words(b).filter(|(_, w)| w.letter == b'M' && !w.comma);
+    let is_end = |(_, w): (&crate::syntax::Item, &crate::syntax::Word)| {
+        lit(w).is_some_and(|v| ms.contains(&v))
+    };
+    if p.dialect == Dialect::Servoworks {
+        return m_words.next().is_some_and(is_end);
+    }
+    m_words.any(is_end)
 }
 
 /// Whether a FANUC program's last code block hands the end to something else:
@@ -80,6 +87,30 @@ fn ends_elsewhere(p: &Program) -> bool {
         _ => false,
     });
     alarm || has_m(p, last, &[98.0]) || fanuc_call_start(p, last).is_some()
+}
+
+/// The file's own line break.
+fn line_break(p: &Program) -> &'static str {
+    if p.text.windows(2).any(|w| w == b"\r\n") {
+        "\r\n"
+    } else {
+        "\n"
+    }
+}
+
+/// A line `text` added at the end of the file.
+fn eof_line(p: &Program, text: &str) -> TextEdit {
+    let n = p.text.len() as u32;
+    let nl = line_break(p);
+    let lead = if matches!(p.text.last(), None | Some(b'\n')) {
+        ""
+    } else {
+        nl
+    };
+    TextEdit {
+        span: Span::new(n, n),
+        new_text: format!("{lead}{text}{nl}"),
+    }
 }
 
 fn end_span(p: &Program) -> Span {
@@ -132,7 +163,7 @@ impl Rule for ProgramEnd {
                             "P005",
                             end_span(p),
                             "File ended with no percent sign: the file opens with `%`, so it must end with a second `%` line. Add it after the last line.",
-                        ));
+                        ).with_fix("Add the closing `%` line", vec![eof_line(p, "%")]));
                     }
                     return;
                 }
@@ -143,7 +174,7 @@ impl Rule for ProgramEnd {
                         "P005",
                         end_span(p),
                         "File ended with no percent sign or program end: add M2 (or M30) after the last line, or wrap the program in `%` lines.",
-                    ));
+                    ).with_fix("Add M2 after the last line", vec![append_block_edit(p, "M2")]));
                 }
             }
             Dialect::Servoworks => {
@@ -160,14 +191,16 @@ impl Rule for ProgramEnd {
                         "P005",
                         Span::new(n.saturating_sub(1), n),
                         "The file must end with a `%` line or a line break; the last block may not be read. Add a line break at the end.",
-                    ));
+                    ).with_fix("Add a line break at the end", vec![TextEdit { span: Span::new(n, n), new_text: line_break(p).into() }]));
                 }
                 if !ends(&[2.0, 30.0, 99.0]) {
                     out.push(Diagnostic::warning(
                         "P005",
                         end_span(p),
                         "The main program does not end with M02 or M30, so the control does not reset at the end. Add M30 (or M02) as the last block; subprograms end with M99.",
-                    ));
+                    )
+                    .with_fix("Add M30 as the last block", vec![append_block_edit(p, "M30")])
+                    .with_fix("Add M99 as the last block (a subprogram)", vec![append_block_edit(p, "M99")]));
                 }
             }
             Dialect::Fanuc => {
@@ -200,7 +233,9 @@ impl Rule for ProgramEnd {
                         "P005",
                         end_span(p),
                         "The program does not end with M02, M30 or M99 before the closing `%`. Add M30 (main program) or M99 (subprogram) as the last block.",
-                    ));
+                    )
+                    .with_fix("Add M30 as the last block", vec![append_block_edit(p, "M30")])
+                    .with_fix("Add M99 as the last block (a subprogram)", vec![append_block_edit(p, "M99")]));
                 }
             }
         }

@@ -93,5 +93,21 @@ impl Rule for G92Offset {
                 }
             }
         }
+        // The file's end ends the program too: the offset outlives it just the same.
+        if let Some(set) = active {
+            let last = p
+                .blocks
+                .iter()
+                .rev()
+                .find(|b| super::util::has_code_items(p, b));
+            if let Some(b) = last {
+                // Where the program stops: after the last block (which may be the G92 itself).
+                let span = crate::span::Span::new(b.span.end, b.span.end);
+                out.push(
+                    Diagnostic::new("S010", Severity::Warning, span, "The file ends with a G92 offset still set; it will shift the next program. Clear it with G92.1 before the end.")
+                        .with_related(set, "offset set here"),
+                );
+            }
+        }
     }
 }

@@ -220,12 +220,18 @@ impl Rule for UnreachableAfterEnd {
                 continue;
             }
             let call = fanuc_call_start(p, b);
+            let mut m_words = 0;
             for (i, w) in p.words(b) {
                 // A FANUC macro call's `M2.0` is argument #13, not an end code.
                 if call.is_some_and(|c| i.span.start > c) {
                     continue;
                 }
                 if w.letter == b'M' && !w.comma {
+                    m_words += 1;
+                    // ServoWorks runs only the first M word of a block (W001).
+                    if d == Dialect::Servoworks && m_words > 1 {
+                        continue;
+                    }
                     let v = lit(w);
                     if v == Some(2.0) {
                         ended = Some(if d == Dialect::Rs274ngc { "M2" } else { "M02" });

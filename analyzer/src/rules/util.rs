@@ -164,12 +164,65 @@ pub fn near_integer(v: f64) -> bool {
 }
 
 /// The span of an item plus the blanks after it, for a fix that removes it.
+/// When nothing but the end of the line follows, the blanks before it go
+/// instead, so that no stray blank is left at the end of the block.
 pub fn removal_span(program: &Program, span: Span) -> Span {
+    let blank = |b: Option<&u8>| matches!(b, Some(b' ') | Some(b'\t'));
     let mut end = span.end as usize;
-    while matches!(program.text.get(end), Some(b' ') | Some(b'\t')) {
+    while blank(program.text.get(end)) {
         end += 1;
     }
-    Span::new(span.start, end as u32)
+    let line_ends = matches!(
+        program.text.get(end),
+        None | Some(b'\n') | Some(b'\r') | Some(b';')
+    );
+    // A `;` ends a block only in FANUC and ServoWorks; in RS274/NGC it starts a comment.
+    let line_ends = line_ends
+        && !(program.dialect == Dialect::Rs274ngc && program.text.get(end) == Some(&b';'));
+    if !line_ends {
+        return Span::new(span.start, end as u32);
+    }
+    let mut start = span.start as usize;
+    while start > 0 && blank(program.text.get(start - 1)) {
+        start -= 1;
+    }
+    // An item alone on its line keeps the line's indentation rule simple: only
+    // the blanks after it go.
+    if start == 0 || matches!(program.text.get(start - 1), Some(b'\n') | Some(b'\r')) {
+        return Span::new(span.start, end as u32);
+    }
+    Span::new(start as u32, end as u32)
+}
+
+/// The edit that adds `code` as a block of its own after the last block that
+/// holds code, using the file's own line break and, where the file ends its
+/// blocks with `;` (FANUC), a `;` too.
+pub fn append_block_edit(program: &Program, code: &str) -> crate::diagnostic::TextEdit {
+    let text = &program.text;
+    let crlf = text.windows(2).any(|w| w == b"\r\n");
+    let nl = if crlf { "\r\n" } else { "\n" };
+    let semi =
+        program.dialect == Dialect::Fanuc && text.windows(2).any(|w| w == b";\n" || w == b";\r");
+    let eob = if semi { ";" } else { "" };
+    let last = program
+        .blocks
+        .iter()
+        .rev()
+        .find(|b| has_code_items(program, b) && b.kind == crate::syntax::BlockKind::Normal);
+    // Right after the last code block's terminator: a `%` or more blocks on
+    // the same line stay after the new block.
+    let at = last.map_or(text.len(), |b| b.term_end as usize);
+    // A lone CR ends a line too; a `\n` after it would make a CR LF of it.
+    let line_start = at == 0 || matches!(text.get(at - 1), Some(b'\n') | Some(b'\r'));
+    let (lead, tail) = match (line_start, at >= text.len()) {
+        (true, _) => ("", nl),
+        (false, true) => (nl, nl),
+        (false, false) => (nl, ""),
+    };
+    crate::diagnostic::TextEdit {
+        span: Span::new(at as u32, at as u32),
+        new_text: format!("{lead}{code}{eob}{tail}"),
+    }
 }
 
 /// Drilling cycles by code number in tenths (RS274/NGC G76 is threading).

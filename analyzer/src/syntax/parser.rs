@@ -1765,6 +1765,27 @@ impl<'p> Cx<'p> {
                 Span::new(start as u32, start as u32 + 1),
                 "lower-case address letter; FANUC programs are upper case (accepted here as upper case)",
             );
+            let d = self.p.diagnostics.len() - 1;
+            let upper = (self.text[start] as char).to_ascii_uppercase();
+            // Upper case is read the same way only for a word with a value: an
+            // upper-case `O` may open a program head, and a run of letters may
+            // become a macro keyword.
+            let mut j = start + 1;
+            while self.at(j).is_some_and(|c| c == b' ' || c == b'\t') {
+                j += 1;
+            }
+            let valued = self
+                .at(j)
+                .is_some_and(|c| is_digit(c) || matches!(c, b'.' | b'-' | b'+' | b'[' | b'#'));
+            if upper != 'O' && valued {
+                self.p.diagnostics[d].fixes.push(crate::diagnostic::Fix {
+                    title: format!("Write `{upper}`"),
+                    edits: vec![crate::diagnostic::TextEdit {
+                        span: Span::new(start as u32, start as u32 + 1),
+                        new_text: upper.to_string(),
+                    }],
+                });
+            }
         }
         self.word(false)
     }

@@ -1,5 +1,6 @@
 -- Headless check driven by test.sh: opens the sample through require("partscope").setup() and
--- requires both published diagnostics and a non-empty hover from the real server.
+-- requires published diagnostics, a non-empty hover, a rename across two files and a
+-- formatting from the real server.
 local bin = os.getenv("PARTSCOPE_BIN")
 local sample = os.getenv("PARTSCOPE_SAMPLE")
 local timeout_ms = tonumber(os.getenv("PARTSCOPE_TIMEOUT_MS") or "20000")
@@ -164,6 +165,79 @@ for _, name in ipairs({ "O1000.fnc", "part.sw" }) do
     finish(false, "the partscope client did not attach to " .. name)
     return
   end
+end
+
+-- Rename across two files: the call here, the subroutine file's sub/endsub, and its file name.
+local dir = vim.fn.fnamemodify(sample, ":h")
+vim.fn.writefile({ "o<drill> sub", "G0 X#1", "o<drill> endsub" }, dir .. "/drill.ngc")
+vim.fn.writefile({ "o<drill> call [5]", "M2" }, dir .. "/calls.ngc")
+vim.cmd("edit " .. vim.fn.fnameescape(dir .. "/calls.ngc"))
+buf = vim.api.nvim_get_current_buf()
+if not vim.wait(remaining(), function()
+  local c = attached()
+  return c ~= nil and c.initialized
+end, 50) then
+  finish(false, "the partscope client did not attach to calls.ngc")
+  return
+end
+local client = attached()
+local rparams = { textDocument = { uri = vim.uri_from_bufnr(buf) }, position = { line = 0, character = 3 }, newName = "peck" }
+local rres = vim.lsp.buf_request_sync(buf, "textDocument/rename", rparams, math.max(1, remaining()))
+local edit
+for _, r in pairs(rres or {}) do
+  edit = edit or r.result
+end
+if not edit then
+  finish(false, "rename returned no edit: " .. vim.inspect(rres))
+  return
+end
+vim.lsp.util.apply_workspace_edit(edit, client.offset_encoding or "utf-16")
+local here_line = vim.api.nvim_buf_get_lines(buf, 0, 1, false)[1]
+if here_line ~= "o<peck> call [5]" then
+  finish(false, "rename left the call as '" .. tostring(here_line) .. "'")
+  return
+end
+-- The subroutine's buffer: renamed to peck.ngc when the client renames files, else drill.ngc.
+local lib = vim.fn.bufnr(dir .. "/peck.ngc")
+if lib == -1 then
+  lib = vim.fn.bufnr(dir .. "/drill.ngc")
+end
+local lib_lines = lib ~= -1 and vim.api.nvim_buf_get_lines(lib, 0, -1, false) or {}
+if lib_lines[1] ~= "o<peck> sub" or lib_lines[3] ~= "o<peck> endsub" then
+  finish(false, "rename did not reach the subroutine file: " .. vim.inspect(lib_lines))
+  return
+end
+
+-- Formatting with block numbers added: spacing and case normalised, the comment untouched.
+vim.fn.writefile({ "g0   x1 (keep  this)", "N5 g1x2  f100", "M2" }, dir .. "/fmt.ngc")
+vim.cmd("edit " .. vim.fn.fnameescape(dir .. "/fmt.ngc"))
+buf = vim.api.nvim_get_current_buf()
+if not vim.wait(remaining(), function()
+  local c = attached()
+  return c ~= nil and c.initialized
+end, 50) then
+  finish(false, "the partscope client did not attach to fmt.ngc")
+  return
+end
+local fparams = {
+  textDocument = { uri = vim.uri_from_bufnr(buf) },
+  options = { tabSize = 4, insertSpaces = true, ["partscope.numbers"] = "add" },
+}
+local fres = vim.lsp.buf_request_sync(buf, "textDocument/formatting", fparams, math.max(1, remaining()))
+local fedits
+for _, r in pairs(fres or {}) do
+  fedits = fedits or r.result
+end
+if not fedits then
+  finish(false, "formatting returned no edits: " .. vim.inspect(fres))
+  return
+end
+vim.lsp.util.apply_text_edits(fedits, buf, attached().offset_encoding or "utf-16")
+local formatted = table.concat(vim.api.nvim_buf_get_lines(buf, 0, -1, false), "\n")
+local want = "N10 G0 X1 (keep  this)\nN20 G1 X2 F100\nN30 M2"
+if formatted ~= want then
+  finish(false, "formatting gave\n" .. formatted .. "\nexpected\n" .. want)
+  return
 end
 
 finish(

@@ -1,4 +1,7 @@
-//! Code actions: the quick fixes the analyzer attached to diagnostics.
+//! Code actions: the quick fixes the analyzer attached to diagnostics, and,
+//! when the client asks for `source.fixAll` (VS Code's `codeActionsOnSave`),
+//! one action applying every fix that does not touch another
+//! (`analyzer::fixes::compatible_edits`; asking again applies the rest).
 
 use std::collections::HashMap;
 
@@ -8,6 +11,30 @@ use tower_lsp_server::ls_types::{
 
 use super::position::{range_to_offsets, span_to_range};
 use super::snapshot::Snapshot;
+
+/// The `source.fixAll` action, when any fix applies.
+pub fn fix_all(snap: &Snapshot) -> Option<CodeActionOrCommand> {
+    let edits = analyzer::fixes::compatible_edits(snap.diagnostics());
+    if edits.is_empty() {
+        return None;
+    }
+    let edits: Vec<TextEdit> = edits
+        .into_iter()
+        .map(|e| TextEdit {
+            range: span_to_range(&snap.rope, e.span),
+            new_text: e.new_text,
+        })
+        .collect();
+    Some(CodeActionOrCommand::CodeAction(CodeAction {
+        title: format!("Apply {} fix(es) that do not overlap", edits.len()),
+        kind: Some(CodeActionKind::SOURCE_FIX_ALL),
+        edit: Some(WorkspaceEdit {
+            changes: Some(HashMap::from([(snap.uri.clone(), edits)])),
+            ..Default::default()
+        }),
+        ..Default::default()
+    }))
+}
 
 pub fn code_actions(snap: &Snapshot, range: Range) -> Vec<CodeActionOrCommand> {
     let (a, b) = range_to_offsets(&snap.rope, range);

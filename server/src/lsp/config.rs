@@ -36,6 +36,9 @@ pub struct ClientOptions {
     pub ignore: Vec<String>,
     pub max_file_size: Option<usize>,
     pub max_run_file_size: Option<usize>,
+    /// The `format` object: defaults of document formatting (`numbers`,
+    /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
+    pub format: Option<Value>,
     /// What the inlay hints show of each block's time (`blockTimes`).
     pub block_times: Option<BlockTimes>,
 }
@@ -113,6 +116,7 @@ impl ClientOptions {
                 .get("maxRunFileSize")
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
+            format: v.get("format").filter(|f| f.is_object()).cloned(),
             block_times: match v.get("blockTimes") {
                 Some(Value::String(s)) => BlockTimes::parse(s),
                 Some(Value::Bool(true)) => Some(BlockTimes::Block),

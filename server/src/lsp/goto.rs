@@ -18,10 +18,12 @@ use super::workspace;
 /// Another document the references search looks at.
 pub struct OtherDoc {
     pub uri: Uri,
+    /// The open document's version (edits name it).
+    pub version: Option<i32>,
     pub rope: Rope,
 }
 
-fn parse_rope(snap: &Snapshot, rope: &Rope) -> Program {
+pub(super) fn parse_rope(snap: &Snapshot, rope: &Rope) -> Program {
     let settings = &snap.doc.settings;
     parse(
         ParseOptions {
@@ -33,7 +35,7 @@ fn parse_rope(snap: &Snapshot, rope: &Rope) -> Program {
 }
 
 /// The file that defines a subprogram/program the document calls but does not define.
-fn external_file(snap: &Snapshot, sym: &Sym, roots: &[PathBuf]) -> Option<PathBuf> {
+pub(super) fn external_file(snap: &Snapshot, sym: &Sym, roots: &[PathBuf]) -> Option<PathBuf> {
     let key = match sym {
         Sym::OLabel(k) | Sym::Program(k) => k,
         _ => return None,

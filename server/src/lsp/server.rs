@@ -30,7 +30,9 @@ use super::dry_run::{self, CancelFlag, DryRunResult, DryRunner};
 use super::goto::OtherDoc;
 use super::position::{apply_change, offset_to_position, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
-use super::{actions, completion, goto, hover, semantic, signature, symbols, workspace};
+use super::{
+    actions, completion, formatting, goto, hover, rename, semantic, signature, symbols, workspace,
+};
 
 /// How long edits must pause before diagnostics are recomputed: not at all.
 /// An edit costs an incremental update (milliseconds), analyses of one
@@ -76,6 +78,8 @@ struct State {
     init_options: ClientOptions,
     client_options: ClientOptions,
     supports_configuration: bool,
+    /// The client applies `RenameFile` operations in workspace edits.
+    supports_rename_file: bool,
     supports_watch_registration: bool,
     /// Config errors already shown, so each is shown once.
     shown_errors: Vec<String>,
@@ -193,6 +197,7 @@ impl Backend {
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
         o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
+        o.format = c.format.clone().or(o.format);
         o.block_times = c.block_times.or(o.block_times);
         o
     }
@@ -496,6 +501,7 @@ impl Backend {
             .iter()
             .map(|(uri, d)| OtherDoc {
                 uri: uri.clone(),
+                version: Some(d.version),
                 rope: d.rope.clone(),
             })
             .collect()
@@ -579,7 +585,12 @@ fn capabilities() -> ServerCapabilities {
         }),
         definition_provider: Some(OneOf::Left(true)),
         references_provider: Some(OneOf::Left(true)),
+        rename_provider: Some(OneOf::Right(RenameOptions {
+            prepare_provider: Some(true),
+            work_done_progress_options: Default::default(),
+        })),
         document_symbol_provider: Some(OneOf::Left(true)),
+        document_formatting_provider: Some(OneOf::Left(true)),
         folding_range_provider: Some(FoldingRangeProviderCapability::Simple(true)),
         semantic_tokens_provider: Some(SemanticTokensServerCapabilities::SemanticTokensOptions(
             SemanticTokensOptions {
@@ -590,7 +601,10 @@ fn capabilities() -> ServerCapabilities {
             },
         )),
         code_action_provider: Some(CodeActionProviderCapability::Options(CodeActionOptions {
-            code_action_kinds: Some(vec![CodeActionKind::QUICKFIX]),
+            code_action_kinds: Some(vec![
+                CodeActionKind::QUICKFIX,
+                CodeActionKind::SOURCE_FIX_ALL,
+            ]),
             ..Default::default()
         })),
         inlay_hint_provider: Some(OneOf::Left(true)),
@@ -636,6 +650,13 @@ impl LanguageServer for Backend {
                 .map(ClientOptions::from_json)
                 .unwrap_or_default();
             st.supports_configuration = ws.and_then(|w| w.configuration).unwrap_or(false);
+            let edit_caps = ws.and_then(|w| w.workspace_edit.as_ref());
+            st.supports_rename_file = edit_caps.is_some_and(|e| {
+                e.document_changes == Some(true)
+                    && e.resource_operations
+                        .as_ref()
+                        .is_some_and(|ops| ops.contains(&ResourceOperationKind::Rename))
+            });
             st.supports_watch_registration = ws
                 .and_then(|w| w.did_change_watched_files.as_ref())
                 .and_then(|d| d.dynamic_registration)
@@ -875,6 +896,61 @@ impl LanguageServer for Backend {
         .await
     }
 
+    async fn formatting(&self, params: DocumentFormattingParams) -> Result<Option<Vec<TextEdit>>> {
+        guarded("formatting", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let defaults = Self::client_options(&self.lock()).format;
+            let props = params.options.properties;
+            blocking(move || formatting::format(&snap, defaults.as_ref(), &props))
+                .await?
+                .map(Some)
+                .map_err(Error::invalid_params)
+        })
+        .await
+    }
+
+    async fn prepare_rename(
+        &self,
+        params: TextDocumentPositionParams,
+    ) -> Result<Option<PrepareRenameResponse>> {
+        guarded("prepareRename", async {
+            let Some(snap) = self.snapshot(&params.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, params.position);
+            match blocking(move || rename::prepare(&snap, offset)).await? {
+                None => Ok(None),
+                Some(Ok(range)) => Ok(Some(PrepareRenameResponse::Range(range))),
+                Some(Err(why)) => Err(Error::invalid_params(why)),
+            }
+        })
+        .await
+    }
+
+    async fn rename(&self, params: RenameParams) -> Result<Option<WorkspaceEdit>> {
+        guarded("rename", async {
+            let p = params.text_document_position;
+            let Some(snap) = self.snapshot(&p.text_document.uri).await else {
+                return Ok(None);
+            };
+            let offset = Self::offset(&snap, p.position);
+            let roots = self.roots();
+            let others = self.other_docs();
+            let files = self.lock().supports_rename_file;
+            let new_name = params.new_name;
+            let cancel = CancelFlag::default();
+            let _guard = cancel.guard();
+            blocking(move || {
+                rename::rename(&snap, offset, &new_name, &others, &roots, files, &cancel)
+            })
+            .await?
+            .map_err(Error::invalid_params)
+        })
+        .await
+    }
+
     async fn document_symbol(
         &self,
         params: DocumentSymbolParams,
@@ -952,8 +1028,19 @@ impl LanguageServer for Backend {
                 return Ok(None);
             };
             let range = params.range;
+            // Source actions only when asked for, as clients do on save.
+            let fix_all = params.context.only.as_ref().is_some_and(|only| {
+                only.iter()
+                    .any(|k| *k == CodeActionKind::SOURCE_FIX_ALL || *k == CodeActionKind::SOURCE)
+            });
             Ok(Some(
-                blocking(move || actions::code_actions(&snap, range)).await?,
+                blocking(move || {
+                    if fix_all {
+                        return actions::fix_all(&snap).into_iter().collect();
+                    }
+                    actions::code_actions(&snap, range)
+                })
+                .await?,
             ))
         })
         .await

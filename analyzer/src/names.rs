@@ -2,11 +2,11 @@
 //! numbers/names, sequence numbers and variables. Pure functions over the
 //! syntax tree; go-to-definition, references, completion and hover use them.
 
-use analyzer::dialect::Dialect;
-use analyzer::syntax::{
+use crate::dialect::Dialect;
+use crate::syntax::{
     Block, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, OWord, Program, WordValue,
 };
-use analyzer::Span;
+use crate::Span;
 
 /// Something that can be defined once and referenced elsewhere.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -315,10 +315,171 @@ pub fn names(program: &Program) -> Vec<Sym> {
         .collect()
 }
 
+/// Why the name under the cursor cannot be renamed.
+pub fn rename_refusal(occ: &Occ) -> Option<&'static str> {
+    match &occ.sym {
+        Sym::Var(v) if !v.starts_with("#<") => Some(
+            "numbered variables are memory cells, not names: #100 is the same cell in every program and macro, so it cannot be renamed",
+        ),
+        Sym::Var(v) if v.starts_with("#<_") => Some(
+            "a global parameter (#<_name>) is shared with every file and with the control's predefined ones; only local names are renamed",
+        ),
+        Sym::Var(_) | Sym::OLabel(_) => None,
+        Sym::Program(_) => Some("program numbers and names are not renamed (the file name and the caller's P word must change together); only RS274/NGC o-word labels are"),
+        Sym::Seq(_) => Some("sequence numbers are renumbered by formatting, not renamed"),
+    }
+}
+
+/// Reads a new name typed for `sym` (`o<Name>`, `<name>`, `name`, `o200`,
+/// `#<name>`): the symbol it makes, or why it is not a valid name.
+pub fn new_symbol(sym: &Sym, typed: &str) -> Result<Sym, String> {
+    let t = typed.trim();
+    let valid_name = |n: &str| {
+        !n.is_empty()
+            && n.chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-' || c == '.')
+    };
+    match sym {
+        Sym::Var(_) => {
+            let n = t.strip_prefix('#').unwrap_or(t);
+            let n = n
+                .strip_prefix('<')
+                .and_then(|n| n.strip_suffix('>'))
+                .unwrap_or(n);
+            if n.starts_with('_') {
+                return Err(format!("`{t}`: a name starting with `_` is a global parameter; a local one stays local"));
+            }
+            if !valid_name(n) || n.chars().all(|c| c.is_ascii_digit()) {
+                return Err(format!(
+                    "`{t}` is not a parameter name (letters, digits and `_`)"
+                ));
+            }
+            Ok(Sym::Var(format!("#<{}>", n.to_ascii_lowercase())))
+        }
+        Sym::OLabel(_) => {
+            let n = t.strip_prefix(['o', 'O']).unwrap_or(t);
+            let n = n
+                .strip_prefix('<')
+                .and_then(|n| n.strip_suffix('>'))
+                .unwrap_or(n);
+            if n.chars().all(|c| c.is_ascii_digit()) && !n.is_empty() {
+                let v: u32 = n
+                    .parse()
+                    .map_err(|_| format!("`{t}`: label number too large"))?;
+                return Ok(Sym::OLabel(v.to_string()));
+            }
+            if !valid_name(n) {
+                return Err(format!(
+                    "`{t}` is not an o-word label (a number or a name of letters, digits and `_`)"
+                ));
+            }
+            Ok(Sym::OLabel(n.to_ascii_lowercase()))
+        }
+        _ => Err("this name is not renamed".into()),
+    }
+}
+
+/// The text that spells `sym` at one occurrence: `<name>` or a number for a
+/// label (after its `o`), `name` inside a parameter's brackets. `typed` keeps
+/// the case the user wrote (names are case-insensitive).
+fn spelling(new: &Sym, typed: &str) -> String {
+    let t = typed.trim();
+    let t = t.strip_prefix('#').unwrap_or(t);
+    match new {
+        Sym::OLabel(k) if k.chars().all(|c| c.is_ascii_digit()) => k.clone(),
+        Sym::OLabel(_) => {
+            let n = t.strip_prefix(['o', 'O']).unwrap_or(t);
+            let n = n
+                .strip_prefix('<')
+                .and_then(|n| n.strip_suffix('>'))
+                .unwrap_or(n);
+            format!("<{n}>")
+        }
+        _ => t
+            .strip_prefix('<')
+            .and_then(|n| n.strip_suffix('>'))
+            .unwrap_or(t)
+            .to_string(),
+    }
+}
+
+/// The edits that rename every occurrence of `old` in the file to `typed`
+/// (checked with [`new_symbol`]). Only the name changes: the `o`, the `#<`
+/// and `>`, blanks and comments stay as written. Refused when the new name
+/// is already used in the file, which would merge two names into one.
+pub fn rename_edits(
+    program: &Program,
+    old: &Sym,
+    typed: &str,
+) -> Result<Vec<crate::TextEdit>, String> {
+    let new = new_symbol(old, typed)?;
+    if &new == old {
+        return Ok(Vec::new());
+    }
+    if occurrences(program).iter().any(|o| o.sym == new) {
+        return Err(format!("`{}` is already used in this file", new.display()));
+    }
+    let text = spelling(&new, typed);
+    let mut edits = Vec::new();
+    match old {
+        Sym::OLabel(key) => {
+            for item in &program.items {
+                let ItemKind::OWord(ow) = &item.kind else {
+                    continue;
+                };
+                if label_key(program, ow).as_deref() == Some(key.as_str()) {
+                    edits.push(crate::TextEdit {
+                        span: ow.label_span,
+                        new_text: text.clone(),
+                    });
+                }
+            }
+        }
+        Sym::Var(_) => {
+            for (i, node) in program.exprs.iter().enumerate() {
+                if !matches!(node.expr, Expr::Named { .. }) {
+                    continue;
+                }
+                if var_of(program, ExprId(i as u32)).as_ref() != Some(old) {
+                    continue;
+                }
+                // Between the brackets of `#<name>`.
+                let src = program.slice(node.span);
+                let (Some(a), Some(b)) = (
+                    src.iter().position(|c| *c == b'<'),
+                    src.iter().rposition(|c| *c == b'>'),
+                ) else {
+                    continue;
+                };
+                if b <= a {
+                    continue;
+                }
+                edits.push(crate::TextEdit {
+                    span: Span::new(node.span.start + a as u32 + 1, node.span.start + b as u32),
+                    new_text: text.clone(),
+                });
+            }
+        }
+        _ => return Err("this name is not renamed".into()),
+    }
+    edits.sort_by_key(|e| e.span.start);
+    edits.dedup_by_key(|e| e.span.start);
+    Ok(edits)
+}
+
+/// The file name a LinuxCNC `o<name> call` loads: `name.ngc`, lower case as
+/// LinuxCNC folds it. None for numbered labels, which are not looked up by file.
+pub fn subroutine_file_name(sym: &Sym) -> Option<String> {
+    match sym {
+        Sym::OLabel(k) if !k.chars().all(|c| c.is_ascii_digit()) => Some(format!("{k}.ngc")),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use analyzer::syntax::{parse, ParseOptions};
+    use crate::syntax::{parse, ParseOptions};
 
     fn prog(dialect: Dialect, text: &str) -> Program {
         parse(
@@ -389,6 +550,35 @@ mod tests {
             occurrence_at(&p, 17).map(|o| o.sym),
             Some(Sym::Program("50010".into()))
         );
+    }
+
+    #[test]
+    fn rename_named_parameters_and_labels() {
+        let text = "o<drill> sub\n#<Depth> = 5\nG1 Z-#< depth >\no<drill> endsub\no<drill> call\n#<other> = 1\n#100 = 2\nM2\n";
+        let p = prog(Dialect::Rs274ngc, text);
+        let apply = |edits: Vec<crate::TextEdit>| {
+            String::from_utf8(crate::fixes::apply_edits(text.as_bytes(), &edits)).unwrap()
+        };
+        let depth = Sym::Var("#<depth>".into());
+        assert_eq!(
+            apply(rename_edits(&p, &depth, "#<cut_depth>").unwrap()),
+            text.replace("#<Depth>", "#<cut_depth>")
+                .replace("#< depth >", "#<cut_depth>")
+        );
+        let drill = Sym::OLabel("drill".into());
+        assert_eq!(
+            apply(rename_edits(&p, &drill, "o<Peck>").unwrap()),
+            text.replace("o<drill>", "o<Peck>")
+        );
+        // Merging two names, a global, a numbered cell: refused.
+        assert!(rename_edits(&p, &depth, "other").is_err());
+        assert!(rename_edits(&p, &depth, "#<_g>").is_err());
+        let at = text.find("#100").unwrap() as u32 + 1;
+        let cell = occurrence_at(&p, at).unwrap();
+        assert!(rename_refusal(&cell).is_some_and(|r| r.contains("memory cells")));
+        let at = text.find("#< depth").unwrap() as u32 + 3;
+        assert_eq!(rename_refusal(&occurrence_at(&p, at).unwrap()), None);
+        assert_eq!(subroutine_file_name(&drill).as_deref(), Some("drill.ngc"));
     }
 
     #[test]
