@@ -762,3 +762,19 @@ fn machine_values_copied_and_used_are_not_certain_faults() {
         vec![]
     );
 }
+
+/// Variable numbers of control options beyond the modelled table (#100000…) are the
+/// machine's: one note, no out-of-range errors (corpus class N12).
+#[test]
+fn extended_variable_ranges_are_the_machines() {
+    let out = run_fanuc(
+        "%\nO2011\n#100000 = 1068\n#1 = #100010\n#2 = #100000\nM30\n%\n",
+        "",
+    );
+    let found: Vec<_> = out
+        .diagnostics
+        .iter()
+        .map(|d| (d.code, d.severity))
+        .collect();
+    assert_eq!(found, vec![("X001", analyzer::Severity::Info)]);
+}

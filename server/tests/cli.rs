@@ -1311,3 +1311,17 @@ fn a_cut_off_picture_draws_the_same_moves_in_every_view() {
     assert!(text.contains(&format!("toolpath cut off at line {}", drawn + 2)));
     assert_eq!(run("--png", &png), svg_cut);
 }
+
+/// FANUC O9000–O9029 are called for T, M and G codes: a file holding one is a
+/// called program even when it also holds M30 (corpus class N11).
+#[test]
+fn code_call_macros_are_called_programs() {
+    let dir = tempdir("code_macro");
+    let p = write(
+        &dir,
+        "O9025.nc",
+        b"%\nO9025 (CHECK)\nIF[#1000 EQ 1] GOTO1\nM99\nN1 #3000 = 12 (WRONG STATE)\nM30\n%\n",
+    );
+    let (code, diags) = check_json(&["--dialect", "fanuc", p.to_str().unwrap()]);
+    assert_eq!((code, codes(&diags)), (0, vec![]));
+}

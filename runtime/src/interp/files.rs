@@ -262,5 +262,13 @@ pub fn is_subprogram_file(program: &Program) -> bool {
             _ => false,
         })
     };
-    m(99.0) && !m(2.0) && !m(30.0)
+    // O9000–O9029 are the programs the control calls for T, M and G codes
+    // (parameters 6050–6089): they return with M99 whatever else they hold.
+    let head = program.items.iter().find_map(|it| match it.kind {
+        ItemKind::ProgramHead { number, .. } => Some(number),
+        _ => None,
+    });
+    let code_macro = program.dialect == analyzer::Dialect::Fanuc
+        && head.flatten().is_some_and(|n| (9000..=9029).contains(&n));
+    m(99.0) && (code_macro || (!m(2.0) && !m(30.0)))
 }

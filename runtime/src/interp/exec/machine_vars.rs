@@ -15,6 +15,9 @@ use super::*;
 pub(super) const RETAINED: std::ops::RangeInclusive<usize> = 500..=999;
 /// From here on, a variable the dry run does not compute is the machine's.
 const SYSTEM: usize = 1000;
+/// FANUC variable numbers beyond the modelled table (#20000 and up: extended
+/// common and system ranges of control options): the machine's, unknown here.
+pub(super) const UNMODELLED: std::ops::RangeInclusive<i64> = 20_000..=999_999;
 
 /// Whether `#n` is shared with the machine: the machine may change it while the
 /// program runs.
@@ -42,6 +45,8 @@ pub(super) struct MachineVars {
     /// Variables the program computed from a machine value it could not know
     /// (`#110 = #5061` after G31), and that value's variable.
     derived: std::collections::BTreeMap<usize, usize>,
+    /// The note on an unmodelled variable range was given.
+    pub(super) unmodelled_noted: bool,
 }
 
 impl MachineVars {

@@ -107,6 +107,16 @@ impl Interp<'_, '_> {
         match p.expr(target).expr {
             Expr::Var { index } => {
                 let n = self.eval_num(p, index)?.round();
+                if self.dialect == Dialect::Fanuc && machine_vars::UNMODELLED.contains(&(n as i64))
+                {
+                    // The control's extended ranges (options): the machine keeps the
+                    // value; the dry run says once that it does not follow them.
+                    if !self.machine_vars.unmodelled_noted {
+                        self.machine_vars.unmodelled_noted = true;
+                        self.diag(codes::EXPRESSION, Severity::Info, span, format!("#{n} is in a variable range of a control option this dry run does not model (#20000 and above): its value is left to the machine, and reads of such variables are unknown"));
+                    }
+                    return Ok(());
+                }
                 if n < 0.0 || n as usize >= NUM_PARAMS {
                     return Err(self.err(
                         codes::EXPRESSION,
@@ -189,6 +199,12 @@ impl Vars<'_> {
 
 impl VarSource for Vars<'_> {
     fn get_num(&self, n: i64, span: Span) -> Result<Val, EvalError> {
+        if self.dialect == Dialect::Fanuc && machine_vars::UNMODELLED.contains(&n) {
+            if self.machine_read.get().is_none() {
+                self.machine_read.set(Some(n as usize));
+            }
+            return Ok(None);
+        }
         if n < 0 || n as usize >= NUM_PARAMS {
             let code = if self.dialect == Dialect::Rs274ngc {
                 "X006"
