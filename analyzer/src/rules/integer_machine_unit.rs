@@ -61,6 +61,11 @@ impl Rule for IntegerMachineUnit {
         if [100, 40, 650].iter().any(|t| cx.has_code('G', *t)) {
             return;
         }
+        // An M98 block only calls (its motion is ignored, W010) and its words are
+        // the call's integers (W006): no length advice there.
+        if cx.has_code('M', 980) {
+            return;
+        }
         let scaling = cx.has_code('G', 510);
         let rotation = cx.has_code('G', 680);
         for (item, w) in cx.words() {

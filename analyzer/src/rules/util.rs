@@ -214,9 +214,15 @@ pub fn append_block_edit(program: &Program, code: &str) -> crate::diagnostic::Te
     let at = last.map_or(text.len(), |b| b.term_end as usize);
     // A lone CR ends a line too; a `\n` after it would make a CR LF of it.
     let line_start = at == 0 || matches!(text.get(at - 1), Some(b'\n') | Some(b'\r'));
+    // What follows on the same line (`G00 X1.; %`) goes on a line of its own.
+    let rest_of_line = text[at.min(text.len())..]
+        .iter()
+        .take_while(|b| !matches!(b, b'\n' | b'\r'))
+        .any(|b| !b.is_ascii_whitespace());
     let (lead, tail) = match (line_start, at >= text.len()) {
         (true, _) => ("", nl),
         (false, true) => (nl, nl),
+        (false, false) if rest_of_line => (nl, nl),
         (false, false) => (nl, ""),
     };
     crate::diagnostic::TextEdit {
