@@ -157,7 +157,7 @@ fn a_branch_an_unknown_value_decides_gets_a_note() {
     assert!(out.diagnostics[1]
         .message
         .starts_with("this condition reads a value an earlier error left unknown"));
-    let text = "#1 = #20000;\nIF [#1 GT 0] GOTO 5;\nG00 X1.;\nN5 M30;\n";
+    let text = "#1 = #1000000;\nIF [#1 GT 0] GOTO 5;\nG00 X1.;\nN5 M30;\n";
     let out = run_fanuc(text, "");
     assert_eq!(
         located(text, &out),
