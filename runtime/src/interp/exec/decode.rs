@@ -113,15 +113,7 @@ impl Interp<'_, '_> {
                         let (v, (unknown, _)) = self.eval_reading(&prog, *value);
                         let v = v?;
                         let tainted = self.taint.last.get();
-                        self.assign(&prog, *target, v, it.span, tainted)?;
-                        if let Expr::Var { index } = prog.expr(*target).expr {
-                            // The target now stands for the machine value it read.
-                            if let Ok(Some(n)) = self.eval(&prog, index) {
-                                if n >= 0.0 {
-                                    self.machine_vars.derive(n as usize, unknown);
-                                }
-                            }
-                        }
+                        self.assign(&prog, *target, v, it.span, tainted, unknown)?;
                     }
                     ItemKind::Macro(m) => match *m {
                         MacroStmt::IfThen { cond } => {
@@ -329,7 +321,7 @@ impl Interp<'_, '_> {
         }
         // RS274/NGC: parameters are set after the whole line was read.
         for (t, v, s, tainted) in assigns {
-            self.assign(&prog, t, v, s, tainted)?;
+            self.assign(&prog, t, v, s, tainted, None)?;
         }
         if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
             c.line_number = Some(n);

@@ -102,6 +102,7 @@ impl Interp<'_, '_> {
         v: Val,
         span: Span,
         tainted: bool,
+        machine_value: Option<usize>,
     ) -> Result<(), Diagnostic> {
         self.record_assigned(p, target, v);
         match p.expr(target).expr {
@@ -147,6 +148,8 @@ impl Interp<'_, '_> {
                     }
                 }
                 self.machine_vars.assigned(n as usize);
+                // The target now stands for the machine value it was computed from.
+                self.machine_vars.derive(n as usize, machine_value);
                 self.set_param(n as usize, v);
                 self.mark_taint(|| format!("#{}", n as usize), tainted);
                 Ok(())
