@@ -41,6 +41,8 @@ pub enum TokenKind {
     Name,
     /// Text the control ignores (ServoWorks lower case, data after `;`, FANUC leader).
     Ignored,
+    /// Literal text a statement sends out unchanged (`DPRNT[X#101[53]*MM]`).
+    Text,
     /// Bytes that are not part of the language.
     Unknown,
 }

@@ -57,6 +57,9 @@ pub struct FileEntry<'a> {
     /// The file holds a tapping cycle (G84 or G74): only then is its M29 the
     /// rigid-tapping M code (on some machines M29 is a builder's M code).
     pub taps: bool,
+    /// The file returns to a caller somewhere (M99): run as the main program, its
+    /// locals #1–#33 may be the arguments of a G65 call the check does not see.
+    pub returns: bool,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -89,6 +92,7 @@ impl<'a> FileEntry<'a> {
             error_blocks: Default::default(),
             branches: false,
             taps: false,
+            returns: false,
         };
         f.index();
         let p = f.prog.clone();
@@ -135,6 +139,14 @@ impl<'a> FileEntry<'a> {
                             && w.num().is_some_and(|n| n.value == 84.0 || n.value == 74.0) =>
                     {
                         self.taps = true;
+                    }
+                    ItemKind::Word(w)
+                        if w.letter == b'M' && w.num().is_some_and(|n| n.value == 99.0) =>
+                    {
+                        self.returns = true;
+                        if p.words(block).any(|(_, w)| w.letter == b'P') {
+                            self.branches = true;
+                        }
                     }
                     ItemKind::Word(w)
                         if w.letter == b'P'
