@@ -24,9 +24,10 @@ fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cp "$here/test/sample.ngc" "$work/sample.ngc"
+cp "$here/../test/loop.ngc" "$work/loop.ngc"
 # Isolate Neovim's state and the LSP log, so the log can be shown on failure.
 export XDG_CONFIG_HOME="$work/config" XDG_DATA_HOME="$work/data" XDG_STATE_HOME="$work/state" XDG_CACHE_HOME="$work/cache"
-export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" PARTSCOPE_TIMEOUT_MS="${PARTSCOPE_TIMEOUT_MS:-20000}"
+export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" PARTSCOPE_LOOP="$work/loop.ngc" PARTSCOPE_TIMEOUT_MS="${PARTSCOPE_TIMEOUT_MS:-20000}"
 
 echo "nvim: $(nvim --version | head -n1); server: $bin lsp"
 status=0

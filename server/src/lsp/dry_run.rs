@@ -229,6 +229,103 @@ pub struct DryRunResult {
     pub breakdown: Option<Breakdown>,
 }
 
+/// The result of the `partscope.showBreakdown` command (the cycle-time
+/// lens): the figures of the dry run without its toolpath, and `text`, the
+/// breakdown as the server shows it in `window/showMessage`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BreakdownResult {
+    pub uri: String,
+    pub version: i32,
+    pub cycle_time_s: Option<f64>,
+    pub motion_s: Option<f64>,
+    pub rapid_s: Option<f64>,
+    pub cutting_s: Option<f64>,
+    pub dwell_s: Option<f64>,
+    pub tool_change_s: Option<f64>,
+    pub other_s: Option<f64>,
+    pub distance_mm: f64,
+    pub complete: bool,
+    pub stopped_at: Option<StoppedAt>,
+    pub breakdown: Option<Breakdown>,
+    pub text: String,
+}
+
+/// The breakdown of `report` for the document `name` (its file name).
+pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -> BreakdownResult {
+    let distance: f64 = report.segments.iter().map(|s| s.length).sum();
+    let t = report.timing;
+    BreakdownResult {
+        uri,
+        version,
+        cycle_time_s: t.map(|t| t.cycle_time_s),
+        motion_s: t.map(|t| t.motion_s),
+        rapid_s: t.map(|t| t.rapid_s),
+        cutting_s: t.map(|t| t.cutting_s),
+        dwell_s: t.map(|t| t.dwell_s),
+        tool_change_s: t.map(|t| t.tool_change_s),
+        other_s: t.map(|t| t.other_s),
+        distance_mm: distance,
+        complete: report.stopped.is_none(),
+        stopped_at: report.stopped.clone(),
+        breakdown: report.breakdown.clone(),
+        text: breakdown_text(name, report, distance),
+    }
+}
+
+/// Plain text, one figure a line: the cycle time (clock and seconds, as
+/// `partscope run` gives them), its split, where the time goes and the top
+/// causes. Plain text because `window/showMessage` is shown as it is.
+pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> String {
+    use super::server::format_duration as clock;
+    let Some(t) = report.timing else {
+        return format!("{name}: no cycle time (no planner ran)");
+    };
+    let mut out = format!(
+        "{name}: cycle time {} ({:.3} s{})",
+        clock(t.cycle_time_s),
+        t.cycle_time_s,
+        if report.stopped.is_some() {
+            ", partial"
+        } else {
+            ""
+        }
+    );
+    if let Some(s) = &report.stopped {
+        out.push_str(&format!("\n  {}", s.describe()));
+    }
+    let rows = [
+        ("cutting", t.cutting_s, true),
+        ("rapid", t.rapid_s, true),
+        ("dwell", t.dwell_s, true),
+        ("tool change", t.tool_change_s, true),
+        ("other", t.other_s, t.other_s > 0.0),
+    ];
+    for (label, s, shown) in rows {
+        if shown {
+            out.push_str(&format!("\n  {label:<12} {:>9}", clock(s)));
+        }
+    }
+    out.push_str(&format!("\n  {:<12} {distance_mm:>9.1} mm", "distance"));
+    if let Some(b) = &report.breakdown {
+        if t.cycle_time_s > 0.0 && t.cycle_time_s.is_finite() {
+            out.push_str("\nwhere the time goes");
+            for (key, label) in &b.labels {
+                let s = b.parts.get(key).copied().unwrap_or(0.0);
+                if s > 0.0 {
+                    out.push_str(&format!(
+                        "\n  {label:<34} {s:>9.3} s {:>5.1} %",
+                        100.0 * s / t.cycle_time_s
+                    ));
+                }
+            }
+        }
+        for c in &b.top_causes {
+            out.push_str(&format!("\n  - {c}"));
+        }
+    }
+    out
+}
+
 /// Builds the preview result from a run report.
 pub fn summarize(
     version: i32,
