@@ -17,6 +17,7 @@ trap 'rm -rf "$work"' EXIT
 cp "$here/partscope.el" "$work/"
 emacs --batch -Q -L "$work" --eval '(setq byte-compile-error-on-warn t)' -f batch-byte-compile "$work/partscope.el"
 cp "$here/../nvim/test/sample.ngc" "$work/sample.ngc"
-export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" HOME="$work"
+cp "$here/../test/loop.ngc" "$work/loop.ngc"
+export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" PARTSCOPE_LOOP="$work/loop.ngc" HOME="$work"
 timeout 60 emacs --batch -Q -L "$work" -l "$here/test/eglot-test.el"
 echo "emacs: 1 passed, 0 failed"
