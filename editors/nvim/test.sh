@@ -3,7 +3,9 @@
 #   editors/nvim/test.sh [path-to-partscope]
 # Exits 0 only when the server published diagnostics for a sample with known errors,
 # answered a hover with content, renamed a subroutine across two files and formatted a
-# file as expected, within 20 s. Needs `nvim` (0.7 or later) on PATH.
+# file as expected, and on editors/test/loop.ngc showed and ran the cycle-time lens, gave
+# inlay block times, loop values on hover and a formatting with the CLI's dry run, within
+# 20 s. Needs `nvim` (0.7 or later) on PATH.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"

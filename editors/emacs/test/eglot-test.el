@@ -1,6 +1,8 @@
 ;;; eglot-test.el --- Batch check of partscope.el with eglot  -*- lexical-binding: t; -*-
 ;; Run by editors/emacs/test.sh: opens a sample with known errors in `partscope-gcode-mode',
-;; connects eglot to PARTSCOPE_BIN and requires diagnostics and a non-empty hover.
+;; connects eglot to PARTSCOPE_BIN and requires diagnostics and a non-empty hover; then the
+;; cycle-time lens's command, inlay block times, loop values on hover, formatting and rename on
+;; editors/test/loop.ngc, checked against `partscope run'.
 
 (require 'cl-lib)
 ;; Debian's elpa-* packages live here; -Q skips the site files that would add them.

@@ -1,6 +1,7 @@
 -- Headless check driven by test.sh: opens the sample through require("partscope").setup() and
 -- requires published diagnostics, a non-empty hover, a rename across two files and a
--- formatting from the real server.
+-- formatting from the real server; then the cycle-time lens, inlay block times, loop values on
+-- hover and formatting of editors/test/loop.ngc, checked against `partscope run`.
 local bin = os.getenv("PARTSCOPE_BIN")
 local sample = os.getenv("PARTSCOPE_SAMPLE")
 local timeout_ms = tonumber(os.getenv("PARTSCOPE_TIMEOUT_MS") or "20000")
