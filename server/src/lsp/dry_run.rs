@@ -252,7 +252,8 @@ pub struct BreakdownResult {
 
 /// The breakdown of `report` for the document `name` (its file name).
 pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -> BreakdownResult {
-    let distance: f64 = report.segments.iter().map(|s| s.length).sum();
+    // A fold from +0: `sum` of no lengths is -0.0, which prints as "-0.0 mm".
+    let distance = report.segments.iter().fold(0.0, |d, s| d + s.length);
     let t = report.timing;
     BreakdownResult {
         uri,
@@ -485,6 +486,43 @@ mod tests {
             serde_json::to_value(&r).unwrap()["cutting_s"],
             serde_json::Value::Null
         );
+    }
+
+    #[test]
+    fn a_partial_breakdown_says_where_the_run_stopped() {
+        let report = RunReport {
+            timing: Some(Timing {
+                rapid_s: 0.25,
+                cutting_s: 1.5,
+                dwell_s: 0.0,
+                tool_change_s: 0.0,
+                other_s: 3.0,
+                motion_s: 1.75,
+                cycle_time_s: 4.75,
+            }),
+            stopped: Some(StoppedAt {
+                line: 6,
+                reason: "unknown code M123".into(),
+            }),
+            ..RunReport::default()
+        };
+        let r = breakdown_of("file:///w/p.nc".into(), "p.nc", 2, &report);
+        assert_eq!(
+            r.text,
+            "p.nc: cycle time 0:04.8 (4.750 s, partial)
+  stopped at line 7: unknown code M123
+  cutting         0:01.5
+  rapid           0:00.3
+  dwell           0:00.0
+  tool change     0:00.0
+  other           0:03.0
+  distance           0.0 mm"
+        );
+        assert!(!r.complete);
+        assert_eq!(r.other_s, Some(3.0));
+        let none = breakdown_of("u".into(), "p.nc", 1, &RunReport::default());
+        assert_eq!(none.text, "p.nc: no cycle time (no planner ran)");
+        assert_eq!(none.cycle_time_s, None);
     }
 
     #[test]
