@@ -264,7 +264,8 @@ Returns the command's result."
          (r (partscope--execute-command partscope-breakdown-command
                                         (vector uri (list :show :json-false)))))
     (with-help-window "*partscope breakdown*"
-      (princ (or (plist-get r :text) "")))
+      ;; eglot gives plists; lsp-mode gives hash tables unless `lsp-use-plists' is set.
+      (princ (or (if (hash-table-p r) (gethash "text" r) (plist-get r :text)) "")))
     r))
 
 (defun partscope--opener ()

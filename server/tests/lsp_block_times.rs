@@ -259,6 +259,13 @@ where the time goes
         std::time::Duration::from_millis(300),
     );
     assert_eq!(none, None);
+    // Helix sends the command with no arguments at all.
+    let bare = c.request(
+        "workspace/executeCommand",
+        json!({"command": "partscope.showBreakdown"}),
+    );
+    assert_eq!(bare, r);
+    c.wait_for("window/showMessage", |p| p["message"] == want);
     let bad = c.request_full(
         "workspace/executeCommand",
         json!({"command": "partscope.showBreakdown", "arguments": [42]}),
