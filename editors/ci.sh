@@ -2,8 +2,8 @@
 # CI for the editor integrations (called by .ci/run with PARTSCOPE_BIN set to a built binary).
 #
 # Debian packages it needs, installed by .ci/run:
-#   nodejs (>= 20; @vscode/vsce 3 refuses older) with npm, chromium, neovim (0.7+), unzip
-# Optional: emacs-nox + elpa-eglot — when present, the Emacs test runs as well.
+#   nodejs (>= 20; @vscode/vsce 3 refuses older) with npm, chromium, neovim (0.7+), unzip,
+#   emacs-nox + elpa-eglot (without them the Emacs test is reported as skipped).
 # npm packages come from the npm registry through `npm ci` (package-lock.json is committed);
 # no browser is downloaded: the preview test drives /usr/bin/chromium via playwright-core.
 set -euo pipefail
@@ -101,6 +101,9 @@ if [[ -n "${PARTSCOPE_BIN:-}" && $skipped -eq 0 ]]; then
   if command -v emacs >/dev/null && emacs --batch -Q --eval \
     '(progn (let ((default-directory "/usr/share/emacs/site-lisp/elpa/")) (when (file-directory-p default-directory) (normal-top-level-add-subdirs-to-load-path))) (kill-emacs (if (require (quote eglot) nil t) 0 1)))' 2>/dev/null; then
     run "emacs: eglot against $PARTSCOPE_BIN" "$here/emacs/test.sh" "$PARTSCOPE_BIN"
+  else
+    echo "::: editors: SKIPPED the Emacs/eglot test: emacs with eglot is not installed (apt-get install emacs-nox elpa-eglot)"
+    skipped=$((skipped + 1))
   fi
 else
   [[ -z "${PARTSCOPE_BIN:-}" ]] && echo "::: editors: PARTSCOPE_BIN not set; skipping the Neovim and Emacs LSP tests"

@@ -95,7 +95,7 @@ fn editor_session_over_stdio() {
     }
     assert_eq!(
         caps["executeCommandProvider"]["commands"],
-        json!(["partscope.dryRun"])
+        json!(["partscope.dryRun", "partscope.showBreakdown"])
     );
     assert_eq!(caps["textDocumentSync"]["change"], json!(2));
 
@@ -415,7 +415,8 @@ fn editor_session_over_stdio() {
         cycle >= cutting + r["rapid_s"].as_f64().unwrap() - 1e-9,
         "{r}"
     );
-    // The code lens shows the cycle time and runs the dry run when clicked.
+    // The code lens shows the cycle time and its breakdown when clicked; the
+    // dry-run command returns the whole run.
     let lens = c.request(
         "textDocument/codeLens",
         json!({"textDocument": {"uri": puri}}),
@@ -427,7 +428,7 @@ fn editor_session_over_stdio() {
             .starts_with("Cycle time 0:1"),
         "{lens}"
     );
-    assert_eq!(lens[0]["command"]["command"], "partscope.dryRun");
+    assert_eq!(lens[0]["command"]["command"], "partscope.showBreakdown");
     let r2 = c.request(
         "workspace/executeCommand",
         json!({"command": "partscope.dryRun", "arguments": [puri]}),

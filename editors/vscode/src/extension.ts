@@ -2,7 +2,7 @@
 //
 // The server does the analysis; this extension starts it, forwards settings, and adds what
 // LSP itself has no UI for: the cycle time in the status bar, the dry-run report, the
-// toolpath preview webview and "explain rule".
+// toolpath preview webview, the cycle-time lens's breakdown and "explain rule".
 import * as fs from "fs";
 import * as path from "path";
 import { execFile } from "child_process";
@@ -15,6 +15,7 @@ import {
 } from "vscode-languageclient/node";
 import { DryRunResult, formatDuration, stoppedText, summarize } from "./dryrun";
 import { webviewHtml } from "./webview";
+import { BreakdownResult, executeCommand as executeLensCommand } from "./lens";
 
 const LANGUAGE_ID = "gcode";
 // VS Code registers a client-side command for every command the server announces through
@@ -80,6 +81,12 @@ async function startClient(): Promise<void> {
     initializationOptions: initializationOptions(),
     synchronize: { configurationSection: "partscope" },
     middleware: {
+      // A click on the cycle-time lens: the breakdown in the report channel, and the preview.
+      executeCommand: (command, args, next) =>
+        executeLensCommand(command, args, (c, a) => next(c, a), {
+          report: showBreakdownReport,
+          preview: showPreviewOf,
+        }),
       workspace: {
         // Hand the server the same resolved values as in initializationOptions, so a relative
         // machine path means the same thing in both places.
@@ -207,6 +214,21 @@ async function runDryRunCommand(): Promise<void> {
   } catch (err) {
     void vscode.window.showErrorMessage(`Partscope dry run failed: ${err instanceof Error ? err.message : String(err)}`);
   }
+}
+
+function showBreakdownReport(r: BreakdownResult): void {
+  reportChannel ??= vscode.window.createOutputChannel("Partscope dry run");
+  reportChannel.clear();
+  reportChannel.appendLine(r.text);
+  reportChannel.show(true);
+}
+
+async function showPreviewOf(uri: string): Promise<void> {
+  const c = client;
+  if (!c) return;
+  const doc = await vscode.workspace.openTextDocument(c.protocol2CodeConverter.asUri(uri));
+  if (preview) preview.show(doc);
+  else preview = new ToolpathPreview(extensionContext, doc);
 }
 
 function diagnosticCode(d: vscode.Diagnostic): string | undefined {

@@ -229,6 +229,104 @@ pub struct DryRunResult {
     pub breakdown: Option<Breakdown>,
 }
 
+/// The result of the `partscope.showBreakdown` command (the cycle-time
+/// lens): the figures of the dry run without its toolpath, and `text`, the
+/// breakdown as the server shows it in `window/showMessage`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BreakdownResult {
+    pub uri: String,
+    pub version: i32,
+    pub cycle_time_s: Option<f64>,
+    pub motion_s: Option<f64>,
+    pub rapid_s: Option<f64>,
+    pub cutting_s: Option<f64>,
+    pub dwell_s: Option<f64>,
+    pub tool_change_s: Option<f64>,
+    pub other_s: Option<f64>,
+    pub distance_mm: f64,
+    pub complete: bool,
+    pub stopped_at: Option<StoppedAt>,
+    pub breakdown: Option<Breakdown>,
+    pub text: String,
+}
+
+/// The breakdown of `report` for the document `name` (its file name).
+pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -> BreakdownResult {
+    // A fold from +0: `sum` of no lengths is -0.0, which prints as "-0.0 mm".
+    let distance = report.segments.iter().fold(0.0, |d, s| d + s.length);
+    let t = report.timing;
+    BreakdownResult {
+        uri,
+        version,
+        cycle_time_s: t.map(|t| t.cycle_time_s),
+        motion_s: t.map(|t| t.motion_s),
+        rapid_s: t.map(|t| t.rapid_s),
+        cutting_s: t.map(|t| t.cutting_s),
+        dwell_s: t.map(|t| t.dwell_s),
+        tool_change_s: t.map(|t| t.tool_change_s),
+        other_s: t.map(|t| t.other_s),
+        distance_mm: distance,
+        complete: report.stopped.is_none(),
+        stopped_at: report.stopped.clone(),
+        breakdown: report.breakdown.clone(),
+        text: breakdown_text(name, report, distance),
+    }
+}
+
+/// Plain text, one figure a line: the cycle time (clock and seconds, as
+/// `partscope run` gives them), its split, where the time goes and the top
+/// causes. Plain text because `window/showMessage` is shown as it is.
+pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> String {
+    use super::server::format_duration as clock;
+    let Some(t) = report.timing else {
+        return format!("{name}: no cycle time (no planner ran)");
+    };
+    let mut out = format!(
+        "{name}: cycle time {} ({:.3} s{})",
+        clock(t.cycle_time_s),
+        t.cycle_time_s,
+        if report.stopped.is_some() {
+            ", partial"
+        } else {
+            ""
+        }
+    );
+    if let Some(s) = &report.stopped {
+        out.push_str(&format!("\n  {}", s.describe()));
+    }
+    let rows = [
+        ("cutting", t.cutting_s, true),
+        ("rapid", t.rapid_s, true),
+        ("dwell", t.dwell_s, true),
+        ("tool change", t.tool_change_s, true),
+        ("other", t.other_s, t.other_s > 0.0),
+    ];
+    for (label, s, shown) in rows {
+        if shown {
+            out.push_str(&format!("\n  {label:<12} {:>9}", clock(s)));
+        }
+    }
+    out.push_str(&format!("\n  {:<12} {distance_mm:>9.1} mm", "distance"));
+    if let Some(b) = &report.breakdown {
+        if t.cycle_time_s > 0.0 && t.cycle_time_s.is_finite() {
+            out.push_str("\nwhere the time goes");
+            for (key, label) in &b.labels {
+                let s = b.parts.get(key).copied().unwrap_or(0.0);
+                if s > 0.0 {
+                    out.push_str(&format!(
+                        "\n  {label:<34} {s:>9.3} s {:>5.1} %",
+                        100.0 * s / t.cycle_time_s
+                    ));
+                }
+            }
+        }
+        for c in &b.top_causes {
+            out.push_str(&format!("\n  - {c}"));
+        }
+    }
+    out
+}
+
 /// Builds the preview result from a run report.
 pub fn summarize(
     version: i32,
@@ -388,6 +486,43 @@ mod tests {
             serde_json::to_value(&r).unwrap()["cutting_s"],
             serde_json::Value::Null
         );
+    }
+
+    #[test]
+    fn a_partial_breakdown_says_where_the_run_stopped() {
+        let report = RunReport {
+            timing: Some(Timing {
+                rapid_s: 0.25,
+                cutting_s: 1.5,
+                dwell_s: 0.0,
+                tool_change_s: 0.0,
+                other_s: 3.0,
+                motion_s: 1.75,
+                cycle_time_s: 4.75,
+            }),
+            stopped: Some(StoppedAt {
+                line: 6,
+                reason: "unknown code M123".into(),
+            }),
+            ..RunReport::default()
+        };
+        let r = breakdown_of("file:///w/p.nc".into(), "p.nc", 2, &report);
+        assert_eq!(
+            r.text,
+            "p.nc: cycle time 0:04.8 (4.750 s, partial)
+  stopped at line 7: unknown code M123
+  cutting         0:01.5
+  rapid           0:00.3
+  dwell           0:00.0
+  tool change     0:00.0
+  other           0:03.0
+  distance           0.0 mm"
+        );
+        assert!(!r.complete);
+        assert_eq!(r.other_s, Some(3.0));
+        let none = breakdown_of("u".into(), "p.nc", 1, &RunReport::default());
+        assert_eq!(none.text, "p.nc: no cycle time (no planner ran)");
+        assert_eq!(none.cycle_time_s, None);
     }
 
     #[test]

@@ -23,7 +23,9 @@
 //!   `maxRunFileSize` (4 MB): the interpreter's diagnostics join the static
 //!   ones (a diagnostic inside a subprogram file is shown on the document's
 //!   call of that file), its per-block state shows on hover, the cycle time is
-//!   a code lens, tool changes get their program time as inlay hints, and
+//!   a code lens (its command `partscope.showBreakdown` answers with the
+//!   breakdown, [`dry_run::BreakdownResult`], and shows its text with
+//!   `window/showMessage` unless the arguments say `{show: false}`), tool changes get their program time as inlay hints, and
 //!   `partscope/dryRun` returns toolpath and times. The config's
 //!   `tool_table`/`var_file` are passed to the interpreter. One run at a
 //!   time; a run for a superseded version is skipped. Files above 256 KB

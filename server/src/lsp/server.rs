@@ -54,6 +54,9 @@ const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
 /// client then asks for the visible range).
 const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
 pub const DRY_RUN_COMMAND: &str = "partscope.dryRun";
+/// The cycle-time lens's command: the breakdown as text and figures, also
+/// shown with `window/showMessage` unless the client asks to show it itself.
+pub const BREAKDOWN_COMMAND: &str = "partscope.showBreakdown";
 
 struct Doc {
     rope: Rope,
@@ -83,6 +86,9 @@ struct State {
     supports_watch_registration: bool,
     /// Config errors already shown, so each is shown once.
     shown_errors: Vec<String>,
+    /// The document last opened or edited: the breakdown command's target
+    /// when it comes without one (Helix's `:lsp-workspace-command`).
+    last_uri: Option<Uri>,
 }
 
 #[derive(Clone)]
@@ -163,6 +169,19 @@ pub fn format_duration(s: f64) -> String {
     }
     let m = (s / 60.0).floor();
     format!("{}:{:04.1}", m as u64, s - m * 60.0)
+}
+
+/// A document named by a command argument: a URI string, `{uri}` or
+/// `{textDocument: {uri}}`.
+fn uri_argument(v: &Value) -> Option<Uri> {
+    let u = match v {
+        Value::String(_) => v,
+        Value::Object(o) => o
+            .get("uri")
+            .or_else(|| o.get("textDocument").and_then(|t| t.get("uri")))?,
+        _ => return None,
+    };
+    serde_json::from_value(u.clone()).ok()
 }
 
 fn uri_path(uri: &Uri) -> Option<PathBuf> {
@@ -557,6 +576,75 @@ impl Backend {
         .await
     }
 
+    /// The `partscope.showBreakdown` command: arguments `[uri, {show}]`, the
+    /// URI as a string, `{uri}` or `{textDocument: {uri}}`, by default the
+    /// document last opened or edited; `show: false` when the client shows
+    /// the answer itself.
+    async fn show_breakdown(&self, arguments: Vec<Value>) -> Result<Value> {
+        guarded(BREAKDOWN_COMMAND, async {
+            let mut args = arguments.into_iter();
+            let target = args.next().unwrap_or(Value::Null);
+            let show = args
+                .next()
+                .and_then(|o| o.get("show").and_then(Value::as_bool))
+                .unwrap_or(true);
+            let uri = match uri_argument(&target) {
+                Some(u) => u,
+                None if target.is_null() => self.lock().last_uri.clone().ok_or_else(|| {
+                    Error::invalid_params("no document given and none is open")
+                })?,
+                None => {
+                    return Err(Error::invalid_params(
+                        "expected a document URI, {uri} or {textDocument: {uri}}",
+                    ))
+                }
+            };
+            let snap = self
+                .snapshot(&uri)
+                .await
+                .ok_or_else(|| Error::invalid_params("document is not open"))?;
+            let skipped = if snap.syntax_only {
+                Some("file is above the size limit: syntax-only mode, no dry run".to_string())
+            } else {
+                snap.run_skipped_reason()
+            };
+            let cancel = CancelFlag::default();
+            let _guard = cancel.guard();
+            let name = uri_path(&uri)
+                .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                .unwrap_or_else(|| uri.as_str().to_string());
+            let key = uri.as_str().to_string();
+            let result = if skipped.is_some() {
+                None
+            } else {
+                blocking(move || {
+                    let report = snap.run_report(&cancel)?;
+                    Some(dry_run::breakdown_of(key, &name, snap.version, &report))
+                })
+                .await?
+            };
+            let Some(r) = result else {
+                return Err(Error {
+                    code: ErrorCode::ServerError(-32001),
+                    message: skipped
+                        .unwrap_or_else(|| {
+                            "no dry run for this document (cancelled, or a program for another control)"
+                                .into()
+                        })
+                        .into(),
+                    data: None,
+                });
+            };
+            if show {
+                self.client
+                    .show_message(MessageType::INFO, r.text.clone())
+                    .await;
+            }
+            serde_json::to_value(r).map_err(|e| internal(e.to_string()))
+        })
+        .await
+    }
+
     fn offset(snap: &Snapshot, pos: Position) -> u32 {
         position_to_offset(&snap.rope, pos) as u32
     }
@@ -619,7 +707,7 @@ fn capabilities() -> ServerCapabilities {
             file_operations: None,
         }),
         execute_command_provider: Some(ExecuteCommandOptions {
-            commands: vec![DRY_RUN_COMMAND.into()],
+            commands: vec![DRY_RUN_COMMAND.into(), BREAKDOWN_COMMAND.into()],
             work_done_progress_options: Default::default(),
         }),
         ..Default::default()
@@ -718,6 +806,7 @@ impl LanguageServer for Backend {
                         closed: CancelFlag::default(),
                     },
                 );
+                st.last_uri = Some(doc.uri.clone());
             }
             self.schedule(doc.uri, Duration::ZERO);
         })
@@ -737,6 +826,7 @@ impl LanguageServer for Backend {
                     apply_change(&mut doc.rope, change.range, &change.text);
                 }
                 doc.version = params.text_document.version;
+                st.last_uri = Some(uri.clone());
             }
             let delay = if snapshot::baseline_mode() {
                 BASELINE_DEBOUNCE
@@ -1119,7 +1209,7 @@ impl LanguageServer for Backend {
     }
 
     async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
-        // The cycle time above the first line; clicking it runs the dry run.
+        // The cycle time above the first line; clicking it shows the breakdown.
         guarded("codeLens", async {
             let Some(snap) = self.snapshot(&params.text_document.uri).await else {
                 return Ok(None);
@@ -1152,7 +1242,7 @@ impl LanguageServer for Backend {
                     range: Range::new(Position::new(0, 0), Position::new(0, 0)),
                     command: Some(Command {
                         title,
-                        command: DRY_RUN_COMMAND.into(),
+                        command: BREAKDOWN_COMMAND.into(),
                         arguments: Some(vec![
                             serde_json::to_value(&snap.uri).unwrap_or(Value::Null)
                         ]),
@@ -1167,6 +1257,9 @@ impl LanguageServer for Backend {
     }
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<LSPAny>> {
+        if params.command == BREAKDOWN_COMMAND {
+            return self.show_breakdown(params.arguments).await.map(Some);
+        }
         if params.command != DRY_RUN_COMMAND {
             return Err(Error::invalid_params(format!(
                 "unknown command `{}`",
