@@ -325,3 +325,16 @@ fn fanuc_vacant_local_copy_and_called_macro_checked_alone() {
         vec![("X010", 3, Severity::Info)]
     );
 }
+
+#[test]
+fn ngc_feed_after_a_call_the_run_cannot_follow_is_unknown() {
+    // The subroutine is not here (no search path configured): it may set F, so the
+    // G1 after it is no zero-feed error; a G1 before any call still is.
+    let text = "G21 G90\nF0\no<engrave_plunge> call [10] [30] [-5]\nG1 X10 Y30 Z-5\nM2\n";
+    assert_eq!(found(&run_ngc(text), text, &["F001"]), vec![]);
+    let plain = "G21 G90\nF0\nG1 X10 Y30 Z-5\nM2\n";
+    assert_eq!(
+        found(&run_ngc(plain), plain, &["F001"]),
+        vec![("F001", 3, Severity::Error)]
+    );
+}

@@ -1325,3 +1325,22 @@ fn code_call_macros_are_called_programs() {
     let (code, diags) = check_json(&["--dialect", "fanuc", p.to_str().unwrap()]);
     assert_eq!((code, codes(&diags)), (0, vec![]));
 }
+
+/// LinuxCNC finds a subroutine file by the subroutine's name: a file of definitions
+/// named after one of them is a library (no M2 needed); one named otherwise cannot be
+/// called, and run as a program it ends without M2, as `rs274` reports on its last line.
+#[test]
+fn ngc_library_is_named_after_its_subroutine() {
+    let dir = tempdir("ngc-library-name");
+    let sub = b"o<z_touch> sub\nG38.2 Z-10 F25\no<z_touch> endsub\n";
+    let good = write(&dir, "z_touch.ngc", sub);
+    let bad = write(&dir, "z_probe.ngc", sub);
+    let (code, diags) = check_json(&[good.to_str().unwrap()]);
+    assert_eq!((code, codes(&diags)), (0, vec![]));
+    let (code, diags) = check_json(&[bad.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        codes(&diags),
+        vec![("P005".to_string(), 3, "error".to_string())]
+    );
+}

@@ -263,10 +263,10 @@ impl<'a> FileEntry<'a> {
 /// RS274/NGC library ([`Program::is_ngc_library`]), or a FANUC/ServoWorks file that
 /// returns with M99 and never ends with M2/M30 (run on its own, M99 would
 /// restart it forever, and its arguments `#1`… would be vacant).
-pub fn is_subprogram_file(program: &Program) -> bool {
+pub fn is_subprogram_file(program: &Program, stem: Option<&str>) -> bool {
     use analyzer::syntax::ItemKind;
     if program.dialect == analyzer::Dialect::Rs274ngc {
-        return program.is_ngc_library();
+        return program.is_ngc_library_named(stem);
     }
     let m = |v: f64| {
         program.items.iter().any(|it| match &it.kind {

@@ -217,6 +217,11 @@ pub fn run(args: RunArgs) -> ExitCode {
         settings.max_runtime_errors = n.max(1);
     }
     settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
+    settings.file_stem = args
+        .file
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .map(str::to_string);
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
     let mut machine_table = loaded.config.machine.clone();

@@ -237,13 +237,17 @@ pub fn resolve(
     }
     config.rules.select.extend(client.select.iter().cloned());
     config.rules.ignore.extend(client.ignore.iter().cloned());
-    let settings = match Settings::from_config(&config, Some(dialect)) {
+    let mut settings = match Settings::from_config(&config, Some(dialect)) {
         Ok(s) => s,
         Err(e) => {
             config_error.get_or_insert(e);
             Settings::new(dialect)
         }
     };
+    settings.file_stem = doc
+        .and_then(|d| d.file_stem())
+        .and_then(|s| s.to_str())
+        .map(str::to_string);
     let config_dir = config_path
         .as_deref()
         .and_then(Path::parent)
