@@ -167,7 +167,20 @@ module.exports = grammar({
 
     // `#1`, `##1`, `#[#1+1]`, `##<name>` (the parameter whose number `#<name>` holds).
     parameter: ($) =>
-      seq('#', field('index', choice($.number, $.parameter, $.named_parameter, $.bracketed_expression, $.function_call))),
+      seq(
+        '#',
+        field(
+          'index',
+          choice(
+            $.number,
+            $.parameter,
+            $.named_parameter,
+            $.bracketed_expression,
+            $.function_call,
+            alias($._quotient_value, $.binary_expression),
+          ),
+        ),
+      ),
 
     // `#<name>`, `#<_global>` (RS274/NGC).
     named_parameter: (_) => token(/#[ \t]*<[^>\r\n]*>/),
@@ -215,8 +228,9 @@ module.exports = grammar({
 
     // `X ATAN[y]/[x]`: a quotient, written without brackets around it, is a
     // word's value only in this form.
+    // After `#` too: `#atan[1]/[2]` is one parameter, as LinuxCNC reads it.
     _quotient_value: ($) =>
-      seq(field('left', $.function_call), field('operator', '/'), field('right', $.bracketed_expression)),
+      prec(1, seq(field('left', $.function_call), field('operator', '/'), field('right', $.bracketed_expression))),
 
     function_name: (_) => token(choice(...FUNCTIONS.map((f) => ci(f)))),
 
@@ -243,7 +257,8 @@ module.exports = grammar({
             ),
           ),
           optional(field('keyword', $._o_keyword)),
-          repeat(field('argument', choice($.bracketed_expression, $.parameter, $.named_parameter))),
+          // LinuxCNC reads comments between the arguments of a call.
+          repeat(choice(field('argument', choice($.bracketed_expression, $.parameter, $.named_parameter)), $.comment)),
         ),
       ),
 

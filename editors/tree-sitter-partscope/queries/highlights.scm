@@ -116,12 +116,13 @@
 (parameter
   index: (number) @variable)
 
+; `#<_x>`: LinuxCNC's predefined and global parameters. `[<]`, because Neovim
+; reads these patterns as very magic Vim regexes, where a bare `<` is a word start.
 ((named_parameter) @variable
-  (#not-match? @variable "^#[ \t]*<_"))
+  (#not-match? @variable "^#[ \t]*[<]_"))
 
-; `#<_x>`: LinuxCNC's predefined and global parameters.
 ((named_parameter) @variable.builtin
-  (#match? @variable.builtin "^#[ \t]*<_"))
+  (#match? @variable.builtin "^#[ \t]*[<]_"))
 
 (assignment
   right: (number) @constant.numeric)
