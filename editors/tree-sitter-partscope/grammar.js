@@ -64,8 +64,6 @@ module.exports = grammar({
 
   externals: ($) => [$.end_of_block, $.line_comment],
 
-  conflicts: (_) => [],
-
   rules: {
     source_file: ($) =>
       seq(repeat(seq(optional($._line_content), $._terminator)), optional($._line_content)),
