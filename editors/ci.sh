@@ -90,7 +90,8 @@ tree_sitter() (
     echo "src/ differs from what grammar.js generates: run 'tree-sitter generate --abi 14' in editors/tree-sitter-partscope and commit src/"
     return 1
   fi
-  tree-sitter test || return 1
+  # --rebuild: the CLI caches parsers by name, and a stale one may look newer than src/.
+  tree-sitter test --rebuild || return 1
   python3 scripts/parse-check.py --expect test/expected-errors.txt \
     "$repo/analyzer/tests/rules" "$repo/tests/conformance" "$repo/examples" || return 1
   if command -v nvim >/dev/null && command -v cc >/dev/null; then

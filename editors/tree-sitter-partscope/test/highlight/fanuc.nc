@@ -44,3 +44,12 @@ DPRNT[X#5041[44]]
 (    ^ string)
 %
 ( <- punctuation.special)
+% PART 42
+( <- comment)
+:1001
+( <- keyword.function)
+(^ label)
+<GAUGE_1>
+( <- function)
+#3000 = 1 (TOOL BROKEN)
+(         ^ comment)
