@@ -9,5 +9,9 @@ trap 'rm -rf "$rtp"' EXIT
 mkdir -p "$rtp/parser" "$rtp/queries/partscope"
 cc -shared -fPIC -O1 -I "$here/src" "$here/src/parser.c" "$here/src/scanner.c" -o "$rtp/parser/partscope.so"
 cp "$here/queries/highlights.scm" "$rtp/queries/partscope/"
+status=0
 HIGHLIGHT_DIR="$here/test/highlight" nvim --headless --clean \
-  --cmd "set runtimepath^=$rtp" -c "luafile $here/test/nvim/highlights.lua" 2>&1
+  --cmd "set runtimepath^=$rtp" -c "luafile $here/test/nvim/highlights.lua" 2>&1 || status=$?
+# Headless Neovim ends its last message without a line break.
+echo
+exit "$status"
