@@ -929,13 +929,49 @@ fn dogleg_limits(profile: Option<&MachineProfile>) -> Option<([f64; 6], [f64; 6]
 }
 
 fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) -> Toolpath {
-    let chord = if chord > 0.0 { chord } else { 0.01 };
-    let dogleg = dogleg_limits(profile);
     let mut tp = Toolpath::default();
     let mut min = [f64::INFINITY; 3];
     let mut max = [f64::NEG_INFINITY; 3];
+    for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
+        for p in points {
+            for i in 0..3 {
+                if p[i].is_finite() {
+                    min[i] = min[i].min(p[i]);
+                    max[i] = max[i].max(p[i]);
+                }
+            }
+        }
+        tp.segments.push(ToolpathSegment {
+            kind,
+            line: m.line,
+            file: m.file.0,
+            feed: m.feed,
+            tool: m.tool,
+            points: points.to_vec(),
+        });
+    });
+    if min[0].is_finite() {
+        tp.bounds = Bounds { min, max };
+    }
+    tp
+}
+
+/// The polyline of every motion, in order, as [`toolpath_on`] samples it
+/// (`profile`: `None` draws rapids straight), handed to `f` with the motion
+/// and its kind (`rapid`, `feed`, `arc`) in one reused buffer: a host that
+/// keeps its own form of the toolpath allocates nothing per motion.
+pub fn for_each_toolpath_segment(
+    out: &RunOutput,
+    chord: f64,
+    profile: Option<&MachineProfile>,
+    mut f: impl FnMut(&Motion, &'static str, &[[f64; 3]]),
+) {
+    let chord = if chord > 0.0 { chord } else { 0.01 };
+    let dogleg = dogleg_limits(profile);
+    let mut points = Vec::new();
     for m in &out.motions {
-        let mut points = vec![[m.start[0], m.start[1], m.start[2]]];
+        points.clear();
+        points.push([m.start[0], m.start[1], m.start[2]]);
         let kind = match m.kind {
             MotionKind::Rapid => "rapid",
             MotionKind::Arc { .. } => "arc",
@@ -1006,27 +1042,8 @@ fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) 
         } else {
             points.push([m.end[0], m.end[1], m.end[2]]);
         }
-        for p in &points {
-            for i in 0..3 {
-                if p[i].is_finite() {
-                    min[i] = min[i].min(p[i]);
-                    max[i] = max[i].max(p[i]);
-                }
-            }
-        }
-        tp.segments.push(ToolpathSegment {
-            kind,
-            line: m.line,
-            file: m.file.0,
-            feed: m.feed,
-            tool: m.tool,
-            points,
-        });
+        f(m, kind, &points);
     }
-    if min[0].is_finite() {
-        tp.bounds = Bounds { min, max };
-    }
-    tp
 }
 
 /// Per-block times (summed over the motions and events of each (file, line)),

@@ -36,6 +36,9 @@ pub struct ClientOptions {
     pub ignore: Vec<String>,
     pub max_file_size: Option<usize>,
     pub max_run_file_size: Option<usize>,
+    /// Cap on the toolpath points of a `partscope/dryRun` answer
+    /// (`maxToolpathPoints`; `lsp::decimate`).
+    pub max_toolpath_points: Option<usize>,
     /// The `format` object: defaults of document formatting (`numbers`,
     /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
     pub format: Option<Value>,
@@ -114,6 +117,10 @@ impl ClientOptions {
                 .map(|n| n as usize),
             max_run_file_size: v
                 .get("maxRunFileSize")
+                .and_then(Value::as_u64)
+                .map(|n| n as usize),
+            max_toolpath_points: v
+                .get("maxToolpathPoints")
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
             format: v.get("format").filter(|f| f.is_object()).cloned(),

@@ -63,6 +63,7 @@
 mod actions;
 mod completion;
 mod config;
+mod decimate;
 mod dry_run;
 mod formatting;
 mod goto;
