@@ -100,6 +100,8 @@ pub struct Decimation {
     /// drawn polyline (to the 0.1 µm the coordinates are rounded to).
     pub tolerance_mm: f64,
     /// The tolerance asked for (or the default), before the cap raised it.
+    /// A toolpath that loses no point at it is sent whole, one segment per
+    /// motion, when that fits the cap.
     pub requested_tolerance_mm: f64,
     pub max_points: usize,
     pub motions: usize,
@@ -236,7 +238,13 @@ impl Path {
         let exact_cost = self
             .motion_points
             .saturating_add(motions.saturating_mul(SEGMENT_COST));
-        if requested == 0.0 && exact_cost <= max_points {
+        // A toolpath that loses no point at the tolerance goes out as before,
+        // one segment per motion, if that fits.
+        let loses_none = self
+            .sig
+            .iter()
+            .all(|s| s.is_infinite() || *s > requested);
+        if (requested == 0.0 || loses_none) && exact_cost <= max_points {
             let segs = self.per_motion();
             report.points_out = self.motion_points;
             report.segments_out = segs.len();
