@@ -6,10 +6,11 @@ workspace, sends didOpen with the file's text and, right after it, a
 `partscope/dryRun` request. Prints the time from the start of didOpen and from
 the request to its answer, the answer's size in bytes (the JSON-RPC body), all
 bytes the server sent until then, what the answer says about decimation, and
-the server's peak RSS (VmHWM from /proc/PID/status, read after the answer).
+the server's peak RSS (VmHWM from /proc/PID/status, read after the answer)
+and its CPU time until then (user + system, all threads).
 
 Usage:
-    python3 scripts/lsp_dry_run_bench.py BINARY FILE... [--tolerance MM] [--json] [--stderr]
+    python3 scripts/lsp_dry_run_bench.py BINARY FILE... [--tolerance MM] [--init JSON] [--json] [--stderr]
 
 Generate inputs with scripts/gen_programs.py, e.g.
     python3 scripts/gen_programs.py surfacing --dialect rs274ngc --lines 1000000 > surf1m.ngc
@@ -84,6 +85,12 @@ class Server:
                     return int(line.split()[1])
         return None
 
+    def cpu_s(self):
+        """User + system CPU seconds of the server so far (all threads)."""
+        with open(f"/proc/{self.p.pid}/stat") as f:
+            fields = f.read().rsplit(")", 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
     def close(self):
         try:
             self.send({"jsonrpc": "2.0", "id": 999, "method": "shutdown", "params": None})
@@ -94,7 +101,7 @@ class Server:
             self.p.kill()
 
 
-def measure(binary, path, tolerance=None, show_stderr=False):
+def measure(binary, path, tolerance=None, show_stderr=False, init=None):
     path = os.path.abspath(path)
     with open(path, encoding="utf-8", errors="replace") as f:
         text = f.read()
@@ -102,7 +109,8 @@ def measure(binary, path, tolerance=None, show_stderr=False):
     root = "file://" + os.path.dirname(path)
     s = Server(binary)
     s.send({"jsonrpc": "2.0", "id": 1, "method": "initialize",
-            "params": {"processId": None, "rootUri": root, "capabilities": {}}})
+            "params": {"processId": None, "rootUri": root, "capabilities": {},
+                       "initializationOptions": init or {}}})
     s.wait(1)
     s.send({"jsonrpc": "2.0", "method": "initialized", "params": {}})
     t_open = time.monotonic()
@@ -119,6 +127,7 @@ def measure(binary, path, tolerance=None, show_stderr=False):
         return {"file": path, "error": "no answer within 600 s"}
     t_answer, length, msg, bytes_in = got
     hwm = s.vm_hwm_kb()
+    cpu = s.cpu_s()
     s.close()
     if show_stderr:
         for line in s.stderr:
@@ -132,6 +141,7 @@ def measure(binary, path, tolerance=None, show_stderr=False):
         "answer_bytes": length,
         "server_bytes_until_answer": bytes_in,
         "peak_rss_mb": round(hwm / 1024, 1) if hwm else None,
+        "server_cpu_s": round(cpu, 2),
     }
     if "error" in msg:
         row["error"] = msg["error"].get("message")
@@ -154,12 +164,14 @@ def main():
     ap.add_argument("files", nargs="+")
     ap.add_argument("--tolerance", type=float, default=None, help="mm; default: the server's")
     ap.add_argument("--json", action="store_true", help="one JSON object per file")
+    ap.add_argument("--init", type=json.loads, default=None,
+                    help='initializationOptions, e.g. \'{"maxToolpathPoints": 50000}\'')
     ap.add_argument("--stderr", action="store_true", help="print the server's stderr (set PARTSCOPE_LSP_TIMING=1 for its timings)")
     a = ap.parse_args()
     with open("/proc/loadavg") as f:
         print("load average:", " ".join(f.read().split()[:3]), file=sys.stderr)
     for path in a.files:
-        row = measure(a.binary, path, a.tolerance, a.stderr)
+        row = measure(a.binary, path, a.tolerance, a.stderr, a.init)
         if a.json:
             print(json.dumps(row))
             continue

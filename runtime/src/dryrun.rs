@@ -345,20 +345,40 @@ fn interleave(
     first_index: usize,
     emit: &mut dyn FnMut(plan::Event),
 ) {
+    interleave_while(motions, events, first_index, &mut |e| {
+        emit(e);
+        true
+    });
+}
+
+/// [`interleave`] until `emit` returns false; whether it went to the end.
+fn interleave_while(
+    motions: &[Motion],
+    events: &[IEvent],
+    first_index: usize,
+    emit: &mut dyn FnMut(plan::Event) -> bool,
+) -> bool {
     let mut e = events.iter().enumerate().peekable();
     for (i, m) in motions.iter().enumerate() {
         while let Some((k, ev)) = e.next_if(|(_, ev)| ev.motion_index <= i) {
             if let Some(pe) = planner_event(ev, k) {
-                emit(pe);
+                if !emit(pe) {
+                    return false;
+                }
             }
         }
-        emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32)));
+        if !emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32))) {
+            return false;
+        }
     }
     for (k, ev) in e {
         if let Some(pe) = planner_event(ev, k) {
-            emit(pe);
+            if !emit(pe) {
+                return false;
+            }
         }
     }
+    true
 }
 
 /// Motion time above which the planner uses closed-form profiles instead of servo periods.
@@ -700,16 +720,27 @@ fn plan_run_stoppable(
     profile: &MachineProfile,
     stop: &dyn Fn() -> bool,
 ) -> (DryRun, bool) {
-    let events = planner_events(out);
     let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
     let mut event_seconds: Vec<f64> = vec![0.0; out.events.len()];
     let mut blocks = BlockAcc::default();
     // Period-by-period execution costs time in proportion to machine time; beyond
     // SERVO_SIMULATION_LIMIT_S of (naively estimated) motion the closed-form profiles,
-    // within a few milliseconds of it per move, keep long jobs fast.
+    // within a few milliseconds of it per move, keep long jobs fast. The events
+    // are made twice rather than kept: a million of them take hundreds of MB.
     let mut profile = profile.clone();
-    if profile.servo_simulation && naive_seconds(&events, &profile) > SERVO_SIMULATION_LIMIT_S {
-        profile.servo_simulation = false;
+    if profile.servo_simulation {
+        let rapid = profile.traj_max_velocity.max(1e-9);
+        let mut naive = 0.0;
+        interleave_while(&out.motions, &out.events, 0, &mut |e| {
+            let t = naive_event_seconds(&e, rapid);
+            if t.is_finite() {
+                naive += t;
+            }
+            naive <= SERVO_SIMULATION_LIMIT_S
+        });
+        if naive > SERVO_SIMULATION_LIMIT_S {
+            profile.servo_simulation = false;
+        }
     }
     let profile = &profile;
     let mut planner = plan::Planner::new(profile);
@@ -729,12 +760,12 @@ fn plan_run_stoppable(
             blocks.element(m.file.0, m.line, &t, off);
         }
     };
-    let mut stopped = false;
-    for (i, ev) in events.into_iter().enumerate() {
+    let mut i = 0usize;
+    let finished = interleave_while(&out.motions, &out.events, 0, &mut |ev| {
         if i.is_multiple_of(1024) && stop() {
-            stopped = true;
-            break;
+            return false;
         }
+        i += 1;
         let before = match ev {
             plan::Event::Motion(_) => None,
             _ => Some(non_motion_s(planner.totals())),
@@ -748,7 +779,9 @@ fn plan_run_stoppable(
                 *slot += now - before;
             }
         }
-    }
+        true
+    });
+    let stopped = !finished;
     let totals = planner.finish(&mut record);
     // Events happen at the end of the motion before them (the planner stops
     // first), after the events before them there.

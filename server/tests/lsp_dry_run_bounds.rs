@@ -58,10 +58,7 @@ fn sine(n: usize) -> (String, Vec<(u32, [f64; 3])>) {
             format!("{:.4}", (i as f64 * 0.05).sin() * 10.0),
         );
         text.push_str(&format!("G1 X{x} Y{y}\n"));
-        ends.push((
-            2 + i as u32,
-            [x.parse().unwrap(), y.parse().unwrap(), 0.0],
-        ));
+        ends.push((2 + i as u32, [x.parse().unwrap(), y.parse().unwrap(), 0.0]));
     }
     text.push_str("M2\n");
     (text, ends)
@@ -140,7 +137,10 @@ fn the_toolpath_is_decimated_to_the_view_tolerance_and_capped() {
     assert_eq!(d["tolerance_mm"], 0.5);
     assert_eq!(d["motions"], 20_002);
     assert_eq!(d["points_in"], 40_004);
-    assert_eq!((d["decimated"].as_bool(), d["capped"].as_bool()), (Some(true), Some(false)));
+    assert_eq!(
+        (d["decimated"].as_bool(), d["capped"].as_bool()),
+        (Some(true), Some(false))
+    );
     assert_eq!(d["truncated_at_line"], Value::Null);
     let segs = r["toolpath"]["segments"].as_array().unwrap();
     // The rapid alone, as before; the plunge and the wave are one feed run.
@@ -148,7 +148,10 @@ fn the_toolpath_is_decimated_to_the_view_tolerance_and_capped() {
     assert_eq!(segs[0]["kind"], "rapid");
     assert_eq!(segs[0]["points"], json!([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]]));
     assert!(segs[0].get("lines").is_none());
-    assert_eq!((segs[1]["kind"].as_str(), segs[1]["line"].as_u64()), (Some("feed"), Some(2)));
+    assert_eq!(
+        (segs[1]["kind"].as_str(), segs[1]["line"].as_u64()),
+        (Some("feed"), Some(2))
+    );
     let kept = segs[1]["points"].as_array().unwrap().len();
     assert_eq!(d["points_out"], kept as u64 + 2);
     assert_eq!(d["points_dropped"], 40_004 - 2 - kept as u64);
@@ -164,7 +167,10 @@ fn the_toolpath_is_decimated_to_the_view_tolerance_and_capped() {
     // A view of 100 pixels: 10 mm.
     let r = dry_run(&mut c, json!({"viewSize": 100}));
     assert_eq!(r["decimation"]["tolerance_mm"], 10.0);
-    let coarse = r["toolpath"]["segments"][1]["points"].as_array().unwrap().len();
+    let coarse = r["toolpath"]["segments"][1]["points"]
+        .as_array()
+        .unwrap()
+        .len();
     assert!(coarse < kept, "{coarse} vs {kept}");
     assert_within(&r["toolpath"]["segments"][1], &ends, 10.0);
 
@@ -201,7 +207,10 @@ fn the_cap_is_a_setting() {
         json!({"textDocument": {"uri": uri}, "tolerance": 0}),
     );
     let d = &r["decimation"];
-    assert_eq!((d["max_points"].as_u64(), d["capped"].as_bool()), (Some(2000), Some(true)));
+    assert_eq!(
+        (d["max_points"].as_u64(), d["capped"].as_bool()),
+        (Some(2000), Some(true))
+    );
     let cost = d["points_out"].as_u64().unwrap() + 3 * d["segments_out"].as_u64().unwrap();
     assert!(cost <= 2000, "{d}");
     assert!(c.shutdown().success());
@@ -209,7 +218,11 @@ fn the_cap_is_a_setting() {
 
 /// The answer to request `id`, also when it came while another was awaited.
 fn answer(c: &mut Client, id: i64, timeout: Duration) -> Option<Value> {
-    if let Some(i) = c.pending.iter().position(|m| m.get("id") == Some(&json!(id))) {
+    if let Some(i) = c
+        .pending
+        .iter()
+        .position(|m| m.get("id") == Some(&json!(id)))
+    {
         return Some(c.pending.remove(i));
     }
     c.response_within(id, timeout)

@@ -120,6 +120,17 @@ pub struct Decimation {
 }
 
 impl Path {
+    /// An empty path with room for `motions` motions of two points each
+    /// (a million-line program's vectors then never move while they fill).
+    pub fn with_capacity(motions: usize) -> Path {
+        Path {
+            points: Vec::with_capacity(motions + 1),
+            lines: Vec::with_capacity(motions + 1),
+            motion_start: Vec::with_capacity(motions),
+            ..Path::default()
+        }
+    }
+
     /// Adds one motion's polyline (at least two points).
     #[allow(clippy::too_many_arguments)]
     pub fn push(
@@ -149,8 +160,8 @@ impl Path {
         }
         let key = Key { kind, feed, tool };
         let motion = self.motion_start.len() as u32;
-        let joins = self.runs.last().is_some_and(|r| r.key == key)
-            && self.points.last() == Some(first);
+        let joins =
+            self.runs.last().is_some_and(|r| r.key == key) && self.points.last() == Some(first);
         let skip = if joins {
             // The motion starts where the run's last point is: share it.
             self.motion_start.push(self.points.len() as u32 - 1);
@@ -240,10 +251,7 @@ impl Path {
             .saturating_add(motions.saturating_mul(SEGMENT_COST));
         // A toolpath that loses no point at the tolerance goes out as before,
         // one segment per motion, if that fits.
-        let loses_none = self
-            .sig
-            .iter()
-            .all(|s| s.is_infinite() || *s > requested);
+        let loses_none = self.sig.iter().all(|s| s.is_infinite() || *s > requested);
         if (requested == 0.0 || loses_none) && exact_cost <= max_points {
             let segs = self.per_motion();
             report.points_out = self.motion_points;
@@ -422,7 +430,9 @@ mod tests {
                 d
             };
             if d > tol + 1e-9 {
-                return Err(format!("{p:?} is {d} from the kept polyline (tolerance {tol})"));
+                return Err(format!(
+                    "{p:?} is {d} from the kept polyline (tolerance {tol})"
+                ));
             }
         }
         Ok(())
@@ -441,7 +451,10 @@ mod tests {
             max_points: 100_000,
         });
         assert_eq!(segs.len(), 1);
-        assert_eq!(segs[0].points, vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0]]);
+        assert_eq!(
+            segs[0].points,
+            vec![[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0]]
+        );
         assert_eq!(segs[0].lines, Some(vec![0, 1, 2]));
         assert_eq!((d.points_in, d.points_out, d.points_dropped), (6, 3, 3));
         assert!(d.decimated && !d.capped);
@@ -467,7 +480,12 @@ mod tests {
             .collect();
         assert_eq!(
             shape,
-            vec![(f, 100.0, 1, 2), (f, 200.0, 1, 2), (r, 0.0, 1, 2), (r, 0.0, 2, 2)]
+            vec![
+                (f, 100.0, 1, 2),
+                (f, 200.0, 1, 2),
+                (r, 0.0, 1, 2),
+                (r, 0.0, 2, 2)
+            ]
         );
         // The one-motion runs go out as before, without `lines`.
         assert_eq!(segs[1].lines, None);
@@ -506,7 +524,11 @@ mod tests {
         for case in 0..300 {
             // Random walks of feeds with occasional rapids and feed changes,
             // some long enough to cross a stretch boundary.
-            let n = if case % 50 == 0 { 9000 } else { 2 + (rng.next() * 400.0) as usize };
+            let n = if case % 50 == 0 {
+                9000
+            } else {
+                2 + (rng.next() * 400.0) as usize
+            };
             let mut at = [0.0; 3];
             let mut motions = Vec::new();
             for _ in 0..n {
@@ -541,7 +563,10 @@ mod tests {
             for (r, s) in p.runs.iter().zip(&segs) {
                 let all = &p.points[r.first as usize..r.end as usize];
                 let near = |a: &[f64; 3], b: &[f64; 3]| (0..3).all(|k| (a[k] - b[k]).abs() <= GRID);
-                assert!(near(&all[0], &s.points[0]) && near(&all[all.len() - 1], &s.points[s.points.len() - 1]));
+                assert!(
+                    near(&all[0], &s.points[0])
+                        && near(&all[all.len() - 1], &s.points[s.points.len() - 1])
+                );
                 within(all, &s.points, d.tolerance_mm + GRID)
                     .unwrap_or_else(|e| panic!("case {case}: {e}"));
             }
@@ -554,7 +579,17 @@ mod tests {
         // A zigzag of 20 000 points in one run: no point is negligible at a
         // fine tolerance, so the cap decides.
         let pts: Vec<[f64; 3]> = (0..20_000)
-            .map(|i| [i as f64 * 0.01, if i % 2 == 0 { 0.0 } else { 0.5 + (i % 7) as f64 * 0.1 }, 0.0])
+            .map(|i| {
+                [
+                    i as f64 * 0.01,
+                    if i % 2 == 0 {
+                        0.0
+                    } else {
+                        0.5 + (i % 7) as f64 * 0.1
+                    },
+                    0.0,
+                ]
+            })
             .collect();
         let motions: Vec<_> = pts.windows(2).map(|w| (f, 100.0, 1, w.to_vec())).collect();
         let p = path(&motions);
@@ -571,7 +606,14 @@ mod tests {
         let motions: Vec<_> = pts
             .windows(2)
             .enumerate()
-            .map(|(i, w)| (if i % 2 == 0 { f } else { SegmentKind::Rapid }, 100.0, 1, w.to_vec()))
+            .map(|(i, w)| {
+                (
+                    if i % 2 == 0 { f } else { SegmentKind::Rapid },
+                    100.0,
+                    1,
+                    w.to_vec(),
+                )
+            })
             .collect();
         let p = path(&motions);
         let (segs, d) = p.select(Request {

@@ -241,26 +241,50 @@ impl DryRunner for RuntimeRunner {
         // A `[machine]` table the planner cannot read leaves the run without times.
         let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
         // Arcs are sampled at half the default view tolerance (a finer one
-        // costs points no view of the whole part can show).
+        // costs points no view of the whole part can show). The toolpath and
+        // the plan read the run side by side.
         let chord = CHORD_TOLERANCE.max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
-        let segments = path_of(&out, profile.as_ref(), chord);
+        let t1 = std::time::Instant::now();
+        let (path, plan, t_path) = std::thread::scope(|s| {
+            let path = s.spawn(|| {
+                let path = path_of(&out, profile.as_ref(), chord);
+                (path, t1.elapsed())
+            });
+            let plan = profile.as_ref().map(|profile| {
+                dryrun::plan_run_until(&out, profile, &|| input.cancel.is_cancelled())
+            });
+            // A panic on the toolpath thread is the request's, as on this one.
+            let (path, t_path) = path.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+            (path, plan, t_path)
+        });
+        let mut plan = match plan {
+            Some(p) => Some(p?),
+            None => None,
+        };
         if input.cancel.is_cancelled() {
             return None;
         }
-        let plan = match &profile {
-            Some(profile) => Some(dryrun::plan_run_until(&out, profile, &|| {
-                input.cancel.is_cancelled()
-            })?),
-            None => None,
-        };
+        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
+            eprintln!(
+                "partscope lsp: toolpath {t_path:?} ({} motions), planner and toolpath {:?}",
+                out.motions.len(),
+                t1.elapsed()
+            );
+        }
         let loaded = resolver.loaded.borrow();
-        let report = report_of(input.program, &out, segments, plan.as_ref(), &loaded);
+        let report = report_of(input.program, &out, path, plan.as_ref(), &loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
+        // The document's blocks, moved out of the plan (a million of them
+        // would be a large copy).
         let blocks = plan
-            .as_ref()
-            .map(|p| p.blocks.iter().filter(|b| b.file == 0).cloned().collect())
+            .as_mut()
+            .map(|p| {
+                let mut blocks = std::mem::take(&mut p.blocks);
+                blocks.retain(|b| b.file == 0);
+                blocks
+            })
             .unwrap_or_default();
         let breakdown = plan
             .as_ref()
@@ -299,7 +323,7 @@ fn motion_extent(out: &runtime::RunOutput) -> f64 {
 /// rapids as `profile` moves them (straight without one), with each point's
 /// significance for decimation.
 pub fn path_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>, chord: f64) -> Path {
-    let mut path = Path::default();
+    let mut path = Path::with_capacity(out.motions.len());
     let mut index = 0u32;
     dryrun::for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
         let kind = match kind {
