@@ -34,6 +34,9 @@ interface InitOptions {
   select: string[];
   ignore: string[];
   blockTimes: string;
+  maxFileSize?: number;
+  maxRunFileSize?: number;
+  maxToolpathPoints?: number;
 }
 
 function config(): vscode.WorkspaceConfiguration {
@@ -64,6 +67,10 @@ export function initializationOptions(): InitOptions {
     select: c.get<string[]>("select") ?? [],
     ignore: c.get<string[]>("ignore") ?? [],
     blockTimes: c.get<string>("blockTimes") ?? "block",
+    // Unset: the server's defaults.
+    maxFileSize: c.get<number | null>("maxFileSize") ?? undefined,
+    maxRunFileSize: c.get<number | null>("maxRunFileSize") ?? undefined,
+    maxToolpathPoints: c.get<number | null>("maxToolpathPoints") ?? undefined,
   };
 }
 
@@ -133,23 +140,58 @@ async function restartClient(): Promise<void> {
   void refreshStatus();
 }
 
+/** A dry run in flight: for which document version, and how to cancel it. */
+interface InFlight {
+  version: number;
+  cts: vscode.CancellationTokenSource;
+  promise: Promise<DryRunResult>;
+}
+
+// One request per document at a time, shared by the status bar and the preview: a request for
+// a newer version cancels the older one (the server drops its run), and callers asking for the
+// same version get the same answer instead of a second run.
+const inFlight = new Map<string, InFlight>();
+
+/** The server's answer to a request that a newer one replaced, or that was cancelled. */
+function isSuperseded(err: unknown): boolean {
+  const code = (err as { code?: unknown } | undefined)?.code;
+  return code === -32800 || code === -32802;
+}
+
 /** Asks the server for the dry-run result of `uri`: the custom request first, the command as fallback. */
-export async function requestDryRun(uri: vscode.Uri): Promise<DryRunResult> {
+export function requestDryRun(uri: vscode.Uri): Promise<DryRunResult> {
   const c = client;
-  if (!c) throw new Error("the Partscope server is not running");
+  if (!c) return Promise.reject(new Error("the Partscope server is not running"));
+  const key = uri.toString();
+  const version = vscode.workspace.textDocuments.find((d) => d.uri.toString() === key)?.version ?? 0;
+  const current = inFlight.get(key);
+  if (current && current.version === version) return current.promise;
+  current?.cts.cancel();
+  const cts = new vscode.CancellationTokenSource();
   const params = { textDocument: { uri: c.code2ProtocolConverter.asUri(uri) } };
-  try {
-    return await c.sendRequest<DryRunResult>("partscope/dryRun", params);
-  } catch (err) {
-    const viaCommand = await c
-      .sendRequest<DryRunResult>("workspace/executeCommand", {
-        command: SERVER_DRY_RUN_COMMAND,
-        arguments: [params.textDocument.uri],
-      })
-      .catch(() => undefined);
-    if (viaCommand) return viaCommand;
-    throw err;
-  }
+  const promise = (async () => {
+    try {
+      return await c.sendRequest<DryRunResult>("partscope/dryRun", params, cts.token);
+    } catch (err) {
+      // A cancelled or superseded run is not a failure, and must not be retried as a command
+      // (which could not be cancelled).
+      if (cts.token.isCancellationRequested || isSuperseded(err)) throw err;
+      const viaCommand = await c
+        .sendRequest<DryRunResult>(
+          "workspace/executeCommand",
+          { command: SERVER_DRY_RUN_COMMAND, arguments: [params.textDocument.uri] },
+          cts.token
+        )
+        .catch(() => undefined);
+      if (viaCommand) return viaCommand;
+      throw err;
+    } finally {
+      if (inFlight.get(key)?.cts === cts) inFlight.delete(key);
+      cts.dispose();
+    }
+  })();
+  inFlight.set(key, { version, cts, promise });
+  return promise;
 }
 
 function activeGcodeEditor(): vscode.TextEditor | undefined {
@@ -190,7 +232,7 @@ async function refreshStatus(): Promise<void> {
       "**Partscope dry run**\n\n```\n" + summarize(r) + "\n```\n\nClick to show the toolpath."
     );
   } catch (err) {
-    if (seq !== statusSeq) return;
+    if (seq !== statusSeq || isSuperseded(err)) return;
     statusItem.text = "$(watch) –";
     statusItem.tooltip = `Partscope dry run failed: ${err instanceof Error ? err.message : String(err)}`;
   }
@@ -387,7 +429,7 @@ class ToolpathPreview {
       const editor = vscode.window.visibleTextEditors.find((e) => e.document.uri.toString() === this.uri.toString());
       if (editor) this.postCursor(editor);
     } catch (err) {
-      if (seq !== this.seq) return;
+      if (seq !== this.seq || isSuperseded(err)) return;
       void this.panel.webview.postMessage({
         type: "error",
         message: `Dry run failed: ${err instanceof Error ? err.message : String(err)}`,

@@ -13,6 +13,8 @@ use std::sync::Arc;
 use analyzer::{Diagnostic, Settings};
 use serde::Serialize;
 
+pub use super::decimate::{Decimation, Path, Request};
+
 /// What one dry run needs.
 pub struct DryRunInput<'a> {
     pub program: &'a analyzer::syntax::Program,
@@ -54,6 +56,10 @@ pub struct Segment {
     pub feed: f64,
     pub tool: u32,
     pub points: Vec<[f64; 3]>,
+    /// A segment that holds several motions (decimated, [`super::decimate`]):
+    /// the 0-based line of the motion each point ends; `line` is the first's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lines: Option<Vec<u32>>,
     /// Exact path length in XYZ (arcs are longer than their sampled polyline).
     #[serde(skip)]
     pub length: f64,
@@ -82,7 +88,8 @@ pub type BlockState = runtime::BlockSnapshot;
 /// tool changes, per-block state and flow-sensitive diagnostics.
 #[derive(Debug, Clone, Default)]
 pub struct RunReport {
-    pub segments: Vec<Segment>,
+    /// The toolpath, which each request decimates to its own tolerance.
+    pub path: Path,
     pub timing: Option<Timing>,
     /// The document's tool changes: 0-based line and program time (when planned).
     pub tool_changes: Vec<(u32, Option<f64>)>,
@@ -227,6 +234,8 @@ pub struct DryRunResult {
     /// The cycle time by cause and the top causes in words (`null` when no
     /// planner ran).
     pub breakdown: Option<Breakdown>,
+    /// How the toolpath was decimated and capped for this answer.
+    pub decimation: Decimation,
 }
 
 /// The result of the `partscope.showBreakdown` command (the cycle-time
@@ -252,8 +261,7 @@ pub struct BreakdownResult {
 
 /// The breakdown of `report` for the document `name` (its file name).
 pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -> BreakdownResult {
-    // A fold from +0: `sum` of no lengths is -0.0, which prints as "-0.0 mm".
-    let distance = report.segments.iter().fold(0.0, |d, s| d + s.length);
+    let distance = report.path.distance;
     let t = report.timing;
     BreakdownResult {
         uri,
@@ -327,28 +335,17 @@ pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> Strin
     out
 }
 
-/// Builds the preview result from a run report.
+/// Builds the preview result from a run report, its toolpath decimated as
+/// `request` asks (bounds and distance are those of the whole toolpath).
 pub fn summarize(
     version: i32,
     report: &RunReport,
     diagnostics: Vec<serde_json::Value>,
+    request: Request,
 ) -> DryRunResult {
-    let mut min = [f64::INFINITY; 3];
-    let mut max = [f64::NEG_INFINITY; 3];
-    let mut distance = 0.0;
-    for seg in &report.segments {
-        for p in &seg.points {
-            for k in 0..3 {
-                min[k] = min[k].min(p[k]);
-                max[k] = max[k].max(p[k]);
-            }
-        }
-        distance += seg.length;
-    }
-    if !min[0].is_finite() {
-        min = [0.0; 3];
-        max = [0.0; 3];
-    }
+    let (min, max) = report.path.bounds.unwrap_or(([0.0; 3], [0.0; 3]));
+    let distance = report.path.distance;
+    let (segments, decimation) = report.path.select(request);
     let t = report.timing;
     DryRunResult {
         version,
@@ -360,13 +357,14 @@ pub fn summarize(
         tool_change_s: t.map(|t| t.tool_change_s),
         distance_mm: distance,
         toolpath: Toolpath {
-            segments: report.segments.clone(),
+            segments,
             bounds: Bounds { min, max },
         },
         diagnostics,
         complete: report.stopped.is_none(),
         stopped_at: report.stopped.clone(),
         breakdown: report.breakdown.clone(),
+        decimation,
     }
 }
 
@@ -414,25 +412,26 @@ mod tests {
 
     #[test]
     fn summary_sums_lengths_and_bounds_and_passes_times() {
+        let mut path = Path::default();
+        path.push(
+            SegmentKind::Rapid,
+            0,
+            0.0,
+            1,
+            &[[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
+            5.0,
+        );
+        path.push(
+            SegmentKind::Feed,
+            1,
+            600.0,
+            1,
+            &[[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
+            6.0,
+        );
+        path.finish();
         let report = RunReport {
-            segments: vec![
-                Segment {
-                    kind: SegmentKind::Rapid,
-                    line: 0,
-                    feed: 0.0,
-                    tool: 1,
-                    points: vec![[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
-                    length: 5.0,
-                },
-                Segment {
-                    kind: SegmentKind::Feed,
-                    line: 1,
-                    feed: 600.0,
-                    tool: 1,
-                    points: vec![[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
-                    length: 6.0,
-                },
-            ],
+            path,
             timing: Some(Timing {
                 rapid_s: 0.5,
                 cutting_s: 0.6,
@@ -450,7 +449,7 @@ mod tests {
             blocks: vec![],
             breakdown: None,
         };
-        let r = summarize(7, &report, vec![]);
+        let r = summarize(7, &report, vec![], Request::EXACT);
         assert_eq!(r.version, 7);
         assert_eq!(r.distance_mm, 11.0);
         assert_eq!(
@@ -473,7 +472,7 @@ mod tests {
 
     #[test]
     fn empty_toolpath_has_zero_bounds() {
-        let r = summarize(1, &RunReport::default(), vec![]);
+        let r = summarize(1, &RunReport::default(), vec![], Request::EXACT);
         assert_eq!(
             r.toolpath.bounds,
             Bounds {

@@ -72,7 +72,25 @@ struct Doc {
     analysing: Arc<tokio::sync::Mutex<()>>,
     /// Set when the document is closed: its background runs stop.
     closed: CancelFlag,
+    /// The newest `partscope/dryRun` of the document, which the next one
+    /// supersedes.
+    dry_run: Option<DryRunTicket>,
 }
+
+/// One `partscope/dryRun` request as the next one of its document sees it.
+struct DryRunTicket {
+    /// The document version when it arrived.
+    version: i32,
+    /// Stops its run: set when a newer request comes for a newer version.
+    run: CancelFlag,
+    /// Set when any newer request comes: it answers with an error instead of
+    /// a toolpath (the run itself, shared by a request for the same version,
+    /// goes on).
+    superseded: CancelFlag,
+}
+
+/// The answer of a superseded `partscope/dryRun` (LSP's ServerCancelled).
+pub const SUPERSEDED: i64 = -32802;
 
 #[derive(Default)]
 struct State {
@@ -216,6 +234,7 @@ impl Backend {
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
         o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
+        o.max_toolpath_points = c.max_toolpath_points.or(o.max_toolpath_points);
         o.format = c.format.clone().or(o.format);
         o.block_times = c.block_times.or(o.block_times);
         o
@@ -530,7 +549,13 @@ impl Backend {
         self.lock().docs.get(uri).map(|d| d.rope.clone())
     }
 
-    /// The dry run of a document (the `partscope/dryRun` request).
+    /// The dry run of a document (the `partscope/dryRun` request). Params:
+    /// `textDocument`, and optionally `tolerance` (mm) or `viewSize` (the
+    /// view's size in pixels: the tolerance is the part's extent over it) and
+    /// `maxPoints` (else the `maxToolpathPoints` setting). A newer request for
+    /// the same document supersedes this one: it then answers error -32802
+    /// ([`SUPERSEDED`]), and its run stops if the newer one is for a newer
+    /// version.
     pub async fn dry_run(&self, params: Value) -> Result<Value> {
         guarded("partscope/dryRun", async {
             let uri: Uri = params
@@ -538,33 +563,91 @@ impl Backend {
                 .and_then(|t| t.get("uri"))
                 .and_then(|u| serde_json::from_value(u.clone()).ok())
                 .ok_or_else(|| Error::invalid_params("expected {textDocument: {uri}}"))?;
+            let positive = |key: &str| {
+                params
+                    .get(key)
+                    .and_then(Value::as_f64)
+                    .filter(|v| v.is_finite() && *v >= 0.0)
+            };
+            let (tolerance, view_size) = (positive("tolerance"), positive("viewSize"));
+            let max_points = params
+                .get("maxPoints")
+                .and_then(Value::as_u64)
+                .map(|n| n as usize);
+            // Registered before the first await, so in the order requests came.
+            let (cancel, superseded, max_points) = {
+                let mut st = self.lock();
+                let max_points = max_points
+                    .or(Self::client_options(&st).max_toolpath_points)
+                    .unwrap_or(super::decimate::DEFAULT_MAX_POINTS);
+                let doc = st
+                    .docs
+                    .get_mut(&uri)
+                    .ok_or_else(|| Error::invalid_params("document is not open"))?;
+                if let Some(old) = doc.dry_run.take() {
+                    old.superseded.cancel();
+                    if old.version != doc.version {
+                        old.run.cancel();
+                    }
+                }
+                let ticket = DryRunTicket {
+                    version: doc.version,
+                    run: CancelFlag::default(),
+                    superseded: CancelFlag::default(),
+                };
+                let flags = (ticket.run.clone(), ticket.superseded.clone());
+                doc.dry_run = Some(ticket);
+                (flags.0, flags.1, max_points)
+            };
+            let superseded_error = || Error {
+                code: ErrorCode::ServerError(SUPERSEDED),
+                message: "superseded by a newer partscope/dryRun of this document".into(),
+                data: None,
+            };
+            let _guard = cancel.guard();
             let snap = self
                 .snapshot(&uri)
                 .await
                 .ok_or_else(|| Error::invalid_params("document is not open"))?;
-            if snap.syntax_only {
-                return Err(internal(
-                    "file is above the size limit: syntax-only mode, no dry run",
-                ));
+            if superseded.is_cancelled() {
+                return Err(superseded_error());
             }
-            let cancel = CancelFlag::default();
-            let _guard = cancel.guard();
+            if snap.syntax_only {
+                return Err(internal(format!(
+                    "no dry run: the file is above the size limit ({} KB, partscope.maxFileSize): syntax-only mode",
+                    snap.doc.max_file_size / 1024
+                )));
+            }
             // The JSON value is built on the blocking thread too: a long
             // toolpath is a large conversion.
+            let stale = superseded.clone();
             let result: Option<Result<Value>> = blocking(move || {
                 let report = snap.run_report(&cancel)?;
+                if stale.is_cancelled() {
+                    return None;
+                }
                 let diags = report
                     .diagnostics
                     .iter()
                     .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
-                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags);
+                let tolerance = tolerance.or_else(|| {
+                    view_size
+                        .filter(|v| *v >= 1.0)
+                        .map(|v| report.path.extent() / v)
+                });
+                let request = dry_run::Request {
+                    tolerance,
+                    max_points,
+                };
+                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags, request);
                 Some(serde_json::to_value(r).map_err(|e| internal(e.to_string())))
             })
             .await?;
             match result {
                 Some(r) => r,
+                None if superseded.is_cancelled() => Err(superseded_error()),
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
                     message: "no dry run for this document (cancelled, or above the size limit)"
@@ -804,6 +887,7 @@ impl LanguageServer for Backend {
                         snapshot: None,
                         analysing: Arc::default(),
                         closed: CancelFlag::default(),
+                        dry_run: None,
                     },
                 );
                 st.last_uri = Some(doc.uri.clone());

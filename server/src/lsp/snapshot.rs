@@ -246,11 +246,19 @@ impl Snapshot {
         })
     }
 
-    /// Why no dry run is made for this document, when that is its size: the
-    /// editor then says so instead of showing no runtime findings and no time.
+    /// Why no dry run (or no analysis at all) is made for this document, when
+    /// that is its size: the editor then says so, in a diagnostic and the
+    /// lens, instead of showing no runtime findings and no time.
     pub fn run_skipped_reason(&self) -> Option<String> {
         let len = self.program().text.len();
-        if self.syntax_only || len <= self.doc.max_run_file_size {
+        if self.syntax_only {
+            return Some(format!(
+                "No analysis: the file ({} KB) is above the size limit ({} KB, partscope.maxFileSize); only syntax errors are shown, no rules, runtime diagnostics or cycle time",
+                len / 1024,
+                self.doc.max_file_size / 1024
+            ));
+        }
+        if len <= self.doc.max_run_file_size {
             return None;
         }
         Some(format!(
