@@ -376,13 +376,15 @@ impl Rule for WordValueRange {
                         );
                     }
                 }
-                if has(cx, 'G', 100) && word_item(cx, b'L').and_then(|(_, w)| lit(w)) == Some(2.0) {
+                let l = word_item(cx, b'L').and_then(|(_, w)| lit(w));
+                if has(cx, 'G', 100) && matches!(l, Some(2.0 | 20.0)) {
                     let lo = if is_emc2(cx.settings) { 1.0 } else { 0.0 };
+                    let l = l.unwrap_or(2.0);
                     k.check(
                         b'P',
                         E,
                         |v| v.round() >= lo && v.round() <= 9.0,
-                        |t| format!("`{t}`: G10 L2 P selects coordinate system {lo} to 9."),
+                        |t| format!("`{t}`: G10 L{l} P selects coordinate system {lo} to 9."),
                     );
                 }
                 if cx
