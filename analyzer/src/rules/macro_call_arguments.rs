@@ -188,27 +188,7 @@ fn mixed_argument_variables(letters: &[u8]) -> Vec<Option<u32>> {
                 last = Some(pos);
                 return (set < 10).then_some(4 + 3 * set + pos);
             }
-            Some(match l {
-                b'A' => 1,
-                b'B' => 2,
-                b'C' => 3,
-                b'D' => 7,
-                b'E' => 8,
-                b'F' => 9,
-                b'H' => 11,
-                b'M' => 13,
-                b'Q' => 17,
-                b'R' => 18,
-                b'S' => 19,
-                b'T' => 20,
-                b'U' => 21,
-                b'V' => 22,
-                b'W' => 23,
-                b'X' => 24,
-                b'Y' => 25,
-                b'Z' => 26,
-                _ => return None,
-            })
+            crate::dialect::fanuc::macro_argument_variable(l)
         })
         .collect()
 }
