@@ -8,6 +8,7 @@
 //! and `run`, the workspace folders for the editor — and in the size limit's
 //! setting.
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -233,6 +234,9 @@ pub struct FsResolver {
     refused: Mutex<Vec<(String, String)>>,
     /// Every file handed to the interpreter.
     loaded: Mutex<Vec<Loaded>>,
+    /// Calls (name, calling file) that found nothing: a loop that calls a missing
+    /// program asks again on every pass, and a search reads folders.
+    missed: Mutex<HashSet<(String, u32)>>,
 }
 
 impl FsResolver {
@@ -299,6 +303,7 @@ impl FsResolver {
             cancel: None,
             refused: Mutex::new(Vec::new()),
             loaded: Mutex::new(Vec::new()),
+            missed: Mutex::new(HashSet::new()),
         }
     }
 
@@ -427,7 +432,16 @@ impl FsResolver {
 
 impl Resolver for FsResolver {
     fn resolve(&self, name: &str, from: FileId) -> Option<ResolvedFile> {
-        let found = self.search(name, from, |p, c| self.load(name, p, c))?;
+        let key = (name.to_string(), from.0);
+        if self.missed.lock().is_ok_and(|m| m.contains(&key)) {
+            return None;
+        }
+        let Some(found) = self.search(name, from, |p, c| self.load(name, p, c)) else {
+            if let Ok(mut m) = self.missed.lock() {
+                m.insert(key);
+            }
+            return None;
+        };
         if let Ok(mut l) = self.loaded.lock() {
             l.push((name.to_string(), found.path.clone(), found.text.clone()));
         }
@@ -635,6 +649,12 @@ mod tests {
                  (raise it with the `maxRunFileSize` setting, or split the program)"
             )
         );
+        // Within one run a missing program stays missing: a loop calling it
+        // searches once.
+        assert!(r.resolve("later", FileId(0)).is_none());
+        std::fs::write(root.join("later.ngc"), "o<later> sub\no<later> endsub\n").unwrap();
+        assert!(r.resolve("later", FileId(0)).is_none());
+        assert!(r.locate("later").is_some());
         #[cfg(unix)]
         if std::process::Command::new("mkfifo")
             .arg(root.join("pipe.ngc"))
