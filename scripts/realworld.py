@@ -245,7 +245,7 @@ RS274_SUB_CONTEXT = ("zero feed rate", "divide by zero", "zero spindle speed")
 def rs274_check(o: Outcome, script: Path, cache: Path) -> tuple[str, str, list[int]] | None:
     """Runs LinuxCNC's interpreter on an RS274/NGC program (a subroutine file
     through `o<name> call`) and returns (kind, message, lines of the offending
-    text) when it rejects it; kind is `program` or `context`."""
+    text) when it rejects it; kind is `program`, `context` or `callee` (the offending line is in a file it calls)."""
     p = o.program
     file = cache / p.repo.replace("/", "+") / p.commit[:12] / p.path
     text = file.read_text(encoding="utf-8", errors="replace")
@@ -270,6 +270,10 @@ def rs274_check(o: Outcome, script: Path, cache: Path) -> tuple[str, str, list[i
     src = err[1].strip() if len(err) > 1 else ""
     lines = [i for i, ln in enumerate(text.splitlines(), 1) if src and ln.strip() == src]
     context = any(k in msg for k in RS274_CONTEXT) or (in_sub and any(k in msg for k in RS274_SUB_CONTEXT))
+    if not context and in_sub and src and not lines:
+        # The offending line is in a file the subroutine calls: that file's fault,
+        # found (or missed) where the corpus checks it.
+        return "callee", msg, lines
     return ("context" if context else "program"), msg, lines
 
 
@@ -386,7 +390,7 @@ def main() -> int:
         if not args.rs274.exists():
             print(f"\nrs274 wrapper {args.rs274} not found: skipping the rs274 comparison")
         else:
-            print("\nrs274 rejections (RS274/NGC programs; `context` = depends on the machine or the caller):")
+            print("\nrs274 rejections (RS274/NGC programs; `context` = depends on the machine or the caller; `callee` = in a called file):")
             found = missed = 0
             for o in outcomes:
                 if o.status != "ok" or check_dialect(o.program) != "rs274ngc":

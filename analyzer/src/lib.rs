@@ -164,6 +164,29 @@ pub fn finish(
             });
         }
     }
+    // FANUC reads no text that an unconditional GOTO, M99 or M30 jumps over (up to
+    // the next sequence number): a syntax error there is never raised.
+    if program.dialect == Dialect::Fanuc
+        && diagnostics
+            .iter()
+            .any(|d| dead_syntax(d) && d.severity == diagnostic::Severity::Error)
+    {
+        let over = rules::util::jumped_over_blocks(program);
+        for d in diagnostics.iter_mut() {
+            let jumped = dead_syntax(d)
+                && d.severity == diagnostic::Severity::Error
+                && program
+                    .block_at(d.span.start)
+                    .is_some_and(|b| over.get(b).copied().unwrap_or(false));
+            if jumped {
+                d.severity = diagnostic::Severity::Info;
+                d.message = format!(
+                    "{}; never read: an unconditional GOTO, M99 or M30 before it skips the text up to the next sequence number, so the control raises no alarm here",
+                    d.message
+                );
+            }
+        }
+    }
     diagnostics.retain(|d| {
         let enabled = match rules::registry::lookup(d.code) {
             Some(meta) => settings.rule_enabled(meta),

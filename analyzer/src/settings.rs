@@ -83,6 +83,9 @@ pub struct Settings {
     /// Runtime errors the interpreter reports and recovers from per file; at this
     /// many it stops the run with one F004.
     pub max_runtime_errors: usize,
+    /// The stem of the program's file name (`z_touch` for `z_touch.ngc`), when the
+    /// program has one: LinuxCNC finds a subroutine file by the subroutine's name.
+    pub file_stem: Option<String>,
 }
 
 /// Default of [`Settings::max_per_code`].
@@ -108,6 +111,7 @@ impl Settings {
             max_per_code: DEFAULT_MAX_PER_CODE,
             max_per_file: DEFAULT_MAX_PER_FILE,
             max_runtime_errors: DEFAULT_MAX_RUNTIME_ERRORS,
+            file_stem: None,
         }
     }
 

@@ -14,7 +14,8 @@
 ;;   (require 'partscope)
 ;;   (add-hook 'partscope-gcode-mode-hook #'eglot-ensure)   ; or #'lsp-deferred
 ;;
-;; M-x partscope-dry-run shows the cycle time; M-x partscope-toolpath opens the toolpath
+;; M-x partscope-dry-run shows the cycle time; M-x partscope-breakdown shows where it goes
+;; (what the cycle-time code lens shows in editors with lenses); M-x partscope-toolpath opens the toolpath
 ;; in the browser (`partscope run FILE --html PAGE'); M-x partscope-explain-rule runs
 ;; `partscope rule CODE'.
 
@@ -232,6 +233,40 @@ Uses eglot or lsp-mode, whichever manages the buffer."
                      ("distance" . ,(format "%.1f mm" (or (funcall get :distance_mm) 0)))
                      ("segments" . ,(format "%d" (length segs)))))
         (princ (format "%-14s%14s\n" (car row) (cdr row)))))))
+
+(defconst partscope-breakdown-command "partscope.showBreakdown"
+  "The server command behind the cycle-time code lens.")
+
+(declare-function eglot-execute-command "eglot")
+
+(defun partscope--execute-command (command arguments)
+  "Run the server's COMMAND with ARGUMENTS (a vector) and return its result.
+Uses eglot or lsp-mode, whichever manages the buffer."
+  (cond
+   ((and (bound-and-true-p eglot--managed-mode) (fboundp 'eglot-execute-command))
+    (eglot-execute-command (if (fboundp 'eglot-current-server)
+                               (or (eglot-current-server) (user-error "No eglot server here"))
+                             (eglot--current-server-or-lose))
+                           command arguments))
+   ((and (bound-and-true-p lsp-mode) (fboundp 'lsp-request))
+    (lsp-request "workspace/executeCommand" (list :command command :arguments arguments)))
+   (t (user-error "Partscope: start eglot or lsp-mode in this buffer first"))))
+
+(defun partscope-breakdown ()
+  "Show where the cycle time of the current buffer goes.
+This is what the cycle-time code lens shows in editors with code
+lenses (eglot has none): the server's `partscope.showBreakdown'
+command, its text shown in the buffer *partscope breakdown*.
+Returns the command's result."
+  (interactive)
+  (let* ((uri (plist-get (partscope--text-document) :uri))
+         ;; :show false: the text is shown here, not also as a server message.
+         (r (partscope--execute-command partscope-breakdown-command
+                                        (vector uri (list :show :json-false)))))
+    (with-help-window "*partscope breakdown*"
+      ;; eglot gives plists; lsp-mode gives hash tables unless `lsp-use-plists' is set.
+      (princ (or (if (hash-table-p r) (gethash "text" r) (plist-get r :text)) "")))
+    r))
 
 (defun partscope--opener ()
   "The command that opens a file in the browser, as a list."

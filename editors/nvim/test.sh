@@ -3,7 +3,9 @@
 #   editors/nvim/test.sh [path-to-partscope]
 # Exits 0 only when the server published diagnostics for a sample with known errors,
 # answered a hover with content, renamed a subroutine across two files and formatted a
-# file as expected, within 20 s. Needs `nvim` (0.7 or later) on PATH.
+# file as expected, and on editors/test/loop.ngc showed and ran the cycle-time lens, gave
+# inlay block times, loop values on hover and a formatting with the CLI's dry run, within
+# 20 s. Needs `nvim` (0.7 or later) on PATH.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -24,9 +26,10 @@ fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cp "$here/test/sample.ngc" "$work/sample.ngc"
+cp "$here/../test/loop.ngc" "$work/loop.ngc"
 # Isolate Neovim's state and the LSP log, so the log can be shown on failure.
 export XDG_CONFIG_HOME="$work/config" XDG_DATA_HOME="$work/data" XDG_STATE_HOME="$work/state" XDG_CACHE_HOME="$work/cache"
-export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" PARTSCOPE_TIMEOUT_MS="${PARTSCOPE_TIMEOUT_MS:-20000}"
+export PARTSCOPE_BIN="$bin" PARTSCOPE_SAMPLE="$work/sample.ngc" PARTSCOPE_LOOP="$work/loop.ngc" PARTSCOPE_TIMEOUT_MS="${PARTSCOPE_TIMEOUT_MS:-20000}"
 
 echo "nvim: $(nvim --version | head -n1); server: $bin lsp"
 status=0

@@ -137,3 +137,97 @@ pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     }
     let _ = runtime::dryrun::toolpath(&out, 0.05);
 }
+
+/// A program built from the bytes by a small grammar of the constructs whose depth or
+/// length input controls: bracket nesting, operator chains, `##…#` references,
+/// nested loops (O-word `while` / Macro B `WHILE … DOm`), loops with huge counts,
+/// canned cycles with huge repeat counts, recursive calls, backward GOTOs, and plain
+/// motion between them. Random bytes rarely reach these shapes; this makes every
+/// input one of them. Returns the dialect and the text.
+pub fn structured_program(data: &[u8]) -> Option<(Dialect, u8, String)> {
+    let (dialect, variant, rest) = split_dialect(data)?;
+    let mut bytes = rest.iter().copied();
+    let mut next = move || bytes.next();
+    let mut out = String::new();
+    let ngc = dialect == Dialect::Rs274ngc;
+    if !ngc {
+        out.push_str("%\nO1000\n");
+    }
+    let mut open: Vec<(u8, u32)> = Vec::new();
+    let mut label = 100u32;
+    while let Some(op) = next() {
+        let n = u32::from(next().unwrap_or(0));
+        match op % 10 {
+            0 => {
+                let d = (n * 3) as usize;
+                out.push_str(&format!("G1 X{}1{} F100\n", "[".repeat(d), "]".repeat(d)));
+            }
+            1 => {
+                let terms = (n * 4) as usize;
+                out.push_str(&format!("#1 = 1{}\n", "+1".repeat(terms)));
+            }
+            2 => {
+                let d = (n * 2) as usize;
+                out.push_str(&format!("#2 = {}1\n", "#".repeat(d.max(1))));
+            }
+            3 => {
+                // Open a loop counting #(10+depth) up to 10^(n % 7).
+                let var = 10 + open.len() as u32;
+                let limit = 10u32.pow(n % 7);
+                out.push_str(&format!("#{var} = 0\n"));
+                if ngc {
+                    out.push_str(&format!("o{label} while [#{var} LT {limit}]\n"));
+                } else {
+                    let m = (open.len() % 3) + 1;
+                    out.push_str(&format!("WHILE [#{var} LT {limit}] DO{m}\n"));
+                }
+                out.push_str(&format!("#{var} = [#{var} + 1]\n"));
+                open.push((0, label));
+                label += 1;
+            }
+            4 => {
+                if let Some((_, l)) = open.pop() {
+                    if ngc {
+                        out.push_str(&format!("o{l} endwhile\n"));
+                    } else {
+                        out.push_str(&format!("END{}\n", (open.len() % 3) + 1));
+                    }
+                }
+            }
+            5 => {
+                let l = 10u64.pow(n % 9);
+                out.push_str(&format!("G91 G81 X1 Y1 Z-1 R1 L{l} F100\nG80 G90\n"));
+            }
+            6 => {
+                if ngc {
+                    out.push_str(&format!(
+                        "o{label} sub\no{label} call\no{label} endsub\no{label} call\n"
+                    ));
+                    label += 1;
+                } else {
+                    out.push_str(&format!("N{n} G1 X{n} F100\nGOTO {n}\n"));
+                }
+            }
+            7 => out.push_str(&format!("G2 X{} Y0 R{}\n", n % 7, f64::from(n) * 1e3)),
+            8 => out.push_str(&format!(
+                "G1 X{}.{} Y-{} Z{} F{}\n",
+                n,
+                n % 10,
+                n / 3,
+                n % 5,
+                n * 7 + 1
+            )),
+            _ => out.push_str(&format!(
+                "#{} = #{} * 2 + {}\n",
+                100 + n % 50,
+                100 + n % 7,
+                n
+            )),
+        }
+        if out.len() > 64 * 1024 {
+            break;
+        }
+    }
+    out.push_str(if ngc { "M2\n" } else { "M30\n%\n" });
+    Some((dialect, variant, out))
+}

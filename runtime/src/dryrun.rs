@@ -345,20 +345,40 @@ fn interleave(
     first_index: usize,
     emit: &mut dyn FnMut(plan::Event),
 ) {
+    interleave_while(motions, events, first_index, &mut |e| {
+        emit(e);
+        true
+    });
+}
+
+/// [`interleave`] until `emit` returns false; whether it went to the end.
+fn interleave_while(
+    motions: &[Motion],
+    events: &[IEvent],
+    first_index: usize,
+    emit: &mut dyn FnMut(plan::Event) -> bool,
+) -> bool {
     let mut e = events.iter().enumerate().peekable();
     for (i, m) in motions.iter().enumerate() {
         while let Some((k, ev)) = e.next_if(|(_, ev)| ev.motion_index <= i) {
             if let Some(pe) = planner_event(ev, k) {
-                emit(pe);
+                if !emit(pe) {
+                    return false;
+                }
             }
         }
-        emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32)));
+        if !emit(plan::Event::Motion(segment_of(m, (first_index + i) as u32))) {
+            return false;
+        }
     }
     for (k, ev) in e {
         if let Some(pe) = planner_event(ev, k) {
-            emit(pe);
+            if !emit(pe) {
+                return false;
+            }
         }
     }
+    true
 }
 
 /// Motion time above which the planner uses closed-form profiles instead of servo periods.
@@ -700,16 +720,27 @@ fn plan_run_stoppable(
     profile: &MachineProfile,
     stop: &dyn Fn() -> bool,
 ) -> (DryRun, bool) {
-    let events = planner_events(out);
     let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
     let mut event_seconds: Vec<f64> = vec![0.0; out.events.len()];
     let mut blocks = BlockAcc::default();
     // Period-by-period execution costs time in proportion to machine time; beyond
     // SERVO_SIMULATION_LIMIT_S of (naively estimated) motion the closed-form profiles,
-    // within a few milliseconds of it per move, keep long jobs fast.
+    // within a few milliseconds of it per move, keep long jobs fast. The events
+    // are made twice rather than kept: a million of them take hundreds of MB.
     let mut profile = profile.clone();
-    if profile.servo_simulation && naive_seconds(&events, &profile) > SERVO_SIMULATION_LIMIT_S {
-        profile.servo_simulation = false;
+    if profile.servo_simulation {
+        let rapid = profile.traj_max_velocity.max(1e-9);
+        let mut naive = 0.0;
+        interleave_while(&out.motions, &out.events, 0, &mut |e| {
+            let t = naive_event_seconds(&e, rapid);
+            if t.is_finite() {
+                naive += t;
+            }
+            naive <= SERVO_SIMULATION_LIMIT_S
+        });
+        if naive > SERVO_SIMULATION_LIMIT_S {
+            profile.servo_simulation = false;
+        }
     }
     let profile = &profile;
     let mut planner = plan::Planner::new(profile);
@@ -729,12 +760,12 @@ fn plan_run_stoppable(
             blocks.element(m.file.0, m.line, &t, off);
         }
     };
-    let mut stopped = false;
-    for (i, ev) in events.into_iter().enumerate() {
+    let mut i = 0usize;
+    let finished = interleave_while(&out.motions, &out.events, 0, &mut |ev| {
         if i.is_multiple_of(1024) && stop() {
-            stopped = true;
-            break;
+            return false;
         }
+        i += 1;
         let before = match ev {
             plan::Event::Motion(_) => None,
             _ => Some(non_motion_s(planner.totals())),
@@ -748,7 +779,9 @@ fn plan_run_stoppable(
                 *slot += now - before;
             }
         }
-    }
+        true
+    });
+    let stopped = !finished;
     let totals = planner.finish(&mut record);
     // Events happen at the end of the motion before them (the planner stops
     // first), after the events before them there.
@@ -929,13 +962,49 @@ fn dogleg_limits(profile: Option<&MachineProfile>) -> Option<([f64; 6], [f64; 6]
 }
 
 fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) -> Toolpath {
-    let chord = if chord > 0.0 { chord } else { 0.01 };
-    let dogleg = dogleg_limits(profile);
     let mut tp = Toolpath::default();
     let mut min = [f64::INFINITY; 3];
     let mut max = [f64::NEG_INFINITY; 3];
+    for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
+        for p in points {
+            for i in 0..3 {
+                if p[i].is_finite() {
+                    min[i] = min[i].min(p[i]);
+                    max[i] = max[i].max(p[i]);
+                }
+            }
+        }
+        tp.segments.push(ToolpathSegment {
+            kind,
+            line: m.line,
+            file: m.file.0,
+            feed: m.feed,
+            tool: m.tool,
+            points: points.to_vec(),
+        });
+    });
+    if min[0].is_finite() {
+        tp.bounds = Bounds { min, max };
+    }
+    tp
+}
+
+/// The polyline of every motion, in order, as [`toolpath_on`] samples it
+/// (`profile`: `None` draws rapids straight), handed to `f` with the motion
+/// and its kind (`rapid`, `feed`, `arc`) in one reused buffer: a host that
+/// keeps its own form of the toolpath allocates nothing per motion.
+pub fn for_each_toolpath_segment(
+    out: &RunOutput,
+    chord: f64,
+    profile: Option<&MachineProfile>,
+    mut f: impl FnMut(&Motion, &'static str, &[[f64; 3]]),
+) {
+    let chord = if chord > 0.0 { chord } else { 0.01 };
+    let dogleg = dogleg_limits(profile);
+    let mut points = Vec::new();
     for m in &out.motions {
-        let mut points = vec![[m.start[0], m.start[1], m.start[2]]];
+        points.clear();
+        points.push([m.start[0], m.start[1], m.start[2]]);
         let kind = match m.kind {
             MotionKind::Rapid => "rapid",
             MotionKind::Arc { .. } => "arc",
@@ -1006,27 +1075,8 @@ fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) 
         } else {
             points.push([m.end[0], m.end[1], m.end[2]]);
         }
-        for p in &points {
-            for i in 0..3 {
-                if p[i].is_finite() {
-                    min[i] = min[i].min(p[i]);
-                    max[i] = max[i].max(p[i]);
-                }
-            }
-        }
-        tp.segments.push(ToolpathSegment {
-            kind,
-            line: m.line,
-            file: m.file.0,
-            feed: m.feed,
-            tool: m.tool,
-            points,
-        });
+        f(m, kind, &points);
     }
-    if min[0].is_finite() {
-        tp.bounds = Bounds { min, max };
-    }
-    tp
 }
 
 /// Per-block times (summed over the motions and events of each (file, line)),

@@ -307,3 +307,34 @@ fn g43_without_h_before_any_tool_change_has_no_offset() {
     let with_h = t003("G21 G90\nT1 M6\nG0 X0 Y0\nG43 H1 Z10\nG0 Z5\nM2\n");
     assert_eq!(with_h, vec![]);
 }
+
+#[test]
+fn fanuc_vacant_local_copy_and_called_macro_checked_alone() {
+    // A plain copy passes the vacancy on (`#10 = #1` leaves #10 vacant): no finding.
+    // Arithmetic on a vacant local at level 0 of a main program is a warning.
+    let main = "%\nO1000\n#10 = #1\n#11 = [#2]\n#12 = #3 + 1.\nM30\n%\n";
+    assert_eq!(
+        found(&run_fanuc(main, ""), main, &["X010"]),
+        vec![("X010", 5, Severity::Warning)]
+    );
+    // A program that returns with M99 somewhere is a macro checked without its
+    // caller: its locals may be arguments, so the same read is information.
+    let called = "%\nO9390\n#26 = #5003 + #26\nIF [#26 GT 0] GOTO 8\nM30\nN8 M99\n%\n";
+    assert_eq!(
+        found(&run_fanuc(called, ""), called, &["X010"]),
+        vec![("X010", 3, Severity::Info)]
+    );
+}
+
+#[test]
+fn ngc_feed_after_a_call_the_run_cannot_follow_is_unknown() {
+    // The subroutine is not here (no search path configured): it may set F, so the
+    // G1 after it is no zero-feed error; a G1 before any call still is.
+    let text = "G21 G90\nF0\no<engrave_plunge> call [10] [30] [-5]\nG1 X10 Y30 Z-5\nM2\n";
+    assert_eq!(found(&run_ngc(text), text, &["F001"]), vec![]);
+    let plain = "G21 G90\nF0\nG1 X10 Y30 Z-5\nM2\n";
+    assert_eq!(
+        found(&run_ngc(plain), plain, &["F001"]),
+        vec![("F001", 3, Severity::Error)]
+    );
+}

@@ -485,7 +485,7 @@ fn snapshots_report_modal_state() {
     let out = run_ngc("G20 G91 G1 X1 F10\nM2\n");
     let s = out.snapshots[0].as_ref().expect("snapshot");
     assert_eq!(
-        s.modal,
+        s.modal.to_vec(),
         vec!["G1", "G17", "G20", "G91", "G94", "G54", "G40", "G49", "G64", "G99"]
     );
     assert_pt(s.position, &[25.4, 0.0, 0.0], 1e-12);

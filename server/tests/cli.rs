@@ -1325,3 +1325,57 @@ fn code_call_macros_are_called_programs() {
     let (code, diags) = check_json(&["--dialect", "fanuc", p.to_str().unwrap()]);
     assert_eq!((code, codes(&diags)), (0, vec![]));
 }
+
+/// LinuxCNC finds a subroutine file by the subroutine's name: a file of definitions
+/// named after one of them is a library (no M2 needed); one named otherwise cannot be
+/// called, and run as a program it ends without M2, as `rs274` reports on its last line.
+#[test]
+fn ngc_library_is_named_after_its_subroutine() {
+    let dir = tempdir("ngc-library-name");
+    let sub = b"o<z_touch> sub\nG38.2 Z-10 F25\no<z_touch> endsub\n";
+    let good = write(&dir, "z_touch.ngc", sub);
+    let bad = write(&dir, "z_probe.ngc", sub);
+    let (code, diags) = check_json(&[good.to_str().unwrap()]);
+    assert_eq!((code, codes(&diags)), (0, vec![]));
+    let (code, diags) = check_json(&[bad.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(
+        codes(&diags),
+        vec![("P005".to_string(), 3, "error".to_string())]
+    );
+}
+
+/// `run --format json` writes a `blocks` entry per line for programs up to 1 MiB
+/// (`--blocks auto`); above that it says how to get them, and `--blocks on|off` decide.
+#[test]
+fn run_json_blocks_are_bounded_by_size_unless_asked() {
+    let d = tempdir("run-json-blocks");
+    let small = write(&d, "small.ngc", b"G21 G90 G94\nG1 X10 F600\nG1 Y10\nM2\n");
+    let mut big_text = String::from("G21 G90 G94 F600\n");
+    let mut i = 0u32;
+    while big_text.len() <= 1 << 20 {
+        i += 1;
+        big_text.push_str(&format!("G1 X{}.{:03} Y1\n", i % 50, i % 1000));
+    }
+    big_text.push_str("M2\n");
+    let big = write(&d, "big.ngc", big_text.as_bytes());
+    let json = |args: &[&str]| -> Value {
+        let out = bin().arg("run").args(args).output().unwrap();
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let s = small.to_str().unwrap();
+    let v = json(&["--format", "json", s]);
+    assert_eq!(v["blocks"].as_array().map(|b| b.len()), Some(2));
+    assert!(v.get("blocks_skipped").is_none());
+    let v = json(&["--format", "json", "--blocks", "off", s]);
+    assert_eq!(v["blocks"].as_array().map(|b| b.len()), Some(0));
+    let b = big.to_str().unwrap();
+    let v = json(&["--format", "json", b]);
+    assert_eq!(v["blocks"].as_array().map(|b| b.len()), Some(0));
+    assert_eq!(
+        v["blocks_skipped"],
+        "the program is larger than 1024 KiB; --blocks on writes them"
+    );
+    let v = json(&["--format", "json", "--blocks", "on", b]);
+    assert!(v["blocks"].as_array().is_some_and(|b| b.len() > 50_000));
+}

@@ -199,3 +199,77 @@ fn inlay_hints_show_cumulative_time_when_asked() {
     );
     assert!(c.shutdown().success());
 }
+
+#[test]
+fn the_lens_shows_the_breakdown_when_clicked() {
+    let (mut c, uri) = session("breakdown", json!({}));
+    let lens = c.request(
+        "textDocument/codeLens",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    let cmd = &lens[0]["command"];
+    assert_eq!(
+        cmd["title"],
+        "Cycle time 0:04.3 (cutting 0:02.1, rapid 0:00.2, tool change 0:00.0)"
+    );
+    assert_eq!(cmd["command"], "partscope.showBreakdown");
+    assert_eq!(cmd["arguments"], json!([uri]));
+
+    // Clicking runs the lens's own command: the server shows the breakdown
+    // and answers with it.
+    let r = c.request(
+        "workspace/executeCommand",
+        json!({"command": cmd["command"], "arguments": cmd["arguments"]}),
+    );
+    let want = "O1000.fnc: cycle time 0:04.3 (4.290 s)
+  cutting         0:02.1
+  rapid           0:00.2
+  dwell           0:02.0
+  tool change     0:00.0
+  distance         157.0 mm
+where the time goes
+  cutting at programmed feed             1.440 s  33.6 %
+  limited by acceleration                0.150 s   3.5 %
+  limited by the TRAJ velocity cap       0.500 s  11.7 %
+  rapids                                 0.200 s   4.7 %
+  dwell                                  2.000 s  46.6 %
+  - 1 move programmed above the TRAJ velocity cap of F6000 cost 0.500 s: 24 % of cutting time
+  - ramps at the acceleration limit (2 moves, at starts, stops and short moves) cost 0.150 s: 7.2 % of cutting time";
+    assert_eq!(r["text"], want, "{}", r["text"].as_str().unwrap_or(""));
+    assert_eq!(r["uri"], uri);
+    assert!(
+        (r["cycle_time_s"].as_f64().unwrap() - 4.29).abs() < 1e-9,
+        "{r}"
+    );
+    assert_eq!(r["complete"], true);
+    assert_eq!(r["distance_mm"], 157.0);
+    let shown = c.wait_for("window/showMessage", |p| p["message"] == want);
+    assert_eq!(shown["type"], 3);
+
+    // A client that shows the answer itself asks for no message; without a
+    // document the command takes the one last opened or edited.
+    let quiet = c.request(
+        "workspace/executeCommand",
+        json!({"command": "partscope.showBreakdown", "arguments": [null, {"show": false}]}),
+    );
+    assert_eq!(quiet, r);
+    let none = c.wait_within(
+        "window/showMessage",
+        &|_| true,
+        std::time::Duration::from_millis(300),
+    );
+    assert_eq!(none, None);
+    // Helix sends the command with no arguments at all.
+    let bare = c.request(
+        "workspace/executeCommand",
+        json!({"command": "partscope.showBreakdown"}),
+    );
+    assert_eq!(bare, r);
+    c.wait_for("window/showMessage", |p| p["message"] == want);
+    let bad = c.request_full(
+        "workspace/executeCommand",
+        json!({"command": "partscope.showBreakdown", "arguments": [42]}),
+    );
+    assert_eq!(bad["error"]["code"], -32602, "{bad}");
+    assert!(c.shutdown().success());
+}

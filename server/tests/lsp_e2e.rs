@@ -95,7 +95,7 @@ fn editor_session_over_stdio() {
     }
     assert_eq!(
         caps["executeCommandProvider"]["commands"],
-        json!(["partscope.dryRun"])
+        json!(["partscope.dryRun", "partscope.showBreakdown"])
     );
     assert_eq!(caps["textDocumentSync"]["change"], json!(2));
 
@@ -415,7 +415,8 @@ fn editor_session_over_stdio() {
         cycle >= cutting + r["rapid_s"].as_f64().unwrap() - 1e-9,
         "{r}"
     );
-    // The code lens shows the cycle time and runs the dry run when clicked.
+    // The code lens shows the cycle time and its breakdown when clicked; the
+    // dry-run command returns the whole run.
     let lens = c.request(
         "textDocument/codeLens",
         json!({"textDocument": {"uri": puri}}),
@@ -427,7 +428,7 @@ fn editor_session_over_stdio() {
             .starts_with("Cycle time 0:1"),
         "{lens}"
     );
-    assert_eq!(lens[0]["command"]["command"], "partscope.dryRun");
+    assert_eq!(lens[0]["command"]["command"], "partscope.showBreakdown");
     let r2 = c.request(
         "workspace/executeCommand",
         json!({"command": "partscope.dryRun", "arguments": [puri]}),
@@ -541,11 +542,32 @@ fn size_limit_degrades_to_syntax_only() {
     let root = workspace("limit");
     let mut c = Client::spawn();
     initialize(&mut c, &root, json!({"maxFileSize": 100}));
-    // main.ngc is above 100 bytes: parsed only, no interpreter (no F001), no dry run.
+    // main.ngc is above 100 bytes: parsed only, no interpreter (no F001), no
+    // dry run, and the editor says so at the top of the file.
     let (uri, _) = open(&mut c, &root.join("main.ngc"), "ngc");
-    assert_eq!(c.diagnostics(&uri, 1), vec![("L001".to_string(), 2)]);
+    assert_eq!(
+        c.diagnostics(&uri, 1),
+        vec![("F004".to_string(), 0), ("L001".to_string(), 2)]
+    );
     let r = c.request_full("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
     assert_eq!(r["error"]["code"], -32603, "{r}");
+    assert!(
+        r["error"]["message"]
+            .as_str()
+            .unwrap()
+            .contains("partscope.maxFileSize"),
+        "{r}"
+    );
+    let lens = c.request(
+        "textDocument/codeLens",
+        json!({"textDocument": {"uri": uri}}),
+    );
+    assert!(
+        lens[0]["command"]["title"].as_str().unwrap().starts_with(
+            "No analysis: the file (0 KB) is above the size limit (0 KB, partscope.maxFileSize)"
+        ),
+        "{lens}"
+    );
     // Navigation still works on the syntax.
     let r = c.request(
         "textDocument/definition",
@@ -660,7 +682,10 @@ fn cancelled_dry_run_answers_request_cancelled_and_the_server_goes_on() {
     // The document's diagnostics still arrive, and a new dry run completes.
     assert_eq!(c.diagnostics(&uri, 1), vec![]);
     let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
-    assert_eq!(r["toolpath"]["segments"].as_array().unwrap().len(), 30_000);
+    // Every motion ran; the rows' collinear points are left out of the toolpath sent.
+    assert_eq!(r["decimation"]["motions"], 30_000);
+    assert_eq!(r["decimation"]["points_in"], 60_000);
+    assert_eq!(r["decimation"]["decimated"], true);
     assert!(c.shutdown().success());
 }
 

@@ -5,8 +5,8 @@
 //! Default: 20 000 lines and 6 edits (debug builds are slow). For the 100k and
 //! 1M figures (a benchmark, not a timed test: it prints median and p90):
 //! `LSP_LATENCY_LINES=1000000 LSP_LATENCY_EDITS=40 cargo test --release -p partscope --test lsp_latency -- --nocapture`
-//! (1M generated lines are 33 MB: above the default 20 MB limit, so that run
-//! measures the syntax-only mode). `PARTSCOPE_LSP_BASELINE=1` makes the server
+//! (1M generated lines are 33 MB, below the default 64 MB `maxFileSize`, so
+//! that run measures the full analysis). `PARTSCOPE_LSP_BASELINE=1` makes the server
 //! analyse every version in full with the old debounce: the baseline.
 
 #[path = "../../tests/lsp/harness.rs"]

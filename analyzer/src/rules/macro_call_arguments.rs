@@ -12,7 +12,9 @@ declare_rule! {
     /// Checks the words of a `G65` (and FANUC `G66`) macro call: on ServoWorks `G65` must
     /// come before its arguments; on FANUC the letters G and N cannot be arguments (a G
     /// code *before* the call is the block's own code, not an argument),
-    /// argument specification I (letters) and II (repeated I/J/K) should not be mixed, and
+    /// argument specification I (letters) and II (repeated I/J/K) should not be mixed where
+    /// two words then set the same local variable (`I1. I2. D3.`: `I2.` and `D3.` both
+    /// set #7), and
     /// argument values other than zero should have a decimal point (except at H, D, M, S
     /// and T, addresses that never take one and pass their number as written).
     ///
@@ -123,18 +125,90 @@ impl Rule for MacroCallArguments {
                 }
                 let count = |l: u8| words.iter().filter(|(_, w)| w.letter == l).count();
                 let type2 = [b'I', b'J', b'K'].into_iter().any(|l| count(l) > 1);
-                let type1 = words
-                    .iter()
-                    .find(|(_, w)| b"DEFHMQRSTUVWXYZ".contains(&w.letter));
-                if let (true, Some((i, _))) = (type2, type1) {
-                    out.push(Diagnostic::warning(
-                        "W012",
-                        i.span,
-                        "Argument specifications I and II are mixed: repeated I/J/K (specification II) fill #4–#33, which overlap the variables of letters such as D, E, F; the later word wins. Use one specification.",
-                    ));
+                if type2 {
+                    // Mixed specifications matter only where two words set one variable.
+                    let letters: Vec<u8> = words
+                        .iter()
+                        .filter(|(i, _)| i.span.start > call.span.start)
+                        .map(|(_, w)| w.letter)
+                        .collect();
+                    let vars = mixed_argument_variables(&letters);
+                    let args: Vec<_> = words
+                        .iter()
+                        .filter(|(i, _)| i.span.start > call.span.start)
+                        .collect();
+                    for (k, var) in vars.iter().enumerate() {
+                        let Some(var) = var else { continue };
+                        let Some(first) = vars[..k].iter().position(|v| v == &Some(*var)) else {
+                            continue;
+                        };
+                        let (earlier, _) = args[first];
+                        let (later, _) = args[k];
+                        out.push(
+                            Diagnostic::warning(
+                                "W012",
+                                later.span,
+                                format!(
+                                    "`{}` and `{}` both set #{var}: argument specifications I and II are mixed (repeated I/J/K fill #4–#33 in sets of three) and the later word wins. Use one specification.",
+                                    cx.program.str_of(earlier.span),
+                                    cx.program.str_of(later.span)
+                                ),
+                            )
+                            .with_related(earlier.span, "sets the same variable"),
+                        );
+                    }
                 }
             }
             Dialect::Rs274ngc => {}
         }
     }
+}
+
+/// The local variable each argument letter of a FANUC macro call sets when argument
+/// specifications I and II are mixed: I, J and K count in specification II sets
+/// (the n-th set's I, J, K are #(3n+1), #(3n+2), #(3n+3); a set ends when a letter
+/// does not follow the previous one in I, J, K order), the other letters take their
+/// specification I variable. `None` for letters that are not arguments.
+fn mixed_argument_variables(letters: &[u8]) -> Vec<Option<u32>> {
+    let mut set = 0u32;
+    let mut last: Option<u32> = None;
+    letters
+        .iter()
+        .map(|&l| {
+            let ijk = match l {
+                b'I' => Some(0),
+                b'J' => Some(1),
+                b'K' => Some(2),
+                _ => None,
+            };
+            if let Some(pos) = ijk {
+                if last.is_some_and(|p| pos <= p) {
+                    set += 1;
+                }
+                last = Some(pos);
+                return (set < 10).then_some(4 + 3 * set + pos);
+            }
+            Some(match l {
+                b'A' => 1,
+                b'B' => 2,
+                b'C' => 3,
+                b'D' => 7,
+                b'E' => 8,
+                b'F' => 9,
+                b'H' => 11,
+                b'M' => 13,
+                b'Q' => 17,
+                b'R' => 18,
+                b'S' => 19,
+                b'T' => 20,
+                b'U' => 21,
+                b'V' => 22,
+                b'W' => 23,
+                b'X' => 24,
+                b'Y' => 25,
+                b'Z' => 26,
+                _ => return None,
+            })
+        })
+        .collect()
 }

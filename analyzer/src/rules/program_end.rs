@@ -168,7 +168,7 @@ impl Rule for ProgramEnd {
                     return;
                 }
                 // A file that only defines subroutines is a library called by others.
-                let top_level_code = !p.is_ngc_library();
+                let top_level_code = !p.is_ngc_library_named(cx.settings.file_stem.as_deref());
                 if top_level_code && !ends(&[2.0, 30.0]) {
                     out.push(Diagnostic::error(
                         "P005",

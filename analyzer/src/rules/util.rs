@@ -354,6 +354,52 @@ pub fn is_plain(program: &Program, b: &Block) -> bool {
 /// may not run). Subroutine definitions further down stay reachable, because a
 /// call searches the file for them, and so do Fanuc-style `O…` programs.
 /// Other dialects: none.
+/// FANUC blocks the control never reads: those after an unconditional `GOTO`, `M99`,
+/// `M02` or `M30` up to the next sequence number or program head (a branch can only
+/// land on a numbered block). A sequence search skips them unread, so their syntax
+/// never raises an alarm.
+pub fn jumped_over_blocks(program: &Program) -> Vec<bool> {
+    use crate::dialect::Dialect;
+    use crate::syntax::MacroStmt;
+    let mut over = vec![false; program.blocks.len()];
+    if program.dialect != Dialect::Fanuc {
+        return over;
+    }
+    let mut skipping = false;
+    for (i, b) in program.blocks.iter().enumerate() {
+        let items = program.items_of(b);
+        let entry = items.iter().any(|it| match it.kind {
+            ItemKind::ProgramHead { .. } => true,
+            ItemKind::Word(w) => w.letter == b'N',
+            _ => false,
+        });
+        if entry {
+            skipping = false;
+        }
+        if skipping {
+            over[i] = true;
+            continue;
+        }
+        // A block-delete slash makes the transfer depend on a switch.
+        let skip_slash = b.skip().is_some();
+        let leaves = !skip_slash
+            && items.iter().any(|it| match it.kind {
+                ItemKind::Macro(MacroStmt::Goto { .. }) => true,
+                ItemKind::Word(w) => {
+                    w.letter == b'M'
+                        && w.num()
+                            .is_some_and(|n| matches!(n.value, 2.0 | 30.0 | 99.0))
+                        && !items
+                            .iter()
+                            .any(|o| matches!(o.kind, ItemKind::Word(p) if p.letter == b'P'))
+                }
+                _ => false,
+            });
+        skipping = leaves;
+    }
+    over
+}
+
 pub fn dead_blocks(program: &Program) -> Vec<bool> {
     let segs = super::context::segments_of(program.blocks.iter().map(|b| is_plain(program, b)));
     dead_blocks_in(program, &segs)

@@ -41,6 +41,8 @@ pub enum TokenKind {
     Name,
     /// Text the control ignores (ServoWorks lower case, data after `;`, FANUC leader).
     Ignored,
+    /// Literal text a statement sends out unchanged (`DPRNT[X#101[53]*MM]`).
+    Text,
     /// Bytes that are not part of the language.
     Unknown,
 }
@@ -520,6 +522,28 @@ impl Program {
     /// initialise its globals) and `%` lines. LinuxCNC calls it by name and
     /// never reads it as a main program, so it needs no M2.
     pub fn is_ngc_library(&self) -> bool {
+        self.is_ngc_library_named(None)
+    }
+
+    /// [`Program::is_ngc_library`] for the file `stem`: LinuxCNC finds a subroutine
+    /// file by the subroutine's name, so a file of definitions none of which is named
+    /// after the file is no library anyone can call — run, it ends without M2.
+    pub fn is_ngc_library_named(&self, stem: Option<&str>) -> bool {
+        if !self.is_ngc_library_any() {
+            return false;
+        }
+        let Some(stem) = stem else { return true };
+        self.items.iter().any(|it| match it.kind {
+            ItemKind::OWord(o) if o.keyword == Some(OKeyword::Sub) && o.label == OLabel::Name => {
+                self.str_of(o.name_span())
+                    .trim()
+                    .eq_ignore_ascii_case(stem.trim())
+            }
+            _ => false,
+        })
+    }
+
+    fn is_ngc_library_any(&self) -> bool {
         if self.dialect != Dialect::Rs274ngc {
             return false;
         }

@@ -1660,7 +1660,8 @@ impl<'p> Cx<'p> {
                         "`[` missing after the slash of ATAN[y]/[x]",
                     );
                 }
-            } else {
+            } else if self.dialect != Dialect::Fanuc {
+                // The 30i also has a one-argument arc tangent, `ATAN[#j]` (−90° to 90°).
                 self.diag(
                     codes::BAD_EXPRESSION,
                     Severity::Error,
@@ -2212,14 +2213,49 @@ impl<'p> Cx<'p> {
                 m: self.value_expr(),
             },
             _ => {
-                // External output statements: keep their bracketed arguments as text.
                 if self.peek() == Some(b'[') {
-                    let _ = self.group();
+                    self.output_text();
                 }
                 MacroStmt::Output
             }
         };
         self.push_item(ItemKind::Macro(stmt), start);
+    }
+
+    /// The bracketed argument of `DPRNT`/`BPRNT`: characters sent out as written, with
+    /// `#n[ab]` formats inside, so it is text, not an expression. The `]` that closes it
+    /// is the one at depth zero; an unclosed one runs to the end of the block.
+    fn output_text(&mut self) {
+        let open = self.pos;
+        self.token(open, TokenKind::LBracket);
+        self.pos += 1;
+        let text = self.pos;
+        let mut depth = 0usize;
+        while self.pos < self.limit {
+            match self.text[self.pos] {
+                b'[' => depth += 1,
+                b']' if depth == 0 => break,
+                b']' => depth -= 1,
+                b'\n' | b'\r' => break,
+                _ => {}
+            }
+            self.pos += 1;
+        }
+        if self.pos > text {
+            self.token(text, TokenKind::Text);
+        }
+        if self.peek() == Some(b']') {
+            let s = self.pos;
+            self.token(s, TokenKind::RBracket);
+            self.pos += 1;
+        } else {
+            self.diag(
+                codes::UNBALANCED_BRACKET,
+                Severity::Error,
+                Span::new(open as u32, open as u32 + 1),
+                "unclosed output text: this `[` has no matching `]`",
+            );
+        }
     }
 
     /// Consumes the run of letters at the cursor when it is one of `words` (any case),

@@ -116,9 +116,32 @@
     this._installInput();
   }
 
+  // A decimated segment holds several motions: `lines[j]` is the 0-based line of the motion
+  // that ends at point j. Split into one segment per line, so hover, click and the cursor
+  // highlight still work block by block.
+  function splitRuns(segs) {
+    var out = [];
+    for (var i = 0; i < segs.length; i++) {
+      var s = segs[i];
+      var pts = s.points || [];
+      if (!Array.isArray(s.lines) || s.lines.length !== pts.length || pts.length < 2) {
+        out.push(s);
+        continue;
+      }
+      var j = 1;
+      while (j < pts.length) {
+        var line = s.lines[j];
+        var piece = [pts[j - 1]];
+        while (j < pts.length && s.lines[j] === line) piece.push(pts[j++]);
+        out.push({ kind: s.kind, line: line, feed: s.feed, tool: s.tool, points: piece });
+      }
+    }
+    return out;
+  }
+
   Preview.prototype.setData = function (result) {
     var toolpath = (result && result.toolpath) || { segments: [] };
-    var segs = Array.isArray(toolpath.segments) ? toolpath.segments : [];
+    var segs = splitRuns(Array.isArray(toolpath.segments) ? toolpath.segments : []);
     var total = 0;
     for (var i = 0; i < segs.length; i++) total += (segs[i].points || []).length;
     var world = new Float64Array(total * 3);
@@ -759,6 +782,17 @@
       ["Distance", num(result.distance_mm, 1) + " mm"],
       ["Segments", String((result.toolpath && result.toolpath.segments || []).length)],
     ];
+    // The server simplified the toolpath to fit the view (and its size cap): say how far.
+    var d = result.decimation;
+    if (d && d.decimated) {
+      var text = d.points_out + " of " + d.points_in + " points, within " + num(d.tolerance_mm, 3) + " mm";
+      if (d.truncated_at_line !== null && d.truncated_at_line !== undefined) {
+        text += "; cut at line " + (d.truncated_at_line + 1) + " (size cap)";
+      } else if (d.capped) {
+        text += " (size cap)";
+      }
+      rows.push(["Toolpath", text]);
+    }
     if (partial && result.stopped_at) {
       rows.splice(1, 0, ["Stopped", "at line " + (result.stopped_at.line + 1) + ": " + result.stopped_at.reason]);
     }

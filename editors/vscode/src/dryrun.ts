@@ -11,6 +11,23 @@ export interface ToolpathSegment {
   feed: number;
   tool: number;
   points: [number, number, number][];
+  /** A decimated segment of several motions: the 0-based line of the motion each point ends. */
+  lines?: number[];
+}
+
+/** How the server simplified the toolpath (`partscope/dryRun`'s `decimation`). */
+export interface Decimation {
+  tolerance_mm: number;
+  requested_tolerance_mm: number;
+  max_points: number;
+  motions: number;
+  points_in: number;
+  points_out: number;
+  points_dropped: number;
+  segments_out: number;
+  decimated: boolean;
+  capped: boolean;
+  truncated_at_line: number | null;
 }
 
 export interface DryRunResult {
@@ -31,6 +48,7 @@ export interface DryRunResult {
   complete?: boolean;
   /** Where and why the run stopped (0-based line), `null` when complete. */
   stopped_at?: { line: number; reason: string } | null;
+  decimation?: Decimation;
 }
 
 /** "stopped at line N: reason" (1-based line) for a run that stopped early, else undefined. */
@@ -78,7 +96,15 @@ export function summarize(r: DryRunResult): string {
       rows.push([`${axis} range`, `${b.min[i].toFixed(3)} … ${b.max[i].toFixed(3)}`]);
     });
   }
+  const d = r.decimation;
+  if (d?.decimated) {
+    rows.push(["toolpath", `${d.points_out} of ${d.points_in} points`]);
+    rows.push(["  within", `${d.tolerance_mm.toFixed(3)} mm${d.capped ? " (capped)" : ""}`]);
+  }
   const lines = rows.map(([k, v]) => `${k.padEnd(14)}${v.padStart(22)}`);
+  if (d?.truncated_at_line !== null && d?.truncated_at_line !== undefined) {
+    lines.push(`toolpath cut at line ${d.truncated_at_line + 1} (size cap)`);
+  }
   const stopped = stoppedText(r);
   if (stopped) lines.push(stopped);
   return lines.join("\n");

@@ -2,7 +2,7 @@
 //
 // The server does the analysis; this extension starts it, forwards settings, and adds what
 // LSP itself has no UI for: the cycle time in the status bar, the dry-run report, the
-// toolpath preview webview and "explain rule".
+// toolpath preview webview, the cycle-time lens's breakdown and "explain rule".
 import * as fs from "fs";
 import * as path from "path";
 import { execFile } from "child_process";
@@ -15,6 +15,7 @@ import {
 } from "vscode-languageclient/node";
 import { DryRunResult, formatDuration, stoppedText, summarize } from "./dryrun";
 import { webviewHtml } from "./webview";
+import { BreakdownResult, executeCommand as executeLensCommand } from "./lens";
 
 const LANGUAGE_ID = "gcode";
 // VS Code registers a client-side command for every command the server announces through
@@ -33,6 +34,9 @@ interface InitOptions {
   select: string[];
   ignore: string[];
   blockTimes: string;
+  maxFileSize?: number;
+  maxRunFileSize?: number;
+  maxToolpathPoints?: number;
 }
 
 function config(): vscode.WorkspaceConfiguration {
@@ -63,6 +67,10 @@ export function initializationOptions(): InitOptions {
     select: c.get<string[]>("select") ?? [],
     ignore: c.get<string[]>("ignore") ?? [],
     blockTimes: c.get<string>("blockTimes") ?? "block",
+    // Unset: the server's defaults.
+    maxFileSize: c.get<number | null>("maxFileSize") ?? undefined,
+    maxRunFileSize: c.get<number | null>("maxRunFileSize") ?? undefined,
+    maxToolpathPoints: c.get<number | null>("maxToolpathPoints") ?? undefined,
   };
 }
 
@@ -80,6 +88,12 @@ async function startClient(): Promise<void> {
     initializationOptions: initializationOptions(),
     synchronize: { configurationSection: "partscope" },
     middleware: {
+      // A click on the cycle-time lens: the breakdown in the report channel, and the preview.
+      executeCommand: (command, args, next) =>
+        executeLensCommand(command, args, (c, a) => next(c, a), {
+          report: showBreakdownReport,
+          preview: showPreviewOf,
+        }),
       workspace: {
         // Hand the server the same resolved values as in initializationOptions, so a relative
         // machine path means the same thing in both places.
@@ -126,23 +140,58 @@ async function restartClient(): Promise<void> {
   void refreshStatus();
 }
 
+/** A dry run in flight: for which document version, and how to cancel it. */
+interface InFlight {
+  version: number;
+  cts: vscode.CancellationTokenSource;
+  promise: Promise<DryRunResult>;
+}
+
+// One request per document at a time, shared by the status bar and the preview: a request for
+// a newer version cancels the older one (the server drops its run), and callers asking for the
+// same version get the same answer instead of a second run.
+const inFlight = new Map<string, InFlight>();
+
+/** The server's answer to a request that a newer one replaced, or that was cancelled. */
+function isSuperseded(err: unknown): boolean {
+  const code = (err as { code?: unknown } | undefined)?.code;
+  return code === -32800 || code === -32802;
+}
+
 /** Asks the server for the dry-run result of `uri`: the custom request first, the command as fallback. */
-export async function requestDryRun(uri: vscode.Uri): Promise<DryRunResult> {
+export function requestDryRun(uri: vscode.Uri): Promise<DryRunResult> {
   const c = client;
-  if (!c) throw new Error("the Partscope server is not running");
+  if (!c) return Promise.reject(new Error("the Partscope server is not running"));
+  const key = uri.toString();
+  const version = vscode.workspace.textDocuments.find((d) => d.uri.toString() === key)?.version ?? 0;
+  const current = inFlight.get(key);
+  if (current && current.version === version) return current.promise;
+  current?.cts.cancel();
+  const cts = new vscode.CancellationTokenSource();
   const params = { textDocument: { uri: c.code2ProtocolConverter.asUri(uri) } };
-  try {
-    return await c.sendRequest<DryRunResult>("partscope/dryRun", params);
-  } catch (err) {
-    const viaCommand = await c
-      .sendRequest<DryRunResult>("workspace/executeCommand", {
-        command: SERVER_DRY_RUN_COMMAND,
-        arguments: [params.textDocument.uri],
-      })
-      .catch(() => undefined);
-    if (viaCommand) return viaCommand;
-    throw err;
-  }
+  const promise = (async () => {
+    try {
+      return await c.sendRequest<DryRunResult>("partscope/dryRun", params, cts.token);
+    } catch (err) {
+      // A cancelled or superseded run is not a failure, and must not be retried as a command
+      // (which could not be cancelled).
+      if (cts.token.isCancellationRequested || isSuperseded(err)) throw err;
+      const viaCommand = await c
+        .sendRequest<DryRunResult>(
+          "workspace/executeCommand",
+          { command: SERVER_DRY_RUN_COMMAND, arguments: [params.textDocument.uri] },
+          cts.token
+        )
+        .catch(() => undefined);
+      if (viaCommand) return viaCommand;
+      throw err;
+    } finally {
+      if (inFlight.get(key)?.cts === cts) inFlight.delete(key);
+      cts.dispose();
+    }
+  })();
+  inFlight.set(key, { version, cts, promise });
+  return promise;
 }
 
 function activeGcodeEditor(): vscode.TextEditor | undefined {
@@ -183,7 +232,7 @@ async function refreshStatus(): Promise<void> {
       "**Partscope dry run**\n\n```\n" + summarize(r) + "\n```\n\nClick to show the toolpath."
     );
   } catch (err) {
-    if (seq !== statusSeq) return;
+    if (seq !== statusSeq || isSuperseded(err)) return;
     statusItem.text = "$(watch) –";
     statusItem.tooltip = `Partscope dry run failed: ${err instanceof Error ? err.message : String(err)}`;
   }
@@ -207,6 +256,21 @@ async function runDryRunCommand(): Promise<void> {
   } catch (err) {
     void vscode.window.showErrorMessage(`Partscope dry run failed: ${err instanceof Error ? err.message : String(err)}`);
   }
+}
+
+function showBreakdownReport(r: BreakdownResult): void {
+  reportChannel ??= vscode.window.createOutputChannel("Partscope dry run");
+  reportChannel.clear();
+  reportChannel.appendLine(r.text);
+  reportChannel.show(true);
+}
+
+async function showPreviewOf(uri: string): Promise<void> {
+  const c = client;
+  if (!c) return;
+  const doc = await vscode.workspace.openTextDocument(c.protocol2CodeConverter.asUri(uri));
+  if (preview) preview.show(doc);
+  else preview = new ToolpathPreview(extensionContext, doc);
 }
 
 function diagnosticCode(d: vscode.Diagnostic): string | undefined {
@@ -365,7 +429,7 @@ class ToolpathPreview {
       const editor = vscode.window.visibleTextEditors.find((e) => e.document.uri.toString() === this.uri.toString());
       if (editor) this.postCursor(editor);
     } catch (err) {
-      if (seq !== this.seq) return;
+      if (seq !== this.seq || isSuperseded(err)) return;
       void this.panel.webview.postMessage({
         type: "error",
         message: `Dry run failed: ${err instanceof Error ? err.message : String(err)}`,

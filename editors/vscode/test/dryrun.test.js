@@ -31,3 +31,18 @@ test("a stopped run is marked partial and says where it stopped", () => {
   assert.equal(text.split("\n").pop(), "stopped at line 4: dwell time P word missing with G4");
   assert.doesNotMatch(summarize({ ...fixture, complete: true, stopped_at: null }), /partial|stopped/);
 });
+
+test("a decimated toolpath says how far", () => {
+  const decimation = {
+    tolerance_mm: 0.5, requested_tolerance_mm: 0.5, max_points: 100000, motions: 20002,
+    points_in: 40004, points_out: 328, points_dropped: 39676, segments_out: 2,
+    decimated: true, capped: false, truncated_at_line: null,
+  };
+  const lines = summarize({ ...fixture, decimation }).split("\n");
+  assert.ok(lines.some((l) => /^toolpath\s+328 of 40004 points$/.test(l)), lines.join("\n"));
+  assert.ok(lines.some((l) => /^  within\s+0\.500 mm$/.test(l)), lines.join("\n"));
+  const cut = summarize({ ...fixture, decimation: { ...decimation, capped: true, truncated_at_line: 99 } });
+  assert.match(cut, /0\.500 mm \(capped\)/);
+  assert.equal(cut.split("\n").pop(), "toolpath cut at line 100 (size cap)");
+  assert.doesNotMatch(summarize(fixture), /toolpath/);
+});

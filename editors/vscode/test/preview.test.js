@@ -228,6 +228,31 @@ test("toolpath preview in headless Chromium", async (t) => {
     assert.ok((await page.locator("#stats tr:visible").count()) > 5);
   });
 
+  await t.test("a decimated segment is drawn, hovered and highlighted line by line", async () => {
+    const decimated = {
+      ...fixture,
+      toolpath: {
+        bounds: { min: [0, 0, 0], max: [10, 10, 0] },
+        segments: [
+          { kind: "feed", line: 5, feed: 500, tool: 1, points: [[0, 0, 0], [10, 0, 0], [10, 10, 0], [0, 10, 0]], lines: [5, 5, 7, 9] },
+        ],
+      },
+      decimation: {
+        tolerance_mm: 0.5, requested_tolerance_mm: 0.5, max_points: 100000, motions: 20, points_in: 40,
+        points_out: 4, points_dropped: 36, segments_out: 1, decimated: true, capped: false, truncated_at_line: null,
+      },
+    };
+    await page.evaluate((data) => window.postMessage({ type: "data", data }, "*"), decimated);
+    await page.waitForFunction(() => window.partscopePreview.segments.length === 3);
+    const pieces = await page.evaluate(() => window.partscopePreview.segments.map((s) => [s.line, s.points.length]));
+    assert.deepEqual(pieces, [[5, 2], [7, 2], [9, 2]]);
+    const rows = await page.locator("#stats").innerText();
+    assert.match(rows, /Toolpath\s+4 of 40 points, within 0\.500 mm/);
+    await page.evaluate(() => window.postMessage({ type: "cursor", line: 7 }, "*"));
+    await page.waitForFunction(() => window.partscopePreview.cursorLine === 7);
+    assert.deepEqual(await page.evaluate(() => window.partscopePreview.highlightedSegments()), [1]);
+  });
+
   await t.test("no script errors", () => {
     assert.deepEqual(errors, []);
   });

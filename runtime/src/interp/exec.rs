@@ -241,7 +241,7 @@ struct Interp<'a, 'i> {
     block_exact: bool,
     /// Memory of the state checks (tool words, G40, motion seen).
     chk: checks::Mem,
-    modal_cache: Option<(Modal, Vec<String>)>,
+    modal_cache: Option<(Modal, std::sync::Arc<[String]>)>,
     /// Motions already handed to a streaming sink.
     motions_drained: usize,
     /// P/Q of the last G5 (the next G5 without I/J mirrors them).
@@ -791,7 +791,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         let modal = match &self.modal_cache {
             Some((m, codes)) if *m == self.st.modal => codes.clone(),
             _ => {
-                let codes = self.st.modal.codes(self.ngc());
+                let codes: std::sync::Arc<[String]> = self.st.modal.codes(self.ngc()).into();
                 self.modal_cache = Some((self.st.modal.clone(), codes.clone()));
                 codes
             }

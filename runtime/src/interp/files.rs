@@ -57,6 +57,9 @@ pub struct FileEntry<'a> {
     /// The file holds a tapping cycle (G84 or G74): only then is its M29 the
     /// rigid-tapping M code (on some machines M29 is a builder's M code).
     pub taps: bool,
+    /// The file returns to a caller somewhere (M99): run as the main program, its
+    /// locals #1–#33 may be the arguments of a G65 call the check does not see.
+    pub returns: bool,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -89,6 +92,7 @@ impl<'a> FileEntry<'a> {
             error_blocks: Default::default(),
             branches: false,
             taps: false,
+            returns: false,
         };
         f.index();
         let p = f.prog.clone();
@@ -135,6 +139,14 @@ impl<'a> FileEntry<'a> {
                             && w.num().is_some_and(|n| n.value == 84.0 || n.value == 74.0) =>
                     {
                         self.taps = true;
+                    }
+                    ItemKind::Word(w)
+                        if w.letter == b'M' && w.num().is_some_and(|n| n.value == 99.0) =>
+                    {
+                        self.returns = true;
+                        if p.words(block).any(|(_, w)| w.letter == b'P') {
+                            self.branches = true;
+                        }
                     }
                     ItemKind::Word(w)
                         if w.letter == b'P'
@@ -251,10 +263,10 @@ impl<'a> FileEntry<'a> {
 /// RS274/NGC library ([`Program::is_ngc_library`]), or a FANUC/ServoWorks file that
 /// returns with M99 and never ends with M2/M30 (run on its own, M99 would
 /// restart it forever, and its arguments `#1`… would be vacant).
-pub fn is_subprogram_file(program: &Program) -> bool {
+pub fn is_subprogram_file(program: &Program, stem: Option<&str>) -> bool {
     use analyzer::syntax::ItemKind;
     if program.dialect == analyzer::Dialect::Rs274ngc {
-        return program.is_ngc_library();
+        return program.is_ngc_library_named(stem);
     }
     let m = |v: f64| {
         program.items.iter().any(|it| match &it.kind {

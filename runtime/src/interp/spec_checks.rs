@@ -194,6 +194,8 @@ impl Interp<'_, '_> {
                         self.vacant_reads(prog, e, false);
                     }
                 }
+                // A plain copy (`#10 = #1`) passes the vacancy on and computes nothing.
+                ItemKind::Assign { value, .. } if plain_var(prog, *value) => {}
                 ItemKind::Assign { value, .. } => self.vacant_reads(prog, *value, false),
                 _ => {}
             }
@@ -221,7 +223,10 @@ impl Interp<'_, '_> {
                         .is_some();
                     // In a G65/G66 macro a local is an argument the caller may leave
                     // out: it reads as 0 in arithmetic, which macros rely on.
-                    let macro_level = self.frames.last().is_some_and(|f| f.saved.is_some());
+                    let macro_level = self.frames.last().is_some_and(|f| f.saved.is_some())
+                        // A main program that returns with M99 is a macro checked alone.
+                        || (self.frames.iter().all(|f| f.saved.is_none())
+                            && self.files.first().is_some_and(|f| f.returns));
                     if !in_compare && (fanuc_local || sw) && vacant && !machine_value {
                         let (sev, why) = if fanuc_local && macro_level {
                             (Severity::Info, "an argument the caller did not pass is vacant and reads as 0 in arithmetic")
@@ -1021,4 +1026,13 @@ pub fn lint_var_file(text: &str) -> Vec<(usize, String)> {
         last = Some(n);
     }
     out
+}
+
+/// `#n` with a literal number, in any brackets.
+fn plain_var(prog: &Program, e: ExprId) -> bool {
+    match prog.expr(e).expr {
+        Expr::Group { inner } => plain_var(prog, inner),
+        Expr::Var { index } => matches!(prog.expr(index).expr, Expr::Num(_)),
+        _ => false,
+    }
 }

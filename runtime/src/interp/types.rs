@@ -198,8 +198,10 @@ pub struct Event {
 /// The state after a block of the main file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BlockSnapshot {
-    /// Modal codes in force, e.g. `["G1","G17","G21","G90","G94","G54","G40","G49","G64"]`.
-    pub modal: Vec<String>,
+    /// Modal codes in force, e.g. `["G1","G17","G21","G90","G94","G54","G40","G49","G64"]`,
+    /// shared by the blocks with the same modal state (one allocation, not
+    /// ten, per block of a million-line program).
+    pub modal: std::sync::Arc<[String]>,
     /// Position after the block in program coordinates (mm/deg): X Y Z A B C.
     pub position: [f64; 6],
     /// Programmed feed in mm/min (or mm/rev under G95).

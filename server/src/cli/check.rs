@@ -111,6 +111,10 @@ fn check_file(
         settings.max_runtime_errors = n.max(1);
     }
     settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
+    settings.file_stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .map(str::to_string);
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     // Subprogram files are analysed when they are called, from the caller's point of
     // view: ServoWorks `O<name>.dat` files, RS274/NGC files that only define
@@ -125,7 +129,10 @@ fn check_file(
             .file_name()
             .and_then(|n| n.to_str())
             .is_some_and(|n| n.starts_with('O')))
-        || runtime::interp::files::is_subprogram_file(&parsed.program);
+        || runtime::interp::files::is_subprogram_file(
+            &parsed.program,
+            settings.file_stem.as_deref(),
+        );
     // Neither a binary file nor a program for another control (P010) is interpreted.
     let interpret = !args.no_run
         && !is_subprogram

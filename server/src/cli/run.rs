@@ -67,6 +67,11 @@ pub struct RunArgs {
     /// and 200 000 motions.
     #[arg(long, value_enum, default_value = "auto")]
     pub what_if: WhatIfArg,
+    /// Per-block times and causes in `--format json` (`blocks`, one entry per line):
+    /// `auto` writes them for programs up to 1 MiB; `--emit blocks` gives the same
+    /// table as CSV.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub blocks: WhatIfArg,
     #[arg(long, value_enum)]
     pub emit: Option<Emit>,
     /// LinuxCNC tool table (`.tbl`).
@@ -220,6 +225,11 @@ pub fn run(args: RunArgs) -> ExitCode {
         settings.max_runtime_errors = n.max(1);
     }
     settings.max_per_file = args.max_per_file.unwrap_or(settings.max_per_file);
+    settings.file_stem = args
+        .file
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .map(str::to_string);
 
     // Machine: --machine (TOML or LinuxCNC .ini), else the config's [machine] table.
     let mut machine_table = loaded.config.machine.clone();
@@ -405,6 +415,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         WhatIfArg::Off => false,
         WhatIfArg::Auto => text.len() <= WHAT_IF_AUTO_BYTES,
     };
+    // Per-block output is several times the summary's cost on a long program.
+    let with_blocks = match args.blocks {
+        WhatIfArg::On => true,
+        WhatIfArg::Off => false,
+        WhatIfArg::Auto => text.len() <= WHAT_IF_AUTO_BYTES,
+    };
     if args.format == RunFormat::Json
         && args.emit.is_none()
         && args.outputs().iter().all(|(_, o)| o.is_none())
@@ -413,7 +429,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         // The static rules run beside the interpreter and planner (both only read the tree).
         let (diagnostics, out, totals, blocks) = std::thread::scope(|scope| {
             let lint = scope.spawn(|| analyzer::lint(&parsed, &settings));
-            let (out, totals, blocks) = plan_beside(&input, &profile);
+            let (out, totals, blocks) = plan_beside(&input, &profile, with_blocks);
             // A panic in the rules is passed on as if the rules had run on this thread.
             let diagnostics = lint.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
             (diagnostics, out, totals, blocks)
@@ -447,7 +463,10 @@ pub fn run(args: RunArgs) -> ExitCode {
         };
         let stdout = std::io::stdout();
         let mut w = std::io::BufWriter::new(stdout.lock());
-        let summary = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
+        let mut summary = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
+        if !with_blocks && args.blocks == WhatIfArg::Auto {
+            summary["blocks_skipped"] = blocks_skipped();
+        }
         let res = write_summary(&mut w, summary, &dry.blocks, &out.files).and_then(|_| w.flush());
         if let Err(e) = res {
             return fail(format_args!("cannot write output: {e}"));
@@ -646,8 +665,12 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
         Some(Emit::Canon) | None => match args.format {
             RunFormat::Json => {
-                let v = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
-                write_summary(&mut w, v, &dry.blocks, &out.files)
+                let mut v = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
+                let blocks: &[dryrun::BlockTime] = if with_blocks { &dry.blocks } else { &[] };
+                if !with_blocks && args.blocks == WhatIfArg::Auto {
+                    v["blocks_skipped"] = blocks_skipped();
+                }
+                write_summary(&mut w, v, blocks, &out.files)
             }
             RunFormat::Human => human(
                 &mut w,
@@ -668,6 +691,14 @@ pub fn run(args: RunArgs) -> ExitCode {
     exit_status(&report, &stop)
 }
 
+/// Why `--format json` has no per-block entries under `--blocks auto`.
+fn blocks_skipped() -> serde_json::Value {
+    serde_json::Value::String(format!(
+        "the program is larger than {} KiB; --blocks on writes them",
+        WHAT_IF_AUTO_BYTES >> 10
+    ))
+}
+
 /// Chunks of motions in flight between the interpreter and the planner thread: enough
 /// that neither waits on the other's jitter, few enough that memory stays flat.
 const PLAN_QUEUE: usize = 4;
@@ -679,6 +710,7 @@ const PLAN_QUEUE: usize = 4;
 fn plan_beside(
     input: &runtime::RunInput<'_>,
     profile: &MachineProfile,
+    with_blocks: bool,
 ) -> (
     runtime::RunOutput,
     runtime::plan::Totals,
@@ -715,10 +747,11 @@ fn plan_beside(
             (out, totals)
         })
     };
-    match pass(dryrun::StreamPlan::new(profile).with_blocks()) {
+    let plan = |p: dryrun::StreamPlan| if with_blocks { p.with_blocks() } else { p };
+    match pass(plan(dryrun::StreamPlan::new(profile))) {
         (out, Some((totals, blocks))) => (out, totals, blocks),
         (_, None) => {
-            let (out, r) = pass(dryrun::StreamPlan::closed_form(profile).with_blocks());
+            let (out, r) = pass(plan(dryrun::StreamPlan::closed_form(profile)));
             let (totals, blocks) = r.unwrap_or_default();
             (out, totals, blocks)
         }

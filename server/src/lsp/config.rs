@@ -20,10 +20,12 @@ use analyzer::{Config, Dialect, Settings};
 use serde_json::Value;
 
 /// Default size above which a document is only parsed (no rules, no dry run).
-pub const DEFAULT_MAX_FILE_SIZE: usize = 20 * 1024 * 1024;
+pub const DEFAULT_MAX_FILE_SIZE: usize = 64 * 1024 * 1024;
 /// Default size up to which the interpreter runs with every analysis (its
-/// diagnostics are published); larger files run only on request.
-pub const DEFAULT_MAX_RUN_FILE_SIZE: usize = 4 * 1024 * 1024;
+/// diagnostics are published); larger files run only on request. A
+/// million-line program of CAM output (18–28 MB) is below it
+/// (BENCHMARKS.md, "Editor dry run of 1M-line programs").
+pub const DEFAULT_MAX_RUN_FILE_SIZE: usize = 32 * 1024 * 1024;
 
 /// Options the client sends (initializationOptions or workspace/configuration).
 #[derive(Debug, Clone, Default)]
@@ -36,6 +38,9 @@ pub struct ClientOptions {
     pub ignore: Vec<String>,
     pub max_file_size: Option<usize>,
     pub max_run_file_size: Option<usize>,
+    /// Cap on the toolpath points of a `partscope/dryRun` answer
+    /// (`maxToolpathPoints`; `lsp::decimate`).
+    pub max_toolpath_points: Option<usize>,
     /// The `format` object: defaults of document formatting (`numbers`,
     /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
     pub format: Option<Value>,
@@ -114,6 +119,10 @@ impl ClientOptions {
                 .map(|n| n as usize),
             max_run_file_size: v
                 .get("maxRunFileSize")
+                .and_then(Value::as_u64)
+                .map(|n| n as usize),
+            max_toolpath_points: v
+                .get("maxToolpathPoints")
                 .and_then(Value::as_u64)
                 .map(|n| n as usize),
             format: v.get("format").filter(|f| f.is_object()).cloned(),
@@ -237,13 +246,17 @@ pub fn resolve(
     }
     config.rules.select.extend(client.select.iter().cloned());
     config.rules.ignore.extend(client.ignore.iter().cloned());
-    let settings = match Settings::from_config(&config, Some(dialect)) {
+    let mut settings = match Settings::from_config(&config, Some(dialect)) {
         Ok(s) => s,
         Err(e) => {
             config_error.get_or_insert(e);
             Settings::new(dialect)
         }
     };
+    settings.file_stem = doc
+        .and_then(|d| d.file_stem())
+        .and_then(|s| s.to_str())
+        .map(str::to_string);
     let config_dir = config_path
         .as_deref()
         .and_then(Path::parent)

@@ -13,6 +13,8 @@ use std::sync::Arc;
 use analyzer::{Diagnostic, Settings};
 use serde::Serialize;
 
+pub use super::decimate::{Decimation, Path, Request};
+
 /// What one dry run needs.
 pub struct DryRunInput<'a> {
     pub program: &'a analyzer::syntax::Program,
@@ -54,6 +56,10 @@ pub struct Segment {
     pub feed: f64,
     pub tool: u32,
     pub points: Vec<[f64; 3]>,
+    /// A segment that holds several motions (decimated, [`super::decimate`]):
+    /// the 0-based line of the motion each point ends; `line` is the first's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lines: Option<Vec<u32>>,
     /// Exact path length in XYZ (arcs are longer than their sampled polyline).
     #[serde(skip)]
     pub length: f64,
@@ -82,7 +88,8 @@ pub type BlockState = runtime::BlockSnapshot;
 /// tool changes, per-block state and flow-sensitive diagnostics.
 #[derive(Debug, Clone, Default)]
 pub struct RunReport {
-    pub segments: Vec<Segment>,
+    /// The toolpath, which each request decimates to its own tolerance.
+    pub path: Path,
     pub timing: Option<Timing>,
     /// The document's tool changes: 0-based line and program time (when planned).
     pub tool_changes: Vec<(u32, Option<f64>)>,
@@ -227,30 +234,118 @@ pub struct DryRunResult {
     /// The cycle time by cause and the top causes in words (`null` when no
     /// planner ran).
     pub breakdown: Option<Breakdown>,
+    /// How the toolpath was decimated and capped for this answer.
+    pub decimation: Decimation,
 }
 
-/// Builds the preview result from a run report.
+/// The result of the `partscope.showBreakdown` command (the cycle-time
+/// lens): the figures of the dry run without its toolpath, and `text`, the
+/// breakdown as the server shows it in `window/showMessage`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BreakdownResult {
+    pub uri: String,
+    pub version: i32,
+    pub cycle_time_s: Option<f64>,
+    pub motion_s: Option<f64>,
+    pub rapid_s: Option<f64>,
+    pub cutting_s: Option<f64>,
+    pub dwell_s: Option<f64>,
+    pub tool_change_s: Option<f64>,
+    pub other_s: Option<f64>,
+    pub distance_mm: f64,
+    pub complete: bool,
+    pub stopped_at: Option<StoppedAt>,
+    pub breakdown: Option<Breakdown>,
+    pub text: String,
+}
+
+/// The breakdown of `report` for the document `name` (its file name).
+pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -> BreakdownResult {
+    let distance = report.path.distance;
+    let t = report.timing;
+    BreakdownResult {
+        uri,
+        version,
+        cycle_time_s: t.map(|t| t.cycle_time_s),
+        motion_s: t.map(|t| t.motion_s),
+        rapid_s: t.map(|t| t.rapid_s),
+        cutting_s: t.map(|t| t.cutting_s),
+        dwell_s: t.map(|t| t.dwell_s),
+        tool_change_s: t.map(|t| t.tool_change_s),
+        other_s: t.map(|t| t.other_s),
+        distance_mm: distance,
+        complete: report.stopped.is_none(),
+        stopped_at: report.stopped.clone(),
+        breakdown: report.breakdown.clone(),
+        text: breakdown_text(name, report, distance),
+    }
+}
+
+/// Plain text, one figure a line: the cycle time (clock and seconds, as
+/// `partscope run` gives them), its split, where the time goes and the top
+/// causes. Plain text because `window/showMessage` is shown as it is.
+pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> String {
+    use super::server::format_duration as clock;
+    let Some(t) = report.timing else {
+        return format!("{name}: no cycle time (no planner ran)");
+    };
+    let mut out = format!(
+        "{name}: cycle time {} ({:.3} s{})",
+        clock(t.cycle_time_s),
+        t.cycle_time_s,
+        if report.stopped.is_some() {
+            ", partial"
+        } else {
+            ""
+        }
+    );
+    if let Some(s) = &report.stopped {
+        out.push_str(&format!("\n  {}", s.describe()));
+    }
+    let rows = [
+        ("cutting", t.cutting_s, true),
+        ("rapid", t.rapid_s, true),
+        ("dwell", t.dwell_s, true),
+        ("tool change", t.tool_change_s, true),
+        ("other", t.other_s, t.other_s > 0.0),
+    ];
+    for (label, s, shown) in rows {
+        if shown {
+            out.push_str(&format!("\n  {label:<12} {:>9}", clock(s)));
+        }
+    }
+    out.push_str(&format!("\n  {:<12} {distance_mm:>9.1} mm", "distance"));
+    if let Some(b) = &report.breakdown {
+        if t.cycle_time_s > 0.0 && t.cycle_time_s.is_finite() {
+            out.push_str("\nwhere the time goes");
+            for (key, label) in &b.labels {
+                let s = b.parts.get(key).copied().unwrap_or(0.0);
+                if s > 0.0 {
+                    out.push_str(&format!(
+                        "\n  {label:<34} {s:>9.3} s {:>5.1} %",
+                        100.0 * s / t.cycle_time_s
+                    ));
+                }
+            }
+        }
+        for c in &b.top_causes {
+            out.push_str(&format!("\n  - {c}"));
+        }
+    }
+    out
+}
+
+/// Builds the preview result from a run report, its toolpath decimated as
+/// `request` asks (bounds and distance are those of the whole toolpath).
 pub fn summarize(
     version: i32,
     report: &RunReport,
     diagnostics: Vec<serde_json::Value>,
+    request: Request,
 ) -> DryRunResult {
-    let mut min = [f64::INFINITY; 3];
-    let mut max = [f64::NEG_INFINITY; 3];
-    let mut distance = 0.0;
-    for seg in &report.segments {
-        for p in &seg.points {
-            for k in 0..3 {
-                min[k] = min[k].min(p[k]);
-                max[k] = max[k].max(p[k]);
-            }
-        }
-        distance += seg.length;
-    }
-    if !min[0].is_finite() {
-        min = [0.0; 3];
-        max = [0.0; 3];
-    }
+    let (min, max) = report.path.bounds.unwrap_or(([0.0; 3], [0.0; 3]));
+    let distance = report.path.distance;
+    let (segments, decimation) = report.path.select(request);
     let t = report.timing;
     DryRunResult {
         version,
@@ -262,13 +357,14 @@ pub fn summarize(
         tool_change_s: t.map(|t| t.tool_change_s),
         distance_mm: distance,
         toolpath: Toolpath {
-            segments: report.segments.clone(),
+            segments,
             bounds: Bounds { min, max },
         },
         diagnostics,
         complete: report.stopped.is_none(),
         stopped_at: report.stopped.clone(),
         breakdown: report.breakdown.clone(),
+        decimation,
     }
 }
 
@@ -316,25 +412,26 @@ mod tests {
 
     #[test]
     fn summary_sums_lengths_and_bounds_and_passes_times() {
+        let mut path = Path::default();
+        path.push(
+            SegmentKind::Rapid,
+            0,
+            0.0,
+            1,
+            &[[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
+            5.0,
+        );
+        path.push(
+            SegmentKind::Feed,
+            1,
+            600.0,
+            1,
+            &[[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
+            6.0,
+        );
+        path.finish();
         let report = RunReport {
-            segments: vec![
-                Segment {
-                    kind: SegmentKind::Rapid,
-                    line: 0,
-                    feed: 0.0,
-                    tool: 1,
-                    points: vec![[0.0, 0.0, 5.0], [3.0, 4.0, 5.0]],
-                    length: 5.0,
-                },
-                Segment {
-                    kind: SegmentKind::Feed,
-                    line: 1,
-                    feed: 600.0,
-                    tool: 1,
-                    points: vec![[3.0, 4.0, 5.0], [3.0, 4.0, -1.0]],
-                    length: 6.0,
-                },
-            ],
+            path,
             timing: Some(Timing {
                 rapid_s: 0.5,
                 cutting_s: 0.6,
@@ -352,7 +449,7 @@ mod tests {
             blocks: vec![],
             breakdown: None,
         };
-        let r = summarize(7, &report, vec![]);
+        let r = summarize(7, &report, vec![], Request::EXACT);
         assert_eq!(r.version, 7);
         assert_eq!(r.distance_mm, 11.0);
         assert_eq!(
@@ -375,7 +472,7 @@ mod tests {
 
     #[test]
     fn empty_toolpath_has_zero_bounds() {
-        let r = summarize(1, &RunReport::default(), vec![]);
+        let r = summarize(1, &RunReport::default(), vec![], Request::EXACT);
         assert_eq!(
             r.toolpath.bounds,
             Bounds {
@@ -388,6 +485,43 @@ mod tests {
             serde_json::to_value(&r).unwrap()["cutting_s"],
             serde_json::Value::Null
         );
+    }
+
+    #[test]
+    fn a_partial_breakdown_says_where_the_run_stopped() {
+        let report = RunReport {
+            timing: Some(Timing {
+                rapid_s: 0.25,
+                cutting_s: 1.5,
+                dwell_s: 0.0,
+                tool_change_s: 0.0,
+                other_s: 3.0,
+                motion_s: 1.75,
+                cycle_time_s: 4.75,
+            }),
+            stopped: Some(StoppedAt {
+                line: 6,
+                reason: "unknown code M123".into(),
+            }),
+            ..RunReport::default()
+        };
+        let r = breakdown_of("file:///w/p.nc".into(), "p.nc", 2, &report);
+        assert_eq!(
+            r.text,
+            "p.nc: cycle time 0:04.8 (4.750 s, partial)
+  stopped at line 7: unknown code M123
+  cutting         0:01.5
+  rapid           0:00.3
+  dwell           0:00.0
+  tool change     0:00.0
+  other           0:03.0
+  distance           0.0 mm"
+        );
+        assert!(!r.complete);
+        assert_eq!(r.other_s, Some(3.0));
+        let none = breakdown_of("u".into(), "p.nc", 1, &RunReport::default());
+        assert_eq!(none.text, "p.nc: no cycle time (no planner ran)");
+        assert_eq!(none.cycle_time_s, None);
     }
 
     #[test]

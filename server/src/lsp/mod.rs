@@ -20,10 +20,12 @@
 //! - The interpreter and planner ([`runtime_runner`], behind the
 //!   [`dry_run::DryRunner`] trait, through `runtime::dryrun`, the glue
 //!   `partscope run` uses too) run with the analysis for files up to
-//!   `maxRunFileSize` (4 MB): the interpreter's diagnostics join the static
+//!   `maxRunFileSize` (32 MB): the interpreter's diagnostics join the static
 //!   ones (a diagnostic inside a subprogram file is shown on the document's
 //!   call of that file), its per-block state shows on hover, the cycle time is
-//!   a code lens, tool changes get their program time as inlay hints, and
+//!   a code lens (its command `partscope.showBreakdown` answers with the
+//!   breakdown, [`dry_run::BreakdownResult`], and shows its text with
+//!   `window/showMessage` unless the arguments say `{show: false}`), tool changes get their program time as inlay hints, and
 //!   `partscope/dryRun` returns toolpath and times. The config's
 //!   `tool_table`/`var_file` are passed to the interpreter. One run at a
 //!   time; a run for a superseded version is skipped. Files above 256 KB
@@ -32,8 +34,9 @@
 //!   is published again when it ends. Subprogram
 //!   files (NGC `o<name> sub` libraries, FANUC/ServoWorks files ending in M99)
 //!   are not run on their own.
-//! - Above `maxFileSize` (20 MB) a document is only parsed: syntax
-//!   diagnostics, navigation, symbols and tokens, no rules and no run.
+//! - Above `maxFileSize` (64 MB) a document is only parsed: syntax
+//!   diagnostics, navigation, symbols and tokens, no rules and no run. Above
+//!   either limit a diagnostic at the top of the file and the lens say so.
 //! - Every handler runs under `catch_unwind` and its work in `spawn_blocking`;
 //!   the transport is [`stdio`] (framing, JSON-RPC decoding, limits, exit
 //!   status), so no message can end the session. A cancelled request's
@@ -46,16 +49,18 @@
 //! folder), then a first-line `(partscope: dialect=…)` comment, then the
 //! client's options (`initializationOptions` or the `partscope` section of
 //! `workspace/configuration`: `dialect`, `machine` (table or path), `select`,
-//! `ignore`, `maxFileSize`, `maxRunFileSize`), then sniffing. Changes of
+//! `ignore`, `maxFileSize`, `maxRunFileSize`, `maxToolpathPoints`), then sniffing. Changes of
 //! `partscope.toml` (watched through `didChangeWatchedFiles`) and of the
 //! client configuration re-analyse the open documents.
 //!
 //! Custom request `partscope/dryRun` (and command `partscope.dryRun`, whose
-//! argument is the URI or `{uri}`): params `{textDocument: {uri}}`, result
+//! argument is the URI or `{uri}`): params `{textDocument: {uri}, tolerance?,
+//! viewSize?, maxPoints?}` (the toolpath is decimated and capped,
+//! [`decimate`]; a newer request of the document supersedes it), result
 //! [`dry_run::DryRunResult`]: `{version, cycle_time_s, motion_s, rapid_s,
 //! cutting_s, dwell_s, tool_change_s, distance_mm, toolpath: {segments:
 //! [{kind: "rapid"|"feed"|"arc", line, feed, tool, points: [[x,y,z]…]}],
-//! bounds: {min, max}}, diagnostics}`. Times are `null` when the `[machine]`
+//! bounds: {min, max}}, diagnostics, decimation}`. Times are `null` when the `[machine]`
 //! table is not a valid planner profile; error -32001 when no run is possible
 //! (cancelled), -32603 in syntax-only mode. `partscope run --html` embeds the
 //! same result, made by the same conversion ([`dry_run_result`]), in its page.
@@ -63,6 +68,7 @@
 mod actions;
 mod completion;
 mod config;
+mod decimate;
 mod dry_run;
 mod formatting;
 mod goto;

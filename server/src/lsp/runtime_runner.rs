@@ -15,8 +15,9 @@ use runtime::{EventKind, RunInput};
 
 use tower_lsp_server::ls_types::Uri;
 
+use super::decimate::{self, Path};
 use super::dry_run::{
-    summarize, DryRunInput, DryRunResult, DryRunner, RunReport, Segment, SegmentKind, StoppedAt,
+    summarize, DryRunInput, DryRunResult, DryRunner, Request, RunReport, SegmentKind, StoppedAt,
     Timing,
 };
 use super::nav::{self, Sym};
@@ -32,7 +33,7 @@ pub const STEP_BUDGET: u64 = 5_000_000;
 /// budget reaches the same code (the budget diagnostic included) cheaply.
 #[cfg(fuzzing)]
 pub const STEP_BUDGET: u64 = 20_000;
-/// Chord tolerance for sampling arcs in the preview, mm.
+/// Chord tolerance for sampling arcs in the preview, mm: the finest used.
 const CHORD_TOLERANCE: f64 = 0.01;
 
 pub use crate::resolve::Loaded;
@@ -168,24 +169,51 @@ impl DryRunner for RuntimeRunner {
         // and the plan itself come from `runtime::dryrun`.
         // A `[machine]` table the planner cannot read leaves the run without times.
         let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
-        let segments = segments_of(&out, profile.as_ref());
+        // Arcs are sampled at half the default view tolerance (a finer one
+        // costs points no view of the whole part can show). The toolpath and
+        // the plan read the run side by side.
+        let chord = CHORD_TOLERANCE.max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
+        let t1 = std::time::Instant::now();
+        let (path, plan, t_path) = std::thread::scope(|s| {
+            let path = s.spawn(|| {
+                let path = path_of(&out, profile.as_ref(), chord);
+                (path, t1.elapsed())
+            });
+            let plan = profile.as_ref().map(|profile| {
+                dryrun::plan_run_until(&out, profile, &|| input.cancel.is_cancelled())
+            });
+            // A panic on the toolpath thread is the request's, as on this one.
+            let (path, t_path) = path.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
+            (path, plan, t_path)
+        });
+        let mut plan = match plan {
+            Some(p) => Some(p?),
+            None => None,
+        };
         if input.cancel.is_cancelled() {
             return None;
         }
-        let plan = match &profile {
-            Some(profile) => Some(dryrun::plan_run_until(&out, profile, &|| {
-                input.cancel.is_cancelled()
-            })?),
-            None => None,
-        };
+        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
+            eprintln!(
+                "partscope lsp: toolpath {t_path:?} ({} motions), planner and toolpath {:?}",
+                out.motions.len(),
+                t1.elapsed()
+            );
+        }
         let loaded = resolver.loaded();
-        let report = report_of(input.program, &out, segments, plan.as_ref(), &loaded);
+        let report = report_of(input.program, &out, path, plan.as_ref(), &loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
+        // The document's blocks, moved out of the plan (a million of them
+        // would be a large copy).
         let blocks = plan
-            .as_ref()
-            .map(|p| p.blocks.iter().filter(|b| b.file == 0).cloned().collect())
+            .as_mut()
+            .map(|p| {
+                let mut blocks = std::mem::take(&mut p.blocks);
+                blocks.retain(|b| b.file == 0);
+                blocks
+            })
             .unwrap_or_default();
         let breakdown = plan
             .as_ref()
@@ -200,30 +228,44 @@ impl DryRunner for RuntimeRunner {
     }
 }
 
-/// The toolpath of a run as preview segments: arcs sampled at the preview's
-/// chord tolerance, rapids as `profile` moves them (straight without one).
-pub fn segments_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>) -> Vec<Segment> {
-    let tp = match profile {
-        Some(p) => dryrun::toolpath_on(out, CHORD_TOLERANCE, p),
-        None => dryrun::toolpath(out, CHORD_TOLERANCE),
-    };
-    tp.segments
-        .iter()
-        .zip(&out.motions)
-        .enumerate()
-        .map(|(i, (t, m))| Segment {
-            kind: match t.kind {
-                "rapid" => SegmentKind::Rapid,
-                "arc" => SegmentKind::Arc,
-                _ => SegmentKind::Feed,
-            },
-            line: t.line,
-            feed: t.feed,
-            tool: t.tool,
-            points: t.points.clone(),
-            length: dryrun::segment_of(m, i as u32).length,
-        })
-        .collect()
+/// The longest side of the box around the motions' end points.
+fn motion_extent(out: &runtime::RunOutput) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for m in &out.motions {
+        for p in [&m.start, &m.end] {
+            for k in 0..3 {
+                if p[k].is_finite() {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+        }
+    }
+    (0..3)
+        .map(|k| hi[k] - lo[k])
+        .filter(|d| d.is_finite())
+        .fold(0.0, f64::max)
+}
+
+/// The toolpath of a run as the preview's path: arcs sampled at `chord`,
+/// rapids as `profile` moves them (straight without one), with each point's
+/// significance for decimation.
+pub fn path_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>, chord: f64) -> Path {
+    let mut path = Path::with_capacity(out.motions.len());
+    let mut index = 0u32;
+    dryrun::for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
+        let kind = match kind {
+            "rapid" => SegmentKind::Rapid,
+            "arc" => SegmentKind::Arc,
+            _ => SegmentKind::Feed,
+        };
+        let length = dryrun::segment_of(m, index).length;
+        index += 1;
+        path.push(kind, m.line, m.feed, m.tool, points, length);
+    });
+    path.finish();
+    path
 }
 
 /// The report of a finished run of `program`, as the language server keeps it
@@ -234,7 +276,7 @@ pub fn segments_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>) -
 pub fn report_of(
     program: &analyzer::syntax::Program,
     out: &runtime::RunOutput,
-    segments: Vec<Segment>,
+    path: Path,
     plan: Option<&DryRun>,
     loaded: &[Loaded],
 ) -> RunReport {
@@ -285,7 +327,7 @@ pub fn report_of(
     });
     RunReport {
         values: out.values.clone().map(Arc::new),
-        segments,
+        path,
         timing,
         tool_changes,
         diagnostics,
@@ -307,8 +349,8 @@ pub fn dry_run_result(
     plan: &DryRun,
     loaded: &[Loaded],
 ) -> DryRunResult {
-    let segments = segments_of(out, Some(profile));
-    let report = report_of(program, out, segments, Some(plan), loaded);
+    let toolpath = path_of(out, Some(profile), CHORD_TOLERANCE);
+    let report = report_of(program, out, toolpath, Some(plan), loaded);
     // Ranges are counted in a rope of the text; an invalid byte becomes one `?`
     // (not U+FFFD, three bytes) so byte offsets stay those of the file.
     let mut text = String::with_capacity(program.text.len());
@@ -329,7 +371,7 @@ pub fn dry_run_result(
             .collect(),
         None => Vec::new(),
     };
-    summarize(0, &report, diagnostics)
+    summarize(0, &report, diagnostics, Request::EXACT)
 }
 
 #[cfg(test)]
@@ -359,10 +401,15 @@ mod run_tests {
         RuntimeRunner.run(&input).unwrap()
     }
 
+    fn segments(r: &RunReport) -> Vec<super::super::dry_run::Segment> {
+        r.path.select(Request::EXACT).0
+    }
+
     #[test]
     fn motions_become_segments() {
         let r = run("G21 G90\nG0 X1 Y2 Z3\nG1 X4 F100\nG2 X6 Y4 I0 J2\nM2\n");
-        let kinds: Vec<(SegmentKind, u32)> = r.segments.iter().map(|s| (s.kind, s.line)).collect();
+        let segs = segments(&r);
+        let kinds: Vec<(SegmentKind, u32)> = segs.iter().map(|s| (s.kind, s.line)).collect();
         assert_eq!(
             kinds,
             vec![
@@ -371,9 +418,9 @@ mod run_tests {
                 (SegmentKind::Arc, 3)
             ]
         );
-        assert_eq!(r.segments[1].points, vec![[1.0, 2.0, 3.0], [4.0, 2.0, 3.0]]);
-        assert_eq!(r.segments[1].feed, 100.0);
-        let last = *r.segments[2].points.last().unwrap();
+        assert_eq!(segs[1].points, vec![[1.0, 2.0, 3.0], [4.0, 2.0, 3.0]]);
+        assert_eq!(segs[1].feed, 100.0);
+        let last = *segs[2].points.last().unwrap();
         assert!(
             (last[0] - 6.0).abs() < 1e-9 && (last[1] - 4.0).abs() < 1e-9,
             "{last:?}"

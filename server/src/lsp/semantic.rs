@@ -16,6 +16,7 @@ const VARIABLE: u32 = 5;
 const OPERATOR: u32 = 6;
 const NAMESPACE: u32 = 7;
 const MACRO: u32 = 8;
+const STRING: u32 = 9;
 
 pub fn legend() -> SemanticTokensLegend {
     SemanticTokensLegend {
@@ -29,6 +30,7 @@ pub fn legend() -> SemanticTokensLegend {
             SemanticTokenType::OPERATOR,
             SemanticTokenType::NAMESPACE,
             SemanticTokenType::MACRO,
+            SemanticTokenType::STRING,
         ],
         token_modifiers: vec![],
     }
@@ -48,6 +50,7 @@ fn token_type(kind: TokenKind, first_byte: u8) -> Option<u32> {
             OPERATOR
         }
         TokenKind::Name => NAMESPACE,
+        TokenKind::Text => STRING,
         TokenKind::Percent | TokenKind::BlockSkip | TokenKind::Eob => MACRO,
         TokenKind::Whitespace | TokenKind::Newline | TokenKind::Unknown => return None,
     })

@@ -54,6 +54,9 @@ const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
 /// client then asks for the visible range).
 const MAX_FULL_SEMANTIC_TOKENS: usize = 500_000;
 pub const DRY_RUN_COMMAND: &str = "partscope.dryRun";
+/// The cycle-time lens's command: the breakdown as text and figures, also
+/// shown with `window/showMessage` unless the client asks to show it itself.
+pub const BREAKDOWN_COMMAND: &str = "partscope.showBreakdown";
 
 struct Doc {
     rope: Rope,
@@ -69,7 +72,25 @@ struct Doc {
     analysing: Arc<tokio::sync::Mutex<()>>,
     /// Set when the document is closed: its background runs stop.
     closed: CancelFlag,
+    /// The newest `partscope/dryRun` of the document, which the next one
+    /// supersedes.
+    dry_run: Option<DryRunTicket>,
 }
+
+/// One `partscope/dryRun` request as the next one of its document sees it.
+struct DryRunTicket {
+    /// The document version when it arrived.
+    version: i32,
+    /// Stops its run: set when a newer request comes for a newer version.
+    run: CancelFlag,
+    /// Set when any newer request comes: it answers with an error instead of
+    /// a toolpath (the run itself, shared by a request for the same version,
+    /// goes on).
+    superseded: CancelFlag,
+}
+
+/// The answer of a superseded `partscope/dryRun` (LSP's ServerCancelled).
+pub const SUPERSEDED: i64 = -32802;
 
 #[derive(Default)]
 struct State {
@@ -83,6 +104,9 @@ struct State {
     supports_watch_registration: bool,
     /// Config errors already shown, so each is shown once.
     shown_errors: Vec<String>,
+    /// The document last opened or edited: the breakdown command's target
+    /// when it comes without one (Helix's `:lsp-workspace-command`).
+    last_uri: Option<Uri>,
 }
 
 #[derive(Clone)]
@@ -165,6 +189,19 @@ pub fn format_duration(s: f64) -> String {
     format!("{}:{:04.1}", m as u64, s - m * 60.0)
 }
 
+/// A document named by a command argument: a URI string, `{uri}` or
+/// `{textDocument: {uri}}`.
+fn uri_argument(v: &Value) -> Option<Uri> {
+    let u = match v {
+        Value::String(_) => v,
+        Value::Object(o) => o
+            .get("uri")
+            .or_else(|| o.get("textDocument").and_then(|t| t.get("uri")))?,
+        _ => return None,
+    };
+    serde_json::from_value(u.clone()).ok()
+}
+
 fn uri_path(uri: &Uri) -> Option<PathBuf> {
     uri.to_file_path().map(|p| p.into_owned())
 }
@@ -197,6 +234,7 @@ impl Backend {
         o.ignore.extend(c.ignore.iter().cloned());
         o.max_file_size = c.max_file_size.or(o.max_file_size);
         o.max_run_file_size = c.max_run_file_size.or(o.max_run_file_size);
+        o.max_toolpath_points = c.max_toolpath_points.or(o.max_toolpath_points);
         o.format = c.format.clone().or(o.format);
         o.block_times = c.block_times.or(o.block_times);
         o
@@ -511,7 +549,13 @@ impl Backend {
         self.lock().docs.get(uri).map(|d| d.rope.clone())
     }
 
-    /// The dry run of a document (the `partscope/dryRun` request).
+    /// The dry run of a document (the `partscope/dryRun` request). Params:
+    /// `textDocument`, and optionally `tolerance` (mm) or `viewSize` (the
+    /// view's size in pixels: the tolerance is the part's extent over it) and
+    /// `maxPoints` (else the `maxToolpathPoints` setting). A newer request for
+    /// the same document supersedes this one: it then answers error -32802
+    /// ([`SUPERSEDED`]), and its run stops if the newer one is for a newer
+    /// version.
     pub async fn dry_run(&self, params: Value) -> Result<Value> {
         guarded("partscope/dryRun", async {
             let uri: Uri = params
@@ -519,33 +563,91 @@ impl Backend {
                 .and_then(|t| t.get("uri"))
                 .and_then(|u| serde_json::from_value(u.clone()).ok())
                 .ok_or_else(|| Error::invalid_params("expected {textDocument: {uri}}"))?;
+            let positive = |key: &str| {
+                params
+                    .get(key)
+                    .and_then(Value::as_f64)
+                    .filter(|v| v.is_finite() && *v >= 0.0)
+            };
+            let (tolerance, view_size) = (positive("tolerance"), positive("viewSize"));
+            let max_points = params
+                .get("maxPoints")
+                .and_then(Value::as_u64)
+                .map(|n| n as usize);
+            // Registered before the first await, so in the order requests came.
+            let (cancel, superseded, max_points) = {
+                let mut st = self.lock();
+                let max_points = max_points
+                    .or(Self::client_options(&st).max_toolpath_points)
+                    .unwrap_or(super::decimate::DEFAULT_MAX_POINTS);
+                let doc = st
+                    .docs
+                    .get_mut(&uri)
+                    .ok_or_else(|| Error::invalid_params("document is not open"))?;
+                if let Some(old) = doc.dry_run.take() {
+                    old.superseded.cancel();
+                    if old.version != doc.version {
+                        old.run.cancel();
+                    }
+                }
+                let ticket = DryRunTicket {
+                    version: doc.version,
+                    run: CancelFlag::default(),
+                    superseded: CancelFlag::default(),
+                };
+                let flags = (ticket.run.clone(), ticket.superseded.clone());
+                doc.dry_run = Some(ticket);
+                (flags.0, flags.1, max_points)
+            };
+            let superseded_error = || Error {
+                code: ErrorCode::ServerError(SUPERSEDED),
+                message: "superseded by a newer partscope/dryRun of this document".into(),
+                data: None,
+            };
+            let _guard = cancel.guard();
             let snap = self
                 .snapshot(&uri)
                 .await
                 .ok_or_else(|| Error::invalid_params("document is not open"))?;
-            if snap.syntax_only {
-                return Err(internal(
-                    "file is above the size limit: syntax-only mode, no dry run",
-                ));
+            if superseded.is_cancelled() {
+                return Err(superseded_error());
             }
-            let cancel = CancelFlag::default();
-            let _guard = cancel.guard();
+            if snap.syntax_only {
+                return Err(internal(format!(
+                    "no dry run: the file is above the size limit ({} KB, partscope.maxFileSize): syntax-only mode",
+                    snap.doc.max_file_size / 1024
+                )));
+            }
             // The JSON value is built on the blocking thread too: a long
             // toolpath is a large conversion.
+            let stale = superseded.clone();
             let result: Option<Result<Value>> = blocking(move || {
                 let report = snap.run_report(&cancel)?;
+                if stale.is_cancelled() {
+                    return None;
+                }
                 let diags = report
                     .diagnostics
                     .iter()
                     .filter(|d| d.file == analyzer::FileId(0))
                     .filter_map(|d| serde_json::to_value(snap.to_lsp(d)).ok())
                     .collect();
-                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags);
+                let tolerance = tolerance.or_else(|| {
+                    view_size
+                        .filter(|v| *v >= 1.0)
+                        .map(|v| report.path.extent() / v)
+                });
+                let request = dry_run::Request {
+                    tolerance,
+                    max_points,
+                };
+                let r: DryRunResult = dry_run::summarize(snap.version, &report, diags, request);
                 Some(serde_json::to_value(r).map_err(|e| internal(e.to_string())))
             })
             .await?;
             match result {
                 Some(r) => r,
+                None if superseded.is_cancelled() => Err(superseded_error()),
                 None => Err(Error {
                     code: ErrorCode::ServerError(-32001),
                     message: "no dry run for this document (cancelled, or above the size limit)"
@@ -553,6 +655,75 @@ impl Backend {
                     data: None,
                 }),
             }
+        })
+        .await
+    }
+
+    /// The `partscope.showBreakdown` command: arguments `[uri, {show}]`, the
+    /// URI as a string, `{uri}` or `{textDocument: {uri}}`, by default the
+    /// document last opened or edited; `show: false` when the client shows
+    /// the answer itself.
+    async fn show_breakdown(&self, arguments: Vec<Value>) -> Result<Value> {
+        guarded(BREAKDOWN_COMMAND, async {
+            let mut args = arguments.into_iter();
+            let target = args.next().unwrap_or(Value::Null);
+            let show = args
+                .next()
+                .and_then(|o| o.get("show").and_then(Value::as_bool))
+                .unwrap_or(true);
+            let uri = match uri_argument(&target) {
+                Some(u) => u,
+                None if target.is_null() => self.lock().last_uri.clone().ok_or_else(|| {
+                    Error::invalid_params("no document given and none is open")
+                })?,
+                None => {
+                    return Err(Error::invalid_params(
+                        "expected a document URI, {uri} or {textDocument: {uri}}",
+                    ))
+                }
+            };
+            let snap = self
+                .snapshot(&uri)
+                .await
+                .ok_or_else(|| Error::invalid_params("document is not open"))?;
+            let skipped = if snap.syntax_only {
+                Some("file is above the size limit: syntax-only mode, no dry run".to_string())
+            } else {
+                snap.run_skipped_reason()
+            };
+            let cancel = CancelFlag::default();
+            let _guard = cancel.guard();
+            let name = uri_path(&uri)
+                .and_then(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+                .unwrap_or_else(|| uri.as_str().to_string());
+            let key = uri.as_str().to_string();
+            let result = if skipped.is_some() {
+                None
+            } else {
+                blocking(move || {
+                    let report = snap.run_report(&cancel)?;
+                    Some(dry_run::breakdown_of(key, &name, snap.version, &report))
+                })
+                .await?
+            };
+            let Some(r) = result else {
+                return Err(Error {
+                    code: ErrorCode::ServerError(-32001),
+                    message: skipped
+                        .unwrap_or_else(|| {
+                            "no dry run for this document (cancelled, or a program for another control)"
+                                .into()
+                        })
+                        .into(),
+                    data: None,
+                });
+            };
+            if show {
+                self.client
+                    .show_message(MessageType::INFO, r.text.clone())
+                    .await;
+            }
+            serde_json::to_value(r).map_err(|e| internal(e.to_string()))
         })
         .await
     }
@@ -619,7 +790,7 @@ fn capabilities() -> ServerCapabilities {
             file_operations: None,
         }),
         execute_command_provider: Some(ExecuteCommandOptions {
-            commands: vec![DRY_RUN_COMMAND.into()],
+            commands: vec![DRY_RUN_COMMAND.into(), BREAKDOWN_COMMAND.into()],
             work_done_progress_options: Default::default(),
         }),
         ..Default::default()
@@ -716,8 +887,10 @@ impl LanguageServer for Backend {
                         snapshot: None,
                         analysing: Arc::default(),
                         closed: CancelFlag::default(),
+                        dry_run: None,
                     },
                 );
+                st.last_uri = Some(doc.uri.clone());
             }
             self.schedule(doc.uri, Duration::ZERO);
         })
@@ -737,6 +910,7 @@ impl LanguageServer for Backend {
                     apply_change(&mut doc.rope, change.range, &change.text);
                 }
                 doc.version = params.text_document.version;
+                st.last_uri = Some(uri.clone());
             }
             let delay = if snapshot::baseline_mode() {
                 BASELINE_DEBOUNCE
@@ -1119,7 +1293,7 @@ impl LanguageServer for Backend {
     }
 
     async fn code_lens(&self, params: CodeLensParams) -> Result<Option<Vec<CodeLens>>> {
-        // The cycle time above the first line; clicking it runs the dry run.
+        // The cycle time above the first line; clicking it shows the breakdown.
         guarded("codeLens", async {
             let Some(snap) = self.snapshot(&params.text_document.uri).await else {
                 return Ok(None);
@@ -1152,7 +1326,7 @@ impl LanguageServer for Backend {
                     range: Range::new(Position::new(0, 0), Position::new(0, 0)),
                     command: Some(Command {
                         title,
-                        command: DRY_RUN_COMMAND.into(),
+                        command: BREAKDOWN_COMMAND.into(),
                         arguments: Some(vec![
                             serde_json::to_value(&snap.uri).unwrap_or(Value::Null)
                         ]),
@@ -1167,6 +1341,9 @@ impl LanguageServer for Backend {
     }
 
     async fn execute_command(&self, params: ExecuteCommandParams) -> Result<Option<LSPAny>> {
+        if params.command == BREAKDOWN_COMMAND {
+            return self.show_breakdown(params.arguments).await.map(Some);
+        }
         if params.command != DRY_RUN_COMMAND {
             return Err(Error::invalid_params(format!(
                 "unknown command `{}`",

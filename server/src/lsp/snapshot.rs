@@ -127,7 +127,10 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     }
     let run_eligible = !syntax_only
         && text.len() <= doc.max_run_file_size
-        && !runtime::interp::files::is_subprogram_file(&analysis.program);
+        && !runtime::interp::files::is_subprogram_file(
+            &analysis.program,
+            doc.settings.file_stem.as_deref(),
+        );
     Snapshot {
         uri: inputs.uri,
         version: inputs.version,
@@ -243,11 +246,19 @@ impl Snapshot {
         })
     }
 
-    /// Why no dry run is made for this document, when that is its size: the
-    /// editor then says so instead of showing no runtime findings and no time.
+    /// Why no dry run (or no analysis at all) is made for this document, when
+    /// that is its size: the editor then says so, in a diagnostic and the
+    /// lens, instead of showing no runtime findings and no time.
     pub fn run_skipped_reason(&self) -> Option<String> {
         let len = self.program().text.len();
-        if self.syntax_only || len <= self.doc.max_run_file_size {
+        if self.syntax_only {
+            return Some(format!(
+                "No analysis: the file ({} KB) is above the size limit ({} KB, partscope.maxFileSize); only syntax errors are shown, no rules, runtime diagnostics or cycle time",
+                len / 1024,
+                self.doc.max_file_size / 1024
+            ));
+        }
+        if len <= self.doc.max_run_file_size {
             return None;
         }
         Some(format!(
@@ -296,13 +307,34 @@ mod tests {
     use runtime::interp::files::is_subprogram_file as is_subroutine_file;
 
     fn sub(dialect: Dialect, text: &str) -> bool {
-        is_subroutine_file(&parse(
-            ParseOptions {
-                dialect,
-                variant: dialect.default_variant(),
-            },
-            text.as_bytes().to_vec(),
-        ))
+        is_subroutine_file(
+            &parse(
+                ParseOptions {
+                    dialect,
+                    variant: dialect.default_variant(),
+                },
+                text.as_bytes().to_vec(),
+            ),
+            None,
+        )
+    }
+
+    #[test]
+    fn a_library_is_named_after_one_of_its_subroutines() {
+        // LinuxCNC finds `o<z_touch> call` in z_touch.ngc: in z_probe.ngc nobody can
+        // call it, and run as a program the file ends without M2.
+        let p = parse(
+            ParseOptions::new(Dialect::Rs274ngc),
+            b"o<z_touch> sub
+G38.2 Z-10 F25
+o<z_touch> endsub
+"
+            .to_vec(),
+        );
+        assert!(is_subroutine_file(&p, Some("z_touch")));
+        assert!(is_subroutine_file(&p, Some("Z_Touch")));
+        assert!(!is_subroutine_file(&p, Some("z_probe")));
+        assert!(is_subroutine_file(&p, None));
     }
 
     #[test]

@@ -45,9 +45,10 @@ pub struct Limits {
     pub max_body: u64,
 }
 
-/// The default body limit, 64 MiB: a 20 MB document (the syntax-only limit)
-/// fits with room for JSON escaping.
-pub const DEFAULT_MAX_BODY: u64 = 64 << 20;
+/// The default body limit, 256 MiB: a document well above the syntax-only
+/// limit (`maxFileSize`, 64 MB) fits with room for JSON escaping, so it is
+/// still opened and parsed.
+pub const DEFAULT_MAX_BODY: u64 = 256 << 20;
 
 impl Default for Limits {
     fn default() -> Limits {

@@ -1,6 +1,10 @@
 %
 O1000;
+#1 = #100 / 3;
 IF [#1 EQ 0.1] GOTO 10;
-IF [0.5 NE #2] GOTO 10;
+#3 = #1;
+IF [0.5 NE #3] GOTO 10;
+IF [[#100 * 2] EQ 0.4] GOTO 10;
+IF [SQRT[#100] NE 1.5] GOTO 10;
 N10 M30;
 %

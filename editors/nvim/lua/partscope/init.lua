@@ -26,7 +26,8 @@ M.defaults = {
   on_attach = nil,
   capabilities = nil,
   handlers = nil,
-  -- Define :PartscopeDryRun, :PartscopeToolpath, :PartscopeRule and :PartscopeRestart.
+  -- Define :PartscopeDryRun, :PartscopeBreakdown, :PartscopeToolpath, :PartscopeRule and
+  -- :PartscopeRestart.
   commands = true,
   -- :PartscopeToolpath writes `partscope run FILE --html PAGE` to a temporary file and opens
   -- it with this command (the page's path is appended): nil picks the system opener
@@ -34,6 +35,8 @@ M.defaults = {
   open_cmd = nil,
   -- Set 'omnifunc' to the LSP completion (<C-x><C-o>) in attached buffers.
   omnifunc = true,
+  -- Show the cycle-time code lens above the first line, refreshed after each analysis.
+  codelens = true,
   -- Buffer-local mappings: false (none), true (the defaults below) or a table of
   -- { action = lhs } overriding them (an lhs of false leaves that action unmapped).
   keymaps = false,
@@ -45,6 +48,7 @@ M.default_keymaps = {
   references = "gr",
   code_action = "<leader>ca",
   rename = "<leader>rn",
+  lens = "<leader>pl",
   dry_run = "<leader>pd",
   toolpath = "<leader>pt",
   rule = "<leader>pr",
@@ -111,6 +115,9 @@ local actions = {
   rename = function()
     vim.lsp.buf.rename()
   end,
+  lens = function()
+    vim.lsp.codelens.run()
+  end,
   dry_run = function()
     vim.cmd("PartscopeDryRun")
   end,
@@ -146,6 +153,9 @@ local function on_attach(client, bufnr)
   if config.omnifunc then
     vim.bo[bufnr].omnifunc = "v:lua.vim.lsp.omnifunc"
   end
+  if config.codelens then
+    M.refresh_lenses(bufnr)
+  end
   for action, lhs in pairs(M.keymaps_for(config.keymaps)) do
     vim.keymap.set("n", lhs, actions[action], { buffer = bufnr, desc = "Partscope: " .. (action:gsub("_", " ")) })
   end
@@ -154,8 +164,50 @@ local function on_attach(client, bufnr)
   end
 end
 
+-- Buffers whose lenses are out of date but were not current when their analysis arrived
+-- (Neovim 0.7's vim.lsp.codelens.refresh() works on the current buffer only).
+local stale_lenses = {}
+
+--- Asks for `bufnr`'s code lenses now if it is the current buffer, else when it is entered.
+function M.refresh_lenses(bufnr)
+  if not config.codelens or not vim.api.nvim_buf_is_loaded(bufnr) then
+    return
+  end
+  if bufnr == vim.api.nvim_get_current_buf() then
+    stale_lenses[bufnr] = nil
+    vim.lsp.codelens.refresh()
+  else
+    stale_lenses[bufnr] = true
+  end
+end
+
+-- The buffer attached to a partscope client whose URI is `uri`, if any.
+local function buffer_of(uri)
+  for _, b in ipairs(vim.api.nvim_list_bufs()) do
+    if vim.api.nvim_buf_is_loaded(b) and vim.uri_from_bufnr(b) == uri then
+      return b
+    end
+  end
+  return nil
+end
+
+-- Each publish follows an analysis (the second one of a large file includes the dry run),
+-- so it is when the cycle time in the lens may have changed.
+local function publish_handler(user)
+  return function(err, result, ctx, cfg)
+    local base = user or vim.lsp.handlers["textDocument/publishDiagnostics"]
+    base(err, result, ctx, cfg)
+    local b = result and result.uri and buffer_of(result.uri)
+    if b then
+      M.refresh_lenses(b)
+    end
+  end
+end
+
 local function client_config(root)
   local settings = server_settings()
+  local handlers = vim.tbl_extend("force", {}, config.handlers or {})
+  handlers["textDocument/publishDiagnostics"] = publish_handler(handlers["textDocument/publishDiagnostics"])
   return {
     name = "partscope",
     cmd = config.cmd,
@@ -165,7 +217,7 @@ local function client_config(root)
     settings = { partscope = settings },
     on_attach = on_attach,
     capabilities = config.capabilities,
-    handlers = config.handlers,
+    handlers = handlers,
   }
 end
 
@@ -303,6 +355,54 @@ local function show_dry_run()
   end)
 end
 
+--- The breakdown of `bufnr`'s dry run (the cycle-time lens's command, run by the server
+--- with `show = false`: it is shown here); `callback(err, result)`, `result.text` the text.
+function M.breakdown(bufnr, callback)
+  bufnr = (bufnr == nil or bufnr == 0) and vim.api.nvim_get_current_buf() or bufnr
+  local client = partscope_clients(bufnr)[1]
+  if client == nil then
+    callback("no partscope client attached to this buffer", nil)
+    return
+  end
+  local params = { command = M.BREAKDOWN_COMMAND, arguments = { vim.uri_from_bufnr(bufnr), { show = false } } }
+  local handler = function(err, result)
+    if err then
+      callback(err.message or vim.inspect(err), nil)
+    else
+      callback(nil, result)
+    end
+  end
+  if vim.fn.has("nvim-0.11") == 1 then
+    client:request("workspace/executeCommand", params, handler, bufnr)
+  else
+    client.request("workspace/executeCommand", params, handler, bufnr)
+  end
+end
+
+M.BREAKDOWN_COMMAND = "partscope.showBreakdown"
+
+--- Shows the breakdown of `bufnr` in a scratch buffer named partscope://breakdown.
+function M.show_breakdown(bufnr)
+  M.breakdown(bufnr, function(err, r)
+    if err then
+      notify("breakdown failed: " .. err, vim.log.levels.ERROR)
+      return
+    end
+    scratch(vim.split(r.text or "", "\n", { plain = true }), "partscope://breakdown")
+  end)
+end
+
+-- The lens's command, run on the client: Neovim calls it for `vim.lsp.codelens.run()` instead
+-- of sending it to the server, so the text lands in a buffer rather than the message area.
+vim.lsp.commands[M.BREAKDOWN_COMMAND] = function(command, ctx)
+  local bufnr = ctx.bufnr
+  local uri = command.arguments and command.arguments[1]
+  if type(uri) == "string" then
+    bufnr = buffer_of(uri) or bufnr
+  end
+  M.show_breakdown(bufnr)
+end
+
 --- The command that opens a file in the browser: `open_cmd`, else the system's opener.
 function M.opener()
   if config.open_cmd then
@@ -394,6 +494,9 @@ end
 
 local function define_commands()
   vim.api.nvim_create_user_command("PartscopeDryRun", show_dry_run, { desc = "Partscope: cycle time of this buffer" })
+  vim.api.nvim_create_user_command("PartscopeBreakdown", function()
+    M.show_breakdown(vim.api.nvim_get_current_buf())
+  end, { desc = "Partscope: where this buffer's cycle time goes" })
   vim.api.nvim_create_user_command("PartscopeToolpath", open_toolpath, {
     desc = "Partscope: open this file's toolpath in the browser",
   })
@@ -454,6 +557,14 @@ function M.setup(opts)
   if config.commands then
     define_commands()
   end
+  vim.api.nvim_create_autocmd("BufEnter", {
+    group = group,
+    callback = function(ev)
+      if stale_lenses[ev.buf] then
+        M.refresh_lenses(ev.buf)
+      end
+    end,
+  })
 
   -- Buffers opened before setup() ran.
   for _, b in ipairs(vim.api.nvim_list_bufs()) do

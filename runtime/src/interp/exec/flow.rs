@@ -333,7 +333,7 @@ impl Interp<'_, '_> {
             }
         } else {
             if let Some(why) = self.input.resolver.refused(key) {
-                self.st.skipped_call = true;
+                self.skip_call();
                 return Err(refused_call(span, &why));
             }
             if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
@@ -352,7 +352,7 @@ impl Interp<'_, '_> {
                     self.cur_line + 1
                 ));
             }
-            self.st.skipped_call = true;
+            self.skip_call();
             if !self.input.resolver.searches_like_the_control() {
                 // LinuxCNC would also look in PROGRAM_PREFIX and SUBROUTINE_PATH,
                 // which nobody configured here: the file may well be on the machine.
@@ -462,7 +462,7 @@ impl Interp<'_, '_> {
                         number.and_then(|n| self.input.resolver.refused(&format!("{n:04}")))
                     });
                     if let Some(why) = refused {
-                        self.st.skipped_call = true;
+                        self.skip_call();
                         return Err(refused_call(span, &why));
                     }
                     let what = if self.dialect == Dialect::Servoworks {
@@ -773,4 +773,13 @@ fn refused_call(span: Span, why: &str) -> Diagnostic {
         span,
         format!("the called file was not read, so the dry run skips the call: {why}"),
     )
+}
+
+impl Interp<'_, '_> {
+    /// A call the run cannot follow: the globals it may set are unknown, and so is
+    /// the feed rate, which a called subprogram often programs.
+    fn skip_call(&mut self) {
+        self.st.skipped_call = true;
+        self.mark_taint(|| "F".into(), true);
+    }
 }

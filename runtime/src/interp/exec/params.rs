@@ -355,6 +355,27 @@ pub(super) fn predefined(st: &State, name: &str) -> Option<f64> {
         "_plane" => f64::from(st.modal.plane),
         "_value" | "_value_returned" => 0.0,
         "_line" => f64::from(st.line),
+        "_ccomp" => f64::from(st.modal.comp),
+        "_inverse_time" => f64::from(u8::from(st.modal.feed_mode == 930)),
+        "_units_per_minute" => f64::from(u8::from(st.modal.feed_mode == 940)),
+        "_units_per_rev" => f64::from(u8::from(st.modal.feed_mode == 950)),
+        "_tool_offset" => f64::from(u8::from(st.tlo.iter().any(|v| *v != 0.0))),
+        // G98 retracts to the old Z, G99 to the R plane.
+        "_retract_old_z" => f64::from(u8::from(st.modal.retract_old_z)),
+        "_retract_r_plane" => f64::from(u8::from(!st.modal.retract_old_z)),
+        "_spindle_rpm_mode" => f64::from(u8::from(!st.modal.css)),
+        "_spindle_css_mode" => f64::from(u8::from(st.modal.css)),
+        "_ijk_absolute_mode" => f64::from(u8::from(st.modal.ijk_abs)),
+        "_spindle_on" => f64::from(u8::from(st.spindle_dir != 0)),
+        "_spindle_cw" => f64::from(u8::from(st.spindle_dir > 0)),
+        "_mist" => f64::from(u8::from(st.mist)),
+        "_flood" => f64::from(u8::from(st.flood)),
+        // A dry run sees the overrides at 100 % and no feed hold input, as `rs274` does.
+        "_speed_override" | "_feed_override" | "_feed_hold" => 1.0,
+        "_adaptive_feed" | "_remap_level" | "_task" => 0.0,
+        "_vmajor" => 2.9,
+        "_vminor" => 0.0,
+        "_u" | "_v" | "_w" => 0.0,
         _ => return None,
     })
 }

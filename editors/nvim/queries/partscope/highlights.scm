@@ -1,0 +1,1 @@
+../../../tree-sitter-partscope/queries/highlights.scm
