@@ -5,6 +5,8 @@
 
 use std::f64::consts::FRAC_PI_2;
 
+use nalgebra::Vector2;
+
 /// How an arc was specified.
 #[derive(Debug, Clone, Copy)]
 pub enum ArcSpec {
@@ -47,13 +49,16 @@ fn hypot(a: [f64; 2], b: [f64; 2]) -> f64 {
 /// when |R| ≥ half chord (`half` is clamped to |R|).
 pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
     let abs_r = r.abs();
-    let mid = [(s[0] + e[0]) / 2.0, (s[1] + e[1]) / 2.0];
+    let (s, e) = (Vector2::from(s), Vector2::from(e));
+    let mid = (s + e) / 2.0;
     // LinuxCNC snaps a chord within 1e-12 of the diameter to a half circle.
-    let mut half = hypot(mid, e);
+    let to_end = mid - e;
+    let mut half = to_end.x.hypot(to_end.y);
     if abs_r > 0.0 && half / abs_r > 1.0 - 1e-12 {
         half = abs_r;
     }
-    let base = (e[1] - s[1]).atan2(e[0] - s[0]);
+    let chord = e - s;
+    let base = chord.y.atan2(chord.x);
     // LinuxCNC adds the long-double π/2 (`M_PI_2l`); the low part of π/2
     // reproduces that rounding in double arithmetic.
     const PI_2_LO: f64 = 6.123_233_995_736_766e-17;
@@ -67,7 +72,9 @@ pub fn r_center(s: [f64; 2], e: [f64; 2], r: f64, cw: bool) -> [f64; 2] {
     } else {
         0.0
     };
-    [mid[0] + offset * theta.cos(), mid[1] + offset * theta.sin()]
+    // The centre lies `offset` from the chord's middle, along the chord's normal
+    // on the side the sign of R and the direction choose.
+    (mid + Vector2::new(theta.cos(), theta.sin()) * offset).into()
 }
 
 /// LinuxCNC 2.9 checks (`profile linuxcnc`) or the 2007 EMC2 checks (`emc2`).

@@ -47,9 +47,7 @@ impl Interp<'_, '_> {
     /// The motion the block performs: an explicit group-01 code, or the modal
     /// one when the block has axis words and no code that consumes them.
     fn block_motion(&self, w: &Words) -> Option<(u32, Span)> {
-        if let Some(&(g, s)) = w.g.iter().find(|(g, _)| {
-            matches!(g, 0 | 10 | 20 | 30 | 330 | 331 | 760 | 382..=385) || is_cycle(*g)
-        }) {
+        if let Some(&(g, s)) = w.g.iter().find(|(g, _)| moves_to_axis_words(*g)) {
             return Some((g, s));
         }
         let consumed = [100u32, 280, 300, 920, 520, 650]
@@ -1095,9 +1093,7 @@ impl Interp<'_, '_> {
         let motion = self.chk.motion;
         // NGC107: axis words taken by a group-0 code while a motion mode is only modal.
         if d == Dialect::Rs274ngc && w.any_axis() {
-            let explicit = w.g.iter().any(|g| {
-                matches!(g.0, 0 | 10 | 20 | 30 | 330 | 331 | 760 | 382..=385) || is_cycle(g.0)
-            });
+            let explicit = w.g.iter().any(|g| moves_to_axis_words(g.0));
             if let Some(&(g, s)) =
                 w.g.iter()
                     .find(|g| matches!(g.0, 100 | 280 | 300 | 520 | 920))

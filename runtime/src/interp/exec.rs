@@ -26,7 +26,7 @@ use super::expr::{self, EvalError, Val, VarSource};
 use super::files::{label_key, FileEntry, ProgRef};
 use super::machine_cfg::{parse_tool_table, parse_var_file, MachineCfg};
 use super::rotary_feed;
-use super::state::{is_cycle, CompQueued, CycleMem, Modal, State};
+use super::state::{is_cycle, is_group_1, moves_to_axis_words, CompQueued, CycleMem, Modal, State};
 use super::types::*;
 
 mod budget;

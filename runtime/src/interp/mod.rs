@@ -11,6 +11,7 @@ mod exec;
 pub mod exponential;
 pub mod expr;
 pub mod files;
+pub mod frame;
 pub mod involute;
 mod machine_cfg;
 pub mod ndc;

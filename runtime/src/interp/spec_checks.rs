@@ -340,10 +340,7 @@ impl Interp<'_, '_> {
         // (also at power on): LinuxCNC has nothing to give them to (enhance_block).
         // G10, G28, G30, G52 and G92 use them themselves; G43.1/G43.2 take them
         // as the offset.
-        let group_1 = gm(&[
-            0, 10, 20, 30, 50, 51, 52, 53, 62, 330, 331, 382, 383, 384, 385, 700, 710, 711, 712,
-            720, 721, 722, 760, 800,
-        ]) || w.g.iter().any(|(g, _)| is_cycle(*g));
+        let group_1 = w.g.iter().any(|(g, _)| is_group_1(*g));
         if modal == 800
             && motion.is_none()
             && !group_1

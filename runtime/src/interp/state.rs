@@ -241,6 +241,23 @@ pub fn is_cycle(m: u32) -> bool {
     matches!(m, 730 | 740 | 760 | 810..=890)
 }
 
+/// Modal group 1 (motion) of RS274/NGC, codes × 10: G0–G3, the splines
+/// G5–G5.3, G33/G33.1, the probes G38.2–G38.5, the lathe cycles G70–G72,
+/// G80 and the canned cycles.
+pub fn is_group_1(g: u32) -> bool {
+    matches!(
+        g,
+        0 | 10 | 20 | 30 | 50..=53 | 330 | 331 | 382..=385 | 700 | 710..=712 | 720..=722 | 800
+    ) || is_cycle(g)
+}
+
+/// The group-1 codes that move to the block's axis words as its end point.
+/// The splines and the lathe cycles read their words their own way, and G80
+/// moves nothing.
+pub fn moves_to_axis_words(g: u32) -> bool {
+    is_group_1(g) && !matches!(g, 50..=53 | 700..=722 | 800)
+}
+
 /// One held-back move of cutter compensation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CompQueued {

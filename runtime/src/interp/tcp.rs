@@ -7,15 +7,21 @@
 //! The feed stays along the tip path, so motions keep the tip; the base point
 //! is what the travel limits see.
 
+use nalgebra::Vector3;
+
 /// The tool base point for the tip `tip` (mm) at angles `b_deg`, `c_deg`.
 pub fn base_point(tip: [f64; 3], b_deg: f64, c_deg: f64, length: f64) -> [f64; 3] {
+    (Vector3::from(tip) - tool_arm(b_deg, c_deg, length)).into()
+}
+
+/// The vector from the tool base point to the tip: `length` along the tool
+/// axis, which Axis 5 tilts from −Z and Axis 4 turns about Z. Each component
+/// is the length times the direction's factors in that order, as the
+/// manual's formula writes it.
+pub fn tool_arm(b_deg: f64, c_deg: f64, length: f64) -> Vector3<f64> {
     let (sb, cb) = b_deg.to_radians().sin_cos();
     let (sc, cc) = c_deg.to_radians().sin_cos();
-    [
-        tip[0] - length * sb * cc,
-        tip[1] - length * sb * sc,
-        tip[2] + length * cb,
-    ]
+    Vector3::new(length * sb * cc, length * sb * sc, -(length * cb))
 }
 
 #[cfg(test)]

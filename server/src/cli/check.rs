@@ -76,10 +76,11 @@ fn check_file(
     cache: &ConfigCache,
 ) -> FileReport {
     let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let text = match workspace::read_program(path, max_mb) {
-        Ok(b) => b,
-        Err(e) => return FileReport::io_error(path.to_path_buf(), e),
-    };
+    let text =
+        match crate::resolve::read_program(path, &crate::resolve::SizeLimit::megabytes(max_mb)) {
+            Ok(b) => b,
+            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+        };
     let dir = path
         .parent()
         .map(|p| {
@@ -145,16 +146,13 @@ fn check_file(
             if !interpret {
                 return None;
             }
-            let resolver = crate::resolve::FsResolver::new(
+            let resolver = crate::resolve::FsResolver::for_command_line(
                 path,
-                Some(&crate::resolve::project_root(path)),
                 dialect,
-            )
-            .with_search(crate::resolve::subroutine_path(
                 &loaded.config.machine,
                 loaded.path.as_deref(),
-            ))
-            .with_max_file_size(max_mb);
+                crate::resolve::SizeLimit::megabytes(max_mb),
+            );
             let files = loaded.linuxcnc_files();
             for w in &files.warnings {
                 workspace::warn_once(w);

@@ -187,7 +187,10 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     }
     let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let text = match workspace::read_program(&args.file, max_mb) {
+    let text = match crate::resolve::read_program(
+        &args.file,
+        &crate::resolve::SizeLimit::megabytes(max_mb),
+    ) {
         Ok(b) => b,
         Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
     };
@@ -380,16 +383,13 @@ pub fn run(args: RunArgs) -> ExitCode {
         };
         return mismatch_output(&args, &report, &profile_name);
     }
-    let resolver = crate::resolve::FsResolver::new(
+    let resolver = crate::resolve::FsResolver::for_command_line(
         &args.file,
-        Some(&crate::resolve::project_root(&args.file)),
         dialect,
-    )
-    .with_search(crate::resolve::subroutine_path(
         &loaded.config.machine,
         loaded.path.as_deref(),
-    ))
-    .with_max_file_size(max_mb);
+        crate::resolve::SizeLimit::megabytes(max_mb),
+    );
     let emit_canon = args.emit == Some(Emit::Canon);
     let input = runtime::RunInput {
         program: &parsed.program,

@@ -40,13 +40,16 @@ pub(super) fn external_file(snap: &Snapshot, sym: &Sym, roots: &[PathBuf]) -> Op
         Sym::OLabel(k) | Sym::Program(k) => k,
         _ => return None,
     };
-    let doc = snap.path.as_deref()?;
-    let subs = workspace::subroutine_path(&snap.doc.machine, snap.doc.config_path.as_deref());
-    let subs: Vec<PathBuf> = subs
-        .iter()
-        .filter_map(|p| workspace::confine(p, roots))
-        .collect();
-    workspace::find_program_file(snap.doc.settings.dialect, key, doc, &subs, roots)
+    // The file the dry run would load for the call.
+    crate::resolve::FsResolver::for_workspace(
+        Some(snap.path.as_deref()?),
+        roots,
+        snap.doc.settings.dialect,
+        &snap.doc.machine,
+        snap.doc.config_path.as_deref(),
+        crate::resolve::SizeLimit::bytes(u64::MAX, "the `maxRunFileSize` setting"),
+    )
+    .locate(key)
 }
 
 /// Where the symbol under `offset` is defined.

@@ -91,7 +91,9 @@ use std::process::ExitCode;
 
 use tower_lsp_server::{ClientSocket, LspService};
 
-pub use runtime_runner::{dry_run_result, Loaded};
+pub use crate::resolve::Loaded;
+pub(crate) use dry_run::CancelFlag;
+pub use runtime_runner::dry_run_result;
 pub use server::Backend;
 
 /// Builds the protocol service `run` serves over stdio. It is public so an

@@ -5,25 +5,25 @@
 //! diagnostics. The velocity planner is not wired yet, so the run carries no
 //! timing (the preview shows "–" for times).
 
-use std::cell::RefCell;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use analyzer::{Dialect, FileId};
+use analyzer::FileId;
 use runtime::dryrun::{self, DryRun};
 use runtime::machine::MachineProfile;
-use runtime::{EventKind, ResolvedFile, Resolver, RunInput};
+use runtime::{EventKind, RunInput};
 
 use tower_lsp_server::ls_types::Uri;
 
 use super::decimate::{self, Path};
 use super::dry_run::{
-    summarize, CancelFlag, DryRunInput, DryRunResult, DryRunner, Request, RunReport, SegmentKind,
-    StoppedAt, Timing,
+    summarize, DryRunInput, DryRunResult, DryRunner, Request, RunReport, SegmentKind, StoppedAt,
+    Timing,
 };
 use super::nav::{self, Sym};
 use super::snapshot::lsp_diagnostic;
 use super::workspace;
+use crate::resolve::{FsResolver, SizeLimit};
 
 /// Upper bound on executed blocks per run (loops and calls included).
 #[cfg(not(fuzzing))]
@@ -36,74 +36,7 @@ pub const STEP_BUDGET: u64 = 20_000;
 /// Chord tolerance for sampling arcs in the preview, mm: the finest used.
 const CHORD_TOLERANCE: f64 = 0.01;
 
-/// A file the resolver loaded: (name as called, path, text).
-pub type Loaded = (String, String, Arc<[u8]>);
-
-/// Resolves subprogram names to files next to the document, in
-/// `subroutine_path`, or at the top of a workspace folder.
-struct WorkspaceResolver<'a> {
-    dialect: Dialect,
-    doc: Option<PathBuf>,
-    subroutine_path: Vec<PathBuf>,
-    roots: &'a [PathBuf],
-    /// Every file handed to the interpreter.
-    loaded: RefCell<Vec<Loaded>>,
-    /// The request's cancellation, which the interpreter polls.
-    cancel: &'a CancelFlag,
-    /// Called files above this size (bytes) are not read.
-    max_file_size: usize,
-    /// Files found but not read, by the name called: why.
-    refused: RefCell<Vec<(String, String)>>,
-}
-
-impl Resolver for WorkspaceResolver<'_> {
-    fn searches_like_the_control(&self) -> bool {
-        !self.subroutine_path.is_empty()
-    }
-
-    fn resolve(&self, name: &str, _from: FileId) -> Option<ResolvedFile> {
-        let doc = self.doc.as_deref()?;
-        let path = workspace::find_program_file(
-            self.dialect,
-            name,
-            doc,
-            &self.subroutine_path,
-            self.roots,
-        )?;
-        let len = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
-        if len > self.max_file_size as u64 {
-            self.refused.borrow_mut().push((
-                name.to_string(),
-                format!(
-                    "{}: {} bytes, above the dry-run size limit of {} bytes (the `maxRunFileSize` setting)",
-                    path.file_name().map(|f| f.to_string_lossy()).unwrap_or_default(),
-                    len,
-                    self.max_file_size
-                ),
-            ));
-            return None;
-        }
-        let (canon, text) = workspace::read_confined(&path, self.roots)?;
-        let path = canon.display().to_string();
-        let text: Arc<[u8]> = Arc::from(text.into_bytes());
-        self.loaded
-            .borrow_mut()
-            .push((name.to_string(), path.clone(), text.clone()));
-        Some(ResolvedFile { path, text })
-    }
-
-    fn cancelled(&self) -> bool {
-        self.cancel.is_cancelled()
-    }
-
-    fn refused(&self, name: &str) -> Option<String> {
-        self.refused
-            .borrow()
-            .iter()
-            .find(|(n, _)| n == name)
-            .map(|(_, why)| why.clone())
-    }
-}
+pub use crate::resolve::Loaded;
 
 /// Moves a diagnostic located in a subprogram file onto the document's call
 /// of that file (the document is what the editor shows), naming the file
@@ -158,21 +91,17 @@ pub struct RuntimeRunner;
 
 impl DryRunner for RuntimeRunner {
     fn run(&self, input: &DryRunInput<'_>) -> Option<RunReport> {
-        let subs = workspace::subroutine_path(input.machine, input.config_path.as_deref());
-        let subs: Vec<PathBuf> = subs
-            .iter()
-            .filter_map(|p| workspace::confine(p, input.roots))
-            .collect();
-        let resolver = WorkspaceResolver {
-            dialect: input.settings.dialect,
-            doc: input.doc_path.clone(),
-            subroutine_path: subs,
-            roots: input.roots,
-            loaded: RefCell::new(Vec::new()),
-            cancel: input.cancel,
-            max_file_size: input.max_file_size,
-            refused: RefCell::new(Vec::new()),
-        };
+        // The same resolver as `partscope run`, confined to the workspace folders;
+        // called files obey the document's dry-run size limit.
+        let resolver = FsResolver::for_workspace(
+            input.doc_path.as_deref(),
+            input.roots,
+            input.settings.dialect,
+            input.machine,
+            input.config_path.as_deref(),
+            SizeLimit::bytes(input.max_file_size as u64, "the `maxRunFileSize` setting"),
+        )
+        .with_cancel(input.cancel.clone());
         // Missing or outside-the-workspace files leave the run without them, as
         // `partscope run` does for files a config names.
         let read = |p: &Option<PathBuf>| {
@@ -271,7 +200,7 @@ impl DryRunner for RuntimeRunner {
                 t1.elapsed()
             );
         }
-        let loaded = resolver.loaded.borrow();
+        let loaded = resolver.loaded();
         let report = report_of(input.program, &out, path, plan.as_ref(), &loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
@@ -448,7 +377,8 @@ pub fn dry_run_result(
 #[cfg(test)]
 mod run_tests {
     use super::*;
-    use analyzer::Settings;
+    use crate::lsp::CancelFlag;
+    use analyzer::{Dialect, Settings};
 
     fn run(text: &str) -> RunReport {
         let settings = Settings::new(Dialect::Rs274ngc);

@@ -90,7 +90,7 @@ impl Interp<'_, '_> {
         if cap.incremental {
             end = end + start;
         }
-        if let Some(m) = w.g.iter().map(|g| g.0).find(|g| group1(*g)) {
+        if let Some(m) = w.g.iter().map(|g| g.0).find(|g| is_group_1(*g)) {
             cap.mode = m;
         }
         if start == end {
@@ -335,13 +335,4 @@ impl Interp<'_, '_> {
         self.st.modal.ijk_abs = saved.1;
         r
     }
-}
-
-/// Group-1 (motion) codes, in tenths.
-fn group1(g: u32) -> bool {
-    matches!(
-        g,
-        0 | 10 | 20 | 30 | 50 | 51 | 52 | 53 | 330 | 331 | 382..=385 | 700 | 710..=712 | 720..=722
-            | 730 | 740 | 760 | 800..=890
-    )
 }

@@ -5,6 +5,7 @@
 //! block's axis words).
 
 use super::*;
+use crate::interp::frame;
 
 impl Interp<'_, '_> {
     /// Work offset of the active origin, mm.
@@ -40,10 +41,7 @@ impl Interp<'_, '_> {
         let rot = self.xy_rotation();
         if rot != 0.0 {
             // LinuxCNC rotates the offset point about the work origin (G10 L2 R).
-            let (s, c) = rot.to_radians().sin_cos();
-            let (x, y) = (q[0], q[1]);
-            q[0] = x * c - y * s;
-            q[1] = x * s + y * c;
+            [q[0], q[1]] = frame::rotate(&frame::plane_rotation(rot), [q[0], q[1]]);
         }
         let o = self.g5x_prog();
         let mut m = [0.0; 6];
@@ -65,12 +63,10 @@ impl Interp<'_, '_> {
         }
         let rot = self.xy_rotation();
         if rot != 0.0 {
-            let (s, c) = (-rot).to_radians().sin_cos();
-            let (x, y) = (q[0], q[1]);
+            let back = frame::rotate(&frame::plane_rotation(-rot), [q[0], q[1]]);
             // Round-off from the rotation would print as -0.000000.
             let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
-            q[0] = snap(x * c - y * s);
-            q[1] = snap(x * s + y * c);
+            [q[0], q[1]] = back.map(snap);
         }
         for i in 0..6 {
             q[i] -= self.st.g92[i] + self.st.g52[i];
@@ -85,25 +81,15 @@ impl Interp<'_, '_> {
         if m.rotation {
             let (a, b) = self.plane_axes();
             let (c, ang) = self.st.rotation;
-            let (s, co) = (-ang).to_radians().sin_cos();
-            let (x, y) = (q[a] - c[0], q[b] - c[1]);
-            q[a] = c[0] + x * co - y * s;
-            q[b] = c[1] + x * s + y * co;
+            [q[a], q[b]] = frame::rotate_about(&frame::plane_rotation(-ang), c, [q[a], q[b]]);
         }
         if m.scaling {
-            for i in 0..3 {
-                let f = self.st.scale.1[i];
-                if f != 0.0 {
-                    q[i] = self.st.scale.0[i] + (q[i] - self.st.scale.0[i]) / f;
-                }
-            }
+            let (c, f) = self.st.scale;
+            [q[0], q[1], q[2]] = frame::unscale_about(c, f, [q[0], q[1], q[2]]);
         }
         if m.mirror {
-            for i in 0..3 {
-                if self.st.mirror.0[i] {
-                    q[i] = 2.0 * self.st.mirror.1[i] - q[i];
-                }
-            }
+            let (mask, c) = self.st.mirror;
+            [q[0], q[1], q[2]] = frame::mirror(mask, c, [q[0], q[1], q[2]]);
         }
         q
     }
@@ -130,24 +116,17 @@ impl Interp<'_, '_> {
         let mut q = p;
         let m = &self.st.modal;
         if m.mirror {
-            for i in 0..3 {
-                if self.st.mirror.0[i] {
-                    q[i] = 2.0 * self.st.mirror.1[i] - q[i];
-                }
-            }
+            let (mask, c) = self.st.mirror;
+            [q[0], q[1], q[2]] = frame::mirror(mask, c, [q[0], q[1], q[2]]);
         }
         if m.scaling {
-            for i in 0..3 {
-                q[i] = self.st.scale.0[i] + (q[i] - self.st.scale.0[i]) * self.st.scale.1[i];
-            }
+            let (c, f) = self.st.scale;
+            [q[0], q[1], q[2]] = frame::scale_about(c, f, [q[0], q[1], q[2]]);
         }
         if m.rotation {
             let (a, b) = self.plane_axes();
             let (c, ang) = self.st.rotation;
-            let (s, co) = ang.to_radians().sin_cos();
-            let (x, y) = (q[a] - c[0], q[b] - c[1]);
-            q[a] = c[0] + x * co - y * s;
-            q[b] = c[1] + x * s + y * co;
+            [q[a], q[b]] = frame::rotate_about(&frame::plane_rotation(ang), c, [q[a], q[b]]);
         }
         q
     }
@@ -448,14 +427,13 @@ impl Interp<'_, '_> {
                             self.read_param(base as i64) * f,
                             self.read_param(base as i64 + 1) * f,
                         ];
-                        let (sn, cs) = rot.to_radians().sin_cos();
-                        let (dx, dy) = (abs[0] - off[0], abs[1] - off[1]);
-                        let cur = [dx * cs + dy * sn, -dx * sn + dy * cs];
+                        let turn = frame::plane_rotation(rot);
+                        let cur = frame::unrotate(&turn, [abs[0] - off[0], abs[1] - off[1]]);
                         let want = [
                             axis(self, 0).unwrap_or(cur[0]),
                             axis(self, 1).unwrap_or(cur[1]),
                         ];
-                        let rw = [want[0] * cs - want[1] * sn, want[0] * sn + want[1] * cs];
+                        let rw = frame::rotate(&turn, want);
                         // Round-off from the rotation would print as -0.0000.
                         let snap = |v: f64| if v.abs() < 1e-12 { 0.0 } else { v };
                         self.set_param(base, Some(snap((abs[0] - rw[0]) / f)));
@@ -521,8 +499,8 @@ impl Interp<'_, '_> {
                             *v = self.st.mpos[i] - g5[i];
                         }
                         let rotate = |x: f64, y: f64, deg: f64| {
-                            let (sn, cs) = deg.to_radians().sin_cos();
-                            (x * cs - y * sn, x * sn + y * cs)
+                            let [x, y] = frame::rotate(&frame::plane_rotation(deg), [x, y]);
+                            (x, y)
                         };
                         (t[0], t[1]) = rotate(t[0], t[1], -rot);
                         if l == 10 {
