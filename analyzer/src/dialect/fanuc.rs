@@ -1706,6 +1706,36 @@ pub static ADDRESSES: &[AddressInfo] = &[
     },
 ];
 
+/// FANUC G65/G66 Argument Specification I: the local variable a letter sets
+/// (`X` → #24). I, J and K give their first set (#4–#6); the interpreter reads
+/// later sets by Argument Specification II.
+pub fn macro_argument_variable(letter: u8) -> Option<u32> {
+    Some(match letter {
+        b'A' => 1,
+        b'B' => 2,
+        b'C' => 3,
+        b'I' => 4,
+        b'J' => 5,
+        b'K' => 6,
+        b'D' => 7,
+        b'E' => 8,
+        b'F' => 9,
+        b'H' => 11,
+        b'M' => 13,
+        b'Q' => 17,
+        b'R' => 18,
+        b'S' => 19,
+        b'T' => 20,
+        b'U' => 21,
+        b'V' => 22,
+        b'W' => 23,
+        b'X' => 24,
+        b'Y' => 25,
+        b'Z' => 26,
+        _ => return None,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::{
@@ -1812,34 +1842,4 @@ mod tests {
         assert!(lookup_address(D, ',').is_some());
         assert!(lookup_address(D, 'E').is_none());
     }
-}
-
-/// FANUC G65/G66 Argument Specification I: the local variable a letter sets
-/// (`X` → #24). I, J and K give their first set (#4–#6); the interpreter reads
-/// later sets by Argument Specification II.
-pub fn macro_argument_variable(letter: u8) -> Option<u32> {
-    Some(match letter {
-        b'A' => 1,
-        b'B' => 2,
-        b'C' => 3,
-        b'I' => 4,
-        b'J' => 5,
-        b'K' => 6,
-        b'D' => 7,
-        b'E' => 8,
-        b'F' => 9,
-        b'H' => 11,
-        b'M' => 13,
-        b'Q' => 17,
-        b'R' => 18,
-        b'S' => 19,
-        b'T' => 20,
-        b'U' => 21,
-        b'V' => 22,
-        b'W' => 23,
-        b'X' => 24,
-        b'Y' => 25,
-        b'Z' => 26,
-        _ => return None,
-    })
 }
