@@ -15,7 +15,7 @@ use super::{
     cross3, dist3, dot3, norm3, sub3, unit3, Causes, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
-use blend::Circ;
+use blend::{start_accel_dir, Circ};
 use chain::Chain;
 
 /// Share of the acceleration arcs keep for the tangential direction until LinuxCNC
@@ -1362,27 +1362,6 @@ impl Planner {
             .map(|a| a.jerk)
             .fold(f64::INFINITY, f64::min)
     }
-}
-
-/// Direction of acceleration at the start of an element, which LinuxCNC uses for
-/// the corner angle of a parabolic blend (`tcGetStartAccelUnitVector`): on a
-/// planar arc the tangent tilted towards the centre by the normal acceleration at
-/// half the requested speed, so a corner into an arc counts as sharper than its
-/// tangents say.
-fn start_accel_dir(tc: &Tc) -> [f64; 3] {
-    let Some(c) = tc.circ.filter(|_| tc.ty == TcType::Circle) else {
-        return tc.u_start;
-    };
-    // The plain circle tangent: LinuxCNC leaves the spiral out here.
-    let t = unit3(&cross3(&c.normal, &sub3(&c.start, &c.center)));
-    let inward = unit3(&sub3(&c.center, &c.start));
-    let a_t = tc.overall_accel();
-    let a_n = (0.5 * tc.reqvel).powi(2) / c.radius.max(1e-12);
-    unit3(&[
-        t[0] * a_t + inward[0] * a_n,
-        t[1] * a_t + inward[1] * a_n,
-        t[2] * a_t + inward[2] * a_n,
-    ])
 }
 
 /// The radius LinuxCNC's planner takes for an arc's centripetal speed limit

@@ -463,6 +463,27 @@ impl Planner {
     }
 }
 
+/// Direction of acceleration at the start of an element, which LinuxCNC uses for
+/// the corner angle of a parabolic blend (`tcGetStartAccelUnitVector`): on a
+/// planar arc the tangent tilted towards the centre by the normal acceleration at
+/// half the requested speed, so a corner into an arc counts as sharper than its
+/// tangents say.
+pub(super) fn start_accel_dir(tc: &Tc) -> [f64; 3] {
+    let Some(c) = tc.circ.filter(|_| tc.ty == TcType::Circle) else {
+        return tc.u_start;
+    };
+    // The plain circle tangent: LinuxCNC leaves the spiral out here.
+    let t = unit3(&cross3(&c.normal, &sub3(&c.start, &c.center)));
+    let inward = unit3(&sub3(&c.center, &c.start));
+    let a_t = tc.overall_accel();
+    let a_n = (0.5 * tc.reqvel).powi(2) / c.radius.max(1e-12);
+    unit3(&[
+        t[0] * a_t + inward[0] * a_n,
+        t[1] * a_t + inward[1] * a_n,
+        t[2] * a_t + inward[2] * a_n,
+    ])
+}
+
 /// `calculateInscribedDiameter`: the largest vector length in the plane with
 /// unit normal `n` that stays within the per-axis `bounds` (0 = axis absent).
 fn inscribed(n: &[f64; 3], bounds: &[f64; 3]) -> f64 {
