@@ -242,5 +242,11 @@ for plane in ("xy", "xz", "yz"):
                                                -r * math.sin(ang - math.radians(step_deg)))))
         tag = "%s_r%s_d%s_q%s_f%d" % (plane, fmt(r).replace(".", "p"), fmt(step_deg), q.replace(".", "p"), feed)
         write("arcfit_q", tag, lines)
+        if r == 5.0 and plane != "xy":
+            # The same chain without the G64 corner: exact path (G61), and entered by a
+            # rapid. They separate the chain's own kinks from the corner's blend.
+            write("arcfit_g61", tag, [lines[0], "G61"] + lines[2:])
+            start = lines[2].replace("G1 ", "G0 ").replace(" F%d" % feed, "")
+            write("arcfit_g0", tag, lines[:2] + [start, "F%d" % feed] + lines[3:])
 
 print(len([f for f in os.listdir(OUT) if f.endswith(".ngc")]), "programs in", os.path.relpath(OUT))

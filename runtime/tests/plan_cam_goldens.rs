@@ -203,17 +203,8 @@ fn cam_goldens_match_linuxcnc() {
     // What a user quoting from the estimate relies on (issue #19's hold-out targets).
     assert!(median(ours.clone()) <= 1.0, "median {:.2} %", median(ours));
     for r in &rows {
-        // Known gap: a G64 corner from a line into a chain of 2° XZ/YZ arcs (LinuxCNC
-        // builds a blend arc there, we fall back to a parabolic blend).
-        let limit = if r.program.starts_with("arcfit_q__xz_r5")
-            || r.program.starts_with("arcfit_q__yz_r5")
-        {
-            4.0
-        } else {
-            3.0
-        };
         assert!(
-            rel(r, r.ours) <= limit,
+            rel(r, r.ours) <= 3.0,
             "{} on {}: ours {:.4} s, LinuxCNC {:.4} s",
             r.program,
             r.machine,

@@ -15,7 +15,7 @@ use super::{
     cross3, dist3, dot3, norm3, sub3, unit3, Causes, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
 };
-use blend::Circ;
+use blend::{start_accel_dir, Circ};
 use chain::Chain;
 
 /// Share of the acceleration arcs keep for the tangential direction until LinuxCNC
@@ -515,13 +515,35 @@ impl Planner {
                 tc.maxaccel = amax;
                 tc.acc_ratio_tan = ACC_RATIO_TAN;
                 let sign = if sweep >= 0.0 { 1.0 } else { -1.0 };
-                let tangent = |p: &[f64; 3]| -> [f64; 3] {
+                let in_plane = |p: &[f64; 3]| -> [f64; 3] {
                     let r = sub3(p, &center);
-                    let t = cross3(&n, &r);
-                    let t = unit3(&t);
+                    let along = dot3(&r, &n);
+                    [
+                        r[0] - along * n[0],
+                        r[1] - along * n[1],
+                        r[2] - along * n[2],
+                    ]
+                };
+                // LinuxCNC runs an arc whose end is off its circle (rounded
+                // coordinates) as a spiral, and its tangents lean by the change of
+                // radius; chained arcs then meet at a small kink it plans for.
+                let spiral = if lcnc {
+                    norm3(&in_plane(&e3)) - norm3(&in_plane(&s3))
+                } else {
+                    0.0
+                };
+                let tangent = |p: &[f64; 3]| -> [f64; 3] {
+                    let r = in_plane(p);
+                    let t = unit3(&cross3(&n, &r));
+                    let u = unit3(&r);
+                    let turn = if lcnc {
+                        norm3(&r) * sweep.abs()
+                    } else {
+                        planar
+                    };
                     let mut v = [0.0; 3];
                     for i in 0..3 {
-                        v[i] = t[i] * sign * planar + n[i] * rise;
+                        v[i] = t[i] * sign * turn + n[i] * rise + u[i] * spiral;
                     }
                     unit3(&v)
                 };
@@ -545,7 +567,8 @@ impl Planner {
                         normal: n_eff,
                         start: s3,
                         angle: sweep.abs(),
-                        radius,
+                        radius: norm3(&in_plane(&s3)),
+                        spiral,
                     });
                 }
                 if !lcnc {
@@ -792,7 +815,10 @@ impl Planner {
         let t_blend = t_reach.min((vr1 / acc1).max(vr2 / acc2));
         let mut v1 = vr1.min(t_blend * acc1);
         let mut v2 = vr2.min(t_blend * acc2);
-        let theta = (-dot3(&a.u_end, &b.u_start)).clamp(-1.0, 1.0).acos() / 2.0;
+        let theta = (-dot3(&a.u_end, &start_accel_dir(b)))
+            .clamp(-1.0, 1.0)
+            .acos()
+            / 2.0;
         if a.tolerance > 0.0 {
             let c = theta.cos();
             if c > (PI / 2.0 - 1e-3).cos() {

@@ -183,8 +183,7 @@ impl Planner {
     fn blend_arc_line(&self, prev: &Tc, tc: &Tc, c1: &Circ) -> Option<Blend> {
         let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
         let p = c1.point(c1.angle);
-        let center1 = c1.center;
-        let radius1 = c1.radius;
+        let (center1, radius1) = c1.spiral_fit(&p, &u_tan1);
         // Convex when the line leaves the circle's outside.
         let convex1 = dot3(&sub3(&p, &center1), &u_tan2) < 0.0;
         let blend_angle_1 = if convex1 { theta_tan } else { PI / 2.0 };
@@ -251,7 +250,7 @@ impl Planner {
             return None;
         }
         let mut prev_circ = *c1;
-        prev_circ.angle = new_angle;
+        prev_circ.trim_end(new_angle);
         Some(Blend {
             arc: self.blend_tc(prev, &bp, length, t_start, t_end),
             trim_prev: trim1 * radius1,
@@ -271,8 +270,8 @@ impl Planner {
         let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
         let normal = unit3(&sub3(&u_tan2, &u_tan1));
         let p = c2.start;
-        let (center1, radius1) = (c1.center, c1.radius);
-        let (center2, radius2) = (c2.center, c2.radius);
+        let (center1, radius1) = c1.spiral_fit(&p, &u_tan1);
+        let (center2, radius2) = c2.spiral_fit(&p, &u_tan2);
         let convex1 = dot3(&sub3(&p, &center1), &u_tan2) < 0.0;
         let convex2 = dot3(&sub3(&p, &center2), &u_tan1) >= 0.0;
         let blend_angle_1 = if convex1 { theta_tan } else { PI / 2.0 };
@@ -356,10 +355,9 @@ impl Planner {
             return None;
         }
         let mut prev_circ = *c1;
-        prev_circ.angle = new1;
+        prev_circ.trim_end(new1);
         let mut next_circ = *c2;
-        next_circ.start = c2.point(trim2);
-        next_circ.angle = new2;
+        next_circ.trim_start(trim2);
         let arc_start = prev_circ.point(new1);
         let (length, t_start, t_end) =
             spherical_arc(&arc_start, &next_circ.start, &arc_center, &binormal)?;
@@ -387,8 +385,7 @@ impl Planner {
     fn blend_line_arc(&self, prev: &Tc, tc: &Tc, c2: &Circ) -> Option<Blend> {
         let (u_tan1, u_tan2, theta_tan, binormal) = Self::corner_geometry(prev, tc)?;
         let p = c2.start;
-        let center2 = c2.center;
-        let radius2 = c2.radius;
+        let (center2, radius2) = c2.spiral_fit(&p, &u_tan2);
         let convex2 = dot3(&sub3(&p, &center2), &u_tan1) >= 0.0;
         let blend_angle_2 = if convex2 { theta_tan } else { PI / 2.0 };
         let phi2_max = (c2.angle / 3.0).min(blend_angle_2);
@@ -445,8 +442,7 @@ impl Planner {
             p[2] - u_tan1[2] * d_l,
         ];
         let mut next_circ = *c2;
-        next_circ.start = c2.point(trim2);
-        next_circ.angle = c2.angle - trim2;
+        next_circ.trim_start(trim2);
         let (arc_len, t_start, t_end) =
             spherical_arc(&line_end, &next_circ.start, &arc_center, &binormal)?;
         let u_circ = next_circ.tangent(0.0);
@@ -465,6 +461,27 @@ impl Planner {
             next_circ: Some(next_circ),
         })
     }
+}
+
+/// Direction of acceleration at the start of an element, which LinuxCNC uses for
+/// the corner angle of a parabolic blend (`tcGetStartAccelUnitVector`): on a
+/// planar arc the tangent tilted towards the centre by the normal acceleration at
+/// half the requested speed, so a corner into an arc counts as sharper than its
+/// tangents say.
+pub(super) fn start_accel_dir(tc: &Tc) -> [f64; 3] {
+    let Some(c) = tc.circ.filter(|_| tc.ty == TcType::Circle) else {
+        return tc.u_start;
+    };
+    // The plain circle tangent: LinuxCNC leaves the spiral out here.
+    let t = unit3(&cross3(&c.normal, &sub3(&c.start, &c.center)));
+    let inward = unit3(&sub3(&c.center, &c.start));
+    let a_t = tc.overall_accel();
+    let a_n = (0.5 * tc.reqvel).powi(2) / c.radius.max(1e-12);
+    unit3(&[
+        t[0] * a_t + inward[0] * a_n,
+        t[1] * a_t + inward[1] * a_n,
+        t[2] * a_t + inward[2] * a_n,
+    ])
 }
 
 /// `calculateInscribedDiameter`: the largest vector length in the plane with
@@ -495,7 +512,8 @@ fn inscribed(n: &[f64; 3], bounds: &[f64; 3]) -> f64 {
 type Corner = ([f64; 3], [f64; 3], f64, [f64; 3]);
 
 /// A planar arc as the blend code sees it: it turns counter-clockwise about
-/// `normal` by `angle` from `start`.
+/// `normal` by `angle` from `start`, its radius changing evenly by `spiral` on the
+/// way (an end point off the circle, as LinuxCNC's `PmCircle` keeps it).
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Circ {
     pub(super) center: [f64; 3],
@@ -503,31 +521,85 @@ pub(super) struct Circ {
     pub(super) start: [f64; 3],
     pub(super) angle: f64,
     pub(super) radius: f64,
+    pub(super) spiral: f64,
 }
 
 impl Circ {
     /// Point reached after turning by `a` from the start (`pmCirclePoint`).
     pub(super) fn point(&self, a: f64) -> [f64; 3] {
-        let r = sub3(&self.start, &self.center);
-        let perp = cross3(&self.normal, &r);
-        let (s, c) = a.sin_cos();
+        let r = self.radial(a);
         [
-            self.center[0] + r[0] * c + perp[0] * s,
-            self.center[1] + r[1] * c + perp[1] * s,
-            self.center[2] + r[2] * c + perp[2] * s,
+            self.center[0] + r[0],
+            self.center[1] + r[1],
+            self.center[2] + r[2],
         ]
     }
 
-    /// Unit direction of travel after turning by `a`.
-    pub(super) fn tangent(&self, a: f64) -> [f64; 3] {
+    /// Vector from the centre to the point at `a`.
+    fn radial(&self, a: f64) -> [f64; 3] {
         let r = sub3(&self.start, &self.center);
         let perp = cross3(&self.normal, &r);
         let (s, c) = a.sin_cos();
-        unit3(&[
-            -r[0] * s + perp[0] * c,
-            -r[1] * s + perp[1] * c,
-            -r[2] * s + perp[2] * c,
-        ])
+        let p = [
+            r[0] * c + perp[0] * s,
+            r[1] * c + perp[1] * s,
+            r[2] * c + perp[2] * s,
+        ];
+        let grow = if self.angle > 0.0 {
+            a / self.angle * self.spiral
+        } else {
+            0.0
+        };
+        let u = unit3(&p);
+        [p[0] + u[0] * grow, p[1] + u[1] * grow, p[2] + u[2] * grow]
+    }
+
+    /// Radius change per radian.
+    fn spiral_rate(&self) -> f64 {
+        if self.angle > 0.0 {
+            self.spiral / self.angle
+        } else {
+            0.0
+        }
+    }
+
+    /// Unit direction of travel after turning by `a` (`pmCircleTangentVector`).
+    pub(super) fn tangent(&self, a: f64) -> [f64; 3] {
+        let r = self.radial(a);
+        let t = cross3(&self.normal, &r);
+        let u = unit3(&r);
+        let dr = self.spiral_rate();
+        unit3(&[t[0] + u[0] * dr, t[1] + u[1] * dr, t[2] + u[2] * dr])
+    }
+
+    /// The circle through `p` that the blend code puts in place of the spiral
+    /// (`findSpiralApproximation`): the centre moved along the tangent `u_tan`
+    /// by the radius change per radian.
+    fn spiral_fit(&self, p: &[f64; 3], u_tan: &[f64; 3]) -> ([f64; 3], f64) {
+        let dr = self.spiral_rate();
+        let c = [
+            self.center[0] + u_tan[0] * dr,
+            self.center[1] + u_tan[1] * dr,
+            self.center[2] + u_tan[2] * dr,
+        ];
+        (c, norm3(&sub3(p, &c)))
+    }
+
+    /// Shortens the arc at its end to `new_angle` (`pmCircleStretch`).
+    fn trim_end(&mut self, new_angle: f64) {
+        if self.angle > 0.0 {
+            self.spiral *= new_angle / self.angle;
+        }
+        self.angle = new_angle;
+    }
+
+    /// Removes the first `trim` radians (`pmCircleStretch` from the end).
+    fn trim_start(&mut self, trim: f64) {
+        let new_angle = self.angle - trim;
+        let start = self.point(trim);
+        self.start = start;
+        self.radius = norm3(&sub3(&start, &self.center));
+        self.trim_end(new_angle);
     }
 }
 
