@@ -218,22 +218,35 @@ impl DryRunner for RuntimeRunner {
         // planner's tail.
         let (mut out, path, streamed, t_path) = std::thread::scope(|s| {
             let (tx, rx) = std::sync::mpsc::sync_channel::<Chunk>(PLAN_QUEUE);
+            // Planned chunks come back to be filled again: fresh memory for
+            // every chunk would cost a page fault per 4 KB.
+            let (back_tx, back_rx) = std::sync::mpsc::channel::<Chunk>();
             let planner = profile.as_ref().map(|profile| {
                 s.spawn(move || {
                     let mut plan = dryrun::RunPlan::new(profile);
-                    for (m, e) in rx {
+                    for (mut m, mut e) in rx {
                         plan.push(&m, &e, &|| input.cancel.is_cancelled());
+                        m.clear();
+                        e.clear();
+                        let _ = back_tx.send((m, e));
                     }
                     plan
                 })
             });
+            let send = |m: &[runtime::Motion], e: &[runtime::Event]| {
+                let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
+                mb.extend_from_slice(m);
+                eb.extend_from_slice(e);
+                // A planner that panicked drops its end; the join passes the panic on.
+                let _ = tx.send((mb, eb));
+            };
             let out = match previous {
                 Some(prev) => {
                     let out = runtime::rerun(&run_input, true, prev);
                     // The rerun took most of its motions from the previous
                     // run: the planner gets the whole run afterwards.
                     if planner.is_some() {
-                        send_run(&out, &tx);
+                        send_run(&out, &send);
                     }
                     out
                 }
@@ -241,10 +254,7 @@ impl DryRunner for RuntimeRunner {
                     &run_input,
                     true,
                     Some(runtime::ValueLimits::default()),
-                    // A planner that panicked drops its end; the join passes the panic on.
-                    &mut |m, e| {
-                        let _ = tx.send((m.to_vec(), e.to_vec()));
-                    },
+                    &mut |m, e| send(m, e),
                 ),
                 None => runtime::run_checkpointed_recording(
                     &run_input,
@@ -255,11 +265,12 @@ impl DryRunner for RuntimeRunner {
             drop(tx);
             if timing {
                 eprintln!(
-                    "partscope lsp: interpreter {:?}, {} of {} blocks executed{}",
+                    "partscope lsp: interpreter {:?}, {} of {} blocks executed{}; {}",
                     t0.elapsed(),
                     out.checkpoints.executed(),
                     input.program.blocks.len(),
-                    if rerun { " (rerun)" } else { "" }
+                    if rerun { " (rerun)" } else { "" },
+                    memory()
                 );
             }
             // A cancelled run stopped part way: no toolpath.
@@ -311,9 +322,10 @@ impl DryRunner for RuntimeRunner {
         }
         if timing {
             eprintln!(
-                "partscope lsp: interpreter and toolpath {t_path:?} ({} motions), with the planner {:?}",
+                "partscope lsp: interpreter and toolpath {t_path:?} ({} motions), with the planner {:?}; {}",
                 out.motions.len(),
-                t0.elapsed()
+                t0.elapsed(),
+                memory()
             );
         }
         let loaded = resolver.loaded.borrow();
@@ -346,21 +358,28 @@ impl DryRunner for RuntimeRunner {
 
 /// Sends a finished run to the planner in chunks of [`PLAN_CHUNK`] motions
 /// (an event goes with the motion it comes before).
-fn send_run(out: &runtime::RunOutput, tx: &std::sync::mpsc::SyncSender<Chunk>) {
+fn send_run(out: &runtime::RunOutput, send: &dyn Fn(&[runtime::Motion], &[runtime::Event])) {
     let mut first_event = 0;
     let mut end = 0;
     for motions in out.motions.chunks(PLAN_CHUNK) {
         end += motions.len();
         let rest = out.events.get(first_event..).unwrap_or_default();
         let n = rest.partition_point(|e| e.motion_index < end);
-        // A planner that panicked drops its end; the join passes the panic on.
-        if tx.send((motions.to_vec(), rest[..n].to_vec())).is_err() {
-            return;
-        }
+        send(motions, rest.get(..n).unwrap_or_default());
         first_event += n;
     }
-    let rest = out.events.get(first_event..).unwrap_or_default();
-    let _ = tx.send((Vec::new(), rest.to_vec()));
+    send(&[], out.events.get(first_event..).unwrap_or_default());
+}
+
+/// The process's resident and peak memory, for `PARTSCOPE_LSP_TIMING`.
+fn memory() -> String {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .filter(|l| l.starts_with("VmRSS") || l.starts_with("VmHWM"))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The longest side of the box around the motions' end points.
