@@ -358,9 +358,39 @@ fn interleave_while(
     first_index: usize,
     emit: &mut dyn FnMut(plan::Event) -> bool,
 ) -> bool {
-    let mut e = events.iter().enumerate().peekable();
+    interleave_at(motions, events, first_index, 0, 0, emit)
+}
+
+/// [`interleave_while`] for a chunk of a run whose events count motions from
+/// the run's first (`motions[0]` is motion `first_index`, `events[0]` event
+/// `first_event`).
+fn interleave_from(
+    motions: &[Motion],
+    events: &[IEvent],
+    first_index: usize,
+    first_event: usize,
+    emit: &mut dyn FnMut(plan::Event) -> bool,
+) -> bool {
+    interleave_at(motions, events, first_index, first_index, first_event, emit)
+}
+
+/// The interleaving: an event's `motion_index` less `base` is its place in
+/// `motions`; events are numbered from `first_event`.
+fn interleave_at(
+    motions: &[Motion],
+    events: &[IEvent],
+    first_index: usize,
+    base: usize,
+    first_event: usize,
+    emit: &mut dyn FnMut(plan::Event) -> bool,
+) -> bool {
+    let mut e = events
+        .iter()
+        .enumerate()
+        .map(|(k, ev)| (first_event + k, ev))
+        .peekable();
     for (i, m) in motions.iter().enumerate() {
-        while let Some((k, ev)) = e.next_if(|(_, ev)| ev.motion_index <= i) {
+        while let Some((k, ev)) = e.next_if(|(_, ev)| ev.motion_index.saturating_sub(base) <= i) {
             if let Some(pe) = planner_event(ev, k) {
                 if !emit(pe) {
                     return false;
@@ -720,13 +750,11 @@ fn plan_run_stoppable(
     profile: &MachineProfile,
     stop: &dyn Fn() -> bool,
 ) -> (DryRun, bool) {
-    let mut motion_times: Vec<(f64, f64, f64)> = vec![(0.0, 0.0, 0.0); out.motions.len()];
-    let mut event_seconds: Vec<f64> = vec![0.0; out.events.len()];
-    let mut blocks = BlockAcc::default();
     // Period-by-period execution costs time in proportion to machine time; beyond
     // SERVO_SIMULATION_LIMIT_S of (naively estimated) motion the closed-form profiles,
-    // within a few milliseconds of it per move, keep long jobs fast. The events
-    // are made twice rather than kept: a million of them take hundreds of MB.
+    // within a few milliseconds of it per move, keep long jobs fast. The whole run
+    // is at hand, so a cheap first pass decides instead of a servo-period plan
+    // that stops at the limit.
     let mut profile = profile.clone();
     if profile.servo_simulation {
         let rapid = profile.traj_max_velocity.max(1e-9);
@@ -742,93 +770,244 @@ fn plan_run_stoppable(
             profile.servo_simulation = false;
         }
     }
-    let profile = &profile;
-    let mut planner = plan::Planner::new(profile);
-    // The planner's clock counts motion only; the dwell and auxiliary time
-    // before an element puts it on the program's clock.
-    let offset = std::cell::Cell::new(0.0);
-    let mut record = |t: SegmentTiming| {
-        let off = offset.get();
-        if let Some(slot) = motion_times.get_mut(t.block as usize) {
-            if slot.1 == 0.0 {
-                slot.0 = t.start_s + off;
-            }
-            slot.1 = slot.1.max(t.end_s + off);
-            slot.2 = slot.2.max(t.peak_speed);
+    let mut plan = RunPlan::new(&profile);
+    // The first pass decided: the limit cannot be passed again.
+    plan.servo_limit = false;
+    plan.push(&out.motions, &out.events, stop);
+    plan.finish_stopped(&out.events)
+}
+
+/// [`plan_run`] fed chunk by chunk while the interpreter runs
+/// ([`crate::interp::run_checkpointed_observed`]): the same plan, element for
+/// element, once [`RunPlan::finish`] has the run's events.
+///
+/// `plan_run` chooses closed-form execution when the whole program's naive motion
+/// time exceeds [`SERVO_SIMULATION_LIMIT_S`], which a stream knows only when it
+/// passes it: the plan then stops ([`RunPlan::over_limit`]) and the finished run
+/// must be planned with [`plan_run`] instead.
+pub struct RunPlan {
+    planner: plan::Planner,
+    /// The planner simulates servo periods, so the limit applies.
+    servo_limit: bool,
+    naive_s: f64,
+    rapid: f64,
+    over: bool,
+    stopped: bool,
+    /// Planner events pushed (the stop is polled every 1024).
+    pushed: usize,
+    /// Per motion so far: file and line, and length.
+    motions: Vec<(u32, u32)>,
+    lengths: Vec<f64>,
+    events: usize,
+    motion_times: Vec<(f64, f64, f64)>,
+    event_seconds: Vec<f64>,
+    blocks: BlockAcc,
+    /// The dwell and auxiliary time so far (the planner's clock counts motion only).
+    offset: f64,
+}
+
+impl RunPlan {
+    /// Plans with `profile` as given (servo periods until the limit, when it
+    /// simulates them).
+    pub fn new(profile: &MachineProfile) -> RunPlan {
+        RunPlan {
+            planner: plan::Planner::new(profile),
+            servo_limit: profile.servo_simulation,
+            naive_s: 0.0,
+            rapid: profile.traj_max_velocity.max(1e-9),
+            over: false,
+            stopped: false,
+            pushed: 0,
+            motions: Vec::new(),
+            lengths: Vec::new(),
+            events: 0,
+            motion_times: Vec::new(),
+            event_seconds: Vec::new(),
+            blocks: BlockAcc::default(),
+            offset: 0.0,
         }
-        if let Some(m) = out.motions.get(t.block as usize) {
-            blocks.element(m.file.0, m.line, &t, off);
-        }
-    };
-    let mut i = 0usize;
-    let finished = interleave_while(&out.motions, &out.events, 0, &mut |ev| {
-        if i.is_multiple_of(1024) && stop() {
-            return false;
-        }
-        i += 1;
-        let before = match ev {
-            plan::Event::Motion(_) => None,
-            _ => Some(non_motion_s(planner.totals())),
-        };
-        let index = event_block(&ev);
-        planner.push(ev, &mut record);
-        if let Some(before) = before {
-            let now = non_motion_s(planner.totals());
-            offset.set(now);
-            if let Some(slot) = event_seconds.get_mut(index) {
-                *slot += now - before;
-            }
-        }
-        true
-    });
-    let stopped = !finished;
-    let totals = planner.finish(&mut record);
-    // Events happen at the end of the motion before them (the planner stops
-    // first), after the events before them there.
-    let mut event_times = Vec::with_capacity(out.events.len());
-    let mut last_end: f64 = 0.0;
-    // The latest end of the motions before the event (a joined or empty motion
-    // has no time of its own).
-    let mut seen = 0;
-    let mut motion_end: f64 = 0.0;
-    for (i, ev) in out.events.iter().enumerate() {
-        while seen < ev.motion_index.min(motion_times.len()) {
-            motion_end = motion_end.max(motion_times[seen].1);
-            seen += 1;
-        }
-        // Motion ends are on the program clock already; an event right after
-        // another one starts when that one ends.
-        let at = motion_end.max(last_end);
-        let s = event_seconds.get(i).copied().unwrap_or(0.0);
-        event_times.push(at);
-        blocks.event(
-            ev.file.0,
-            ev.line,
-            matches!(ev.kind, EventKind::Dwell(_)),
-            at,
-            s,
-        );
-        last_end = at + s;
     }
-    // A motion without an element of its own (joined into a later one, or
-    // empty) is placed where the next element starts.
-    let mut at = motion_times.iter().map(|t| t.1).fold(0.0, f64::max);
-    for (m, t) in out.motions.iter().zip(&motion_times).rev() {
-        if t.1 > 0.0 {
-            at = t.0;
-        }
-        blocks.length(m.file.0, m.line, segment_of(m, 0).length, at);
+
+    /// Whether the run passed the servo-simulation limit (nothing more is planned).
+    pub fn over_limit(&self) -> bool {
+        self.over
     }
-    (
-        DryRun {
-            totals,
+
+    /// Whether `stop` cut the plan short.
+    pub fn stopped(&self) -> bool {
+        self.stopped
+    }
+
+    /// Plans the next motions and events of the run ([`crate::interp::MotionObserver`]:
+    /// an event's `motion_index` counts from the run's first motion). `stop` is
+    /// polled every 1024 planner events.
+    pub fn push(&mut self, motions: &[Motion], events: &[IEvent], stop: &dyn Fn() -> bool) {
+        let first = self.motions.len();
+        let first_event = self.events;
+        self.motions
+            .extend(motions.iter().map(|m| (m.file.0, m.line)));
+        self.lengths.resize(self.motions.len(), 0.0);
+        self.events += events.len();
+        self.motion_times
+            .resize(self.motions.len(), (0.0, 0.0, 0.0));
+        self.event_seconds.resize(self.events, 0.0);
+        if self.over || self.stopped {
+            return;
+        }
+        let RunPlan {
+            planner,
+            servo_limit,
+            naive_s,
+            rapid,
+            over,
+            stopped,
+            pushed,
+            motions: lines,
+            lengths,
             motion_times,
-            event_times,
             event_seconds,
-            blocks: blocks.finish(),
-        },
-        stopped,
-    )
+            blocks,
+            offset,
+            ..
+        } = self;
+        let off_now = std::cell::Cell::new(*offset);
+        let mut record = |t: SegmentTiming| {
+            let off = off_now.get();
+            if let Some(slot) = motion_times.get_mut(t.block as usize) {
+                if slot.1 == 0.0 {
+                    slot.0 = t.start_s + off;
+                }
+                slot.1 = slot.1.max(t.end_s + off);
+                slot.2 = slot.2.max(t.peak_speed);
+            }
+            if let Some(&(file, line)) = lines.get(t.block as usize) {
+                blocks.element(file, line, &t, off);
+            }
+        };
+        interleave_from(motions, events, first, first_event, &mut |ev| {
+            if pushed.is_multiple_of(1024) && stop() {
+                *stopped = true;
+                return false;
+            }
+            *pushed += 1;
+            if *servo_limit {
+                let t = naive_event_seconds(&ev, *rapid);
+                if t.is_finite() {
+                    *naive_s += t;
+                }
+                if *naive_s > SERVO_SIMULATION_LIMIT_S {
+                    *over = true;
+                    return false;
+                }
+            }
+            let before = match ev {
+                plan::Event::Motion(seg) => {
+                    // The length the per-block table adds at the end.
+                    if let Some(slot) = lengths.get_mut(seg.block as usize) {
+                        *slot = seg.length;
+                    }
+                    None
+                }
+                _ => Some(non_motion_s(planner.totals())),
+            };
+            let index = event_block(&ev);
+            planner.push(ev, &mut record);
+            if let Some(before) = before {
+                let now = non_motion_s(planner.totals());
+                off_now.set(now);
+                if let Some(slot) = event_seconds.get_mut(index) {
+                    *slot += now - before;
+                }
+            }
+            true
+        });
+        *offset = off_now.get();
+    }
+
+    /// The plan of the run whose `events` (all of them) were pushed; `None` when
+    /// it passed the servo-simulation limit or `stop` cut it short.
+    pub fn finish(self, events: &[IEvent]) -> Option<DryRun> {
+        if self.over {
+            return None;
+        }
+        match self.finish_stopped(events) {
+            (_, true) => None,
+            (plan, false) => Some(plan),
+        }
+    }
+
+    fn finish_stopped(self, events: &[IEvent]) -> (DryRun, bool) {
+        let RunPlan {
+            planner,
+            stopped,
+            motions: lines,
+            lengths,
+            motion_times: mut times,
+            event_seconds,
+            mut blocks,
+            offset,
+            ..
+        } = self;
+        let totals = planner.finish(&mut |t: SegmentTiming| {
+            if let Some(slot) = times.get_mut(t.block as usize) {
+                if slot.1 == 0.0 {
+                    slot.0 = t.start_s + offset;
+                }
+                slot.1 = slot.1.max(t.end_s + offset);
+                slot.2 = slot.2.max(t.peak_speed);
+            }
+            if let Some(&(file, line)) = lines.get(t.block as usize) {
+                blocks.element(file, line, &t, offset);
+            }
+        });
+        let motion_times = times;
+        // Events happen at the end of the motion before them (the planner stops
+        // first), after the events before them there.
+        let mut event_times = Vec::with_capacity(events.len());
+        let mut last_end: f64 = 0.0;
+        // The latest end of the motions before the event (a joined or empty motion
+        // has no time of its own).
+        let mut seen = 0;
+        let mut motion_end: f64 = 0.0;
+        for (i, ev) in events.iter().enumerate() {
+            while seen < ev.motion_index.min(motion_times.len()) {
+                motion_end = motion_end.max(motion_times[seen].1);
+                seen += 1;
+            }
+            // Motion ends are on the program clock already; an event right after
+            // another one starts when that one ends.
+            let at = motion_end.max(last_end);
+            let s = event_seconds.get(i).copied().unwrap_or(0.0);
+            event_times.push(at);
+            blocks.event(
+                ev.file.0,
+                ev.line,
+                matches!(ev.kind, EventKind::Dwell(_)),
+                at,
+                s,
+            );
+            last_end = at + s;
+        }
+        // A motion without an element of its own (joined into a later one, or
+        // empty) is placed where the next element starts.
+        let mut at = motion_times.iter().map(|t| t.1).fold(0.0, f64::max);
+        for ((&(file, line), &mm), t) in lines.iter().zip(&lengths).zip(&motion_times).rev() {
+            if t.1 > 0.0 {
+                at = t.0;
+            }
+            blocks.length(file, line, mm, at);
+        }
+        (
+            DryRun {
+                totals,
+                motion_times,
+                event_times,
+                event_seconds,
+                blocks: blocks.finish(),
+            },
+            stopped,
+        )
+    }
 }
 
 /// Time spent outside motion so far: dwell and auxiliary time (in-position
@@ -838,12 +1017,18 @@ fn non_motion_s(t: &Totals) -> f64 {
 }
 
 /// Per-block figures gathered as the planner reports elements: the main
-/// file's blocks by line in a vector, other files' in a map.
+/// file's blocks in the order they first ran, found by line through an index
+/// (4 bytes a line, not an empty figure's 144), other files' in a map.
 #[derive(Debug, Default)]
 pub struct BlockAcc {
-    main: Vec<Option<BlockTime>>,
+    main: Vec<BlockTime>,
+    /// Per line of the main file: its place in `main`, or `NO_BLOCK`.
+    by_line: Vec<u32>,
     other: BTreeMap<(u32, u32), BlockTime>,
 }
+
+/// A main-file line without figures in [`BlockAcc`].
+const NO_BLOCK: u32 = u32::MAX;
 
 impl BlockAcc {
     fn slot(&mut self, file: u32, line: u32, at: f64) -> &mut BlockTime {
@@ -862,10 +1047,18 @@ impl BlockAcc {
         };
         if file == 0 {
             let i = line as usize;
-            if self.main.len() <= i {
-                self.main.resize(i + 1, None);
+            if self.by_line.len() <= i {
+                self.by_line.resize(i + 1, NO_BLOCK);
             }
-            self.main[i].get_or_insert_with(fresh)
+            let k = match self.by_line[i] {
+                NO_BLOCK => {
+                    self.by_line[i] = self.main.len() as u32;
+                    self.main.push(fresh());
+                    self.main.len() - 1
+                }
+                k => k as usize,
+            };
+            &mut self.main[k]
         } else {
             self.other.entry((file, line)).or_insert_with(fresh)
         }
@@ -906,15 +1099,19 @@ impl BlockAcc {
         self.slot(file, line, at).length_mm += mm;
     }
 
-    /// The blocks in the order they first ran.
+    /// The blocks in the order they first ran (blocks that start together by
+    /// file and line).
     pub fn finish(self) -> Vec<BlockTime> {
-        let mut v: Vec<BlockTime> = self
-            .main
-            .into_iter()
-            .flatten()
-            .chain(self.other.into_values())
-            .collect();
-        v.sort_by(|a, b| a.start_s.total_cmp(&b.start_s));
+        let mut v = self.main;
+        v.extend(self.other.into_values());
+        // File and line are unique, so the order is the same whatever the
+        // order the blocks were gathered in.
+        v.sort_unstable_by(|a, b| {
+            a.start_s
+                .total_cmp(&b.start_s)
+                .then(a.file.cmp(&b.file))
+                .then(a.line.cmp(&b.line))
+        });
         v
     }
 }

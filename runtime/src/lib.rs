@@ -16,5 +16,5 @@ pub use interp::{
     Resolver, RunInput, RunOutput, Stopped, CANCEL_POLL_STEPS, CANON_FILE_NAME,
 };
 // Editors ask a run for the values its expressions took (`interp::values`).
-pub use interp::run_checkpointed_recording;
 pub use interp::values::{ValueLimits, ValueRecord, ValueSeries};
+pub use interp::{run_checkpointed_observed, run_checkpointed_recording};

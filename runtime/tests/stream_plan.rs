@@ -1,7 +1,7 @@
 //! Streaming runs (`run_streaming` + `StreamPlan`) give the same diagnostics and
 //! cycle-time totals as the buffered path (`run_with_snapshots` + `plan_run`),
 //! across chunk boundaries, with cutter compensation holding moves back, and on
-//! both sides of the servo-simulation limit.
+//! both sides of the servo-simulation limit; so does `RunPlan` on an observed run.
 
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -186,4 +186,50 @@ fn streamed_blocks_equal_buffered_blocks() {
         "{sum} {}",
         dry.totals.cycle_time_s
     );
+}
+
+/// The language server's path: `RunPlan` fed by an observed checkpointed run
+/// (motions kept in the output) gives exactly `plan_run`'s plan: totals, every
+/// motion's and event's time and the per-block table, across chunk boundaries
+/// and compensated contours; past the servo-simulation limit it says so.
+#[test]
+fn observed_run_plan_is_plan_run() {
+    let dialect = Dialect::Rs274ngc;
+    let settings = Settings::new(dialect);
+    let machine = toml::Table::new();
+    let profile = MachineProfile::default_for(dialect);
+    for (passes, feed, over) in [(300, 3000.0, false), (3, 1.0, true)] {
+        let p = program(dialect, &job(passes, feed));
+        let mut plan = dryrun::RunPlan::new(&profile);
+        let mut chunks = 0;
+        let out = runtime::run_checkpointed_observed(
+            &input(&p, &settings, &machine),
+            true,
+            None,
+            &mut |m, e| {
+                chunks += 1;
+                plan.push(m, e, &|| false);
+            },
+        );
+        assert_eq!(plan.over_limit(), over, "{passes} passes at F{feed}");
+        let want = dryrun::plan_run(&out, &profile);
+        if over {
+            assert!(want.totals.cutting_s > dryrun::SERVO_SIMULATION_LIMIT_S);
+            assert!(plan.finish(&out.events).is_none());
+            continue;
+        }
+        assert!(
+            out.motions.len() > 3 * 4096,
+            "{} motions",
+            out.motions.len()
+        );
+        assert!(chunks > 3, "{chunks} chunks");
+        let got = plan.finish(&out.events).unwrap();
+        assert_eq!(got.totals, want.totals);
+        assert_eq!(got.motion_times, want.motion_times);
+        assert_eq!(got.event_times, want.event_times);
+        assert_eq!(got.event_seconds, want.event_seconds);
+        assert_eq!(format!("{:?}", got.blocks), format!("{:?}", want.blocks));
+        assert_eq!(want.totals.dwell_s, 3.0, "{:?}", want.totals);
+    }
 }

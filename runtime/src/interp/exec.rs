@@ -52,7 +52,9 @@ mod resume;
 use crate::canon::{f4, Canon};
 use crate::rules::codes;
 use messages::{rs274_message, rs274_parameter_message};
-pub use resume::{rerun, run_checkpointed, run_checkpointed_recording, Checkpoints};
+pub use resume::{
+    rerun, run_checkpointed, run_checkpointed_observed, run_checkpointed_recording, Checkpoints,
+};
 
 #[path = "checks.rs"]
 mod checks;
@@ -113,10 +115,16 @@ pub fn run_streaming(input: &RunInput<'_>, sink: &mut MotionSink<'_>) -> RunOutp
     run_streaming_owned(input, &mut |m, e| sink(m, e))
 }
 
+/// A watcher of a run's motions and events while they stay in the output: it
+/// sees each motion and event once, in order, in chunks it may copy (a host
+/// plans them on another thread while the program runs). An event's
+/// `motion_index` counts from the run's first motion, as in [`RunOutput`].
+pub type MotionObserver<'s> = dyn FnMut(&[Motion], &[Event]) + 's;
+
 /// [`run_streaming`] handing over the buffers themselves ([`OwnedMotionSink`]).
 pub fn run_streaming_owned(input: &RunInput<'_>, sink: &mut OwnedMotionSink<'_>) -> RunOutput {
     let mut it = Interp::new(input, false);
-    it.run_main_with(Some(sink));
+    it.run_main_with(Some(sink), None);
     let mut out = it.finish();
     if !out.motions.is_empty() || !out.events.is_empty() {
         sink(&mut out.motions, &mut out.events);
@@ -244,6 +252,8 @@ struct Interp<'a, 'i> {
     modal_cache: Option<(Modal, std::sync::Arc<[String]>)>,
     /// Motions already handed to a streaming sink.
     motions_drained: usize,
+    /// Motions and events a [`MotionObserver`] has seen.
+    observed: (usize, usize),
     /// P/Q of the last G5 (the next G5 without I/J mirrors them).
     spline_pq: (f64, f64),
     /// Control points of an open G5.2 NURBS block.
@@ -416,6 +426,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             nurbs: Vec::new(),
             spec: Default::default(),
             motions_drained: 0,
+            observed: (0, 0),
             tlo_drift: [0.0; 6],
             feed_override_off: false,
             inv_rate_set: false,
@@ -550,7 +561,21 @@ impl<'a, 'i> Interp<'a, 'i> {
     // ----------------------------------------------------------------- main loop
 
     fn run_main(&mut self) {
-        self.run_main_with(None);
+        self.run_main_with(None, None);
+    }
+
+    /// Shows `observe` the motions and events it has not seen, unless a
+    /// compensated move is still pending (it may yet be moved).
+    fn observe_new(&mut self, observe: &mut MotionObserver<'_>) {
+        if !self.st.comp_queue.is_empty() {
+            return;
+        }
+        let (m, e) = self.observed;
+        observe(
+            self.out.motions.get(m..).unwrap_or_default(),
+            self.out.events.get(e..).unwrap_or_default(),
+        );
+        self.observed = (self.out.motions.len(), self.out.events.len());
     }
 
     /// Hands the motions and events so far to `sink`, unless a compensated move is
@@ -570,7 +595,11 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.motions_drained > 0 || !self.out.motions.is_empty()
     }
 
-    fn run_main_with(&mut self, mut sink: Option<&mut OwnedMotionSink<'_>>) {
+    fn run_main_with(
+        &mut self,
+        mut sink: Option<&mut OwnedMotionSink<'_>>,
+        mut observe: Option<&mut MotionObserver<'_>>,
+    ) {
         // A restored rerun has the input files' diagnostics from before.
         if !self.resume.as_ref().is_some_and(|r| r.restored) {
             self.spec_input_files();
@@ -685,6 +714,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             if self.out.motions.len() >= STREAM_CHUNK {
                 if let Some(sink) = sink.as_deref_mut() {
                     self.drain_to(sink);
+                }
+            }
+            if self.out.motions.len() >= self.observed.0 + STREAM_CHUNK {
+                if let Some(observe) = observe.as_deref_mut() {
+                    self.observe_new(observe);
                 }
             }
         }

@@ -22,9 +22,9 @@ mod types;
 pub mod values;
 
 pub use exec::{
-    rerun, run, run_checkpointed, run_checkpointed_recording, run_streaming, run_streaming_owned,
-    run_with_snapshots, run_without_fast_path, Checkpoints, MotionSink, OwnedMotionSink,
-    SNAPSHOT_LIMIT, STOP_SUFFIX,
+    rerun, run, run_checkpointed, run_checkpointed_observed, run_checkpointed_recording,
+    run_streaming, run_streaming_owned, run_with_snapshots, run_without_fast_path, Checkpoints,
+    MotionObserver, MotionSink, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
 };
 pub use state::{Modal, State};
 pub use types::*;

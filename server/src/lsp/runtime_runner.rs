@@ -2,8 +2,9 @@
 //! resolver that finds subprogram files inside the workspace only.
 //!
 //! The interpreter gives motions, events, per-block state and flow-sensitive
-//! diagnostics. The velocity planner is not wired yet, so the run carries no
-//! timing (the preview shows "–" for times).
+//! diagnostics; the velocity planner plans the motions on a second thread
+//! while the interpreter makes them, and the toolpath is sampled when the
+//! run is done.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -35,6 +36,14 @@ pub const STEP_BUDGET: u64 = 5_000_000;
 pub const STEP_BUDGET: u64 = 20_000;
 /// Chord tolerance for sampling arcs in the preview, mm: the finest used.
 const CHORD_TOLERANCE: f64 = 0.01;
+/// Chunks of motions waiting for the planner: enough to ride out its
+/// uneven pace, few enough that memory stays flat.
+const PLAN_QUEUE: usize = 4;
+
+/// Motions per chunk [`send_run`] sends.
+const PLAN_CHUNK: usize = 4096;
+/// A chunk of the run's motions and events on its way to the planner.
+type Chunk = (Vec<runtime::Motion>, Vec<runtime::Event>);
 
 pub use crate::resolve::Loaded;
 
@@ -126,16 +135,86 @@ impl DryRunner for RuntimeRunner {
         let previous = input
             .previous
             .and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).take());
+        // A `[machine]` table the planner cannot read leaves the run without times.
+        let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
+        let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
         let t0 = std::time::Instant::now();
         let rerun = previous.is_some();
-        let mut out = match previous {
-            Some(prev) => runtime::rerun(&run_input, true, prev),
-            None => runtime::run_checkpointed_recording(
-                &run_input,
-                true,
-                Some(runtime::ValueLimits::default()),
-            ),
-        };
+        // A full run is planned on a second thread while it runs (the same glue
+        // as `partscope run`: planner segments and the plan come from
+        // `runtime::dryrun`); the toolpath, whose sampling depends on the whole
+        // run's extent, is built here once the interpreter is done, beside the
+        // planner's tail.
+        let (mut out, path, streamed, t_path) = std::thread::scope(|s| {
+            let (tx, rx) = std::sync::mpsc::sync_channel::<Chunk>(PLAN_QUEUE);
+            // Planned chunks come back to be filled again: fresh memory for
+            // every chunk would cost a page fault per 4 KB.
+            let (back_tx, back_rx) = std::sync::mpsc::channel::<Chunk>();
+            let planner = profile.as_ref().map(|profile| {
+                s.spawn(move || {
+                    let mut plan = dryrun::RunPlan::new(profile);
+                    for (mut m, mut e) in rx {
+                        plan.push(&m, &e, &|| input.cancel.is_cancelled());
+                        m.clear();
+                        e.clear();
+                        let _ = back_tx.send((m, e));
+                    }
+                    plan
+                })
+            });
+            let send = |m: &[runtime::Motion], e: &[runtime::Event]| {
+                let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
+                mb.extend_from_slice(m);
+                eb.extend_from_slice(e);
+                // A planner that panicked drops its end; the join passes the panic on.
+                let _ = tx.send((mb, eb));
+            };
+            let out = match previous {
+                Some(prev) => {
+                    let out = runtime::rerun(&run_input, true, prev);
+                    // The rerun took most of its motions from the previous
+                    // run: the planner gets the whole run afterwards.
+                    if planner.is_some() {
+                        send_run(&out, &send);
+                    }
+                    out
+                }
+                None if planner.is_some() => runtime::run_checkpointed_observed(
+                    &run_input,
+                    true,
+                    Some(runtime::ValueLimits::default()),
+                    &mut |m, e| send(m, e),
+                ),
+                None => runtime::run_checkpointed_recording(
+                    &run_input,
+                    true,
+                    Some(runtime::ValueLimits::default()),
+                ),
+            };
+            drop(tx);
+            if timing {
+                eprintln!(
+                    "partscope lsp: interpreter {:?}, {} of {} blocks executed{}; {}",
+                    t0.elapsed(),
+                    out.checkpoints.executed(),
+                    input.program.blocks.len(),
+                    if rerun { " (rerun)" } else { "" },
+                    memory()
+                );
+            }
+            // A cancelled run stopped part way: no toolpath.
+            let path = (!input.cancel.is_cancelled()).then(|| {
+                // Arcs are sampled at half the default view tolerance (a finer one
+                // costs points no view of the whole part can show).
+                let chord =
+                    CHORD_TOLERANCE.max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
+                path_of(&out, profile.as_ref(), chord)
+            });
+            let t_path = t0.elapsed();
+            let streamed =
+                planner.map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+            (out, path, streamed, t_path)
+        });
         if rerun && std::env::var_os("PARTSCOPE_RERUN_CHECK").is_some() {
             let full = runtime::run_checkpointed(&run_input, true);
             if full.diagnostics != out.diagnostics {
@@ -152,52 +231,30 @@ impl DryRunner for RuntimeRunner {
                 );
             }
         }
-        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
-            eprintln!(
-                "partscope lsp: interpreter {:?}, {} of {} blocks executed{}",
-                t0.elapsed(),
-                out.checkpoints.executed(),
-                input.program.blocks.len(),
-                if rerun { " (rerun)" } else { "" }
-            );
-        }
         // A cancelled run stopped part way: no answer, and nothing to rerun from.
+        let path = path?;
         if input.cancel.is_cancelled() {
             return None;
         }
-        // The same glue as `partscope run`: toolpath sampling, planner segments
-        // and the plan itself come from `runtime::dryrun`.
-        // A `[machine]` table the planner cannot read leaves the run without times.
-        let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
-        // Arcs are sampled at half the default view tolerance (a finer one
-        // costs points no view of the whole part can show). The toolpath and
-        // the plan read the run side by side.
-        let chord = CHORD_TOLERANCE.max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
-        let t1 = std::time::Instant::now();
-        let (path, plan, t_path) = std::thread::scope(|s| {
-            let path = s.spawn(|| {
-                let path = path_of(&out, profile.as_ref(), chord);
-                (path, t1.elapsed())
-            });
-            let plan = profile.as_ref().map(|profile| {
-                dryrun::plan_run_until(&out, profile, &|| input.cancel.is_cancelled())
-            });
-            // A panic on the toolpath thread is the request's, as on this one.
-            let (path, t_path) = path.join().unwrap_or_else(|p| std::panic::resume_unwind(p));
-            (path, plan, t_path)
-        });
-        let mut plan = match plan {
-            Some(p) => Some(p?),
-            None => None,
+        let stop = || input.cancel.is_cancelled();
+        let plan = match (profile.as_ref(), streamed) {
+            // A run past the servo-simulation limit is planned again in closed form.
+            (Some(profile), Some(p)) if p.over_limit() => {
+                Some(dryrun::plan_run_until(&out, profile, &stop)?)
+            }
+            (_, Some(p)) => Some(p.finish(&out.events)?),
+            _ => None,
         };
+        let mut plan = plan;
         if input.cancel.is_cancelled() {
             return None;
         }
-        if std::env::var_os("PARTSCOPE_LSP_TIMING").is_some() {
+        if timing {
             eprintln!(
-                "partscope lsp: toolpath {t_path:?} ({} motions), planner and toolpath {:?}",
+                "partscope lsp: interpreter and toolpath {t_path:?} ({} motions), with the planner {:?}; {}",
                 out.motions.len(),
-                t1.elapsed()
+                t0.elapsed(),
+                memory()
             );
         }
         let loaded = resolver.loaded();
@@ -226,6 +283,32 @@ impl DryRunner for RuntimeRunner {
             ..report
         })
     }
+}
+
+/// Sends a finished run to the planner in chunks of [`PLAN_CHUNK`] motions
+/// (an event goes with the motion it comes before).
+fn send_run(out: &runtime::RunOutput, send: &dyn Fn(&[runtime::Motion], &[runtime::Event])) {
+    let mut first_event = 0;
+    let mut end = 0;
+    for motions in out.motions.chunks(PLAN_CHUNK) {
+        end += motions.len();
+        let rest = out.events.get(first_event..).unwrap_or_default();
+        let n = rest.partition_point(|e| e.motion_index < end);
+        send(motions, rest.get(..n).unwrap_or_default());
+        first_event += n;
+    }
+    send(&[], out.events.get(first_event..).unwrap_or_default());
+}
+
+/// The process's resident and peak memory, for `PARTSCOPE_LSP_TIMING`.
+fn memory() -> String {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .filter(|l| l.starts_with("VmRSS") || l.starts_with("VmHWM"))
+        .map(|l| l.split_whitespace().collect::<Vec<_>>().join(" "))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The longest side of the box around the motions' end points.

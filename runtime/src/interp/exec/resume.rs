@@ -233,6 +233,26 @@ pub fn run_checkpointed_recording(
     snapshots: bool,
     values: Option<ValueLimits>,
 ) -> RunOutput {
+    checkpointed(input, snapshots, values, None)
+}
+
+/// [`run_checkpointed_recording`] that shows `observe` the motions and events
+/// as the run makes them ([`MotionObserver`]); they stay in the output.
+pub fn run_checkpointed_observed(
+    input: &RunInput<'_>,
+    snapshots: bool,
+    values: Option<ValueLimits>,
+    observe: &mut MotionObserver<'_>,
+) -> RunOutput {
+    checkpointed(input, snapshots, values, Some(observe))
+}
+
+fn checkpointed(
+    input: &RunInput<'_>,
+    snapshots: bool,
+    values: Option<ValueLimits>,
+    mut observe: Option<&mut MotionObserver<'_>>,
+) -> RunOutput {
     let mut it = Interp::new(input, snapshots);
     it.values = values.map(|l| RefCell::new(ValueRecord::new(l)));
     if eligible(input) {
@@ -246,8 +266,17 @@ pub fn run_checkpointed_recording(
         };
         it.resume = Some(Resume::default());
     }
-    it.run_main();
-    it.finish()
+    it.run_main_with(None, observe.as_deref_mut());
+    let (m, e) = it.observed;
+    let out = it.finish();
+    // The run is over: what a pending compensated move held back is final.
+    if let Some(observe) = observe {
+        observe(
+            out.motions.get(m..).unwrap_or_default(),
+            out.events.get(e..).unwrap_or_default(),
+        );
+    }
+    out
 }
 
 /// Runs `input` (an edited program) reusing `prev`, the output of a
