@@ -179,6 +179,9 @@ pub fn finish(
                     .block_at(d.span.start)
                     .is_some_and(|b| over.get(b).copied().unwrap_or(false));
             if jumped {
+                // Text nobody reads needs no repair: a fix there could only uncover
+                // findings its error hid.
+                d.fixes.clear();
                 d.severity = diagnostic::Severity::Info;
                 d.message = format!(
                     "{}; never read: an unconditional GOTO, M99 or M30 before it skips the text up to the next sequence number, so the control raises no alarm here",
@@ -186,6 +189,16 @@ pub fn finish(
                 );
             }
         }
+    }
+    for d in diagnostics.iter_mut().filter(|d| d.file == FileId(0)) {
+        d.fixes.retain(|f| {
+            rules::block_too_long::edits_keep_line_length(
+                &program.text,
+                program.dialect,
+                settings,
+                &f.edits,
+            )
+        });
     }
     diagnostics.retain(|d| {
         let enabled = match rules::registry::lookup(d.code) {

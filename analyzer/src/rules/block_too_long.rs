@@ -120,3 +120,36 @@ impl Rule for BlockTooLong {
         }
     }
 }
+
+/// Whether applying `edits` leaves every line they touch within the dialect's line
+/// limit (or no longer than it was): a fix must not make a block too long (W011).
+pub fn edits_keep_line_length(
+    text: &[u8],
+    dialect: Dialect,
+    settings: &crate::Settings,
+    edits: &[crate::TextEdit],
+) -> bool {
+    let limit = match dialect {
+        Dialect::Servoworks => 85,
+        _ if is_emc2(settings) => 256,
+        _ => 251,
+    };
+    edits.iter().all(|e| {
+        let (s, t) = (e.span.start as usize, e.span.end as usize);
+        if s > t || t > text.len() || e.new_text.contains('\n') {
+            return true;
+        }
+        let start = text[..s]
+            .iter()
+            .rposition(|b| *b == b'\n')
+            .map_or(0, |i| i + 1);
+        let end = text[t..]
+            .iter()
+            .position(|b| *b == b'\n' || *b == b'\r')
+            .map_or(text.len(), |i| t + i);
+        let chars = |b: &[u8]| b.iter().filter(|c| (**c & 0xC0) != 0x80).count();
+        let before = chars(&text[start..end]);
+        let after = before - chars(&text[s..t]) + e.new_text.chars().count();
+        after <= limit.max(before)
+    })
+}

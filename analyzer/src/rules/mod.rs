@@ -14,7 +14,7 @@
 //! `F` flow/subprograms/feed, `X` execution.
 
 mod axis_word_conflict;
-mod block_too_long;
+pub mod block_too_long;
 mod bracket_nesting;
 mod code_not_on_variant;
 mod comment_use;

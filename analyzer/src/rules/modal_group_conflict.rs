@@ -185,7 +185,12 @@ fn split_fix(cx: &BlockCx<'_>, item: usize) -> Option<TextEdit> {
         ItemKind::Comment(_) => true,
         _ => false,
     });
-    if !clean || cx.block.skip().is_some() {
+    // An O-word in the block (`O100` as a program head) decides what the line is:
+    // moving codes off it onto a line of their own changes the program's structure.
+    let o_word = items
+        .iter()
+        .any(|i| matches!(i.kind, ItemKind::OWord(_) | ItemKind::ProgramHead { .. }));
+    if !clean || o_word || cx.block.skip().is_some() {
         return None;
     }
     // The codes left behind stand alone on their line: the split is only
