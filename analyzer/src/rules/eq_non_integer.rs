@@ -147,11 +147,9 @@ fn var_key(n: f64) -> Option<u64> {
 
 /// `#n` (through any brackets) with a literal number.
 fn plain_variable(p: &Program, e: ExprId) -> Option<u64> {
-    match p.expr(e).expr {
-        Expr::Group { inner } => plain_variable(p, inner),
-        Expr::Var { index } => literal(p, index).and_then(var_key),
-        _ => None,
-    }
+    p.variable_index(e)
+        .and_then(|i| literal(p, i))
+        .and_then(var_key)
 }
 
 /// Whether evaluating `e` can round: arithmetic, or a function other than the

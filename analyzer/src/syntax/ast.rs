@@ -521,6 +521,16 @@ impl Program {
     /// outside them nothing but comments, parameter assignments (a library may
     /// initialise its globals) and `%` lines. LinuxCNC calls it by name and
     /// never reads it as a main program, so it needs no M2.
+    /// The number expression of a bare variable reference (`#n`, `#[e]`), through
+    /// any brackets around it; `None` for anything else.
+    pub fn variable_index(&self, e: ExprId) -> Option<ExprId> {
+        match self.expr(e).expr {
+            Expr::Group { inner } => self.variable_index(inner),
+            Expr::Var { index } => Some(index),
+            _ => None,
+        }
+    }
+
     pub fn is_ngc_library(&self) -> bool {
         self.is_ngc_library_named(None)
     }

@@ -1030,9 +1030,6 @@ pub fn lint_var_file(text: &str) -> Vec<(usize, String)> {
 
 /// `#n` with a literal number, in any brackets.
 fn plain_var(prog: &Program, e: ExprId) -> bool {
-    match prog.expr(e).expr {
-        Expr::Group { inner } => plain_var(prog, inner),
-        Expr::Var { index } => matches!(prog.expr(index).expr, Expr::Num(_)),
-        _ => false,
-    }
+    prog.variable_index(e)
+        .is_some_and(|i| matches!(prog.expr(i).expr, Expr::Num(_)))
 }
