@@ -95,12 +95,7 @@ impl Rule for BlockTooLong {
                 .iter()
                 .filter(|b| (**b & 0xC0) != 0x80)
                 .count();
-            let limit = match d {
-                Dialect::Servoworks => 85,
-                _ if is_emc2(cx.settings) => 256,
-                _ if crlf => 251,
-                _ => 252,
-            };
+            let limit = line_limit(d, cx.settings, crlf);
             if len > limit {
                 let msg = match d {
                     Dialect::Servoworks => format!("Line is {len} characters long; ServoWorks blocks are limited to 85. Split the line or shorten its comment."),
@@ -121,6 +116,17 @@ impl Rule for BlockTooLong {
     }
 }
 
+/// Characters a line may hold: ServoWorks blocks, LinuxCNC's read buffer (less the
+/// CR of a CR LF ending), the 2007 `emc2` profile's.
+fn line_limit(dialect: Dialect, settings: &crate::Settings, crlf: bool) -> usize {
+    match dialect {
+        Dialect::Servoworks => 85,
+        _ if is_emc2(settings) => 256,
+        _ if crlf => 251,
+        _ => 252,
+    }
+}
+
 /// Whether applying `edits` leaves every line they touch within the dialect's line
 /// limit (or no longer than it was): a fix must not make a block too long (W011).
 pub fn edits_keep_line_length(
@@ -129,11 +135,8 @@ pub fn edits_keep_line_length(
     settings: &crate::Settings,
     edits: &[crate::TextEdit],
 ) -> bool {
-    let limit = match dialect {
-        Dialect::Servoworks => 85,
-        _ if is_emc2(settings) => 256,
-        _ => 251,
-    };
+    // The stricter CR LF limit: the edit does not know the line's ending.
+    let limit = line_limit(dialect, settings, true);
     edits.iter().all(|e| {
         let (s, t) = (e.span.start as usize, e.span.end as usize);
         if s > t || t > text.len() || e.new_text.contains('\n') {
