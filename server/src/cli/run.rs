@@ -19,13 +19,25 @@ pub enum RunFormat {
     Json,
 }
 
-/// When `run` plans the what-if estimates.
+/// An output that costs more on long programs (`--what-if`, `--blocks`): `auto`
+/// gives it for programs up to [`WHAT_IF_AUTO_BYTES`].
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WhatIfArg {
-    /// For programs up to 1 MiB that make at most 200 000 motions.
+pub enum AutoSwitch {
+    /// For programs up to 1 MiB (what-ifs: that make at most 200 000 motions).
     Auto,
     On,
     Off,
+}
+
+impl AutoSwitch {
+    /// Whether it applies to a program of `bytes` (the motion count is checked later).
+    fn on_for(self, bytes: usize) -> bool {
+        match self {
+            AutoSwitch::On => true,
+            AutoSwitch::Off => false,
+            AutoSwitch::Auto => bytes <= WHAT_IF_AUTO_BYTES,
+        }
+    }
 }
 
 /// Largest program (bytes) and run (motions) `--what-if auto` plans again: each
@@ -66,12 +78,12 @@ pub struct RunArgs {
     /// every move (rs274ngc), 2x acceleration. `auto`: for programs up to 1 MiB
     /// and 200 000 motions.
     #[arg(long, value_enum, default_value = "auto")]
-    pub what_if: WhatIfArg,
+    pub what_if: AutoSwitch,
     /// Per-block times and causes in `--format json` (`blocks`, one entry per line):
     /// `auto` writes them for programs up to 1 MiB; `--emit blocks` gives the same
     /// table as CSV.
     #[arg(long, value_enum, default_value = "auto")]
-    pub blocks: WhatIfArg,
+    pub blocks: AutoSwitch,
     #[arg(long, value_enum)]
     pub emit: Option<Emit>,
     /// LinuxCNC tool table (`.tbl`).
@@ -410,17 +422,9 @@ pub fn run(args: RunArgs) -> ExitCode {
     progress.stage("interpreting");
     // The JSON summary needs only the totals: the planner then consumes the motions as
     // the interpreter produces them, and memory stays flat however long the program.
-    let what_if_asked = match args.what_if {
-        WhatIfArg::On => true,
-        WhatIfArg::Off => false,
-        WhatIfArg::Auto => text.len() <= WHAT_IF_AUTO_BYTES,
-    };
+    let what_if_asked = args.what_if.on_for(text.len());
     // Per-block output is several times the summary's cost on a long program.
-    let with_blocks = match args.blocks {
-        WhatIfArg::On => true,
-        WhatIfArg::Off => false,
-        WhatIfArg::Auto => text.len() <= WHAT_IF_AUTO_BYTES,
-    };
+    let with_blocks = args.blocks.on_for(text.len());
     if args.format == RunFormat::Json
         && args.emit.is_none()
         && args.outputs().iter().all(|(_, o)| o.is_none())
@@ -455,7 +459,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         };
         let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
         let what_ifs = match args.what_if {
-            WhatIfArg::Off => WhatIfs::Off,
+            AutoSwitch::Off => WhatIfs::Off,
             _ => WhatIfs::Skipped(format!(
                 "the program is larger than {} KiB; --what-if on plans them",
                 WHAT_IF_AUTO_BYTES >> 10
@@ -464,7 +468,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         let stdout = std::io::stdout();
         let mut w = std::io::BufWriter::new(stdout.lock());
         let mut summary = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
-        if !with_blocks && args.blocks == WhatIfArg::Auto {
+        if !with_blocks && args.blocks == AutoSwitch::Auto {
             summary["blocks_skipped"] = blocks_skipped();
         }
         let res = write_summary(&mut w, summary, &dry.blocks, &out.files).and_then(|_| w.flush());
@@ -488,7 +492,7 @@ pub fn run(args: RunArgs) -> ExitCode {
     let dry = dryrun::plan_run(&out, &profile);
     let what_ifs = if !what_if_asked {
         WhatIfs::Off
-    } else if args.what_if == WhatIfArg::Auto && out.motions.len() > WHAT_IF_AUTO_MOTIONS {
+    } else if args.what_if == AutoSwitch::Auto && out.motions.len() > WHAT_IF_AUTO_MOTIONS {
         WhatIfs::Skipped(format!(
             "the run makes more than {} motions; --what-if on plans them",
             runtime::plan::explain::thousands(WHAT_IF_AUTO_MOTIONS as u64)
@@ -667,7 +671,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             RunFormat::Json => {
                 let mut v = summary_json(&dry, &report, &stop, &profile_name, &what_ifs, &profile);
                 let blocks: &[dryrun::BlockTime] = if with_blocks { &dry.blocks } else { &[] };
-                if !with_blocks && args.blocks == WhatIfArg::Auto {
+                if !with_blocks && args.blocks == AutoSwitch::Auto {
                     v["blocks_skipped"] = blocks_skipped();
                 }
                 write_summary(&mut w, v, blocks, &out.files)
