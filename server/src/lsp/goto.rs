@@ -1,7 +1,7 @@
-//! Go-to-definition and references: subprograms (`o<name> call` → `o<name>
-//! sub`, `M98 P1234`/`G65 P9100` → `O1234`, ServoWorks `M98 PMoveXY` →
-//! `OMoveXY.dat`), O-word labels, `GOTO n` → `N n`, and variables. Other files
-//! are only read inside the workspace folders.
+//! Go-to-definition and references as LSP locations: `ide::goto` finds the
+//! symbol and its spans in each program; this module finds the other files
+//! (the subprogram file the dry run would load, the open documents), reads
+//! them only inside the workspace folders and converts spans to ranges.
 
 use std::path::PathBuf;
 
@@ -10,10 +10,11 @@ use ropey::Rope;
 use tower_lsp_server::ls_types::{Location, Position, Range, Uri};
 
 use super::dry_run::CancelFlag;
-use super::nav::{self, Sym};
+use super::nav::Sym;
 use super::position::span_to_range;
 use super::snapshot::Snapshot;
 use super::workspace;
+use crate::ide::goto::{self as ide_goto, Definition};
 
 /// Another document the references search looks at.
 pub struct OtherDoc {
@@ -59,15 +60,16 @@ pub fn definition(
     roots: &[PathBuf],
     open: &dyn Fn(&Uri) -> Option<Rope>,
 ) -> Option<Location> {
-    let program = snap.program();
-    let occ = nav::occurrence_at(program, offset)?;
-    if let Some(span) = nav::definition(program, &occ.sym) {
-        return Some(Location {
-            uri: snap.uri.clone(),
-            range: span_to_range(&snap.rope, span),
-        });
-    }
-    let path = external_file(snap, &occ.sym, roots)?;
+    let sym = match ide_goto::definition(&super::analysis(snap), offset)? {
+        Definition::Here(span) => {
+            return Some(Location {
+                uri: snap.uri.clone(),
+                range: span_to_range(&snap.rope, span),
+            })
+        }
+        Definition::Elsewhere(sym) => sym,
+    };
+    let path = external_file(snap, &sym, roots)?;
     let uri = Uri::from_file_path(&path)?;
     // The open editor's text wins over the file on disk.
     let rope = match open(&uri) {
@@ -75,7 +77,7 @@ pub fn definition(
         None => Rope::from_str(&workspace::read_confined(&path, roots)?.1),
     };
     let other = parse_rope(snap, &rope);
-    let range = match nav::definition(&other, &occ.sym) {
+    let range = match ide_goto::definition_in(&other, &sym) {
         Some(span) => span_to_range(&rope, span),
         None => Range::new(Position::new(0, 0), Position::new(0, 0)),
     };
@@ -93,20 +95,19 @@ pub fn references(
     roots: &[PathBuf],
     cancel: &CancelFlag,
 ) -> Vec<Location> {
-    let program = snap.program();
-    let Some(occ) = nav::occurrence_at(program, offset) else {
+    let Some(refs) = ide_goto::references(&super::analysis(snap), offset, include_declaration)
+    else {
         return Vec::new();
     };
-    let keep = |o: &nav::Occ| include_declaration || !o.def;
-    let mut out: Vec<Location> = nav::references(program, &occ.sym)
+    let mut out: Vec<Location> = refs
+        .spans
         .iter()
-        .filter(|o| keep(o))
-        .map(|o| Location {
+        .map(|&span| Location {
             uri: snap.uri.clone(),
-            range: span_to_range(&snap.rope, o.span),
+            range: span_to_range(&snap.rope, span),
         })
         .collect();
-    if !matches!(occ.sym, Sym::OLabel(_) | Sym::Program(_)) {
+    if !refs.crosses_files() {
         return out;
     }
     let mut docs: Vec<(Uri, Rope)> = others
@@ -114,7 +115,7 @@ pub fn references(
         .filter(|d| d.uri != snap.uri)
         .map(|d| (d.uri.clone(), d.rope.clone()))
         .collect();
-    if let Some(path) = external_file(snap, &occ.sym, roots) {
+    if let Some(path) = external_file(snap, &refs.sym, roots) {
         if let Some(uri) = Uri::from_file_path(&path)
             .filter(|u| *u != snap.uri && !docs.iter().any(|(d, _)| d == u))
         {
@@ -128,10 +129,10 @@ pub fn references(
             return Vec::new();
         }
         let other = parse_rope(snap, &rope);
-        for o in nav::references(&other, &occ.sym).iter().filter(|o| keep(o)) {
+        for span in ide_goto::references_in(&other, &refs.sym, include_declaration) {
             out.push(Location {
                 uri: uri.clone(),
-                range: span_to_range(&rope, o.span),
+                range: span_to_range(&rope, span),
             });
         }
     }

@@ -2,7 +2,9 @@
 //!
 //! A thin protocol layer ([`server`]) over pure analysis: each request is
 //! converted (UTF-16 positions ↔ byte offsets in [`position`] only), answered
-//! by a small module working on an analysed [`snapshot`], and converted back.
+//! by the feature's function in [`crate::ide`] over the analysed
+//! [`snapshot`] ([`analysis`]), and converted back (the feature's module
+//! here, or the handler itself when the conversion is a few lines).
 //!
 //! Shape:
 //! - Documents are ropes. `didChange` edits are applied before the handler's
@@ -67,24 +69,21 @@
 
 mod actions;
 mod completion;
-mod config;
+pub(crate) mod config;
 mod decimate;
-mod dry_run;
+pub(crate) mod dry_run;
 mod formatting;
 mod goto;
-mod hover;
-mod keywords;
 pub(crate) use analyzer::names as nav;
-mod position;
+pub(crate) mod position;
 mod rename;
 mod runtime_runner;
 mod semantic;
 mod server;
 mod signature;
-mod snapshot;
+pub(crate) mod snapshot;
 mod stdio;
 mod symbols;
-mod values;
 mod workspace;
 
 use std::process::ExitCode;
@@ -95,6 +94,19 @@ pub use crate::resolve::Loaded;
 pub(crate) use dry_run::CancelFlag;
 pub use runtime_runner::dry_run_result;
 pub use server::Backend;
+
+/// The features' view of one analysed version: the interpreter's run only if
+/// it is already made (hover does not wait for one).
+pub(crate) fn analysis(snap: &snapshot::Snapshot) -> crate::ide::Analysis<'_> {
+    crate::ide::Analysis {
+        program: snap.program(),
+        lines: &snap.rope,
+        settings: &snap.doc.settings,
+        dialect_reason: &snap.doc.dialect_reason,
+        diagnostics: snap.diagnostics(),
+        run: snap.cached_run(),
+    }
+}
 
 /// Builds the protocol service `run` serves over stdio. It is public so an
 /// in-process driver (the `lsp_messages` fuzz target, which compiles this

@@ -21,6 +21,17 @@ pub fn offset_to_position(rope: &Rope, offset: usize) -> Position {
     Position::new(line as u32, col as u32)
 }
 
+/// The features (`crate::ide`) find lines in the document's rope.
+impl crate::ide::Lines for Rope {
+    fn line_of(&self, offset: usize) -> usize {
+        self.byte_to_line(offset.min(self.len_bytes()))
+    }
+
+    fn line_start(&self, line: usize) -> Option<usize> {
+        (line < self.len_lines()).then(|| self.line_to_byte(line))
+    }
+}
+
 /// Converts a byte span into an LSP range.
 pub fn span_to_range(rope: &Rope, span: Span) -> Range {
     let start = offset_to_position(rope, span.start as usize);

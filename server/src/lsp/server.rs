@@ -31,8 +31,9 @@ use super::goto::OtherDoc;
 use super::position::{apply_change, offset_to_position, position_to_offset, span_to_range};
 use super::snapshot::{self, Inputs, Snapshot};
 use super::{
-    actions, completion, formatting, goto, hover, rename, semantic, signature, symbols, workspace,
+    actions, completion, formatting, goto, rename, semantic, signature, symbols, workspace,
 };
+use crate::ide;
 
 /// How long edits must pause before diagnostics are recomputed: not at all.
 /// An edit costs an incremental update (milliseconds), analyses of one
@@ -164,30 +165,7 @@ fn planned_run(snap: &Snapshot) -> Option<Arc<dry_run::RunReport>> {
     })
 }
 
-/// A block's own time: milliseconds below ten seconds, then `m:ss.s`.
-pub fn block_seconds(s: f64) -> String {
-    if s < 10.0 {
-        format!("{s:.3} s")
-    } else if s < 60.0 {
-        format!("{s:.2} s")
-    } else {
-        format_duration(s)
-    }
-}
-
-/// `m:ss.s`, or `h:mm:ss` from an hour on.
-pub fn format_duration(s: f64) -> String {
-    if !s.is_finite() || s < 0.0 {
-        return "–".into();
-    }
-    let s = (s * 10.0).round() / 10.0;
-    if s >= 3600.0 {
-        let t = s.round() as u64;
-        return format!("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60);
-    }
-    let m = (s / 60.0).floor();
-    format!("{}:{:04.1}", m as u64, s - m * 60.0)
-}
+pub(crate) use crate::ide::lens::format_duration;
 
 /// A document named by a command argument: a URI string, `{uri}` or
 /// `{textDocument: {uri}}`.
@@ -991,12 +969,12 @@ impl LanguageServer for Backend {
             };
             let offset = Self::offset(&snap, p.position);
             blocking(move || {
-                hover::hover(&snap, offset).map(|(md, span)| Hover {
+                ide::hover::hover(&super::analysis(&snap), offset).map(|h| Hover {
                     contents: HoverContents::Markup(MarkupContent {
                         kind: MarkupKind::Markdown,
-                        value: md,
+                        value: h.markdown,
                     }),
-                    range: Some(span_to_range(&snap.rope, span)),
+                    range: Some(span_to_range(&snap.rope, h.span)),
                 })
             })
             .await
@@ -1133,8 +1111,7 @@ impl LanguageServer for Backend {
             let Some(snap) = self.snapshot(&params.text_document.uri).await else {
                 return Ok(None);
             };
-            let syms =
-                blocking(move || symbols::document_symbols(snap.program(), &snap.rope)).await?;
+            let syms = blocking(move || symbols::document_symbols(&snap)).await?;
             Ok(Some(DocumentSymbolResponse::Nested(syms)))
         })
         .await
@@ -1146,7 +1123,7 @@ impl LanguageServer for Backend {
                 return Ok(None);
             };
             Ok(Some(
-                blocking(move || symbols::folding_ranges(snap.program(), &snap.rope)).await?,
+                blocking(move || symbols::folding_ranges(&snap)).await?,
             ))
         })
         .await
@@ -1230,62 +1207,35 @@ impl LanguageServer for Backend {
             let mode = Self::client_options(&self.lock())
                 .block_times
                 .unwrap_or_default();
+            let mode = match mode {
+                BlockTimes::Block => ide::lens::BlockTimes::Block,
+                BlockTimes::Cumulative => ide::lens::BlockTimes::Cumulative,
+                BlockTimes::Off => ide::lens::BlockTimes::Off,
+            };
             let range = params.range;
             blocking(move || {
-                let Some(report) = planned_run(&snap) else {
-                    return Some(Vec::new());
+                let run = planned_run(&snap);
+                let analysis = ide::Analysis {
+                    run,
+                    ..super::analysis(&snap)
                 };
-                let in_range = |line: u32| range.start.line <= line && line <= range.end.line;
-                let end_of_line = |line: u32| {
-                    let line_start = snap.rope.try_line_to_byte(line as usize).ok()?;
-                    let text = snap.rope.get_line(line as usize)?.to_string();
-                    let content = text.trim_end_matches(['\r', '\n']);
-                    Some(offset_to_position(&snap.rope, line_start + content.len()))
-                };
-                let hint = |pos: Position, label: String, tooltip: Option<String>| InlayHint {
-                    position: pos,
-                    label: InlayHintLabel::String(label),
-                    kind: None,
-                    text_edits: None,
-                    tooltip: tooltip.map(InlayHintTooltip::String),
-                    padding_left: Some(true),
-                    padding_right: None,
-                    data: None,
-                };
-                let mut hints: Vec<(u32, u8, InlayHint)> = report
-                    .tool_changes
-                    .iter()
-                    .filter(|(line, _)| in_range(*line))
-                    .filter_map(|(line, t)| {
-                        let t = (*t)?;
-                        let label = format!("tool change at {}", format_duration(t));
-                        Some((*line, 0, hint(end_of_line(*line)?, label, None)))
-                    })
-                    .collect();
-                if mode != BlockTimes::Off {
-                    for b in report.blocks.iter().filter(|b| in_range(b.line)) {
-                        if b.time_s <= 0.0 {
-                            continue;
-                        }
-                        let Some(pos) = end_of_line(b.line) else {
-                            continue;
-                        };
-                        let label = match mode {
-                            BlockTimes::Cumulative => {
-                                format!("ends at {}", format_duration(b.end_s))
-                            }
-                            _ => block_seconds(b.time_s),
-                        };
-                        let tip = format!(
-                            "{}; ends at {}",
-                            dry_run::Breakdown::of_block(b),
-                            format_duration(b.end_s)
-                        );
-                        hints.push((b.line, 1, hint(pos, label, Some(tip))));
-                    }
-                }
-                hints.sort_by_key(|(line, order, _)| (*line, *order));
-                Some(hints.into_iter().map(|(_, _, h)| h).collect())
+                let hints =
+                    ide::lens::inlay_hints(&analysis, range.start.line, range.end.line, mode);
+                Some(
+                    hints
+                        .into_iter()
+                        .map(|h| InlayHint {
+                            position: offset_to_position(&snap.rope, h.offset),
+                            label: InlayHintLabel::String(h.label),
+                            kind: None,
+                            text_edits: None,
+                            tooltip: h.tooltip.map(InlayHintTooltip::String),
+                            padding_left: Some(true),
+                            padding_right: None,
+                            data: None,
+                        })
+                        .collect(),
+                )
             })
             .await
         })
@@ -1299,29 +1249,10 @@ impl LanguageServer for Backend {
                 return Ok(None);
             };
             blocking(move || {
-                let title = match planned_run(&snap) {
-                    Some(r) => {
-                        let t = r.timing?;
-                        let times = format!(
-                            "(cutting {}, rapid {}, tool change {})",
-                            format_duration(t.cutting_s),
-                            format_duration(t.rapid_s),
-                            format_duration(t.tool_change_s)
-                        );
-                        match &r.stopped {
-                            // The run covers only part of the program: say where it stopped.
-                            Some(s) => format!(
-                                "Cycle time {} partial {times}: {}",
-                                format_duration(t.cycle_time_s),
-                                s.describe()
-                            ),
-                            None => {
-                                format!("Cycle time {} {times}", format_duration(t.cycle_time_s))
-                            }
-                        }
-                    }
-                    None => snap.run_skipped_reason()?,
-                };
+                let title = ide::lens::cycle_time_title(
+                    planned_run(&snap).as_deref(),
+                    snap.run_skipped_reason(),
+                )?;
                 Some(vec![CodeLens {
                     range: Range::new(Position::new(0, 0), Position::new(0, 0)),
                     command: Some(Command {
@@ -1360,19 +1291,5 @@ impl LanguageServer for Backend {
             other => other,
         };
         self.dry_run(arg).await.map(Some)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::format_duration;
-
-    #[test]
-    fn durations_read_like_a_clock() {
-        assert_eq!(format_duration(13.04), "0:13.0");
-        assert_eq!(format_duration(59.96), "1:00.0");
-        assert_eq!(format_duration(754.25), "12:34.3");
-        assert_eq!(format_duration(3725.4), "1:02:05");
-        assert_eq!(format_duration(f64::NAN), "–");
     }
 }

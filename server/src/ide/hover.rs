@@ -7,9 +7,9 @@ use analyzer::rules::registry;
 use analyzer::syntax::{Expr, Item, ItemKind, Program, TokenKind, Word};
 use analyzer::Span;
 
-use super::nav::{self, Sym};
-use super::snapshot::Snapshot;
-use super::{keywords, values};
+use analyzer::names::{self as nav, Sym};
+
+use super::{keywords, lens, values, Analysis};
 
 /// The item of the block at `offset` whose span holds it (a cursor just after
 /// a word still counts as on it).
@@ -67,9 +67,9 @@ fn unknown_code(letter: char, num: CodeNum, dialect: Dialect) -> String {
     )
 }
 
-fn word_markdown(snap: &Snapshot, bi: usize, item: &Item, w: &Word) -> Option<String> {
-    let program = snap.program();
-    let settings = &snap.doc.settings;
+fn word_markdown(a: &Analysis<'_>, bi: usize, item: &Item, w: &Word) -> Option<String> {
+    let program = a.program;
+    let settings = a.settings;
     if let Some((letter, num)) = code_of(w) {
         return Some(match dialect::lookup(settings.dialect, letter, num) {
             Some(info) => code_markdown(info, settings.variant),
@@ -116,8 +116,9 @@ fn word_markdown(snap: &Snapshot, bi: usize, item: &Item, w: &Word) -> Option<St
     }
     // The value the word's expression had in the dry run.
     if let (ItemKind::Word(_), analyzer::syntax::WordValue::Expr(id)) = (&item.kind, w.value) {
-        if let Some(v) = snap
-            .cached_run()
+        if let Some(v) = a
+            .run
+            .clone()
             .and_then(|r| r.values.clone())
             .and_then(|rec| values::recorded(program, &rec, bi, program.expr(id).span))
         {
@@ -128,8 +129,8 @@ fn word_markdown(snap: &Snapshot, bi: usize, item: &Item, w: &Word) -> Option<St
 }
 
 /// A keyword (macro statement, operator, function, O-word keyword) under the cursor.
-fn keyword_at(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
-    let program = snap.program();
+fn keyword_at(a: &Analysis<'_>, offset: u32) -> Option<(String, Span)> {
+    let program = a.program;
     let i = program
         .tokens
         .partition_point(|t| t.start <= offset)
@@ -143,7 +144,7 @@ fn keyword_at(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
             continue;
         }
         let text = program.str_of(span);
-        let kw = keywords::lookup(snap.doc.settings.dialect, text.trim())?;
+        let kw = keywords::lookup(a.settings.dialect, text.trim())?;
         return Some((keywords::markdown(kw), span));
     }
     None
@@ -151,10 +152,10 @@ fn keyword_at(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
 
 /// The values of the innermost recorded expression around `offset` (an
 /// `IF`/`WHILE` condition, a function's value).
-fn expression_value(snap: &Snapshot, offset: u32) -> Option<String> {
-    let run = snap.cached_run()?;
+fn expression_value(a: &Analysis<'_>, offset: u32) -> Option<String> {
+    let run = a.run.clone()?;
     let rec = run.values.as_deref()?;
-    let program = snap.program();
+    let program = a.program;
     let bi = program.block_at(offset)?;
     let base = program.blocks.get(bi)?.span.start;
     let rel = offset.checked_sub(base)?;
@@ -168,11 +169,11 @@ fn expression_value(snap: &Snapshot, offset: u32) -> Option<String> {
 
 /// Meaning and dry-run values of the variable under the cursor (`#101`,
 /// `#[#1+2]`, `#<_x>`).
-fn variable_details(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
-    let program = snap.program();
+fn variable_details(a: &Analysis<'_>, offset: u32) -> Option<(String, Span)> {
+    let program = a.program;
     let bi = program.block_at(offset)?;
     let (id, span) = values::variable_at(program, bi, offset)?;
-    let dialect = snap.doc.settings.dialect;
+    let dialect = a.settings.dialect;
     let mut lines = Vec::new();
     let meaning = match program.expr(id).expr {
         Expr::Named { name } => {
@@ -189,7 +190,7 @@ fn variable_details(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     if let Some(m) = meaning {
         lines.push(format!("*{m}*"));
     }
-    let run = snap.cached_run();
+    let run = a.run.clone();
     if let Some((run, rec)) = run.as_ref().and_then(|r| Some((r, r.values.as_deref()?))) {
         lines.push(match values::recorded(program, rec, bi, span) {
             Some(v) => v,
@@ -204,8 +205,8 @@ fn variable_details(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     (!lines.is_empty()).then(|| (lines.join("\n\n"), span))
 }
 
-fn sym_markdown(snap: &Snapshot, sym: &Sym) -> String {
-    let program = snap.program();
+fn sym_markdown(a: &Analysis<'_>, sym: &Sym) -> String {
+    let program = a.program;
     let kind = match sym {
         Sym::OLabel(_) => "O-word label",
         Sym::Program(_) => "program",
@@ -214,7 +215,7 @@ fn sym_markdown(snap: &Snapshot, sym: &Sym) -> String {
     };
     let mut s = format!("**{}** — {kind}", sym.display());
     if let Some(def) = nav::definition(program, sym) {
-        let line = super::position::offset_to_position(&snap.rope, def.start as usize).line + 1;
+        let line = a.lines.line_of(def.start as usize) + 1;
         let verb = if matches!(sym, Sym::Var(_)) {
             "first assigned"
         } else {
@@ -225,13 +226,20 @@ fn sym_markdown(snap: &Snapshot, sym: &Sym) -> String {
     s
 }
 
+/// A hover: Markdown, and the span it is about.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HoverResult {
+    pub markdown: String,
+    pub span: Span,
+}
+
 /// The hover text at `offset` and the span it is about.
-pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
-    let program = snap.program();
+pub fn hover(a: &Analysis<'_>, offset: u32) -> Option<HoverResult> {
+    let program = a.program;
     let mut parts = Vec::new();
     let mut span = None;
-    for d in snap
-        .diagnostics()
+    for d in a
+        .diagnostics
         .iter()
         .filter(|d| d.file == analyzer::FileId(0))
     {
@@ -251,13 +259,13 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
         parts.push(s);
         span.get_or_insert(d.span);
     }
-    let variable = variable_details(snap, offset);
+    let variable = variable_details(a, offset);
     let mut variable_shown = false;
     if let Some(occ) =
         nav::occurrence_at(program, offset).filter(|o| !matches!(o.sym, Sym::Seq(_)) || !o.def)
     {
         if !matches!(occ.sym, Sym::Program(_)) || occ.def {
-            let mut md = sym_markdown(snap, &occ.sym);
+            let mut md = sym_markdown(a, &occ.sym);
             if let (Sym::Var(_), Some((v, _))) = (&occ.sym, &variable) {
                 md.push_str("\n\n");
                 md.push_str(v);
@@ -272,10 +280,10 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
         parts.push(format!("**{}** — variable\n\n{v}", text.trim()));
         span = Some(*vspan);
     }
-    if let Some((mut md, kspan)) = keyword_at(snap, offset) {
+    if let Some((mut md, kspan)) = keyword_at(a, offset) {
         // An operator or function: the value of the expression it is in.
         if variable.is_none() {
-            if let Some(v) = expression_value(snap, offset) {
+            if let Some(v) = expression_value(a, offset) {
                 md.push_str("\n\n");
                 md.push_str(&v);
             }
@@ -285,25 +293,25 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     }
     if let Some((bi, item)) = item_at(program, offset).filter(|_| variable.is_none()) {
         if let ItemKind::Word(w) = &item.kind {
-            if let Some(s) = word_markdown(snap, bi, item, w) {
+            if let Some(s) = word_markdown(a, bi, item, w) {
                 parts.push(s);
                 span = Some(item.span);
             }
         }
     }
-    if let Some(state) = block_state(snap, offset) {
+    if let Some(state) = block_state(a, offset) {
         parts.push(state);
     }
     // On the first line: which dialect the file is read in, and why, so that a
     // wrong guess is visible.
-    if !snap.rope.bytes().take(offset as usize).any(|b| b == b'\n') {
+    if a.on_first_line(offset as usize) {
         parts.push(format!(
             "*Checked as {}: {}*",
             program.dialect.as_str(),
-            snap.doc.dialect_reason
+            a.dialect_reason
         ));
         // The cycle-time lens sits on this line: where its time goes.
-        if let Some(b) = snap.cached_run().and_then(|r| r.breakdown.clone()) {
+        if let Some(b) = a.run.clone().and_then(|r| r.breakdown.clone()) {
             parts.push(b.markdown());
         }
         span.get_or_insert(Span::new(offset, offset));
@@ -311,17 +319,17 @@ pub fn hover(snap: &Snapshot, offset: u32) -> Option<(String, Span)> {
     if parts.is_empty() {
         return None;
     }
-    Some((
-        parts.join("\n\n---\n\n"),
-        span.unwrap_or(Span::new(offset, offset)),
-    ))
+    Some(HoverResult {
+        markdown: parts.join("\n\n---\n\n"),
+        span: span.unwrap_or(Span::new(offset, offset)),
+    })
 }
 
 /// The machine state after the block under the cursor, from the interpreter's
 /// run when the analysis made one.
-fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
-    let report = snap.cached_run()?;
-    let program = snap.program();
+fn block_state(a: &Analysis<'_>, offset: u32) -> Option<String> {
+    let report = a.run.clone()?;
+    let program = a.program;
     let bi = program.block_at(offset)?;
     if program.blocks[bi].items.0 == program.blocks[bi].items.1 {
         return None;
@@ -331,7 +339,7 @@ fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
     let pos: Vec<String> = axes
         .iter()
         .zip(s.position.iter())
-        .filter(|(a, _)| snap.doc.settings.axes.contains(a))
+        .filter(|(axis, _)| a.settings.axes.contains(axis))
         .map(|(a, v)| format!("{a}{v:.3}"))
         .collect();
     let mut md = format!(
@@ -343,7 +351,10 @@ fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
         s.tool
     );
     // The block's planned time, summed over its executions, and its causes.
-    let line = snap.rope.try_byte_to_line(offset as usize).ok()? as u32;
+    if offset as usize > program.text.len() {
+        return None;
+    }
+    let line = a.lines.line_of(offset as usize) as u32;
     if let Some(b) = report
         .blocks
         .iter()
@@ -351,9 +362,9 @@ fn block_state(snap: &Snapshot, offset: u32) -> Option<String> {
     {
         md.push_str(&format!(
             "  \nTime: {} ({}), ends at {}",
-            super::server::block_seconds(b.time_s),
-            super::dry_run::Breakdown::of_block(b),
-            super::server::format_duration(b.end_s)
+            lens::block_seconds(b.time_s),
+            crate::lsp::dry_run::Breakdown::of_block(b),
+            lens::format_duration(b.end_s)
         ));
     }
     Some(md)
