@@ -6,8 +6,9 @@
 //! 1M figures (a benchmark, not a timed test: it prints median and p90):
 //! `LSP_LATENCY_LINES=1000000 LSP_LATENCY_EDITS=40 cargo test --release -p partscope --test lsp_latency -- --nocapture`
 //! (1M generated lines are 33 MB, below the default 64 MB `maxFileSize`, so
-//! that run measures the full analysis). `PARTSCOPE_LSP_BASELINE=1` makes the server
-//! analyse every version in full with the old debounce: the baseline.
+//! that run measures the full analysis). `LSP_LATENCY_BASE=/path/to/partscope`
+//! measures that binary (another build, e.g. of main) too, on the same
+//! program, base first, and prints the ratio of the medians.
 
 #[path = "../../tests/lsp/harness.rs"]
 mod harness;
@@ -32,19 +33,11 @@ fn generate(lines: usize) -> String {
     s
 }
 
-#[test]
-fn edit_latency_on_a_large_program() {
-    let lines: usize = std::env::var("LSP_LATENCY_LINES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(20_000);
-    let edits: u32 = std::env::var("LSP_LATENCY_EDITS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(6);
-    let text = generate(lines);
+/// Opens the program in `partscope lsp` of `bin`, then edits it: the time
+/// from didOpen to its diagnostics, and each edit's (sorted).
+fn measure(bin: &std::ffi::OsStr, text: &str, lines: usize, edits: u32) -> (f64, Vec<f64>) {
     let uri = "file:///latency/big.ngc";
-    let mut c = Client::spawn();
+    let mut c = Client::spawn_binary(bin, &[]);
     c.request(
         "initialize",
         json!({"processId": null, "rootUri": null, "capabilities": {}}),
@@ -88,17 +81,49 @@ fn edit_latency_on_a_large_program() {
         assert_eq!(l003, expected);
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }
-    times.sort_by(f64::total_cmp);
-    let pct = |p: f64| times[((times.len() - 1) as f64 * p).round() as usize];
-    println!(
-        "lsp latency{}: {lines} lines, {:.1} MB: open→diagnostics {open_ms:.0} ms; {} edits→diagnostics min {:.1} ms, median {:.1} ms, p90 {:.1} ms, max {:.1} ms",
-        if std::env::var_os("PARTSCOPE_LSP_BASELINE").is_some() { " (baseline)" } else { "" },
-        text.len() as f64 / 1e6,
-        times.len(),
-        times[0],
-        pct(0.5),
-        pct(0.9),
-        times[times.len() - 1]
-    );
     assert!(c.shutdown().success());
+    times.sort_by(f64::total_cmp);
+    (open_ms, times)
+}
+
+fn percentile(times: &[f64], p: f64) -> f64 {
+    times[((times.len() - 1) as f64 * p).round() as usize]
+}
+
+#[test]
+fn edit_latency_on_a_large_program() {
+    let lines: usize = std::env::var("LSP_LATENCY_LINES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(20_000);
+    let edits: u32 = std::env::var("LSP_LATENCY_EDITS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(6);
+    let text = generate(lines);
+    let mut servers = Vec::new();
+    if let Some(base) = std::env::var_os("LSP_LATENCY_BASE") {
+        servers.push(("base", base));
+    }
+    servers.push(("this build", env!("CARGO_BIN_EXE_partscope").into()));
+    let mut medians = Vec::new();
+    for (name, bin) in &servers {
+        let (open_ms, times) = measure(bin, &text, lines, edits);
+        println!(
+            "lsp latency ({name}): {lines} lines, {:.1} MB: open→diagnostics {open_ms:.0} ms; {} edits→diagnostics min {:.1} ms, median {:.1} ms, p90 {:.1} ms, max {:.1} ms",
+            text.len() as f64 / 1e6,
+            times.len(),
+            times[0],
+            percentile(&times, 0.5),
+            percentile(&times, 0.9),
+            times[times.len() - 1]
+        );
+        medians.push(percentile(&times, 0.5));
+    }
+    if let [base, this] = medians[..] {
+        println!(
+            "median edit latency: base / this build = {:.2}",
+            base / this
+        );
+    }
 }

@@ -53,7 +53,12 @@ impl Client {
 
     /// Spawns the server with extra environment variables.
     pub fn spawn_with_env(env: &[(&str, &str)]) -> Client {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_partscope"))
+        Client::spawn_binary(env!("CARGO_BIN_EXE_partscope").as_ref(), env)
+    }
+
+    /// Spawns `partscope lsp` of another build (a benchmark's base binary).
+    pub fn spawn_binary(program: &std::ffi::OsStr, env: &[(&str, &str)]) -> Client {
+        let mut child = Command::new(program)
             .arg("lsp")
             .envs(env.iter().copied())
             .stdin(Stdio::piped())

@@ -21,7 +21,7 @@ pub mod values;
 use std::sync::Arc;
 
 use analyzer::syntax::Program;
-use analyzer::{Diagnostic, LineIndex, Settings};
+use analyzer::{Diagnostic, Settings};
 
 pub use crate::lsp::dry_run::RunReport;
 
@@ -32,17 +32,6 @@ pub trait Lines {
     fn line_of(&self, offset: usize) -> usize;
     /// The byte offset where a 0-based line starts; `None` past the last line.
     fn line_start(&self, line: usize) -> Option<usize>;
-}
-
-impl Lines for LineIndex {
-    fn line_of(&self, offset: usize) -> usize {
-        self.line_col(offset.min(u32::MAX as usize) as u32).0 as usize
-    }
-
-    fn line_start(&self, line: usize) -> Option<usize> {
-        self.line_start(u32::try_from(line).ok()?)
-            .map(|s| s as usize)
-    }
 }
 
 /// One analysed version of a document, as the features read it.

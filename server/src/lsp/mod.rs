@@ -46,6 +46,10 @@
 //!   poll it.
 //! - Other files are read only inside the workspace folders (canonicalized,
 //!   so symlinks cannot escape): [`workspace`].
+//! - The environment holds no behaviour switches: `PARTSCOPE_LSP_MAX_MESSAGE_BYTES`
+//!   is a user setting (the transport's limit, [`stdio`]) and
+//!   `PARTSCOPE_LSP_TIMING` a diagnostic aid that only writes timings and
+//!   memory to stderr (docs/configuration.md).
 //!
 //! Settings ([`config`]): the nearest `partscope.toml` (up to the workspace
 //! folder), then a first-line `(partscope: dialect=…)` comment, then the

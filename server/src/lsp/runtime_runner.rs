@@ -215,22 +215,6 @@ impl DryRunner for RuntimeRunner {
                 planner.map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
             (out, path, streamed, t_path)
         });
-        if rerun && std::env::var_os("PARTSCOPE_RERUN_CHECK").is_some() {
-            let full = runtime::run_checkpointed(&run_input, true);
-            if full.diagnostics != out.diagnostics {
-                eprintln!(
-                    "RERUN MISMATCH: rerun {:?}\nfull {:?}",
-                    out.diagnostics
-                        .iter()
-                        .map(|d| (d.code, d.span.start))
-                        .collect::<Vec<_>>(),
-                    full.diagnostics
-                        .iter()
-                        .map(|d| (d.code, d.span.start))
-                        .collect::<Vec<_>>()
-                );
-            }
-        }
         // A cancelled run stopped part way: no answer, and nothing to rerun from.
         let path = path?;
         if input.cancel.is_cancelled() {

@@ -40,15 +40,12 @@ use crate::ide;
 /// document run one at a time, and one whose version was superseded while
 /// it waited for its turn is skipped, so a burst of typing coalesces anyway.
 const DEBOUNCE: Duration = Duration::ZERO;
-/// The debounce before incremental analysis (the benchmark's baseline mode).
-const BASELINE_DEBOUNCE: Duration = Duration::from_millis(50);
 /// How long a request waits for the scheduled analysis before doing its own.
 const WAIT_FOR_ANALYSIS: Duration = Duration::from_secs(30);
-/// The wait before incremental analysis (the benchmark's baseline mode).
-const BASELINE_RUN_WAIT: Duration = Duration::from_millis(150);
 /// How long edits of a large file must pause before the interpreter runs.
 const RUN_IDLE: Duration = Duration::from_millis(300);
-/// Files up to this size wait [`SMALL_RUN_WAIT`] for the run.
+/// Files up to this size wait [`SMALL_RUN_WAIT`] for the run; larger ones
+/// publish their static diagnostics first ([`Backend::publish_then_run`]).
 const SMALL_FILE: usize = 256 * 1024;
 const SMALL_RUN_WAIT: Duration = Duration::from_secs(5);
 /// Above this many tokens a full semantic-tokens response is refused (the
@@ -279,7 +276,7 @@ impl Backend {
                 this.publish(&snap).await;
                 return;
             }
-            if snap.rope.len_bytes() > SMALL_FILE && !snapshot::baseline_mode() {
+            if snap.rope.len_bytes() > SMALL_FILE {
                 this.publish_then_run(snap, generation).await;
                 return;
             }
@@ -303,13 +300,8 @@ impl Backend {
                 .await
                 .ok()
             });
-            // Small files wait longer, so they normally get one publish per version.
-            let wait = if snap.rope.len_bytes() <= SMALL_FILE {
-                SMALL_RUN_WAIT
-            } else {
-                BASELINE_RUN_WAIT
-            };
-            let (done, published) = match tokio::time::timeout(wait, &mut run).await {
+            // A small file waits for its run, so it normally gets one publish per version.
+            let (done, published) = match tokio::time::timeout(SMALL_RUN_WAIT, &mut run).await {
                 Ok(r) => (r.ok().flatten().is_some(), false),
                 Err(_) => {
                     this.publish(&snap).await;
@@ -890,12 +882,7 @@ impl LanguageServer for Backend {
                 doc.version = params.text_document.version;
                 st.last_uri = Some(uri.clone());
             }
-            let delay = if snapshot::baseline_mode() {
-                BASELINE_DEBOUNCE
-            } else {
-                DEBOUNCE
-            };
-            self.schedule(uri, delay);
+            self.schedule(uri, DEBOUNCE);
         })
         .await
     }

@@ -89,9 +89,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     let doc = config::resolve(inputs.path.as_deref(), &text, &inputs.roots, &inputs.client);
     let t1 = std::time::Instant::now();
     let syntax_only = text.len() > doc.max_file_size;
-    // `PARTSCOPE_LSP_BASELINE` turns incremental analysis off, so that the
-    // latency benchmark can measure both in one session with one binary.
-    let previous = inputs.previous.filter(|_| !baseline_mode());
+    let previous = inputs.previous;
     // The newest run among earlier versions (a version whose run never
     // happened passes its own predecessor's on).
     let previous_run = previous.as_ref().and_then(|p| {
@@ -147,14 +145,6 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         merged: OnceLock::new(),
         previous_run,
     }
-}
-
-/// Whether the server runs as before incremental analysis (full analysis of
-/// every version, 50 ms debounce, 150 ms wait for the interpreter): the
-/// baseline of the latency benchmark.
-pub fn baseline_mode() -> bool {
-    static BASELINE: OnceLock<bool> = OnceLock::new();
-    *BASELINE.get_or_init(|| std::env::var_os("PARTSCOPE_LSP_BASELINE").is_some())
 }
 
 pub fn rule_href(code: &str) -> Option<Uri> {
