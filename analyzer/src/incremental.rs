@@ -158,12 +158,148 @@ pub fn reference(text: Arc<[u8]>, settings: &Settings, syntax_only: bool) -> Ana
     }
 }
 
+/// A whole text parsed for an [`Incremental`] analysis whose static rules have
+/// not run yet ([`Incremental::parse`]). The rules only read the tree
+/// ([`Parse::rules`]), so a host can interpret the program on one thread while
+/// they run on another, and join the two with [`Parse::with_rules`].
+#[derive(Debug, Clone)]
+pub struct Parse {
+    program: Program,
+    syntax_only: bool,
+    settings_key: String,
+    /// `None` when the file was read as binary (no parse to reuse).
+    index: Option<Index>,
+}
+
+/// The static rules' results for a [`Parse`]: the file's diagnostics and what
+/// an update needs to re-check only what an edit touched.
+#[derive(Debug, Clone)]
+pub struct StaticRules {
+    /// Syntax and static-rule diagnostics, as [`crate::analyze`] gives them.
+    pub diagnostics: Vec<Diagnostic>,
+    state: RuleState,
+}
+
+impl Parse {
+    pub fn program(&self) -> &Program {
+        &self.program
+    }
+
+    /// Runs the static rules on the tree (`settings` as for the parse).
+    pub fn rules(&self, settings: &Settings) -> StaticRules {
+        let program = &self.program;
+        if self.index.is_none() {
+            // A binary file is reported once ([`crate::lint`] keeps its `L009` unfiltered).
+            return StaticRules {
+                diagnostics: crate::binary_check(&program.text).into_iter().collect(),
+                state: RuleState::default(),
+            };
+        }
+        if self.syntax_only {
+            return StaticRules {
+                diagnostics: crate::finish(program, settings, program.diagnostics.clone()),
+                state: RuleState::default(),
+            };
+        }
+        let enabled = rules::enabled_rules(settings);
+        let mut rs = RuleState::default();
+        if !enabled.is_empty() {
+            rs.plain = program
+                .blocks
+                .iter()
+                .map(|b| rules::util::is_plain(program, b))
+                .collect();
+            let cx = ProgramCx::with_plain(program, settings, &rs.plain);
+            rs.skipped = rules::skipped_blocks_in(program, cx.segments());
+            let block_rules = rules::BlockRules::new(&enabled, settings);
+            let mut codes = Vec::new();
+            let mut out = Vec::new();
+            for i in 0..program.blocks.len() {
+                note_looks_back(program, i, &mut rs.looks_back);
+                if rs.skipped.get(i).copied().unwrap_or(false) {
+                    continue;
+                }
+                rules::check_block_at(&cx, &block_rules, i, &mut codes, &mut out);
+                rs.diags.extend(out.drain(..).map(|d| (i as u32, d)));
+            }
+        }
+        StaticRules {
+            diagnostics: full_diagnostics(program, settings, &enabled, &rs),
+            state: rs,
+        }
+    }
+
+    /// The analysis of this parse with its rules' results.
+    pub fn with_rules(self, rules: StaticRules) -> Incremental {
+        Incremental {
+            analysis: Analysis {
+                program: self.program,
+                diagnostics: rules.diagnostics,
+            },
+            syntax_only: self.syntax_only,
+            settings_key: self.settings_key,
+            index: self.index.map(|ix| (ix, rules.state)),
+        }
+    }
+
+    /// [`Incremental::update`] of this parse with its `rules`, without taking
+    /// either: a copy of both is made only when the update can reuse them.
+    pub fn update(
+        &self,
+        rules: &StaticRules,
+        text: Arc<[u8]>,
+        settings: &Settings,
+        syntax_only: bool,
+    ) -> Incremental {
+        let reusable = self.index.as_ref().is_some_and(|ix| {
+            reusable(
+                &self.program,
+                ix,
+                (self.syntax_only, &self.settings_key),
+                &text,
+                settings,
+                syntax_only,
+            )
+        });
+        if !reusable {
+            return Incremental::new(text, settings, syntax_only);
+        }
+        self.clone()
+            .with_rules(rules.clone())
+            .update_owned(text, settings, syntax_only)
+    }
+}
+
+/// Whether an update of `program` (parsed with the settings and mode of
+/// `was`, described by `ix`) to `text` can start from it (else: a full analysis).
+fn reusable(
+    program: &Program,
+    ix: &Index,
+    was: (bool, &str),
+    text: &[u8],
+    settings: &Settings,
+    syntax_only: bool,
+) -> bool {
+    was.0 == syntax_only
+        && was.1 == settings_key(settings)
+        && (syntax_only || crate::binary_check(text).is_none())
+        && !program.blocks.is_empty()
+        && ix.states.len() == program.blocks.len()
+}
+
 impl Incremental {
     /// Analyses a whole text.
     pub fn new(text: Arc<[u8]>, settings: &Settings, syntax_only: bool) -> Incremental {
+        let parse = Incremental::parse(text, settings, syntax_only);
+        let rules = parse.rules(settings);
+        parse.with_rules(rules)
+    }
+
+    /// The first half of [`Incremental::new`]: the parse, without the static rules.
+    pub fn parse(text: Arc<[u8]>, settings: &Settings, syntax_only: bool) -> Parse {
         if !syntax_only && crate::binary_check(&text).is_some() {
-            return Incremental {
-                analysis: crate::analyze(text, settings),
+            return Parse {
+                program: crate::parse_text(text, settings).program,
                 syntax_only,
                 settings_key: settings_key(settings),
                 index: None,
@@ -176,39 +312,32 @@ impl Incremental {
             index.record(&parser, &program);
             parser.parse_blocks(&mut program, 1);
         }
-        let (analysis, rule_state) = if syntax_only {
-            (finish_syntax_only(program, settings), RuleState::default())
-        } else {
-            let enabled = rules::enabled_rules(settings);
-            let mut rs = RuleState::default();
-            if !enabled.is_empty() {
-                rs.plain = program
-                    .blocks
-                    .iter()
-                    .map(|b| rules::util::is_plain(&program, b))
-                    .collect();
-                let cx = ProgramCx::with_plain(&program, settings, &rs.plain);
-                rs.skipped = rules::skipped_blocks_in(&program, cx.segments());
-                let block_rules = rules::BlockRules::new(&enabled, settings);
-                let mut codes = Vec::new();
-                let mut out = Vec::new();
-                for i in 0..program.blocks.len() {
-                    note_looks_back(&program, i, &mut rs.looks_back);
-                    if rs.skipped.get(i).copied().unwrap_or(false) {
-                        continue;
-                    }
-                    rules::check_block_at(&cx, &block_rules, i, &mut codes, &mut out);
-                    rs.diags.extend(out.drain(..).map(|d| (i as u32, d)));
-                }
-            }
-            (finish_full(program, settings, &enabled, &rs), rs)
-        };
-        Incremental {
-            analysis,
+        Parse {
+            program,
             syntax_only,
             settings_key: settings_key(settings),
-            index: Some((index, rule_state)),
+            index: Some(index),
         }
+    }
+
+    /// This analysis as its parse and its rules' results.
+    pub fn into_parts(self) -> (Parse, StaticRules) {
+        let (index, state) = match self.index {
+            Some((ix, rs)) => (Some(ix), rs),
+            None => (None, RuleState::default()),
+        };
+        (
+            Parse {
+                program: self.analysis.program,
+                syntax_only: self.syntax_only,
+                settings_key: self.settings_key,
+                index,
+            },
+            StaticRules {
+                diagnostics: self.analysis.diagnostics,
+                state,
+            },
+        )
     }
 
     /// The analysis of `text`, reusing this one where the edit left it valid.
@@ -223,14 +352,16 @@ impl Incremental {
 
     /// Whether an update can start from this analysis (else: a full one).
     fn reusable(&self, text: &[u8], settings: &Settings, syntax_only: bool) -> bool {
-        let Some((index, _)) = &self.index else {
-            return false;
-        };
-        self.syntax_only == syntax_only
-            && self.settings_key == settings_key(settings)
-            && (syntax_only || crate::binary_check(text).is_none())
-            && !self.analysis.program.blocks.is_empty()
-            && index.states.len() == self.analysis.program.blocks.len()
+        self.index.as_ref().is_some_and(|(ix, _)| {
+            reusable(
+                &self.analysis.program,
+                ix,
+                (self.syntax_only, &self.settings_key),
+                text,
+                settings,
+                syntax_only,
+            )
+        })
     }
 
     /// [`Incremental::update`] on this analysis itself: the program's vectors
@@ -604,22 +735,31 @@ fn finish_syntax_only(program: Program, settings: &Settings) -> Analysis {
 /// Assembles the diagnostics in the order [`crate::analyze`] produces them
 /// (parser, UTF-8, block rules, whole-file rules), so that sorting and
 /// de-duplication give the same list.
-fn finish_full(
-    program: Program,
+fn full_diagnostics(
+    program: &Program,
     settings: &Settings,
     enabled: &[&'static dyn rules::Rule],
     rs: &RuleState,
-) -> Analysis {
+) -> Vec<Diagnostic> {
     let mut diagnostics = program.diagnostics.clone();
     if let Some(d) = crate::utf8_check(&program.text) {
         diagnostics.push(d);
     }
     if !enabled.is_empty() {
         diagnostics.extend(rs.diags.iter().map(|(_, d)| d.clone()));
-        let cx = ProgramCx::with_plain(&program, settings, &rs.plain);
+        let cx = ProgramCx::with_plain(program, settings, &rs.plain);
         rules::check_whole_program(&cx, enabled, &mut diagnostics);
     }
-    let diagnostics = crate::finish(&program, settings, diagnostics);
+    crate::finish(program, settings, diagnostics)
+}
+
+fn finish_full(
+    program: Program,
+    settings: &Settings,
+    enabled: &[&'static dyn rules::Rule],
+    rs: &RuleState,
+) -> Analysis {
+    let diagnostics = full_diagnostics(&program, settings, enabled, rs);
     Analysis {
         program,
         diagnostics,

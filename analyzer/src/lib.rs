@@ -131,11 +131,14 @@ const MISMATCH: &str = "P010";
 /// Haas mill, and the report is neither disabled nor suppressed): hosts then skip the
 /// interpreter, whose findings and cycle time would mean nothing.
 pub fn reports_mismatch(parsed: &Parsed, settings: &Settings) -> bool {
-    if parsed.binary {
-        return false;
-    }
-    match rules::control_mismatch::mismatch_diagnostic(&parsed.program) {
-        Some(d) => !finish(&parsed.program, settings, vec![d]).is_empty(),
+    !parsed.binary && program_reports_mismatch(&parsed.program, settings)
+}
+
+/// [`reports_mismatch`] of a parsed program (a binary file's has no blocks, so
+/// no mismatch).
+pub fn program_reports_mismatch(program: &syntax::Program, settings: &Settings) -> bool {
+    match rules::control_mismatch::mismatch_diagnostic(program) {
+        Some(d) => !finish(program, settings, vec![d]).is_empty(),
         None => false,
     }
 }

@@ -183,11 +183,20 @@ fn run_sequence(dialect: Dialect, ext: &str, ops: &[Op], syntax_only: bool) {
     // Style rules too: they are whole-file scans with the most cross-block logic.
     settings.select = vec!["ALL".into()];
     let mut text = corpus(ext);
-    let mut inc = Incremental::new(Arc::from(&text[..]), &settings, syntax_only);
+    // In two steps, as the language server analyses an opened file.
+    let parse = Incremental::parse(Arc::from(&text[..]), &settings, syntax_only);
+    let rules = parse.rules(&settings);
+    let mut inc = parse.with_rules(rules);
     check_equal(&inc, &text, &settings, syntax_only);
-    for op in ops {
+    for (i, op) in ops.iter().enumerate() {
         text = apply(&text, op);
-        inc = inc.update_owned(Arc::from(&text[..]), &settings, syntax_only);
+        // Every other edit updates the parts without taking them.
+        inc = if i % 2 == 0 {
+            inc.update_owned(Arc::from(&text[..]), &settings, syntax_only)
+        } else {
+            let (parse, rules) = inc.into_parts();
+            parse.update(&rules, Arc::from(&text[..]), &settings, syntax_only)
+        };
         check_equal(&inc, &text, &settings, syntax_only);
     }
 }
@@ -275,4 +284,22 @@ fn an_edit_reparses_only_its_neighbourhood() {
         .collect();
     // L003 points at the missing value, just after the letter.
     assert_eq!(codes, vec![("L003", at as u32 + 4)]);
+}
+
+#[test]
+fn a_binary_file_parsed_in_two_steps_is_reported_once() {
+    let settings = Settings::new(Dialect::Fanuc);
+    let text: Vec<u8> = b"G1 X1\n\x00\x01\x02\xff\xfe\x00\x00binary".to_vec();
+    let full = analyzer::analyze(text.clone(), &settings);
+    let parse = Incremental::parse(Arc::from(&text[..]), &settings, false);
+    let rules = parse.rules(&settings);
+    assert_eq!(parse.program().blocks.len(), 0);
+    let codes: Vec<&str> = rules.diagnostics.iter().map(|d| d.code).collect();
+    assert_eq!(codes, vec!["L009"]);
+    same(&rules.diagnostics, &full.diagnostics, "binary file");
+    // An edit of a binary file is a full analysis again.
+    let mut edited = text.clone();
+    edited.extend_from_slice(b"\x00more");
+    let inc = parse.update(&rules, Arc::from(&edited[..]), &settings, false);
+    check_equal(&inc, &edited, &settings, false);
 }

@@ -854,6 +854,54 @@ fn large_files_publish_static_diagnostics_first_then_the_run() {
     assert!(c.shutdown().success());
 }
 
+/// A dry run asked for with the opening of a large file starts on the parse,
+/// beside the static rules: the static diagnostics are still published on
+/// their own (unless the run is done before they are), and the last publish
+/// holds both, as when the run comes after them.
+#[test]
+fn a_dry_run_asked_at_open_runs_beside_the_static_rules_and_publishes_the_same() {
+    // Line 1 moves without a feed rate (F001, the interpreter's); line 5 has an
+    // `A` without a value (L003, the parser's).
+    let mut text = String::from(
+        "G21 G90\nG1 X1\nG1 X2 Y3 F100\nG1 X2 Y3 F100\nG1 X2 Y3 F100\nG1 A X2 Y3 F100\n",
+    );
+    while text.len() <= 300 * 1024 {
+        text.push_str("G1 X2 Y3 F100\n");
+    }
+    text.push_str("M2\n");
+    let uri = "file:///large/part.ngc";
+    let mut c = Client::spawn();
+    c.request(
+        "initialize",
+        json!({"processId": null, "rootUri": null, "capabilities": {}}),
+    );
+    c.notify("initialized", json!({}));
+    c.notify(
+        "textDocument/didOpen",
+        json!({"textDocument": {"uri": uri, "languageId": "ngc", "version": 1, "text": text}}),
+    );
+    let id = c.send_request("partscope/dryRun", json!({"textDocument": {"uri": uri}}));
+    let answer = c.response(id);
+    let codes: Vec<(&str, u64)> = answer["result"]["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| {
+            (
+                d["code"].as_str().unwrap(),
+                d["range"]["start"]["line"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(codes, vec![("F001", 1)], "the run's own diagnostics");
+    let statics = vec![("L003".to_string(), 5)];
+    let both = vec![("F001".to_string(), 1), ("L003".to_string(), 5)];
+    let first = c.diagnostics(uri, 1);
+    assert!(first == statics || first == both, "first publish {first:?}");
+    assert_eq!(c.diagnostics(uri, 1), both);
+    assert!(c.shutdown().success());
+}
+
 /// One edit on one line: (line, start character, end character, new text).
 type LineEdit = (u64, u64, u64, String);
 

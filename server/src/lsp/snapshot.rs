@@ -1,7 +1,7 @@
 //! One analysed version of one document: the text (as a rope, for position
 //! conversion), the settings it was analysed with and the analysis.
 
-use analyzer::incremental::Incremental;
+use analyzer::incremental::{Incremental, Parse, StaticRules};
 use analyzer::Severity;
 use ropey::Rope;
 use std::path::PathBuf;
@@ -21,8 +21,12 @@ pub struct Snapshot {
     pub rope: Rope,
     pub path: Option<PathBuf>,
     pub doc: DocSettings,
-    /// The analysis, kept in the form the next version's analysis updates.
-    inc: Incremental,
+    /// The parse, kept in the form the next version's analysis updates.
+    parse: Parse,
+    /// The static rules' results: computed on first use (the first publish)
+    /// after a whole-text parse, so that a run can start on the tree while
+    /// they run; an update computes them at once (an edit re-checks little).
+    rules: OnceLock<StaticRules>,
     /// The file is above the size limit: parsed, but no rules ran.
     pub syntax_only: bool,
     pub roots: Vec<PathBuf>,
@@ -103,39 +107,62 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     // (the server hands it over once a newer version exists); otherwise,
     // while a run or a request still reads it, it is copied first.
     let mut in_place = false;
-    let inc = match previous.map(Arc::try_unwrap) {
+    let (parse, rules) = match previous.map(Arc::try_unwrap) {
         Some(Ok(prev)) => {
             in_place = true;
-            prev.inc
-                .update_owned(text.clone(), &doc.settings, syntax_only)
+            let rules = prev
+                .rules
+                .into_inner()
+                .unwrap_or_else(|| prev.parse.rules(&prev.doc.settings));
+            let inc =
+                prev.parse
+                    .with_rules(rules)
+                    .update_owned(text.clone(), &doc.settings, syntax_only);
+            let (parse, rules) = inc.into_parts();
+            (parse, OnceLock::from(rules))
         }
-        Some(Err(shared)) => shared.inc.update(text.clone(), &doc.settings, syntax_only),
-        None => Incremental::new(text.clone(), &doc.settings, syntax_only),
+        Some(Err(shared)) => {
+            let inc = shared.parse.update(
+                shared.static_rules(),
+                text.clone(),
+                &doc.settings,
+                syntax_only,
+            );
+            let (parse, rules) = inc.into_parts();
+            (parse, OnceLock::from(rules))
+        }
+        None => (
+            Incremental::parse(text.clone(), &doc.settings, syntax_only),
+            OnceLock::new(),
+        ),
     };
-    let analysis = &inc.analysis;
     if timing {
         eprintln!(
-            "partscope lsp: v{} {} bytes: copy+config {:?}, analyze {:?}{}",
+            "partscope lsp: v{} {} bytes: copy+config {:?}, {} {:?}{}",
             inputs.version,
             text.len(),
             t1 - t0,
+            if rules.get().is_some() {
+                "analyze"
+            } else {
+                "parse"
+            },
             t1.elapsed(),
             if in_place { " (in place)" } else { "" }
         );
     }
+    let program = parse.program();
     let run_eligible = !syntax_only
         && text.len() <= doc.max_run_file_size
-        && !runtime::interp::files::is_subprogram_file(
-            &analysis.program,
-            doc.settings.file_stem.as_deref(),
-        );
+        && !runtime::interp::files::is_subprogram_file(program, doc.settings.file_stem.as_deref());
     Snapshot {
         uri: inputs.uri,
         version: inputs.version,
         rope: inputs.rope,
         path: inputs.path,
         doc,
-        inc,
+        parse,
+        rules,
         syntax_only,
         run_eligible,
         roots: inputs.roots,
@@ -162,7 +189,24 @@ fn severity(s: Severity) -> DiagnosticSeverity {
 
 impl Snapshot {
     pub fn program(&self) -> &analyzer::syntax::Program {
-        &self.inc.analysis.program
+        self.parse.program()
+    }
+
+    /// The static rules' results, computed here on first use.
+    fn static_rules(&self) -> &StaticRules {
+        let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
+        self.rules.get_or_init(|| {
+            let t0 = std::time::Instant::now();
+            let rules = self.parse.rules(&self.doc.settings);
+            if timing {
+                eprintln!(
+                    "partscope lsp: v{} static rules {:?}",
+                    self.version,
+                    t0.elapsed()
+                );
+            }
+            rules
+        })
     }
 
     /// The interpreter's run of this version (computed on first use; `None`
@@ -173,13 +217,9 @@ impl Snapshot {
         }
         // A program for another control (P010, which is then the only static
         // finding) is not interpreted: its findings and cycle time would mean nothing.
+        // Decided without the other rules, so the run need not wait for them.
         if self.syntax_only
-            || self
-                .inc
-                .analysis
-                .diagnostics
-                .iter()
-                .any(|d| d.code == "P010")
+            || analyzer::program_reports_mismatch(self.program(), &self.doc.settings)
         {
             return None;
         }
@@ -220,7 +260,7 @@ impl Snapshot {
             return m;
         }
         let Some(report) = self.cached_run() else {
-            return &self.inc.analysis.diagnostics;
+            return &self.static_rules().diagnostics;
         };
         self.merged.get_or_init(|| {
             let runtime = analyzer::finish(
@@ -229,7 +269,7 @@ impl Snapshot {
                 report.diagnostics.to_vec(),
             );
             analyzer::merge(
-                self.inc.analysis.diagnostics.clone(),
+                self.static_rules().diagnostics.clone(),
                 runtime,
                 &self.doc.settings,
             )
