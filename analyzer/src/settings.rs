@@ -3,55 +3,12 @@
 //! Parsing configuration text is pure; finding and reading the file is the
 //! host's job.
 
-use serde::Deserialize;
-
-use crate::diagnostic::{Diagnostic, Severity};
+use crate::diagnostic::Diagnostic;
 use crate::dialect::{Dialect, Variant};
 use crate::rules::RuleMeta;
 use crate::syntax::{CommentKind, ItemKind, Program};
 
-/// The contents of a `partscope.toml`.
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Config {
-    pub dialect: Option<String>,
-    /// Variant or profile: `S-100M`, `S-120M`, `S-140M`, `linuxcnc`, `emc2`, `30i`.
-    pub variant: Option<String>,
-    #[serde(default)]
-    pub rules: RulesConfig,
-    /// The machine profile; interpreted by the runtime (axes, limits,
-    /// `circle_error_allowance`, `arc_radius_tolerance`, …).
-    #[serde(default)]
-    pub machine: toml::Table,
-    /// LinuxCNC files for the `rs274ngc` dialect (paths relative to the config file).
-    pub ini: Option<String>,
-    pub tool_table: Option<String>,
-    pub var_file: Option<String>,
-}
-
-#[derive(Debug, Clone, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RulesConfig {
-    /// Rules to enable (codes, code prefixes like `S`, or `ALL`); off-by-default
-    /// rules must be selected here.
-    #[serde(default)]
-    pub select: Vec<String>,
-    #[serde(default)]
-    pub ignore: Vec<String>,
-    /// Lowest severity that makes `partscope check` exit 1 (default `warning`).
-    pub fail_level: Option<String>,
-    /// Custom G/M codes the control defines as macro calls (e.g. `["G100", "M150"]`).
-    #[serde(default)]
-    pub custom_codes: Vec<String>,
-    /// Runtime errors the dry run recovers from per file before it stops (default 100).
-    pub max_runtime_errors: Option<usize>,
-}
-
-impl Config {
-    pub fn from_toml(text: &str) -> Result<Config, String> {
-        toml::from_str(text).map_err(|e| e.to_string())
-    }
-}
+pub use crate::config::{fail_level, Config};
 
 /// Everything the analysis of one file needs to know besides its text.
 #[derive(Debug, Clone)]
@@ -115,84 +72,42 @@ impl Settings {
         }
     }
 
-    /// Settings from a config, with an optional dialect override.
-    pub fn from_config(
-        config: &Config,
-        dialect_override: Option<Dialect>,
-    ) -> Result<Settings, String> {
-        let dialect = match (dialect_override, &config.dialect) {
-            (Some(d), _) => d,
-            (None, Some(s)) => Dialect::parse(s)
-                .ok_or_else(|| format!("unknown dialect `{s}` (servoworks, rs274ngc, fanuc)"))?,
-            (None, None) => Dialect::Rs274ngc,
-        };
+    /// Settings from a config, with an optional dialect override. The config's
+    /// values were checked when it was read ([`Config::load`]).
+    pub fn from_config(config: &Config, dialect_override: Option<Dialect>) -> Settings {
+        let dialect = dialect_override
+            .or(config.dialect)
+            .unwrap_or(Dialect::Rs274ngc);
         let mut s = Settings::new(dialect);
-        if let Some(v) = &config.variant {
-            let v = Variant::parse(v).ok_or_else(|| format!("unknown variant `{v}`"))?;
-            if v.dialect() == dialect {
-                s.variant = v;
-            }
+        if let Some(v) = config.variant.filter(|v| v.dialect() == dialect) {
+            s.variant = v;
         }
-        s.select = config.rules.select.clone();
-        if let Some(n) = config.rules.max_runtime_errors {
-            s.max_runtime_errors = n.max(1);
+        let rules = &config.rules;
+        s.select = rules.select.clone().unwrap_or_default();
+        s.ignore = rules.ignore.clone().unwrap_or_default();
+        if let Some(n) = rules.max_runtime_errors {
+            s.max_runtime_errors = n;
         }
-        s.ignore = config.rules.ignore.clone();
-        s.custom_codes = config
-            .rules
+        s.custom_codes = rules
             .custom_codes
             .iter()
+            .flatten()
             .map(|c| c.to_ascii_uppercase())
             .collect();
-        if let Some(toml::Value::Array(axes)) = config.machine.get("axes") {
-            let letters: Vec<char> = axes
-                .iter()
-                .filter_map(|a| match a {
-                    toml::Value::String(s) => s.chars().next(),
-                    toml::Value::Table(t) => t
-                        .get("letter")
-                        .and_then(|l| l.as_str())
-                        .and_then(|s| s.chars().next()),
-                    _ => None,
-                })
-                .map(|c| c.to_ascii_uppercase())
-                .collect();
-            if !letters.is_empty() {
-                s.axes = letters;
-            }
+        let m = &config.machine;
+        if let Some(letters) = m.axis_letters() {
+            s.axes = letters;
         }
-        if let Some(v) = config
-            .machine
-            .get("integer_machine_unit")
-            .and_then(|v| v.as_bool())
-        {
+        if let Some(v) = m.integer_machine_unit {
             s.integer_machine_unit = v;
         }
         // FANUC options that widen the number formats (spec fanuc.md §1.5, §1.6).
-        let digits = |key: &str, standard: i64| -> Result<Option<u8>, String> {
-            match config.machine.get(key) {
-                None => Ok(None),
-                Some(toml::Value::Integer(n)) if *n == standard || *n == 8 => Ok(Some(*n as u8)),
-                Some(v) => Err(format!(
-                    "machine.{key} = {v}: the control has {standard} digits, or 8 with the option"
-                )),
-            }
-        };
-        if let Some(n) = digits("sequence_number_digits", 5)? {
+        if let Some(n) = m.sequence_number_digits {
             s.sequence_number_digits = n;
         }
-        s.program_number_digits = digits("program_number_digits", 4)?;
-        s.common_variables_end = match config.machine.get("common_variables") {
-            None => None,
-            Some(toml::Value::Integer(n)) if *n == 199 || *n == 499 => Some(*n as u16),
-            Some(v) => {
-                return Err(format!(
-                    "machine.common_variables = {v}: the last common variable of the #100 \
-                     range, 199 (standard) or 499 (additional common variables option)"
-                ))
-            }
-        };
-        Ok(s)
+        s.program_number_digits = m.program_number_digits;
+        s.common_variables_end = m.common_variables;
+        s
     }
 
     /// Whether a `select`/`ignore` pattern (a code, a code prefix, a rule name or
@@ -607,16 +522,6 @@ fn program_number(code: &[u8]) -> Option<String> {
     ok.then(|| String::from_utf8_lossy(code).into_owned())
 }
 
-/// Severity threshold helper for exit codes.
-pub fn fail_level(config: &Config) -> Severity {
-    config
-        .rules
-        .fail_level
-        .as_deref()
-        .and_then(Severity::parse)
-        .unwrap_or(Severity::Warning)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -836,15 +741,10 @@ mod tests {
     #[test]
     fn config_keys() {
         let c = Config::from_toml("dialect = \"servoworks\"\nvariant = \"S-100M\"\n[machine]\ncircle_error_allowance = 0.01\narc_radius_tolerance = 0.002\n[rules]\nignore = [\"L008\"]\n").unwrap();
-        let s = Settings::from_config(&c, None).unwrap();
+        let s = Settings::from_config(&c, None);
         assert_eq!(s.dialect, Dialect::Servoworks);
         assert_eq!(s.variant, Variant::S100M);
-        assert_eq!(
-            c.machine
-                .get("circle_error_allowance")
-                .and_then(|v| v.as_float()),
-            Some(0.01)
-        );
+        assert_eq!(c.machine.circle_error_allowance, Some(0.01));
         assert!(!s.code_enabled("L008"));
         assert!(Config::from_toml("dialekt = 1").is_err());
     }

@@ -34,7 +34,7 @@ fn settings_for(path: &Path, dialect: Dialect, code: &str) -> Settings {
         let text = std::fs::read_to_string(&cfg_path).expect("read fixture config");
         let config =
             Config::from_toml(&text).unwrap_or_else(|e| panic!("{}: {e}", cfg_path.display()));
-        Settings::from_config(&config, Some(dialect)).expect("fixture settings")
+        Settings::from_config(&config, Some(dialect))
     } else {
         Settings::new(dialect)
     };

@@ -97,7 +97,7 @@ pub fn interpret(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     let mut settings = Settings::new(dialect);
     settings.variant = variant;
     let program = parse(ParseOptions { dialect, variant }, Arc::<[u8]>::from(data));
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = runtime::RunInput {
         program: &program,
         settings: &settings,

@@ -16,7 +16,7 @@ fn main() {
         .unwrap_or_default();
     let resolver = DirResolver(dir);
     let a = analyzer::analyze(text, &settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = runtime::RunInput {
         program: &a.program,
         settings: &settings,

@@ -14,7 +14,7 @@ fn main() {
     let text = std::fs::read(path).unwrap_or_default();
     let settings = analyzer::Settings::new(dialect);
     let program = analyzer::syntax::parse_lean(analyzer::syntax::ParseOptions::new(dialect), text);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = runtime::RunInput {
         program: &program,
         settings: &settings,

@@ -14,7 +14,7 @@ fn main() {
     let opts = analyzer::syntax::ParseOptions::new(dialect);
     let program = analyzer::syntax::parse(opts, text);
     let t1 = std::time::Instant::now();
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = runtime::RunInput {
         program: &program,
         settings: &settings,

@@ -6,6 +6,7 @@
 
 use std::collections::BTreeMap;
 
+use analyzer::config::MachineConfig;
 use analyzer::Dialect;
 use serde::Serialize;
 
@@ -15,103 +16,10 @@ use crate::plan::{
     self, cross3, dist3, dot3, sub3, Causes, PathMode, Segment, SegmentKind, SegmentTiming, Totals,
 };
 
-/// Keys of `[machine]` that the interpreter or the host reads and the planner
-/// profile does not know.
-const INTERPRETER_KEYS: &[&str] = &[
-    "subroutine_path",
-    "machine_units",
-    "tools",
-    "work_offsets",
-    "reference_positions",
-    "integer_machine_unit",
-    "sequence_number_digits",
-    "program_number_digits",
-    "common_variables",
-    "machine_unit",
-    "block_skip",
-    "decimal_point_input",
-    "max_call_depth",
-    "optional_stop",
-    "g73_retract",
-    "g83_clearance",
-    "tlc_type",
-    "servo_rate_khz",
-    "user_m_codes",
-    "spindles",
-    "max_cutting_feed",
-    "offset_count",
-    "involute_tolerance",
-    "trc_g41_side",
-    "drill_shift",
-    "ndc_axis",
-    "ndc_rotation_feed",
-    "ndc_angle_limit",
-    "ndc_length_limit",
-    "g37_ratio",
-    "g37_speed",
-    "g37_limit",
-    "g37_measured",
-    "tcp_arm_length",
-];
-
 /// The planner profile from a `[machine]` table: the dialect's defaults with the
-/// table's planner keys applied. Interpreter-only keys are skipped here (the
-/// interpreter reads them from the same table); anything else unknown is an error.
-pub fn profile_from_table(table: &toml::Table, dialect: Dialect) -> Result<MachineProfile, String> {
-    profile_over(&MachineProfile::default_for(dialect), table)
-}
-
-/// `base` with the planner keys of a `[machine]` table applied: a LinuxCNC `.ini`'s
-/// limits with the configuration's tool-change and spindle times, for example.
-pub fn profile_over(base: &MachineProfile, table: &toml::Table) -> Result<MachineProfile, String> {
-    let mut merged = toml::Table::try_from(base.clone()).map_err(|e| e.to_string())?;
-    let base_axis = merged
-        .get("axes")
-        .and_then(|a| a.as_array())
-        .and_then(|a| a.first())
-        .cloned();
-    for (k, v) in table {
-        if INTERPRETER_KEYS.contains(&k.as_str()) {
-            continue;
-        }
-        if let Some(r) = crate::machine::rapid_alias(k, v).map_err(|e| format!("[machine]: {e}"))? {
-            merged.insert("rapid_positioning".into(), r);
-            continue;
-        }
-        if k == "axes" {
-            // Axis entries may give only some fields (`letter`, travel limits…): fill
-            // the rest from the default axis.
-            let axes = v.as_array().cloned().unwrap_or_default();
-            let filled: Vec<toml::Value> = axes
-                .into_iter()
-                .map(|a| match (a, &base_axis) {
-                    (toml::Value::Table(t), Some(toml::Value::Table(base))) => {
-                        let mut full = base.clone();
-                        for (ak, av) in t {
-                            full.insert(ak, av);
-                        }
-                        toml::Value::Table(full)
-                    }
-                    (toml::Value::String(s), Some(toml::Value::Table(base))) => {
-                        let mut full = base.clone();
-                        full.insert("letter".into(), toml::Value::String(s));
-                        toml::Value::Table(full)
-                    }
-                    (a, _) => a,
-                })
-                .collect();
-            merged.insert(k.clone(), toml::Value::Array(filled));
-            continue;
-        }
-        merged.insert(k.clone(), v.clone());
-    }
-    let profile: MachineProfile = toml::Value::Table(merged)
-        .try_into()
-        .map_err(|e: toml::de::Error| format!("[machine]: {e}"))?;
-    profile
-        .check_ranges()
-        .map_err(|e| format!("[machine]: {e}"))?;
-    Ok(profile)
+/// table's planner keys applied (the interpreter reads its keys from the same table).
+pub fn profile_from_table(machine: &MachineConfig, dialect: Dialect) -> MachineProfile {
+    MachineProfile::default_for(dialect).with(machine)
 }
 
 /// One toolpath polyline for previews: a motion sampled at a chord tolerance.

@@ -12,14 +12,8 @@
 use analyzer::Dialect;
 use serde::{Deserialize, Serialize};
 
-/// Whether an axis moves along a line (mm) or turns (degrees).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum AxisKind {
-    #[default]
-    Linear,
-    Rotary,
-}
+use analyzer::config::{AxisConfig, MachineConfig};
+pub use analyzer::config::{AxisKind, PlannerModel, RapidPositioning};
 
 /// One machine axis. Velocities are units/s, accelerations units/s², jerk units/s³,
 /// where units are mm for linear and degrees for rotary axes.
@@ -59,6 +53,21 @@ impl Default for Axis {
 }
 
 impl Axis {
+    /// This axis as a `machine.axes` entry that gives every field.
+    pub fn as_config(&self) -> AxisConfig {
+        AxisConfig {
+            letter: Some(self.letter),
+            kind: Some(self.kind),
+            min_travel: Some(self.min_travel),
+            max_travel: Some(self.max_travel),
+            max_velocity: Some(self.max_velocity),
+            rapid_rate: Some(self.rapid_rate),
+            max_acceleration: Some(self.max_acceleration),
+            jerk: Some(self.jerk),
+            machine_unit: Some(self.machine_unit),
+        }
+    }
+
     /// A linear axis with the given letter and limits (rapid rate = max velocity).
     pub fn linear(letter: char, max_velocity: f64, max_acceleration: f64) -> Axis {
         Axis {
@@ -84,28 +93,11 @@ impl Axis {
     }
 }
 
-/// Which velocity-planning model the cycle-time estimator uses.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum PlannerModel {
-    /// Reproduces LinuxCNC 2.9's trajectory planner: trapezoidal profiles, arcs at
-    /// half the tangential acceleration, 10 % acceleration cut at G61 corners, blend
-    /// arcs for G64, a 1 ms servo period.
-    #[default]
-    Linuxcnc,
-    /// Generic look-ahead planner with trapezoidal (constant acceleration) profiles.
-    Trapezoid,
-    /// Generic look-ahead planner with jerk-limited (S-curve) profiles.
-    Scurve,
-}
-
-impl PlannerModel {
-    /// The controller a model reproduces, as measured (`tests/cycle_time`).
-    pub fn reference(&self) -> Option<&'static str> {
-        match self {
-            PlannerModel::Linuxcnc => Some(LINUXCNC_REFERENCE),
-            PlannerModel::Trapezoid | PlannerModel::Scurve => None,
-        }
+/// The controller a model reproduces, as measured (`tests/cycle_time`).
+pub fn model_reference(model: PlannerModel) -> Option<&'static str> {
+    match model {
+        PlannerModel::Linuxcnc => Some(LINUXCNC_REFERENCE),
+        PlannerModel::Trapezoid | PlannerModel::Scurve => None,
     }
 }
 
@@ -113,20 +105,6 @@ impl PlannerModel {
 /// `linuxcnc-uspace` package, its trajectory planner module and servo period.
 pub const LINUXCNC_REFERENCE: &str =
     "LinuxCNC 2.9.0~pre1+git20230208.f1270d6ed7 (commit f1270d6ed715), tpmod, servo period 1 ms";
-
-/// How G0 moves several axes at once.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum RapidPositioning {
-    /// Straight line at the highest speed no axis's rapid rate forbids (LinuxCNC;
-    /// FANUC LRP No. 1401#1 = 1; ServoWorks *G00 Perform Linear Interpolation* on).
-    #[default]
-    Linear,
-    /// Each axis at its own rapid rate and acceleration, all starting together and
-    /// each stopping when it arrives: the dog-leg path (FANUC non-linear
-    /// positioning, LRP = 0; ServoWorks *G00 Perform Linear Interpolation* off).
-    Independent,
-}
 
 /// Machine and controller parameters used by the interpreter and the planner.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -138,10 +116,6 @@ pub struct MachineProfile {
     /// Cap on the path acceleration, mm/s². LinuxCNC does not apply it to
     /// coordinated moves (measured), so the `linuxcnc` model ignores it.
     pub traj_max_acceleration: f64,
-    /// Tolerated end-point error of programmed arcs, mm.
-    pub circle_error_allowance: f64,
-    /// Tolerated difference between start and end radius of an arc, mm.
-    pub arc_radius_tolerance: f64,
     /// Minimum time the control spends per motion block, s (0 = none): shorter
     /// moves are slowed down to take this long.
     pub block_processing_time: f64,
@@ -240,8 +214,6 @@ impl MachineProfile {
             axes,
             traj_max_velocity: 100.0,
             traj_max_acceleration: 1000.0,
-            circle_error_allowance: 0.005,
-            arc_radius_tolerance: 0.005,
             block_processing_time: 0.0,
             rapid_positioning: RapidPositioning::Linear,
             tool_change_time: 0.0,
@@ -266,10 +238,8 @@ impl MachineProfile {
             servo_simulation: true,
         };
         match dialect {
-            // LinuxCNC 2.9: centre-format arcs may differ by 2·0.01·√2 mm in radius;
-            // the optimisation depth default is 50 segments.
+            // LinuxCNC 2.9: the optimisation depth default is 50 segments.
             Dialect::Rs274ngc => MachineProfile {
-                arc_radius_tolerance: 0.028_284,
                 planner: PlannerModel::Linuxcnc,
                 ..base
             },
@@ -289,28 +259,61 @@ impl MachineProfile {
         }
     }
 
-    /// Parses the `[machine]` table of a `partscope.toml` text (or a bare profile
-    /// table). Missing keys keep the dialect's defaults.
+    /// Reads a machine profile text (a `[machine]` table, or its keys alone)
+    /// over the dialect's defaults, refusing it on the first problem (tests and
+    /// tools; hosts read the configuration with [`analyzer::Config::load`]).
     pub fn from_toml(text: &str, dialect: Dialect) -> Result<MachineProfile, String> {
-        let value: toml::Table = toml::from_str(text).map_err(|e| e.to_string())?;
-        let table = match value.get("machine") {
-            Some(toml::Value::Table(t)) => t.clone(),
-            Some(_) => return Err("`machine` must be a table".to_string()),
-            None => value,
-        };
-        let mut merged = toml::Table::try_from(MachineProfile::default_for(dialect))
-            .map_err(|e| e.to_string())?;
-        for (k, v) in table {
-            match rapid_alias(&k, &v)? {
-                Some(r) => merged.insert("rapid_positioning".into(), r),
-                None => merged.insert(k, v),
-            };
+        let (m, issues) = MachineConfig::load(text);
+        if let Some(i) = issues.into_iter().next() {
+            return Err(i.message);
         }
-        let profile: MachineProfile = toml::Value::Table(merged)
-            .try_into()
-            .map_err(|e: toml::de::Error| e.to_string())?;
+        let profile = MachineProfile::default_for(dialect).with(&m);
         profile.check_ranges()?;
         Ok(profile)
+    }
+
+    /// This profile with the planner keys a `[machine]` table gives: a LinuxCNC
+    /// `.ini`'s limits with the configuration's tool-change and spindle times,
+    /// for example. Axis entries give only some fields (`letter`, travel
+    /// limits…); the rest comes from this profile's first axis.
+    pub fn with(&self, m: &MachineConfig) -> MachineProfile {
+        let mut p = self.clone();
+        if let Some(axes) = &m.axes {
+            let base = self.axes.first().cloned().unwrap_or_default();
+            p.axes = axes.iter().map(|a| axis_over(&base, a)).collect();
+        }
+        macro_rules! take {
+            ($($key:ident),*) => {$( if let Some(v) = m.$key.clone() { p.$key = v; } )*};
+        }
+        take!(
+            traj_max_velocity,
+            traj_max_acceleration,
+            block_processing_time,
+            tool_change_time,
+            tool_select_time,
+            spindle_ramp_time,
+            spindle_ramp_per_1000rpm,
+            spindle_orient_time,
+            coolant_time,
+            pallet_change_time,
+            pallet_change_m,
+            m_code_time,
+            m_code_times,
+            program_stop_time,
+            in_position_time,
+            planner,
+            lookahead,
+            default_blend_tolerance,
+            servo_period,
+            feed_override,
+            rapid_override,
+            tangent_kink_ratio,
+            servo_simulation
+        );
+        if let Some(r) = m.rapid() {
+            p.rapid_positioning = r;
+        }
+        p
     }
 
     /// Seconds an M code (`tenths`: its number × 10, 190 for M19) takes by
@@ -374,8 +377,6 @@ impl MachineProfile {
             ("program_stop_time", self.program_stop_time),
             ("in_position_time", self.in_position_time),
             ("block_processing_time", self.block_processing_time),
-            ("circle_error_allowance", self.circle_error_allowance),
-            ("arc_radius_tolerance", self.arc_radius_tolerance),
             ("default_blend_tolerance", self.default_blend_tolerance),
         ] {
             in_range(&mut bad, key, v, TIME, "0 or more (and finite)");
@@ -595,24 +596,24 @@ impl MachineProfile {
     }
 }
 
-/// The manuals' names of the G0 switch, as a `rapid_positioning` value:
-/// `lrp = 0 | 1` (FANUC parameter No. 1401#1) and `g00_linear_interpolation =
-/// true | false` (ServoWorks). `None` for any other key.
-pub fn rapid_alias(key: &str, v: &toml::Value) -> Result<Option<toml::Value>, String> {
-    let linear = match key {
-        "lrp" => match v.as_integer() {
-            Some(0) => false,
-            Some(1) => true,
-            _ => return Err("`lrp` (FANUC No. 1401#1) must be 0 or 1".into()),
-        },
-        "g00_linear_interpolation" => match v.as_bool() {
-            Some(b) => b,
-            None => return Err("`g00_linear_interpolation` must be true or false".into()),
-        },
-        _ => return Ok(None),
-    };
-    let name = if linear { "linear" } else { "independent" };
-    Ok(Some(toml::Value::String(name.into())))
+/// An axis entry of `[machine]` over a base axis.
+fn axis_over(base: &Axis, a: &AxisConfig) -> Axis {
+    let mut axis = base.clone();
+    macro_rules! take {
+        ($($key:ident),*) => {$( if let Some(v) = a.$key { axis.$key = v; } )*};
+    }
+    take!(
+        letter,
+        kind,
+        min_travel,
+        max_travel,
+        max_velocity,
+        rapid_rate,
+        max_acceleration,
+        jerk,
+        machine_unit
+    );
+    axis
 }
 
 /// Minimal `.ini` reader: `[SECTION]` headers, `KEY = VALUE` lines, `#`/`;` comments.

@@ -36,7 +36,7 @@ fn run(resolver: &dyn Resolver, step_budget: u64) -> runtime::RunOutput {
         ParseOptions::new(Dialect::Rs274ngc),
         Arc::<[u8]>::from(ENDLESS.as_bytes()),
     );
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     runtime::run(&runtime::RunInput {
         program: &program,
         settings: &settings,

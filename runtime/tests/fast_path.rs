@@ -33,7 +33,7 @@ fn same_with(name: &str, text: &[u8], select: &[&str]) -> usize {
     let program = parse(ParseOptions::new(dialect), Arc::<[u8]>::from(text));
     let mut settings = Settings::new(dialect);
     settings.select = select.iter().map(|s| s.to_string()).collect();
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = runtime::RunInput {
         program: &program,
         settings: &settings,
@@ -145,7 +145,7 @@ fn fast_path_matches_general_path_at_its_edges() {
         );
         let mut settings = Settings::new(Dialect::Rs274ngc);
         settings.select = select.iter().map(|s| s.to_string()).collect();
-        let machine = toml::Table::new();
+        let machine = analyzer::config::MachineConfig::default();
         let input = runtime::RunInput {
             program: &program,
             settings: &settings,

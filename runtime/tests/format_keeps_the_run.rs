@@ -53,7 +53,7 @@ fn dialect_of(path: &Path, text: &[u8]) -> Dialect {
 /// What a run shows the user, rounded to what the output prints.
 fn run_summary(text: &[u8], settings: &Settings) -> String {
     let a = analyzer::analyze(text.to_vec(), settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = RunInput {
         program: &a.program,
         settings,
@@ -72,10 +72,9 @@ fn run_summary(text: &[u8], settings: &Settings) -> String {
     for m in &out.motions {
         s += &format!("{:?} {:?} -> {:?} F{:.4}\n", m.kind, m.start, m.end, m.feed);
     }
-    if let Ok(profile) = runtime::dryrun::profile_from_table(&machine, settings.dialect) {
-        let dry = runtime::dryrun::plan_run(&out, &profile);
-        s += &format!("cycle {:.6} s\n", dry.totals.cycle_time_s);
-    }
+    let profile = runtime::dryrun::profile_from_table(&machine, settings.dialect);
+    let dry = runtime::dryrun::plan_run(&out, &profile);
+    s += &format!("cycle {:.6} s\n", dry.totals.cycle_time_s);
     for d in &out.diagnostics {
         s += &format!(
             "run {} {} line {} {}\n",

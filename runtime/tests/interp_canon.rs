@@ -31,7 +31,7 @@ fn strip_counter(line: &str) -> String {
 pub fn canon_of(text: &str, var: Option<&str>) -> (Vec<String>, Vec<analyzer::Diagnostic>) {
     let settings = Settings::new(Dialect::Rs274ngc);
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = RunInput {
         program: &a.program,
         settings: &settings,
@@ -111,7 +111,7 @@ fn check_local(name: &str) {
     let tbl = std::fs::read_to_string(dir.join(format!("{name}.tbl"))).expect("tbl");
     let settings = Settings::new(Dialect::Rs274ngc);
     let a = analyzer::analyze(ngc.as_bytes().to_vec(), &settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = RunInput {
         program: &a.program,
         settings: &settings,

@@ -19,7 +19,7 @@ fn peck_cycle_with_zero_q_is_reported_and_bounded() {
         ParseOptions::new(Dialect::Servoworks),
         Arc::<[u8]>::from(text),
     );
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let out = runtime::run(&runtime::RunInput {
         program: &program,
         settings: &settings,

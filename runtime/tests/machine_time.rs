@@ -18,24 +18,24 @@ use runtime::plan::{self, Totals};
 const VMC: &str = include_str!("../../examples/machines/vmc.toml");
 const ROUTER: &str = include_str!("../../examples/machines/router.toml");
 
-/// The `[machine]` table of a profile file, with `extra` lines added to it.
-fn machine_table(file: &str, extra: &str) -> toml::Table {
-    let doc: toml::Table = toml::from_str(file).expect("example profile");
-    let mut t = doc
-        .get("machine")
-        .and_then(|m| m.as_table())
-        .cloned()
-        .expect("[machine]");
-    let more: toml::Table = toml::from_str(extra).expect("extra keys");
-    t.extend(more);
-    t
+/// A profile file with `extra` lines added to its `[machine]` table, replacing
+/// the file's own lines of the same keys.
+fn machine_text(file: &str, extra: &str) -> String {
+    let key = |l: &str| l.split('=').next().map(|k| k.trim().to_string());
+    let given: Vec<String> = extra.lines().filter_map(key).collect();
+    let kept: Vec<&str> = file
+        .lines()
+        .filter(|l| !(l.contains('=') && key(l).is_some_and(|k| given.contains(&k))))
+        .collect();
+    kept.join("\n")
+        .replacen("[machine]\n", &format!("[machine]\n{extra}\n"), 1)
 }
 
 /// Runs and plans `program` on a profile file, as `partscope run --machine` does.
 fn plan_on(dialect: Dialect, program: &str, file: &str, extra: &str) -> Totals {
-    let table = machine_table(file, extra);
-    let profile = profile_from_table(&table, dialect).expect("profile");
-    let text = toml::to_string(&table).expect("toml");
+    let text = machine_text(file, extra);
+    let table = analyzer::config::MachineConfig::from_toml(&text).expect("profile");
+    let profile = profile_from_table(&table, dialect);
     let out = run_with(dialect, program, &text, &[], None);
     assert!(
         out.diagnostics.is_empty(),
@@ -208,8 +208,8 @@ fn rapid_positioning_defaults_and_manual_names() {
     assert_eq!(d(Dialect::Servoworks), RapidPositioning::Independent);
     assert_eq!(d(Dialect::Rs274ngc), RapidPositioning::Linear);
     let with = |key: &str, dialect| {
-        let t: toml::Table = toml::from_str(key).unwrap();
-        profile_from_table(&t, dialect).map(|p| p.rapid_positioning)
+        analyzer::config::MachineConfig::from_toml(key)
+            .map(|t| profile_from_table(&t, dialect).rapid_positioning)
     };
     assert_eq!(
         with("lrp = 1", Dialect::Fanuc),

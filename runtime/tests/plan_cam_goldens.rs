@@ -144,7 +144,7 @@ fn max(v: &[f64]) -> f64 {
 fn the_model_names_the_oracle() {
     let oracle = std::fs::read_to_string(root().join("oracle.txt")).expect("oracle.txt");
     assert_eq!(
-        runtime::machine::PlannerModel::Linuxcnc.reference(),
+        runtime::machine::model_reference(runtime::machine::PlannerModel::Linuxcnc),
         Some(oracle.trim())
     );
 }

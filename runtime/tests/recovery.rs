@@ -33,7 +33,7 @@ fn run_capped(dialect: Dialect, text: &str, cap: usize, canon: bool) -> RunOutpu
     let mut settings = Settings::new(dialect);
     settings.max_runtime_errors = cap;
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let resolver = MapResolver(Default::default());
     run(&RunInput {
         program: &a.program,

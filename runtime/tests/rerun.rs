@@ -164,7 +164,7 @@ fn edit(d: Dialect, rng: &mut Rng, text: &str) -> String {
 fn run_on(d: Dialect, text: &str, prev: Option<RunOutput>) -> RunOutput {
     let settings = Settings::new(d);
     let program = analyzer::analyze(text.as_bytes().to_vec(), &settings).program;
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let input = RunInput {
         program: &program,
         settings: &settings,

@@ -22,7 +22,7 @@ fn program(dialect: Dialect, text: &str) -> Program {
 fn input<'a>(
     program: &'a Program,
     settings: &'a Settings,
-    machine: &'a toml::Table,
+    machine: &'a analyzer::config::MachineConfig,
 ) -> runtime::RunInput<'a> {
     runtime::RunInput {
         program,
@@ -41,7 +41,7 @@ fn input<'a>(
 fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
     let p = program(dialect, text);
     let settings = Settings::new(dialect);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let profile = MachineProfile::default_for(dialect);
     let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
     let dry = dryrun::plan_run(&buffered, &profile);
@@ -68,7 +68,7 @@ fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
 fn stream_plan_asks_for_closed_form_beyond_servo_limit() {
     let dialect = Dialect::Rs274ngc;
     let settings = Settings::new(dialect);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let profile = MachineProfile::default_for(dialect);
     assert!(profile.servo_simulation);
     let run = |text: &str| {
@@ -157,8 +157,8 @@ fn streamed_blocks_equal_buffered_blocks() {
     let dialect = Dialect::Rs274ngc;
     let p = program(dialect, &text);
     let settings = Settings::new(dialect);
-    let machine: toml::Table = toml::from_str("tool_change_time = 3.0").unwrap();
-    let profile = dryrun::profile_from_table(&machine, dialect).unwrap();
+    let machine = analyzer::config::MachineConfig::from_toml("tool_change_time = 3.0").unwrap();
+    let profile = dryrun::profile_from_table(&machine, dialect);
     let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
     let dry = dryrun::plan_run(&buffered, &profile);
     let mut plan = StreamPlan::new(&profile).with_blocks();
@@ -196,7 +196,7 @@ fn streamed_blocks_equal_buffered_blocks() {
 fn observed_run_plan_is_plan_run() {
     let dialect = Dialect::Rs274ngc;
     let settings = Settings::new(dialect);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let profile = MachineProfile::default_for(dialect);
     for (passes, feed, over) in [(300, 3000.0, false), (3, 1.0, true)] {
         let p = program(dialect, &job(passes, feed));

@@ -240,10 +240,10 @@ fn the_feed_override_moves_the_programmed_feed() {
 fn blocks_carry_their_causes_dwell_and_auxiliary_time() {
     // A rapid, a cut, a dwell and a tool change, each on its own line.
     let program = "G21 G90 G94 G61.1\nG0 X10\nG1 X60 F3000\nG4 P2\nM6 T2\nM2\n";
-    let table: toml::Table = toml::from_str("tool_change_time = 5.0").expect("toml");
+    let table = analyzer::config::MachineConfig::from_toml("tool_change_time = 5.0").expect("toml");
     let profile = MachineProfile {
         planner: PlannerModel::Trapezoid,
-        ..dryrun::profile_from_table(&table, Dialect::Rs274ngc).expect("profile")
+        ..dryrun::profile_from_table(&table, Dialect::Rs274ngc)
     };
     let out = run_with(
         Dialect::Rs274ngc,

@@ -375,9 +375,8 @@ fn optional_stop_switch_decides_whether_m1_costs_time() {
     let prog = "G90 G0 X10.\nM01\nX20.\nM30\n";
     let other = |machine: &str| {
         let out = run_fanuc(prog, machine);
-        let table: toml::Table = toml::from_str(machine).unwrap();
-        let profile =
-            runtime::dryrun::profile_from_table(&table, analyzer::Dialect::Fanuc).unwrap();
+        let table = analyzer::config::MachineConfig::from_toml(machine).unwrap();
+        let profile = runtime::dryrun::profile_from_table(&table, analyzer::Dialect::Fanuc);
         runtime::dryrun::plan_run(&out, &profile).totals.other_s
     };
     assert_eq!(other("program_stop_time = 30.0"), 0.0);

@@ -10,7 +10,7 @@ fn run_profile(text: &str, variant: Variant, machine: &str) -> RunOutput {
     let mut settings = Settings::new(Dialect::Rs274ngc);
     settings.variant = variant;
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
-    let machine: toml::Table = toml::from_str(machine).expect("toml");
+    let machine = analyzer::config::MachineConfig::from_toml(machine).expect("toml");
     let input = RunInput {
         program: &a.program,
         settings: &settings,
@@ -703,7 +703,7 @@ fn tv_g7_start_up_coordinate_system() {
     let mut settings = Settings::new(Dialect::Rs274ngc);
     settings.variant = Variant::Emc2;
     let a = analyzer::analyze(prog.as_bytes().to_vec(), &settings);
-    let machine = toml::Table::new();
+    let machine = analyzer::config::MachineConfig::default();
     let out = run(&RunInput {
         program: &a.program,
         settings: &settings,
@@ -917,7 +917,8 @@ fn comp_run(prog: &str, variant: Variant) -> (RunOutput, Vec<[f64; 2]>) {
     let mut settings = Settings::new(Dialect::Rs274ngc);
     settings.variant = variant;
     let a = analyzer::analyze(prog.as_bytes().to_vec(), &settings);
-    let machine: toml::Table = toml::from_str("machine_units = \"inch\"").expect("toml");
+    let machine =
+        analyzer::config::MachineConfig::from_toml("machine_units = \"inch\"").expect("toml");
     let tools = "T1 P1 D1.0 Z0\nT2 P2 D0.5 Z0\nT4 P4 D0.489 Z0\nT5 P5 D-0.03 Z0\n";
     let out = run(&RunInput {
         program: &a.program,

@@ -12,6 +12,7 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
+use analyzer::config::MachineConfig;
 use analyzer::{Dialect, FileId};
 use runtime::{ResolvedFile, Resolver};
 
@@ -169,21 +170,15 @@ pub fn candidates(dialect: Dialect, name: &str) -> Vec<String> {
 
 /// The `SUBROUTINE_PATH` folders: `machine.subroutine_path` (a string with `:`
 /// separators, or an array) relative to the config file's folder.
-pub fn subroutine_path(machine: &toml::Table, config: Option<&Path>) -> Vec<PathBuf> {
+pub fn subroutine_path(machine: &MachineConfig, config: Option<&Path>) -> Vec<PathBuf> {
     let base = config
         .and_then(Path::parent)
         .map(Path::to_path_buf)
         .unwrap_or_default();
-    let parts: Vec<String> = match machine.get("subroutine_path") {
-        Some(toml::Value::String(s)) => s.split(':').map(str::to_string).collect(),
-        Some(toml::Value::Array(a)) => a
-            .iter()
-            .filter_map(|v| v.as_str().map(str::to_string))
-            .collect(),
-        _ => Vec::new(),
-    };
-    parts
-        .into_iter()
+    machine
+        .subroutine_path
+        .iter()
+        .flatten()
         .filter(|p| !p.trim().is_empty())
         .map(|p| base.join(p.trim()))
         .collect()
@@ -245,7 +240,7 @@ impl FsResolver {
     pub fn for_command_line(
         file: &Path,
         dialect: Dialect,
-        machine: &toml::Table,
+        machine: &MachineConfig,
         config: Option<&Path>,
         limit: SizeLimit,
     ) -> FsResolver {
@@ -268,7 +263,7 @@ impl FsResolver {
         doc: Option<&Path>,
         roots: &[PathBuf],
         dialect: Dialect,
-        machine: &toml::Table,
+        machine: &MachineConfig,
         config: Option<&Path>,
         limit: SizeLimit,
     ) -> FsResolver {
@@ -575,7 +570,7 @@ mod tests {
     }
 
     fn workspace(root: &Path, dialect: Dialect, machine: &str) -> FsResolver {
-        let machine: toml::Table = toml::from_str(machine).unwrap();
+        let machine = MachineConfig::from_toml(machine).unwrap();
         FsResolver::for_workspace(
             Some(&root.join("main.nc")),
             &[root.to_path_buf()],
@@ -632,7 +627,7 @@ mod tests {
     fn refusals_say_why() {
         let root = tmp("refused");
         std::fs::write(root.join("big.ngc"), "G1 X1\n".repeat(100)).unwrap();
-        let machine = toml::Table::new();
+        let machine = MachineConfig::default();
         let r = FsResolver::for_workspace(
             Some(&root.join("main.ngc")),
             std::slice::from_ref(&root),

@@ -27,12 +27,7 @@ fn write(root: &Path, rel: &str, text: &str) -> PathBuf {
 fn both(root: &Path, main: &Path, dialect: Dialect) -> (FsResolver, FsResolver) {
     let config = root.join("partscope.toml");
     let text = std::fs::read_to_string(&config).unwrap_or_default();
-    let table: toml::Table = toml::from_str(&text).unwrap();
-    let machine = table
-        .get("machine")
-        .and_then(|m| m.as_table())
-        .cloned()
-        .unwrap_or_default();
+    let machine = analyzer::Config::from_toml(&text).unwrap().machine;
     let cli = FsResolver::for_command_line(
         main,
         dialect,

@@ -593,7 +593,7 @@ fn crash_fixtures_stay_fixed() {
                 // The interpreter and planner as the `interpret` fuzz target
                 // drives them: this test runs in a debug build, so an integer
                 // overflow panics here as it did under the fuzzer.
-                let machine = toml::Table::new();
+                let machine = analyzer::config::MachineConfig::default();
                 let out = runtime::run(&runtime::RunInput {
                     program: &program,
                     settings: &settings,

@@ -2,6 +2,7 @@
 
 use std::collections::HashMap;
 
+use analyzer::config::{DrillShift, G41Side, MachineConfig, Units};
 use analyzer::Dialect;
 
 /// One tool: length and diameter in mm.
@@ -66,108 +67,54 @@ pub struct MachineCfg {
     pub tcp_arm_length: f64,
 }
 
-/// Reads `drill_shift`: the letter names the first (X) or second (Y) axis of the
-/// G17 plane; in G18/G19 the same plane position is used.
-fn drill_shift(v: Option<&toml::Value>) -> Option<(usize, f64)> {
-    let s = match v.and_then(|v| v.as_str()) {
-        Some(s) => s.trim().to_ascii_uppercase(),
-        None => return Some((0, 1.0)),
-    };
-    match s.as_str() {
-        "NONE" | "OFF" | "0" => None,
-        "-X" => Some((0, -1.0)),
-        "+Y" | "Y" => Some((1, 1.0)),
-        "-Y" => Some((1, -1.0)),
-        _ => Some((0, 1.0)),
+/// `drill_shift` as (plane axis, sign): the letter names the first (X) or second
+/// (Y) axis of the G17 plane; in G18/G19 the same plane position is used.
+fn drill_shift(v: Option<DrillShift>) -> Option<(usize, f64)> {
+    match v.unwrap_or(DrillShift::PlusX) {
+        DrillShift::None => None,
+        DrillShift::PlusX => Some((0, 1.0)),
+        DrillShift::MinusX => Some((0, -1.0)),
+        DrillShift::PlusY => Some((1, 1.0)),
+        DrillShift::MinusY => Some((1, -1.0)),
     }
 }
 
-fn num(v: &toml::Value) -> Option<f64> {
-    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
-}
-
 impl MachineCfg {
-    pub fn read(t: &toml::Table, dialect: Dialect) -> MachineCfg {
-        let f = |k: &str, d: f64| t.get(k).and_then(num).unwrap_or(d);
-        let b = |k: &str, d: bool| t.get(k).and_then(|v| v.as_bool()).unwrap_or(d);
-        let default_param_unit = if dialect == Dialect::Rs274ngc {
-            25.4
-        } else {
-            1.0
-        };
-        let param_unit = match t.get("machine_units").and_then(|v| v.as_str()) {
-            Some(s) if s.eq_ignore_ascii_case("mm") => 1.0,
-            Some(s) if s.eq_ignore_ascii_case("inch") => 25.4,
-            _ => default_param_unit,
+    pub fn read(m: &MachineConfig, dialect: Dialect) -> MachineCfg {
+        let param_unit = match m.machine_units {
+            Some(Units::Mm) => 1.0,
+            Some(Units::Inch) => 25.4,
+            None if dialect == Dialect::Rs274ngc => 25.4,
+            None => 1.0,
         };
         let mut tools = HashMap::new();
-        if let Some(toml::Value::Table(tt)) = t.get("tools") {
-            for (k, v) in tt {
-                let Ok(n) = k.trim_start_matches(['T', 't']).parse::<u32>() else {
-                    continue;
-                };
-                let Some(v) = v.as_table() else { continue };
-                let length = v.get("length").and_then(num).unwrap_or(0.0);
-                let diameter = v
-                    .get("diameter")
-                    .and_then(num)
-                    .or_else(|| v.get("radius").and_then(num).map(|r| 2.0 * r))
-                    .unwrap_or(0.0);
-                // Profile tools are in mm; tools are kept in parameter units.
-                tools.insert(
-                    n,
-                    Tool {
-                        length: length / param_unit,
-                        diameter: diameter / param_unit,
-                        x_offset: 0.0,
-                        y_offset: 0.0,
-                        orientation: 0,
-                    },
-                );
-            }
+        for (n, t) in m.tools.iter().flatten() {
+            let diameter = t.diameter.or(t.radius.map(|r| 2.0 * r)).unwrap_or(0.0);
+            // Profile tools are in mm; tools are kept in parameter units.
+            tools.insert(
+                *n,
+                Tool {
+                    length: t.length.unwrap_or(0.0) / param_unit,
+                    diameter: diameter / param_unit,
+                    x_offset: 0.0,
+                    y_offset: 0.0,
+                    orientation: 0,
+                },
+            );
         }
-        let mut work_offsets = Vec::new();
-        if let Some(toml::Value::Table(w)) = t.get("work_offsets") {
-            for (k, v) in w {
-                let key = k.to_ascii_uppercase();
-                let idx = match key.as_str() {
-                    "G54" => 1,
-                    "G55" => 2,
-                    "G56" => 3,
-                    "G57" => 4,
-                    "G58" => 5,
-                    "G59" => 6,
-                    "G59.1" => 7,
-                    "G59.2" => 8,
-                    "G59.3" => 9,
-                    _ => continue,
-                };
-                let mut vals = [0.0; 6];
-                if let Some(arr) = v.as_array() {
-                    for (i, x) in arr.iter().take(6).enumerate() {
-                        vals[i] = num(x).unwrap_or(0.0);
-                    }
-                }
-                work_offsets.push((idx, vals));
-            }
-        }
+        let work_offsets = m
+            .work_offsets
+            .iter()
+            .flatten()
+            .map(|(i, v)| (*i, *v))
+            .collect();
         let mut reference_positions = [[0.0; 6]; 4];
-        if let Some(toml::Value::Table(r)) = t.get("reference_positions") {
-            for (k, v) in r {
-                let Some(slot) = k
-                    .trim()
-                    .parse::<usize>()
-                    .ok()
-                    .and_then(|n| n.checked_sub(1))
-                    .and_then(|i| reference_positions.get_mut(i))
-                else {
-                    continue;
-                };
-                if let Some(arr) = v.as_array() {
-                    for (i, x) in arr.iter().take(6).enumerate() {
-                        slot[i] = num(x).unwrap_or(0.0);
-                    }
-                }
+        for (n, v) in m.reference_positions.iter().flatten() {
+            if let Some(slot) = n
+                .checked_sub(1)
+                .and_then(|i| reference_positions.get_mut(i))
+            {
+                *slot = *v;
             }
         }
         let max_default = match dialect {
@@ -178,64 +125,42 @@ impl MachineCfg {
         };
         let mut limits = [None; 6];
         let mut axis_unit = None;
-        if let Some(toml::Value::Array(axes)) = t.get("axes") {
-            for a in axes.iter().filter_map(|a| a.as_table()) {
-                let Some(letter) = a
-                    .get("letter")
-                    .and_then(|l| l.as_str())
-                    .and_then(|s| s.chars().next())
-                else {
-                    continue;
-                };
-                let Some(i) = "XYZABC".find(letter.to_ascii_uppercase()) else {
-                    continue;
-                };
-                let lo = a.get("min_travel").and_then(num);
-                let hi = a.get("max_travel").and_then(num);
-                if let (Some(lo), Some(hi)) = (lo, hi) {
-                    limits[i] = Some((lo, hi));
-                }
-                if i == 0 {
-                    axis_unit = a.get("machine_unit").and_then(num);
-                }
+        for a in m.axes.iter().flatten() {
+            let Some(i) = a.letter.and_then(|l| "XYZABC".find(l)) else {
+                continue;
+            };
+            if let (Some(lo), Some(hi)) = (a.min_travel, a.max_travel) {
+                limits[i] = Some((lo, hi));
+            }
+            if i == 0 {
+                axis_unit = a.machine_unit;
             }
         }
         MachineCfg {
             limits,
-            g41_right: t
-                .get("trc_g41_side")
-                .and_then(|v| v.as_str())
-                .is_some_and(|s| s.eq_ignore_ascii_case("right")),
-            drill_shift: drill_shift(t.get("drill_shift")),
-            ndc: super::ndc::NdcConfig::read(t),
-            g37: super::exec::G37Cfg::read(t),
-            tcp_arm_length: f("tcp_arm_length", 0.0),
-            optional_stop: b("optional_stop", false),
-            circle_error_allowance: f("circle_error_allowance", 0.0),
-            arc_radius_tolerance: f("arc_radius_tolerance", 0.02),
-            integer_machine_unit: b("integer_machine_unit", false),
-            machine_unit: t
-                .get("machine_unit")
-                .and_then(num)
-                .or(axis_unit)
-                .unwrap_or(0.001),
+            g41_right: m.trc_g41_side == Some(G41Side::Right),
+            drill_shift: drill_shift(m.drill_shift),
+            ndc: super::ndc::NdcConfig::read(m),
+            g37: super::exec::G37Cfg::read(m),
+            tcp_arm_length: m.tcp_arm_length.unwrap_or(0.0),
+            optional_stop: m.optional_stop.unwrap_or(false),
+            circle_error_allowance: m.circle_error_allowance.unwrap_or(0.0),
+            arc_radius_tolerance: m.arc_radius_tolerance.unwrap_or(0.02),
+            integer_machine_unit: m.integer_machine_unit.unwrap_or(false),
+            machine_unit: m.machine_unit.or(axis_unit).unwrap_or(0.001),
             // Off, as in the standalone rs274 (`-b` toggles) that `--emit canon` is
             // checked against; LinuxCNC's task starts with it on (its canonical
             // layer's default), which a LinuxCNC machine profile sets.
-            block_skip: b("block_skip", false),
+            block_skip: m.block_skip.unwrap_or(false),
             param_unit,
-            decimal_point_input: b("decimal_point_input", false),
-            g73_retract: f("g73_retract", 1.0),
-            g83_clearance: f("g83_clearance", 1.0),
+            decimal_point_input: m.decimal_point_input.unwrap_or(false),
+            g73_retract: m.g73_retract.unwrap_or(1.0),
+            g83_clearance: m.g83_clearance.unwrap_or(1.0),
             tools,
             tool_order: Vec::new(),
             work_offsets,
             reference_positions,
-            max_depth: t
-                .get("max_call_depth")
-                .and_then(|v| v.as_integer())
-                .map(|v| v.max(1) as usize)
-                .unwrap_or(max_default),
+            max_depth: m.max_call_depth.unwrap_or(max_default),
         }
     }
 }

@@ -10,6 +10,8 @@
 //! block is shorter than the Length Limit. Along an arc the axis turns with
 //! the direction of motion, by the arc's sweep.
 
+use analyzer::config::{MachineConfig, NdcAxis};
+
 use super::types::{Motion, MotionKind};
 
 /// The Normal Direction Control screen's parameters.
@@ -29,23 +31,16 @@ impl NdcConfig {
     /// Keys `ndc_axis` ("A", "B" or "C"; default C), `ndc_rotation_feed`
     /// (deg/min, default 1000 as in the manual's screenshot), `ndc_angle_limit`
     /// and `ndc_length_limit` (default 0: every corner turns).
-    pub fn read(t: &toml::Table) -> NdcConfig {
-        let num = |k: &str, d: f64| {
-            t.get(k)
-                .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                .filter(|v| v.is_finite())
-                .unwrap_or(d)
-        };
-        let axis = match t.get("ndc_axis").and_then(|v| v.as_str()) {
-            Some(s) if s.eq_ignore_ascii_case("A") => 3,
-            Some(s) if s.eq_ignore_ascii_case("B") => 4,
-            _ => 5,
-        };
+    pub fn read(m: &MachineConfig) -> NdcConfig {
         NdcConfig {
-            axis,
-            rotation_feed: num("ndc_rotation_feed", 1000.0),
-            angle_limit: num("ndc_angle_limit", 0.0).abs(),
-            length_limit: num("ndc_length_limit", 0.0).abs(),
+            axis: match m.ndc_axis {
+                Some(NdcAxis::A) => 3,
+                Some(NdcAxis::B) => 4,
+                Some(NdcAxis::C) | None => 5,
+            },
+            rotation_feed: m.ndc_rotation_feed.unwrap_or(1000.0),
+            angle_limit: m.ndc_angle_limit.unwrap_or(0.0).abs(),
+            length_limit: m.ndc_length_limit.unwrap_or(0.0).abs(),
         }
     }
 }

@@ -79,11 +79,6 @@ impl Interp<'_, '_> {
         }
     }
 
-    fn key_num(&self, k: &str) -> Option<f64> {
-        let v = self.input.machine.get(k)?;
-        v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
-    }
-
     /// Runs once before the first block: the tool table and `.var` file the host read.
     pub(super) fn spec_input_files(&mut self) {
         if let Some(t) = self.input.tool_table {
@@ -398,7 +393,7 @@ impl Interp<'_, '_> {
             if !takes {
                 return Err(self.err(codes::WORD_UNUSED, s, "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it: LinuxCNC stops here"));
             }
-            let spindles = self.key_num("spindles").unwrap_or(1.0);
+            let spindles = self.input.machine.spindles.unwrap_or(1.0);
             if v != -1.0 && (v < 0.0 || v >= spindles || v.fract() != 0.0) {
                 return Err(self.err(codes::WORD_UNUSED, s, format!("${v} selects a spindle this machine does not have (spindles 0 to {}, or $-1 for all): LinuxCNC stops here", spindles - 1.0)));
             }
@@ -406,12 +401,8 @@ impl Interp<'_, '_> {
         // User M codes M100–M199 run a program from the configured list.
         if let Some(&(m, s)) = w.m.iter().find(|(m, _)| (1000..=1990).contains(m)) {
             let n = i64::from(m / 10);
-            let listed = self
-                .input
-                .machine
-                .get("user_m_codes")
-                .and_then(|v| v.as_array());
-            let known = listed.is_some_and(|a| a.iter().any(|x| x.as_integer() == Some(n)));
+            let listed = self.input.machine.user_m_codes.as_ref();
+            let known = listed.is_some_and(|a| a.contains(&n));
             // Without a list and without the machine's search path the program file
             // M<n> may well exist on the machine: say so once per code, go on.
             if !known && listed.is_none() && !self.input.resolver.searches_like_the_control() {
@@ -554,7 +545,7 @@ impl Interp<'_, '_> {
     }
 
     fn sw_spec_checks(&mut self, w: &Words, _bspan: Span, motion: Option<(u32, Span)>) {
-        let tlc_type = self.key_num("tlc_type").unwrap_or(0.0) as i64;
+        let tlc_type = self.input.machine.tlc_type.unwrap_or(0);
         // A plane code in the block applies before its G43/G37.
         let plane =
             w.g.iter()
@@ -624,7 +615,7 @@ impl Interp<'_, '_> {
         }
         // Smoothing time by servo rate (G10 L108).
         if w.has_g(100) && w.get(b'L').map(|l| l.round() as i64) == Some(108) {
-            let khz = self.key_num("servo_rate_khz").unwrap_or(1.0);
+            let khz = self.input.machine.servo_rate_khz.unwrap_or(1.0);
             let max = if khz <= 1.0 {
                 5000.0
             } else if khz <= 2.0 {
@@ -728,7 +719,7 @@ impl Interp<'_, '_> {
                 if let Some(f) = w.get(b'F') {
                     if f == 0.0 {
                         self.diag(codes::RIGID_TAP_FEED, Severity::Error, w.sp(b'F'), "rigid tapping with F0: the lead is zero, so the tap cannot advance (PS0201); give F = lead × S");
-                    } else if let Some(max) = self.key_num("max_cutting_feed") {
+                    } else if let Some(max) = self.input.machine.max_cutting_feed {
                         let f_mm = if self.st.modal.feed_mode == 950 {
                             f * self.st.spindle
                         } else {
@@ -742,7 +733,7 @@ impl Interp<'_, '_> {
             }
         }
         // Offset numbers and G10 data.
-        let count = self.key_num("offset_count").unwrap_or(400.0);
+        let count = self.input.machine.offset_count.unwrap_or(400.0);
         for c in [b'H', b'D'] {
             if let Some(v) = w.get(c) {
                 let uses = if c == b'H' {
@@ -813,7 +804,7 @@ impl Interp<'_, '_> {
             return;
         }
         let lead_mm = if inch { lead * 25.4 } else { lead };
-        if let Some(fmax) = self.key_num("max_cutting_feed") {
+        if let Some(fmax) = self.input.machine.max_cutting_feed {
             let smax = fmax / lead_mm;
             if self.st.spindle > smax + 1e-9 {
                 self.diag(codes::THREAD_LEAD, Severity::Warning, s, format!("spindle speed S{} exceeds the threading limit {:.1} min⁻¹ (maximum feed {fmax} mm/min ÷ lead {lead_mm} mm): the axis cannot follow the spindle; lower S", self.st.spindle, smax));
@@ -861,7 +852,7 @@ impl Interp<'_, '_> {
         let mut d = base(end, pe) - base(start, ps);
         d = (d + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU) - std::f64::consts::PI;
         let dev = 2.0 * re * (d.abs() / 2.0).sin();
-        let limit = self.key_num("involute_tolerance").unwrap_or(0.01);
+        let limit = self.input.machine.involute_tolerance.unwrap_or(0.01);
         if dev > limit {
             self.diag(codes::INVOLUTE, Severity::Error, s, format!("the end point is {dev:.4} mm off the involute through the start point, more than the allowed {limit} mm (parameter 5610): the control alarms (PS0243)"));
         }

@@ -79,7 +79,7 @@ pub struct RunInput<'a> {
     pub program: &'a Program,
     pub settings: &'a Settings,
     /// The `[machine]` table of the configuration.
-    pub machine: &'a toml::Table,
+    pub machine: &'a analyzer::config::MachineConfig,
     pub resolver: &'a dyn Resolver,
     /// Upper bound on executed blocks (loops and calls included).
     pub step_budget: u64,

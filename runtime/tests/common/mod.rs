@@ -56,7 +56,7 @@ pub fn run_full_sel(
         settings.select = vec!["ALL".into(), code.into()];
     }
     let a = analyzer::analyze(text.as_bytes().to_vec(), &settings);
-    let machine: toml::Table = toml::from_str(machine).expect("machine toml");
+    let machine = analyzer::config::MachineConfig::from_toml(machine).expect("machine toml");
     let resolver = MapResolver(
         files
             .iter()

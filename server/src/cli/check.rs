@@ -24,6 +24,12 @@ pub fn run(args: CheckArgs) -> ExitCode {
     }
     let explicit = match &args.config {
         Some(p) => match workspace::load_config(p) {
+            Ok(c) if c.unreadable => {
+                for i in &c.issues {
+                    eprintln!("partscope: {i}");
+                }
+                return ExitCode::from(2);
+            }
             Ok(c) => Some(c),
             Err(e) => {
                 eprintln!("partscope: {e}");
@@ -95,17 +101,17 @@ fn check_file(
     let loaded = match explicit {
         Some(c) => c.clone(),
         None => match cache.for_dir(&dir) {
+            Ok(c) if c.unreadable => {
+                return FileReport::io_error(path.to_path_buf(), c.issues.join("; "))
+            }
             Ok(c) => c,
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         },
     };
+    loaded.warn();
     let (dialect, dialect_reason) =
         workspace::resolve_dialect(args.dialect.map(|d| d.dialect()), &loaded, path, &text);
-    let mut settings =
-        match workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore) {
-            Ok(s) => s,
-            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
-        };
+    let mut settings = workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore);
     settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
     if let Some(n) = args.max_runtime_errors {
         settings.max_runtime_errors = n.max(1);

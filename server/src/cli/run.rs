@@ -219,19 +219,18 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
     let loaded = match loaded {
+        Ok(l) if l.unreadable => return fail(l.issues.join("\n")),
         Ok(l) => l,
         Err(e) => return fail(e),
     };
+    loaded.warn();
     let (dialect, dialect_reason) = workspace::resolve_dialect(
         args.dialect.map(|d| d.dialect()),
         &loaded,
         &args.file,
         &text,
     );
-    let mut settings = match workspace::settings_for(&loaded.config, dialect, &[], &[]) {
-        Ok(s) => s,
-        Err(e) => return fail(e),
-    };
+    let mut settings = workspace::settings_for(&loaded.config, dialect, &[], &[]);
     settings.max_per_code = args.max_per_code.unwrap_or(settings.max_per_code);
     if let Some(n) = args.max_runtime_errors {
         settings.max_runtime_errors = n.max(1);
@@ -281,15 +280,21 @@ pub fn run(args: RunArgs) -> ExitCode {
                 Err(e) => return fail(format_args!("{}: {e}", m.display())),
             }
         } else {
-            match toml::from_str::<toml::Table>(&machine_text) {
-                Ok(t) => {
-                    machine_table = match t.get("machine") {
-                        Some(toml::Value::Table(mt)) => mt.clone(),
-                        _ => t,
-                    }
-                }
-                Err(e) => return fail(format_args!("{}: {e}", m.display())),
+            let (table, issues) = analyzer::config::MachineConfig::load(&machine_text);
+            let located: Vec<String> = issues
+                .iter()
+                .map(|i| workspace::locate(m, &machine_text, i))
+                .collect();
+            if issues
+                .iter()
+                .any(|i| i.severity == analyzer::Severity::Error)
+            {
+                return fail(located.join("\n"));
             }
+            for w in &located {
+                workspace::warn_once(w);
+            }
+            machine_table = table;
         }
     }
     // The config's own LinuxCNC files (tool_table, var_file, ini) fill what the
@@ -317,17 +322,11 @@ pub fn run(args: RunArgs) -> ExitCode {
         // The config's own `[machine]` keys (times, overrides) apply over its `ini`.
         Some(p) if args.machine.is_none() => {
             let mut keys = loaded.config.machine.clone();
-            keys.remove("axes");
-            match dryrun::profile_over(&p, &keys) {
-                Ok(p) => p,
-                Err(e) => return fail(e),
-            }
+            keys.axes = None;
+            p.with(&keys)
         }
         Some(p) => p,
-        None => match dryrun::profile_from_table(&machine_table, dialect) {
-            Ok(p) => p,
-            Err(e) => return fail(e),
-        },
+        None => dryrun::profile_from_table(&machine_table, dialect),
     };
     if let Some(fo) = &args.feed_override {
         let v = fo.trim_end_matches('%').parse::<f64>().ok().map(|v| {

@@ -4,6 +4,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 
+use analyzer::config::{ConfigIssue, MachineConfig};
 use analyzer::{Config, Dialect, Settings};
 
 /// File extensions `check` picks up when walking a directory.
@@ -18,12 +19,16 @@ pub const EXTENSIONS: &[&str] = &[
 pub const DEFAULT_MAX_FILE_MB: u64 = 128;
 
 /// A loaded config and where it came from.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct LoadedConfig {
     pub config: Config,
     /// Where the config was found (for messages and relative paths).
-    #[allow(dead_code)]
     pub path: Option<PathBuf>,
+    /// What is wrong in it, located (`partscope.toml:3:1: …`); the keys concerned
+    /// keep their defaults.
+    pub issues: Vec<String>,
+    /// Whether the file could not be read as TOML at all (its whole content is ignored).
+    pub unreadable: bool,
     /// The LinuxCNC files the config names, read on first use and shared by the
     /// clones the [`ConfigCache`] hands out: every program under one config reuses them.
     files: Arc<OnceLock<ConfigFiles>>,
@@ -49,11 +54,7 @@ impl ConfigCache {
         } else {
             match dir.parent() {
                 Some(parent) if parent != dir => self.for_dir(parent),
-                _ => Ok(LoadedConfig {
-                    config: Config::default(),
-                    path: None,
-                    files: Arc::default(),
-                }),
+                _ => Ok(LoadedConfig::default()),
             }
         };
         if let Ok(mut map) = self.by_dir.lock() {
@@ -77,6 +78,13 @@ pub struct ConfigFiles {
 }
 
 impl LoadedConfig {
+    /// Prints the config's issues on stderr, once per process.
+    pub fn warn(&self) {
+        for i in &self.issues {
+            warn_once(i);
+        }
+    }
+
     fn dir(&self) -> PathBuf {
         self.path
             .as_ref()
@@ -136,8 +144,6 @@ pub fn warn_once(msg: &str) {
     eprintln!("partscope: warning: {msg}");
 }
 
-/// The interpreter's `[machine]` table for a config with a LinuxCNC `ini`: the
-/// ini's axes (travel limits) unless the table lists its own.
 /// A LinuxCNC `.ini` as a machine profile, with the tool table and parameter
 /// file it names (relative paths resolved against the `.ini`'s folder).
 pub struct IniMachine {
@@ -159,35 +165,59 @@ pub fn read_ini(path: &Path) -> Result<IniMachine, String> {
     })
 }
 
+/// The interpreter's `[machine]` table for a config with a LinuxCNC `ini`: the
+/// ini's axes (travel limits) unless the table lists its own.
 pub fn machine_table_with(
-    table: &toml::Table,
+    table: &MachineConfig,
     ini: Option<&runtime::machine::MachineProfile>,
-) -> toml::Table {
+) -> MachineConfig {
     let mut t = table.clone();
-    if let Some(p) = ini {
-        if !t.contains_key("axes") {
-            if let Ok(toml::Value::Table(pt)) = toml::Value::try_from(p) {
-                if let Some(axes) = pt.get("axes") {
-                    t.insert("axes".into(), axes.clone());
-                }
-            }
-        }
+    if let (Some(p), None) = (ini, &t.axes) {
+        t.axes = Some(
+            p.axes
+                .iter()
+                .map(runtime::machine::Axis::as_config)
+                .collect(),
+        );
     }
     t
 }
 
+/// Reads a `partscope.toml`. Only an unreadable file is an error: what is wrong
+/// inside it becomes the located [`LoadedConfig::issues`].
 pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    let config = Config::from_toml(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    // `check` does not plan, but a machine table `run` would refuse is a broken
-    // configuration for both: said once, up front.
-    runtime::dryrun::profile_from_table(&config.machine, Dialect::Rs274ngc)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let (config, issues) = Config::load(&text);
     Ok(LoadedConfig {
         config,
         path: Some(path.to_path_buf()),
+        unreadable: issues
+            .iter()
+            .any(|i| i.severity == analyzer::Severity::Error),
+        issues: issues.iter().map(|i| locate(path, &text, i)).collect(),
         files: Arc::default(),
     })
+}
+
+/// `path:line:col: severity: message` for one issue (line and column 1-based,
+/// the column in characters).
+pub fn locate(path: &Path, text: &str, issue: &ConfigIssue) -> String {
+    let level = match issue.severity {
+        analyzer::Severity::Error => "error",
+        _ => "warning",
+    };
+    match issue.span.as_ref().and_then(|s| text.get(..s.start)) {
+        Some(before) => {
+            let line = before.matches('\n').count() + 1;
+            let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+            format!(
+                "{}:{line}:{col}: {level}: {}",
+                path.display(),
+                issue.message
+            )
+        }
+        None => format!("{}: {level}: {}", path.display(), issue.message),
+    }
 }
 
 /// Chooses a file's dialect: command line, then config, then a first-line
@@ -202,7 +232,7 @@ pub fn resolve_dialect(
     if let Some(d) = cli {
         return (d, "--dialect on the command line".into());
     }
-    if let Some(d) = loaded.config.dialect.as_deref().and_then(Dialect::parse) {
+    if let Some(d) = loaded.config.dialect {
         let from = match &loaded.path {
             Some(p) => format!("`dialect` in {}", p.display()),
             None => "`dialect` in the configuration".into(),
@@ -226,11 +256,11 @@ pub fn settings_for(
     dialect: Dialect,
     select: &[String],
     ignore: &[String],
-) -> Result<Settings, String> {
-    let mut s = Settings::from_config(config, Some(dialect))?;
+) -> Settings {
+    let mut s = Settings::from_config(config, Some(dialect));
     s.select.extend(select.iter().cloned());
     s.ignore.extend(ignore.iter().cloned());
-    Ok(s)
+    s
 }
 
 /// Expands the command-line paths: files as given, directories walked with

@@ -15,6 +15,7 @@
 
 use std::path::{Path, PathBuf};
 
+use analyzer::config::MachineConfig;
 use analyzer::settings::{dialect_directive, sniff_file_dialect_why};
 use analyzer::{Config, Dialect, Settings};
 use serde_json::Value;
@@ -141,7 +142,7 @@ impl ClientOptions {
 pub struct DocSettings {
     pub settings: Settings,
     /// The machine profile for the runtime.
-    pub machine: toml::Table,
+    pub machine: MachineConfig,
     /// The `partscope.toml` the settings came from.
     pub config_path: Option<PathBuf>,
     /// A problem reading the configuration, reported to the user.
@@ -184,23 +185,29 @@ pub fn resolve(
     roots: &[PathBuf],
     client: &ClientOptions,
 ) -> DocSettings {
-    let mut config_error = None;
+    // Every problem of the configuration, located; shown once.
+    let mut problems: Vec<String> = Vec::new();
     let mut config_path = None;
     let mut config = Config::default();
     if let Some(path) = doc.and_then(|d| find_config(d, roots)) {
-        match std::fs::read_to_string(&path)
-            .map_err(|e| e.to_string())
-            .and_then(|t| Config::from_toml(&t))
-        {
-            Ok(c) => config = c,
-            Err(e) => config_error = Some(format!("{}: {e}", path.display())),
+        match std::fs::read_to_string(&path) {
+            Ok(text) => {
+                let (c, issues) = Config::load(&text);
+                config = c;
+                problems.extend(
+                    issues
+                        .iter()
+                        .map(|i| crate::cli::workspace::locate(&path, &text, i)),
+                );
+            }
+            Err(e) => problems.push(format!("{}: {e}", path.display())),
         }
         config_path = Some(path);
     }
     // The dialect and why it was chosen (shown in hover, as the CLI prints it):
     // the config, the first-line directive, the editor's setting, the sniffer;
     // `sniff_file_dialect_why` reads the directive itself.
-    let (dialect, dialect_reason) = match config.dialect.as_deref().and_then(Dialect::parse) {
+    let (dialect, dialect_reason) = match config.dialect {
         Some(d) => (d, "`dialect` in partscope.toml".to_string()),
         None => match client.dialect.filter(|_| dialect_directive(text).is_none()) {
             Some(d) => (d, "the editor's `partscope.dialect` setting".into()),
@@ -216,7 +223,15 @@ pub fn resolve(
     };
     if config.machine.is_empty() {
         match &client.machine {
-            Some(MachineOption::Table(t)) => config.machine = t.clone(),
+            Some(MachineOption::Table(t)) => {
+                let (m, issues) = MachineConfig::from_toml_table(t);
+                config.machine = m;
+                problems.extend(
+                    issues.into_iter().map(|i| {
+                        format!("the editor's `partscope.machine` setting: {}", i.message)
+                    }),
+                );
+            }
             Some(MachineOption::Path(p)) => {
                 let base = roots.first().cloned().unwrap_or_default();
                 let path = base.join(p);
@@ -229,30 +244,25 @@ pub fn resolve(
                         )
                     })
                     .and_then(|p| std::fs::read_to_string(p).map_err(|e| e.to_string()))
-                    .and_then(|t| toml::from_str::<toml::Table>(&t).map_err(|e| e.to_string()))
                 {
-                    Ok(t) => {
-                        config.machine = t
-                            .get("machine")
-                            .and_then(|m| m.as_table())
-                            .cloned()
-                            .unwrap_or(t)
+                    Ok(text) => {
+                        let (m, issues) = MachineConfig::load(&text);
+                        config.machine = m;
+                        problems.extend(
+                            issues
+                                .iter()
+                                .map(|i| crate::cli::workspace::locate(&path, &text, i)),
+                        );
                     }
-                    Err(e) => config_error = Some(e),
+                    Err(e) => problems.push(e),
                 }
             }
             None => {}
         }
     }
-    config.rules.select.extend(client.select.iter().cloned());
-    config.rules.ignore.extend(client.ignore.iter().cloned());
-    let mut settings = match Settings::from_config(&config, Some(dialect)) {
-        Ok(s) => s,
-        Err(e) => {
-            config_error.get_or_insert(e);
-            Settings::new(dialect)
-        }
-    };
+    let mut settings = Settings::from_config(&config, Some(dialect));
+    settings.select.extend(client.select.iter().cloned());
+    settings.ignore.extend(client.ignore.iter().cloned());
     settings.file_stem = doc
         .and_then(|d| d.file_stem())
         .and_then(|s| s.to_str())
@@ -282,9 +292,7 @@ pub fn resolve(
                 tool_table = tool_table.or(ini.tool_table);
                 var_file = var_file.or(ini.var_file);
             }
-            Err(e) => {
-                config_error.get_or_insert(format!("{}: {e}", ini.display()));
-            }
+            Err(e) => problems.push(format!("{}: {e}", ini.display())),
         }
     }
     DocSettings {
@@ -294,7 +302,7 @@ pub fn resolve(
         settings,
         machine,
         config_path,
-        config_error,
+        config_error: (!problems.is_empty()).then(|| problems.join("; ")),
         max_file_size: client.max_file_size.unwrap_or(DEFAULT_MAX_FILE_SIZE),
         max_run_file_size: client
             .max_run_file_size

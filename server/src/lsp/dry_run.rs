@@ -19,7 +19,7 @@ pub use super::decimate::{Decimation, Path, Request};
 pub struct DryRunInput<'a> {
     pub program: &'a analyzer::syntax::Program,
     pub settings: &'a Settings,
-    pub machine: &'a toml::Table,
+    pub machine: &'a analyzer::config::MachineConfig,
     pub doc_path: Option<PathBuf>,
     /// The `partscope.toml` in force (relative paths in it start at its folder).
     pub config_path: Option<PathBuf>,

@@ -135,8 +135,10 @@ impl DryRunner for RuntimeRunner {
         let previous = input
             .previous
             .and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).take());
-        // A `[machine]` table the planner cannot read leaves the run without times.
-        let profile = dryrun::profile_from_table(input.machine, input.settings.dialect).ok();
+        let profile = Some(dryrun::profile_from_table(
+            input.machine,
+            input.settings.dialect,
+        ));
         let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
         let t0 = std::time::Instant::now();
         let rerun = previous.is_some();
@@ -450,7 +452,7 @@ mod run_tests {
     fn run(text: &str) -> RunReport {
         let settings = Settings::new(Dialect::Rs274ngc);
         let program = analyzer::analyze(text.as_bytes().to_vec(), &settings).program;
-        let machine = toml::Table::new();
+        let machine = analyzer::config::MachineConfig::default();
         let cancel = CancelFlag::default();
         let input = DryRunInput {
             program: &program,

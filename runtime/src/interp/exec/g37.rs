@@ -22,17 +22,12 @@ pub(in crate::interp) struct G37Cfg {
 }
 
 impl G37Cfg {
-    pub(in crate::interp) fn read(t: &toml::Table) -> G37Cfg {
-        let num = |k: &str| {
-            t.get(k)
-                .and_then(|v| v.as_float().or_else(|| v.as_integer().map(|i| i as f64)))
-                .filter(|v| v.is_finite())
-        };
+    pub(in crate::interp) fn read(m: &analyzer::config::MachineConfig) -> G37Cfg {
         G37Cfg {
-            ratio: num("g37_ratio").unwrap_or(0.0).clamp(0.0, 1.0),
-            speed: num("g37_speed").filter(|v| *v > 0.0).unwrap_or(100.0),
-            limit: num("g37_limit").map(f64::abs),
-            measured: num("g37_measured").unwrap_or(0.0),
+            ratio: m.g37_ratio.unwrap_or(0.0),
+            speed: m.g37_speed.unwrap_or(100.0),
+            limit: m.g37_limit.map(f64::abs),
+            measured: m.g37_measured.unwrap_or(0.0),
         }
     }
 }

@@ -170,7 +170,7 @@ impl Checkpoint {
 fn input_key(input: &RunInput<'_>, snapshots: bool) -> u64 {
     let mut h = DefaultHasher::new();
     format!("{:?}", input.settings).hash(&mut h);
-    input.machine.to_string().hash(&mut h);
+    format!("{:?}", input.machine).hash(&mut h);
     input.tool_table.hash(&mut h);
     input.var_file.hash(&mut h);
     input.step_budget.hash(&mut h);
