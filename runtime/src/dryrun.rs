@@ -5,6 +5,7 @@
 //! planner segments lives in one place.
 
 use std::collections::BTreeMap;
+use std::ops::ControlFlow;
 
 use analyzer::config::MachineConfig;
 use analyzer::Dialect;
@@ -1087,6 +1088,7 @@ fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) 
             tool: m.tool,
             points: points.to_vec(),
         });
+        ControlFlow::Continue(())
     });
     if min[0].is_finite() {
         tp.bounds = Bounds { min, max };
@@ -1097,12 +1099,13 @@ fn toolpath_with(out: &RunOutput, chord: f64, profile: Option<&MachineProfile>) 
 /// The polyline of every motion, in order, as [`toolpath_on`] samples it
 /// (`profile`: `None` draws rapids straight), handed to `f` with the motion
 /// and its kind (`rapid`, `feed`, `arc`) in one reused buffer: a host that
-/// keeps its own form of the toolpath allocates nothing per motion.
+/// keeps its own form of the toolpath allocates nothing per motion. `f`
+/// returns [`ControlFlow::Break`] to stop early (a cancelled request).
 pub fn for_each_toolpath_segment(
     out: &RunOutput,
     chord: f64,
     profile: Option<&MachineProfile>,
-    mut f: impl FnMut(&Motion, &'static str, &[[f64; 3]]),
+    mut f: impl FnMut(&Motion, &'static str, &[[f64; 3]]) -> ControlFlow<()>,
 ) {
     let chord = if chord > 0.0 { chord } else { 0.01 };
     let dogleg = dogleg_limits(profile);
@@ -1180,7 +1183,9 @@ pub fn for_each_toolpath_segment(
         } else {
             points.push([m.end[0], m.end[1], m.end[2]]);
         }
-        f(m, kind, &points);
+        if f(m, kind, &points).is_break() {
+            return;
+        }
     }
 }
 

@@ -190,6 +190,12 @@ impl Path {
 
     /// Computes every point's significance; call once after the last push.
     pub fn finish(&mut self) {
+        self.finish_until(&|| false);
+    }
+
+    /// [`Path::finish`] that gives up when `stop` says so (polled once per
+    /// stretch of points); `false` then, and the path is not usable.
+    pub fn finish_until(&mut self, stop: &dyn Fn() -> bool) -> bool {
         if let Some((lo, hi)) = self.bounds {
             if !lo[0].is_finite() {
                 self.bounds = Some(([0.0; 3], [0.0; 3]));
@@ -203,6 +209,9 @@ impl Path {
             let (first, end) = (r.first as usize, r.end as usize);
             let mut a = first;
             while a + 1 < end {
+                if stop() {
+                    return false;
+                }
                 let b = (a + STRETCH).min(end - 1);
                 self.sig[a] = f64::INFINITY;
                 self.sig[b] = f64::INFINITY;
@@ -216,6 +225,7 @@ impl Path {
                 .filter(|s| s.is_infinite())
                 .count() as u32;
         }
+        true
     }
 
     /// The part's extent: the longest side of the bounding box.

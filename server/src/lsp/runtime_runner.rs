@@ -205,13 +205,17 @@ impl DryRunner for RuntimeRunner {
                 );
             }
             // A cancelled run stopped part way: no toolpath.
-            let path = (!input.cancel.is_cancelled()).then(|| {
-                // Arcs are sampled at half the default view tolerance (a finer one
-                // costs points no view of the whole part can show).
-                let chord =
-                    CHORD_TOLERANCE.max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
-                path_of(&out, profile.as_ref(), chord)
-            });
+            let path = (!input.cancel.is_cancelled())
+                .then(|| {
+                    // Arcs are sampled at half the default view tolerance (a finer one
+                    // costs points no view of the whole part can show).
+                    let chord = CHORD_TOLERANCE
+                        .max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
+                    path_of(&out, profile.as_ref(), chord, &|| {
+                        input.cancel.is_cancelled()
+                    })
+                })
+                .flatten();
             let t_path = t0.elapsed();
             let streamed =
                 planner.map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
@@ -320,10 +324,22 @@ fn motion_extent(out: &runtime::RunOutput) -> f64 {
 /// The toolpath of a run as the preview's path: arcs sampled at `chord`,
 /// rapids as `profile` moves them (straight without one), with each point's
 /// significance for decimation.
-pub fn path_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>, chord: f64) -> Path {
+pub fn path_of(
+    out: &runtime::RunOutput,
+    profile: Option<&MachineProfile>,
+    chord: f64,
+    stop: &dyn Fn() -> bool,
+) -> Option<Path> {
     let mut path = Path::with_capacity(out.motions.len());
     let mut index = 0u32;
+    let mut stopped = false;
     dryrun::for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
+        // A million motions take a good part of a second: a cancel is looked
+        // at every few thousand.
+        if index % 4096 == 0 && stop() {
+            stopped = true;
+            return std::ops::ControlFlow::Break(());
+        }
         let kind = match kind {
             "rapid" => SegmentKind::Rapid,
             "arc" => SegmentKind::Arc,
@@ -332,9 +348,12 @@ pub fn path_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>, chord
         let length = dryrun::segment_of(m, index).length;
         index += 1;
         path.push(kind, m.line, m.feed, m.tool, points, length);
+        std::ops::ControlFlow::Continue(())
     });
-    path.finish();
-    path
+    if stopped || !path.finish_until(stop) {
+        return None;
+    }
+    Some(path)
 }
 
 /// The report of a finished run of `program`, as the language server keeps it
@@ -418,7 +437,7 @@ pub fn dry_run_result(
     plan: &DryRun,
     loaded: &[Loaded],
 ) -> DryRunResult {
-    let toolpath = path_of(out, Some(profile), CHORD_TOLERANCE);
+    let toolpath = path_of(out, Some(profile), CHORD_TOLERANCE, &|| false).unwrap_or_default();
     let report = report_of(program, out, toolpath, Some(plan), loaded);
     // Ranges are counted in a rope of the text; an invalid byte becomes one `?`
     // (not U+FFFD, three bytes) so byte offsets stay those of the file.
