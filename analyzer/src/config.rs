@@ -97,7 +97,7 @@ table! {
             "LinuxCNC `.var` parameter file";
         ini: String = string,
             values "path", default "none",
-            "LinuxCNC `.ini`: its `[TRAJ]`/`[AXIS_*]`/`[JOINT_*]` limits become the machine, its `TOOL_TABLE` and `PARAMETER_FILE` are used unless `tool_table`/`var_file` are given (`check` and `run`; the language server reads `tool_table` and `var_file` only)";
+            "LinuxCNC `.ini`: its `[TRAJ]`/`[AXIS_*]`/`[JOINT_*]` limits become the machine, its `TOOL_TABLE` and `PARAMETER_FILE` are used unless `tool_table`/`var_file` are given (`check`, `run` and the language server, whose cycle time is the same machine's)";
     }
 }
 

@@ -482,13 +482,7 @@ mod tests {
     use crate::syntax::{parse, ParseOptions};
 
     fn prog(dialect: Dialect, text: &str) -> Program {
-        parse(
-            ParseOptions {
-                dialect,
-                variant: dialect.default_variant(),
-            },
-            text.as_bytes().to_vec(),
-        )
+        parse(ParseOptions::new(dialect), text.as_bytes().to_vec())
     }
 
     #[test]

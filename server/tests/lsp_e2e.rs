@@ -774,7 +774,7 @@ fn linuxcnc_ini_named_by_the_config_reaches_the_interpreter() {
     .unwrap();
     std::fs::write(
         root.join("lathe/machine/mill.ini"),
-        "[EMCIO]\nTOOL_TABLE = t.tbl\n[TRAJ]\nLINEAR_UNITS = mm\nCOORDINATES = XYZ\nMAX_LINEAR_VELOCITY = 60\n[AXIS_X]\nMIN_LIMIT = -10\nMAX_LIMIT = 100\nMAX_VELOCITY = 60\nMAX_ACCELERATION = 800\n",
+        "[EMCIO]\nTOOL_TABLE = t.tbl\n[TRAJ]\nLINEAR_UNITS = mm\nCOORDINATES = XYZ\nMAX_LINEAR_VELOCITY = 60\n[AXIS_X]\nMIN_LIMIT = -10\nMAX_LIMIT = 100\nMAX_VELOCITY = 200\nMAX_ACCELERATION = 800\n",
     )
     .unwrap();
     std::fs::write(root.join("lathe/machine/t.tbl"), "T1 P1 Z0.5 D0.25\n").unwrap();
@@ -814,6 +814,30 @@ fn linuxcnc_ini_named_by_the_config_reaches_the_interpreter() {
     let mut got = c.diagnostics(&uri, 1);
     got.sort();
     assert_eq!(got, diags, "the language server and check agree");
+    // The cycle time is the same machine's too: the ini's limits (60 mm/s, not
+    // the default 100) with the config's own times over them, as `partscope run`.
+    std::fs::write(
+        root.join("lathe/partscope.toml"),
+        "dialect = \"rs274ngc\"\nini = \"machine/mill.ini\"\n[machine]\ntool_change_time = 7.0\n",
+    )
+    .unwrap();
+    std::fs::write(
+        root.join("lathe/fast.ngc"),
+        "G21 G90\nT1 M6\nG0 X90\nG1 X0 F6000\nM2\n",
+    )
+    .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_partscope"))
+        .args(["run", "--format", "json"])
+        .arg(root.join("lathe/fast.ngc"))
+        .output()
+        .unwrap();
+    let cli: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let cli_cycle = cli["cycle_time_s"].as_f64().unwrap();
+    // 7 s of tool change, and 180 mm at no more than 60 mm/s.
+    assert!(cli_cycle > 7.0 + 3.0, "{cli_cycle}");
+    let (fast, _) = open(&mut c, &root.join("lathe/fast.ngc"), "ngc");
+    let r = c.request("partscope/dryRun", json!({"textDocument": {"uri": fast}}));
+    assert_eq!(r["cycle_time_s"].as_f64(), Some(cli_cycle), "{r}");
     assert!(c.shutdown().success());
 }
 

@@ -310,23 +310,21 @@ pub fn run(args: RunArgs) -> ExitCode {
     for w in &cfg_files.warnings {
         workspace::warn_once(w);
     }
-    if args.machine.is_none() && cfg_files.ini_profile.is_some() {
-        machine_table =
-            workspace::machine_table_with(&machine_table, cfg_files.ini_profile.as_ref());
-        profile_override = cfg_files.ini_profile.clone();
-        if let (Some(ini), Some(cfg)) = (&loaded.config.ini, &loaded.path) {
-            profile_name = format!("ini {ini} of {}", cfg.display());
-        }
+    let config_ini = cfg_files
+        .ini_profile
+        .as_ref()
+        .filter(|_| args.machine.is_none());
+    if let (Some(_), Some(ini), Some(cfg)) = (config_ini, &loaded.config.ini, &loaded.path) {
+        profile_name = format!("ini {ini} of {}", cfg.display());
     }
     let mut profile = match profile_override {
-        // The config's own `[machine]` keys (times, overrides) apply over its `ini`.
-        Some(p) if args.machine.is_none() => {
-            let mut keys = loaded.config.machine.clone();
-            keys.axes = None;
-            p.with(&keys)
-        }
+        // `--machine` names the whole machine.
         Some(p) => p,
-        None => dryrun::profile_from_table(&machine_table, dialect),
+        None => {
+            let (table, profile) = workspace::machine_of(&machine_table, config_ini, dialect);
+            machine_table = table;
+            profile
+        }
     };
     if let Some(fo) = &args.feed_override {
         let v = fo.trim_end_matches('%').parse::<f64>().ok().map(|v| {

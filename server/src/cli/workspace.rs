@@ -183,6 +183,29 @@ pub fn machine_table_with(
     t
 }
 
+/// The machine a configuration describes, the same for `run` and the language
+/// server: the interpreter's table and the planner's profile. With a LinuxCNC
+/// `ini` its limits are the planner's machine and its axes the table's unless the
+/// table lists its own; the table's other keys (times, overrides, `planner`)
+/// apply over it.
+pub fn machine_of(
+    table: &MachineConfig,
+    ini: Option<&runtime::machine::MachineProfile>,
+    dialect: Dialect,
+) -> (MachineConfig, runtime::machine::MachineProfile) {
+    match ini {
+        Some(p) => {
+            let mut keys = table.clone();
+            keys.axes = None;
+            (machine_table_with(table, Some(p)), p.with(&keys))
+        }
+        None => (
+            table.clone(),
+            runtime::dryrun::profile_from_table(table, dialect),
+        ),
+    }
+}
+
 /// Reads a `partscope.toml`. Only an unreadable file is an error: what is wrong
 /// inside it becomes the located [`LoadedConfig::issues`].
 pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {

@@ -273,13 +273,7 @@ mod tests {
     use analyzer::Dialect;
 
     fn prog(dialect: Dialect, text: &str) -> Program {
-        parse(
-            ParseOptions {
-                dialect,
-                variant: dialect.default_variant(),
-            },
-            text.as_bytes().to_vec(),
-        )
+        parse(ParseOptions::new(dialect), text.as_bytes().to_vec())
     }
 
     #[test]

@@ -143,6 +143,9 @@ pub struct DocSettings {
     pub settings: Settings,
     /// The machine profile for the runtime.
     pub machine: MachineConfig,
+    /// The planner's machine: the table's keys over the dialect's defaults, or
+    /// over the config's LinuxCNC `ini` (as `partscope run` has it).
+    pub profile: runtime::machine::MachineProfile,
     /// The `partscope.toml` the settings came from.
     pub config_path: Option<PathBuf>,
     /// A problem reading the configuration, reported to the user.
@@ -277,7 +280,7 @@ pub fn resolve(
     };
     let mut tool_table = beside_config(&config.tool_table);
     let mut var_file = beside_config(&config.var_file);
-    let mut machine = config.machine;
+    let mut ini_profile = None;
     // A LinuxCNC `.ini` named by the config gives the machine's axes, and its
     // tool table and parameter file unless the config names its own, as in
     // `partscope check`. Like every file the server reads, it must be inside
@@ -288,14 +291,17 @@ pub fn resolve(
             .and_then(|p| crate::cli::workspace::read_ini(&p))
         {
             Ok(ini) => {
-                machine = crate::cli::workspace::machine_table_with(&machine, Some(&ini.profile));
+                ini_profile = Some(ini.profile);
                 tool_table = tool_table.or(ini.tool_table);
                 var_file = var_file.or(ini.var_file);
             }
             Err(e) => problems.push(format!("{}: {e}", ini.display())),
         }
     }
+    let (machine, profile) =
+        crate::cli::workspace::machine_of(&config.machine, ini_profile.as_ref(), dialect);
     DocSettings {
+        profile,
         tool_table,
         var_file,
         dialect_reason,

@@ -20,6 +20,8 @@ pub struct DryRunInput<'a> {
     pub program: &'a analyzer::syntax::Program,
     pub settings: &'a Settings,
     pub machine: &'a analyzer::config::MachineConfig,
+    /// The planner's machine.
+    pub profile: &'a runtime::machine::MachineProfile,
     pub doc_path: Option<PathBuf>,
     /// The `partscope.toml` in force (relative paths in it start at its folder).
     pub config_path: Option<PathBuf>,

@@ -135,10 +135,7 @@ impl DryRunner for RuntimeRunner {
         let previous = input
             .previous
             .and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).take());
-        let profile = Some(dryrun::profile_from_table(
-            input.machine,
-            input.settings.dialect,
-        ));
+        let profile = Some(input.profile.clone());
         let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
         let t0 = std::time::Instant::now();
         let rerun = previous.is_some();
@@ -336,7 +333,7 @@ pub fn path_of(
     dryrun::for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
         // A million motions take a good part of a second: a cancel is looked
         // at every few thousand.
-        if index % 4096 == 0 && stop() {
+        if index.is_multiple_of(4096) && stop() {
             stopped = true;
             return std::ops::ControlFlow::Break(());
         }
@@ -472,11 +469,13 @@ mod run_tests {
         let settings = Settings::new(Dialect::Rs274ngc);
         let program = analyzer::analyze(text.as_bytes().to_vec(), &settings).program;
         let machine = analyzer::config::MachineConfig::default();
+        let profile = runtime::machine::MachineProfile::default_for(Dialect::Rs274ngc);
         let cancel = CancelFlag::default();
         let input = DryRunInput {
             program: &program,
             settings: &settings,
             machine: &machine,
+            profile: &profile,
             doc_path: None,
             config_path: None,
             tool_table: None,

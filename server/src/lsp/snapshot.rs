@@ -236,6 +236,7 @@ impl Snapshot {
             program: self.program(),
             settings: &self.doc.settings,
             machine: &self.doc.machine,
+            profile: &self.doc.profile,
             doc_path: self.path.clone(),
             config_path: self.doc.config_path.clone(),
             tool_table: self.doc.tool_table.clone(),
