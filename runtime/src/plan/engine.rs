@@ -87,6 +87,10 @@ struct Tc {
     at_max: bool,
     /// The backward pass has set `finalvel` at least once.
     optimized: bool,
+    /// Highest target speed (when queued) of this element and the older ones
+    /// joined to it by tangent junctions: a `finalvel` at or above it is spent
+    /// only as that speed, by this element and every older one of the run.
+    run_vmax: f64,
     /// A rapid whose axes move independently (dog-leg): limits of its slowest
     /// axis scaled to the line, no path speed cap, a stop at both ends.
     dogleg: bool,
@@ -408,6 +412,7 @@ impl Planner {
             halve_parabolic: lcnc,
             at_max: false,
             optimized: false,
+            run_vmax: 0.0,
             dogleg: false,
             travel: None,
             feed: if seg.feed > 0.0 && !rapid {
@@ -686,6 +691,11 @@ impl Planner {
         if let Some(b) = blend {
             self.queue.push_back(b);
         }
+        let v = self.real_target_vel(&tc);
+        tc.run_vmax = match self.queue.back() {
+            Some(prev) if prev.term == Term::Tangent => prev.run_vmax.max(v),
+            _ => v,
+        };
         self.queue.push_back(tc);
         self.optimize();
         while self.queue.len() > self.depth + 2 {
@@ -937,10 +947,24 @@ impl Planner {
                 // The result equals LinuxCNC's full pass; the cost is O(1) amortised
                 // on long chains instead of O(depth).
                 let unchanged = prev.optimized && fv == prev.finalvel && clamp == tc.maxvel;
+                // Past the run's highest target speed both the old and the new
+                // value are spent as that speed, and so is every value the rest of
+                // the pass would compute from them (the step below never lowers a
+                // speed, as acceleration is not negative, and a cap under the run's
+                // speed gives both the same value), so the rest of the pass changes
+                // nothing that is executed. Only from the third junction on, where
+                // every older element's limits are final, and not with LinuxCNC's
+                // lazy cut-off, which counts the `at_max` flags this would skip.
+                let saturated = !lazy
+                    && x >= 3
+                    && prev.optimized
+                    && clamp == tc.maxvel
+                    && fv >= prev.run_vmax
+                    && prev.finalvel >= prev.run_vmax;
                 prev.finalvel = fv;
                 prev.optimized = true;
                 tc.maxvel = clamp;
-                if unchanged {
+                if unchanged || saturated {
                     return;
                 }
             }
