@@ -320,16 +320,13 @@ fn motion_extent(out: &runtime::RunOutput) -> f64 {
 /// significance for decimation.
 pub fn path_of(out: &runtime::RunOutput, profile: Option<&MachineProfile>, chord: f64) -> Path {
     let mut path = Path::with_capacity(out.motions.len());
-    let mut index = 0u32;
     dryrun::for_each_toolpath_segment(out, chord, profile, |m, kind, points| {
         let kind = match kind {
             "rapid" => SegmentKind::Rapid,
             "arc" => SegmentKind::Arc,
             _ => SegmentKind::Feed,
         };
-        let length = dryrun::segment_of(m, index).length;
-        index += 1;
-        path.push(kind, m.line, m.feed, m.tool, points, length);
+        path.push(kind, m.line, m.feed, m.tool, points, dryrun::length_of(m));
     });
     path.finish();
     path
