@@ -148,10 +148,9 @@ fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign
         }
         let word = || (it.span, program.str_of(it.span).trim().to_string());
         let v = n.value;
-        let whole = v.fract() == 0.0 && v >= 0.0 && !n.has_point;
         match w.letter {
             // A lathe T word selects tool and offset together: T0101, T202.
-            b'T' if whole && (101.0..10000.0).contains(&v) => {
+            b'T' if v.fract() == 0.0 && !n.has_point && (101.0..10000.0).contains(&v) => {
                 let t = v as u32;
                 let written_four = n.digits == 4 && t < 1000;
                 if !t.is_multiple_of(100) && (written_four || t / 100 == t % 100) {
