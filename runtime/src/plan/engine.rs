@@ -671,26 +671,35 @@ impl Planner {
     // ------------------------------------------------------------------ queueing
 
     fn add(&mut self, mut tc: Tc, out: &mut dyn FnMut(SegmentTiming)) {
-        let mut blend: Option<Tc> = None;
-        let mut consumed = false;
-        if let Some(mut prev) = self.queue.pop_back() {
-            if prev.rapid != tc.rapid || tc.dogleg {
-                // Rapid and feed moves are never blended, and every axis of a
-                // dog-leg rapid starts from rest.
-                set_term(&mut prev, Some(&mut tc), Term::Stop);
+        // Rapid and feed moves are never blended, and every axis of a dog-leg
+        // rapid starts from rest.
+        let stop = |prev: &Tc, tc: &Tc| prev.rapid != tc.rapid || tc.dogleg;
+        if self.lcnc() {
+            if let Some(mut prev) = self.queue.pop_back() {
+                if stop(&prev, &tc) {
+                    set_term(&mut prev, Some(&mut tc), Term::Stop);
+                }
+                let (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
+                if !consumed {
+                    self.finalize(&mut prev);
+                    self.queue.push_back(prev);
+                }
+                if let Some(b) = blend {
+                    self.queue.push_back(b);
+                }
             }
-            if self.lcnc() {
-                (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
-            } else {
-                self.generic_junction(&mut prev, &mut tc);
+        } else {
+            // The generic junction never removes or inserts an element, so the
+            // newest one is set up where it is (an element is several hundred bytes).
+            let mut queue = std::mem::take(&mut self.queue);
+            if let Some(prev) = queue.back_mut() {
+                if stop(prev, &tc) {
+                    set_term(prev, Some(&mut tc), Term::Stop);
+                }
+                self.generic_junction(prev, &mut tc);
+                self.finalize(prev);
             }
-            if !consumed {
-                self.finalize(&mut prev);
-                self.queue.push_back(prev);
-            }
-        }
-        if let Some(b) = blend {
-            self.queue.push_back(b);
+            self.queue = queue;
         }
         let v = self.real_target_vel(&tc);
         tc.run_vmax = match self.queue.back() {
