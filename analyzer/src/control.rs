@@ -110,7 +110,9 @@ fn words_text(program: &Program, b: &Block, letters: &[u8]) -> (Span, String) {
 }
 
 /// The lathe- or Haas-style signs of one block.
-fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign, Evidence)>) {
+/// `G99` counts as [`Sign::FeedPerRev`] here; the caller drops it when the file
+/// has a drilling cycle.
+fn block_signs(program: &Program, b: &Block, out: &mut Vec<(Sign, Evidence)>) {
     let mut push = |sign: Sign, (span, text): (Span, String)| {
         out.push((
             sign,
@@ -148,10 +150,9 @@ fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign
         }
         let word = || (it.span, program.str_of(it.span).trim().to_string());
         let v = n.value;
-        let whole = v.fract() == 0.0 && v >= 0.0 && !n.has_point;
         match w.letter {
             // A lathe T word selects tool and offset together: T0101, T202.
-            b'T' if whole && (101.0..10000.0).contains(&v) => {
+            b'T' if v.fract() == 0.0 && !n.has_point && (101.0..10000.0).contains(&v) => {
                 let t = v as u32;
                 let written_four = n.digits == 4 && t < 1000;
                 if !t.is_multiple_of(100) && (written_four || t / 100 == t % 100) {
@@ -173,9 +174,7 @@ fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign
             b'G' if v == 28.0 && (has(b'U') || has(b'W')) => {
                 push(Sign::ReferenceUw, words_text(program, b, b"GUW"))
             }
-            // On a mill G99 returns a canned cycle to the R level; without any
-            // drilling cycle in the file it is a lathe's feed per revolution.
-            b'G' if v == 99.0 && !drilling => push(Sign::FeedPerRev, word()),
+            b'G' if v == 99.0 => push(Sign::FeedPerRev, word()),
             b'G' if v == 187.0 => push(Sign::Haas187, word()),
             b'G' if v == 103.0 => push(Sign::Haas103, word()),
             b'G' if v == 154.0 && has(b'P') => push(Sign::Haas154, words_text(program, b, b"GP")),
@@ -189,15 +188,13 @@ fn block_signs(program: &Program, b: &Block, drilling: bool, out: &mut Vec<(Sign
     }
 }
 
-/// Whether the program uses a drilling canned cycle (G73, G74, G76, G81–G89).
-fn has_drilling(program: &Program) -> bool {
-    program.blocks.iter().any(|b| {
-        program.words(b).any(|(_, w)| {
-            w.letter == b'G'
-                && !w.comma
-                && lit_of(w)
-                    .is_some_and(|v| matches!(v as i64, 73 | 74 | 76 | 81..=89) && v.fract() == 0.0)
-        })
+/// Whether the block uses a drilling canned cycle (G73, G74, G76, G81–G89).
+fn block_drills(program: &Program, b: &Block) -> bool {
+    program.words(b).any(|(_, w)| {
+        w.letter == b'G'
+            && !w.comma
+            && lit_of(w)
+                .is_some_and(|v| matches!(v as i64, 73 | 74 | 76 | 81..=89) && v.fract() == 0.0)
     })
 }
 
@@ -208,10 +205,17 @@ pub fn control_signature(program: &Program) -> Option<Signature> {
     if program.dialect != Dialect::Fanuc {
         return None;
     }
-    let drilling = has_drilling(program);
+    // One pass over the blocks (the program is large, its items are read once).
+    let mut drilling = false;
     let mut found = Vec::new();
     for b in &program.blocks {
-        block_signs(program, b, drilling, &mut found);
+        drilling = drilling || block_drills(program, b);
+        block_signs(program, b, &mut found);
+    }
+    // On a mill G99 returns a canned cycle to the R level; without any drilling
+    // cycle in the file it is a lathe's feed per revolution.
+    if drilling {
+        found.retain(|(s, _)| *s != Sign::FeedPerRev);
     }
     // The first evidence of each kind, in file order.
     let mut firsts: Vec<(Sign, Evidence)> = Vec::new();

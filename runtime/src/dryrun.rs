@@ -127,27 +127,10 @@ fn helix_rise(m: &Motion, normal: &[f64; 3]) -> f64 {
     dot3(&sub3(&xyz(&m.end), &xyz(&m.start)), normal)
 }
 
-/// The planner segment of a motion; `index` is stored as the segment's block so
-/// timings map back to motions.
-pub fn segment_of(m: &Motion, index: u32) -> Segment {
-    let mode = if m.exact_path {
-        PathMode::ExactPath
-    } else if m.exact_stop {
-        PathMode::ExactStop
-    } else {
-        let tolerance = m.blend_tolerance.unwrap_or(0.0);
-        PathMode::Blend {
-            tolerance,
-            naive: m.naive_tolerance.unwrap_or(tolerance),
-        }
-    };
-    let straight = dist3(&xyz(&m.start), &xyz(&m.end));
-    let rot = ((m.end[3] - m.start[3]).powi(2)
-        + (m.end[4] - m.start[4]).powi(2)
-        + (m.end[5] - m.start[5]).powi(2))
-    .sqrt();
+/// A motion's planner kind and path length, before an exponential move's own
+/// measure: what `segment_of` and `length_of` share.
+fn kind_and_length(m: &Motion) -> (SegmentKind, f64) {
     let (kind, length) = match m.kind {
-        MotionKind::Rapid => (SegmentKind::Rapid, straight),
         MotionKind::Arc {
             center,
             normal,
@@ -168,27 +151,67 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
             )
         }
         MotionKind::Involute { curve, .. } => (SegmentKind::Line, curve.length()),
-        _ => (SegmentKind::Line, straight),
+        MotionKind::Rapid => (SegmentKind::Rapid, dist3(&xyz(&m.start), &xyz(&m.end))),
+        _ => (SegmentKind::Line, dist3(&xyz(&m.start), &xyz(&m.end))),
     };
-    let length = if length > 1e-12 { length } else { rot };
+    if length > 1e-12 {
+        return (kind, length);
+    }
+    let rot = ((m.end[3] - m.start[3]).powi(2)
+        + (m.end[4] - m.start[4]).powi(2)
+        + (m.end[5] - m.start[5]).powi(2))
+    .sqrt();
+    (kind, rot)
+}
+
+/// An exponential move's integrated X–A length and its feed in mm/s (the one
+/// that gives the integrated time of the feed running from F to Q), when the
+/// move has one.
+fn exponential_measure(m: &Motion) -> Option<(f64, f64)> {
+    let (MotionKind::Exponential { curve, end_feed }, None) = (m.kind, m.inverse_time) else {
+        return None;
+    };
+    let e = curve.measure(m.feed, end_feed);
+    (e.length > 1e-12 && e.minutes > 0.0 && e.minutes.is_finite())
+        .then(|| (e.length, e.length / (e.minutes * 60.0)))
+}
+
+/// The path length of `segment_of(m, _)`, without building the segment.
+pub fn length_of(m: &Motion) -> f64 {
+    match exponential_measure(m) {
+        Some((length, _)) => length,
+        None => kind_and_length(m).1,
+    }
+}
+
+/// The planner segment of a motion; `index` is stored as the segment's block so
+/// timings map back to motions.
+pub fn segment_of(m: &Motion, index: u32) -> Segment {
+    let mode = if m.exact_path {
+        PathMode::ExactPath
+    } else if m.exact_stop {
+        PathMode::ExactStop
+    } else {
+        let tolerance = m.blend_tolerance.unwrap_or(0.0);
+        PathMode::Blend {
+            tolerance,
+            naive: m.naive_tolerance.unwrap_or(tolerance),
+        }
+    };
+    let (kind, length) = kind_and_length(m);
     // Feed in mm/s: inverse time gives the move's duration; per-revolution feeds
     // (G95, threads) scale with the spindle speed.
-    // Exponential moves: the integrated X–A length, at the feed that gives the
-    // integrated time of the feed running from F to Q.
-    if let (MotionKind::Exponential { curve, end_feed }, None) = (m.kind, m.inverse_time) {
-        let e = curve.measure(m.feed, end_feed);
-        if e.length > 1e-12 && e.minutes > 0.0 && e.minutes.is_finite() {
-            return Segment {
-                kind,
-                start: m.start,
-                end: m.end,
-                length: e.length,
-                feed: e.length / (e.minutes * 60.0),
-                mode,
-                block: index,
-                tool: m.tool,
-            };
-        }
+    if let Some((length, feed)) = exponential_measure(m) {
+        return Segment {
+            kind,
+            start: m.start,
+            end: m.end,
+            length,
+            feed,
+            mode,
+            block: index,
+            tool: m.tool,
+        };
     }
     let feed = match (m.inverse_time, m.kind) {
         (_, MotionKind::Rapid) => 0.0,

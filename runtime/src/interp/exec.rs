@@ -188,6 +188,36 @@ struct Words {
 }
 
 impl Words {
+    /// Makes the words those of `Words::default()` again, keeping the lists' buffers.
+    fn clear(&mut self) {
+        let Words {
+            v,
+            span,
+            point,
+            g,
+            m,
+            pname,
+            n,
+            ijk_order,
+            n_text,
+            polar_r,
+            polar_a,
+            raw_k,
+        } = self;
+        *v = [None; 26];
+        *span = [Span::default(); 26];
+        *point = [false; 26];
+        g.clear();
+        m.clear();
+        *pname = None;
+        *n = None;
+        ijk_order.clear();
+        *n_text = None;
+        *polar_r = None;
+        *polar_a = None;
+        *raw_k = None;
+    }
+
     fn get(&self, c: u8) -> Option<f64> {
         self.v.get((c - b'A') as usize).copied().flatten()
     }
@@ -277,6 +307,8 @@ struct Interp<'a, 'i> {
     /// bytes, and clearing the four letters the fast path writes is cheaper than
     /// building a new one for every line.
     fast_words: Option<Box<Words>>,
+    /// The general path's words, kept between blocks (`Words::clear`).
+    block_words: Option<Box<Words>>,
     /// RS274/NGC: the state saved by M70 outside any subroutine.
     top_context: Option<context::SavedContext>,
     /// G64 Q (naive CAM tolerance) as written; M70 saves it.
@@ -432,6 +464,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             inv_rate_set: false,
             fast_path: true,
             fast_words: Some(Box::default()),
+            block_words: Some(Box::default()),
             top_context: None,
             naive_tol: 0.0,
             machine_vars: machine_vars::MachineVars::default(),

@@ -11,6 +11,7 @@ use super::servo::{self, Run, View};
 
 mod blend;
 mod chain;
+mod optimize;
 use super::{
     cross3, dist3, dot3, norm3, sub3, unit3, Causes, Event, MachineProfile, PathMode, PlannerModel,
     RapidPositioning, Segment, SegmentKind, SegmentTiming, Totals,
@@ -87,6 +88,10 @@ struct Tc {
     at_max: bool,
     /// The backward pass has set `finalvel` at least once.
     optimized: bool,
+    /// Highest target speed (when queued) of this element and the older ones
+    /// joined to it by tangent junctions: a `finalvel` at or above it is spent
+    /// only as that speed, by this element and every older one of the run.
+    run_vmax: f64,
     /// A rapid whose axes move independently (dog-leg): limits of its slowest
     /// axis scaled to the line, no path speed cap, a stop at both ends.
     dogleg: bool,
@@ -408,6 +413,7 @@ impl Planner {
             halve_parabolic: lcnc,
             at_max: false,
             optimized: false,
+            run_vmax: 0.0,
             dogleg: false,
             travel: None,
             feed: if seg.feed > 0.0 && !rapid {
@@ -665,27 +671,41 @@ impl Planner {
     // ------------------------------------------------------------------ queueing
 
     fn add(&mut self, mut tc: Tc, out: &mut dyn FnMut(SegmentTiming)) {
-        let mut blend: Option<Tc> = None;
-        let mut consumed = false;
-        if let Some(mut prev) = self.queue.pop_back() {
-            if prev.rapid != tc.rapid || tc.dogleg {
-                // Rapid and feed moves are never blended, and every axis of a
-                // dog-leg rapid starts from rest.
-                set_term(&mut prev, Some(&mut tc), Term::Stop);
+        // Rapid and feed moves are never blended, and every axis of a dog-leg
+        // rapid starts from rest.
+        let stop = |prev: &Tc, tc: &Tc| prev.rapid != tc.rapid || tc.dogleg;
+        if self.lcnc() {
+            if let Some(mut prev) = self.queue.pop_back() {
+                if stop(&prev, &tc) {
+                    set_term(&mut prev, Some(&mut tc), Term::Stop);
+                }
+                let (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
+                if !consumed {
+                    self.finalize(&mut prev);
+                    self.queue.push_back(prev);
+                }
+                if let Some(b) = blend {
+                    self.queue.push_back(b);
+                }
             }
-            if self.lcnc() {
-                (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
-            } else {
-                self.generic_junction(&mut prev, &mut tc);
+        } else {
+            // The generic junction never removes or inserts an element, so the
+            // newest one is set up where it is (an element is several hundred bytes).
+            let mut queue = std::mem::take(&mut self.queue);
+            if let Some(prev) = queue.back_mut() {
+                if stop(prev, &tc) {
+                    set_term(prev, Some(&mut tc), Term::Stop);
+                }
+                self.generic_junction(prev, &mut tc);
+                self.finalize(prev);
             }
-            if !consumed {
-                self.finalize(&mut prev);
-                self.queue.push_back(prev);
-            }
+            self.queue = queue;
         }
-        if let Some(b) = blend {
-            self.queue.push_back(b);
-        }
+        let v = self.real_target_vel(&tc);
+        tc.run_vmax = match self.queue.back() {
+            Some(prev) if prev.term == Term::Tangent => prev.run_vmax.max(v),
+            _ => v,
+        };
         self.queue.push_back(tc);
         self.optimize();
         while self.queue.len() > self.depth + 2 {
@@ -885,74 +905,6 @@ impl Planner {
             v = v.min(self.p.traj_max_velocity);
         }
         v.max(0.0)
-    }
-
-    /// `tpRunOptimization`: backward pass from the newest element over at most
-    /// `depth` junctions, stopping at the second junction that is not tangent.
-    fn optimize(&mut self) {
-        let len = self.queue.len();
-        let mut hit_non_tangent = false;
-        let mut hit_peaks = 0;
-        let lazy = self.lcnc();
-        for x in 1..self.depth + 2 {
-            if x + 1 > len {
-                return;
-            }
-            let ind = len - x;
-            let (head, tail) = self.queue.as_mut_slices();
-            let (prev, tc) = pair_mut(head, tail, ind - 1, ind);
-            if prev.term != Term::Tangent {
-                if hit_non_tangent {
-                    return;
-                }
-                hit_non_tangent = true;
-                continue;
-            }
-            if !tc.finalized {
-                let vpeak = (tc.tangential_accel() * tc.target).sqrt();
-                let mut tv = tc.max_target_vel();
-                if !tc.pure_rotary {
-                    tv = tv.min(self.p.traj_max_velocity);
-                }
-                let mut fv = prev.maxvel.min(vpeak.min(tv));
-                if prev.kink_vel >= 0.0 {
-                    fv = fv.min(prev.kink_vel);
-                }
-                prev.finalvel = fv;
-                tc.finalvel = 0.0;
-            } else {
-                let a = tc.tangential_accel();
-                let vs_back = (tc.finalvel * tc.finalvel + 2.0 * a * tc.target).sqrt();
-                let mut limit = tc.maxvel.min(prev.maxvel);
-                if prev.kink_vel >= 0.0 {
-                    limit = limit.min(prev.kink_vel);
-                }
-                if vs_back >= limit {
-                    prev.at_max = true;
-                }
-                let fv = vs_back.min(limit);
-                let clamp = tc.maxvel.min(tc.target / (self.cycle * MIN_SEGMENT_CYCLES));
-                // Once a junction comes out as it was, every earlier one would too
-                // (their inputs are unchanged), so the rest of the pass is skipped.
-                // The result equals LinuxCNC's full pass; the cost is O(1) amortised
-                // on long chains instead of O(depth).
-                let unchanged = prev.optimized && fv == prev.finalvel && clamp == tc.maxvel;
-                prev.finalvel = fv;
-                prev.optimized = true;
-                tc.maxvel = clamp;
-                if unchanged {
-                    return;
-                }
-            }
-            // LinuxCNC's lazy optimisation: stop after passing more than
-            // TP_OPTIMIZATION_CUTOFF (4) elements already at their speed limit.
-            if lazy && tc.at_max {
-                hit_peaks += 1;
-                if hit_peaks > 4 {
-                    return;
-                }
-            }
-        }
     }
 
     fn view(&self, tc: &Tc) -> View {

@@ -342,9 +342,8 @@ pub fn path_of(
             "arc" => SegmentKind::Arc,
             _ => SegmentKind::Feed,
         };
-        let length = dryrun::segment_of(m, index).length;
         index += 1;
-        path.push(kind, m.line, m.feed, m.tool, points, length);
+        path.push(kind, m.line, m.feed, m.tool, points, dryrun::length_of(m));
         std::ops::ControlFlow::Continue(())
     });
     if stopped || !path.finish_until(stop) {

@@ -36,6 +36,9 @@ pub struct Snapshot {
     /// The interpreter's run of this version, once computed.
     run: OnceLock<Option<Arc<RunReport>>>,
     run_lock: std::sync::Mutex<()>,
+    /// Whether the program is for another control (P010), which every caller of
+    /// `run_report` asks first: decided once per version.
+    mismatch: OnceLock<bool>,
     /// Static and runtime diagnostics together, once the run is done.
     merged: OnceLock<Vec<analyzer::Diagnostic>>,
     /// The latest earlier version's interpreter output, which this version's
@@ -169,6 +172,7 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         runner: inputs.runner,
         run: OnceLock::new(),
         run_lock: std::sync::Mutex::new(()),
+        mismatch: OnceLock::new(),
         merged: OnceLock::new(),
         previous_run,
     }
@@ -219,7 +223,9 @@ impl Snapshot {
         // finding) is not interpreted: its findings and cycle time would mean nothing.
         // Decided without the other rules, so the run need not wait for them.
         if self.syntax_only
-            || analyzer::program_reports_mismatch(self.program(), &self.doc.settings)
+            || *self.mismatch.get_or_init(|| {
+                analyzer::program_reports_mismatch(self.program(), &self.doc.settings)
+            })
         {
             return None;
         }

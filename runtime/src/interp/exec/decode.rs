@@ -8,6 +8,8 @@
 //! executor branches on the dialect's order; the steps themselves live in the
 //! sibling modules.
 
+use analyzer::syntax::{Block, Item};
+
 use super::flow::macro_args;
 use super::messages::rs274_parameter_message;
 use super::*;
@@ -171,7 +173,25 @@ impl Interp<'_, '_> {
                 return Ok(Flow::Next);
             }
         }
-        let mut w = Words::default();
+        // The words of the last block are emptied and refilled: their lists keep
+        // their buffers, so a block allocates nothing for its words.
+        let mut w = self.block_words.take().unwrap_or_default();
+        w.clear();
+        let r = self.exec_block_words(fi, bi, &prog, block, items, &mut w);
+        self.block_words = Some(w);
+        r
+    }
+
+    /// The rest of `exec_block` once the block's words are read into `w`.
+    fn exec_block_words(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        prog: &Program,
+        block: Block,
+        items: &[Item],
+        w: &mut Words,
+    ) -> Result<Flow, Diagnostic> {
         let mut comments: Vec<(CommentKind, Span)> = Vec::new();
         let mut assigns: Vec<(ExprId, Val, Span, bool)> = Vec::new();
         for it in items {
@@ -181,7 +201,7 @@ impl Interp<'_, '_> {
                     let val = match word.value {
                         WordValue::Num(n) => Some(n.value),
                         WordValue::Expr(e) => {
-                            let (v, (unknown, _)) = self.eval_reading(&prog, e);
+                            let (v, (unknown, _)) = self.eval_reading(prog, e);
                             machine_value = unknown;
                             v?
                         }
@@ -308,7 +328,7 @@ impl Interp<'_, '_> {
                 }
                 ItemKind::Comment(k) => comments.push((*k, it.span)),
                 ItemKind::Assign { target, value } if self.ngc() => {
-                    let v = self.eval(&prog, *value)?;
+                    let v = self.eval(prog, *value)?;
                     assigns.push((*target, v, it.span, self.taint.last.get()));
                 }
                 _ => {}
@@ -317,11 +337,11 @@ impl Interp<'_, '_> {
         // Canonical output reproduces rs274, which refuses the whole line before
         // running any of it (the static rules report these in every other mode).
         if self.ngc() && self.canon.is_some() {
-            self.check_ngc_codes(&w)?;
+            self.check_ngc_codes(w)?;
         }
         // RS274/NGC: parameters are set after the whole line was read.
         for (t, v, s, tainted) in assigns {
-            self.assign(&prog, t, v, s, tainted, None)?;
+            self.assign(prog, t, v, s, tainted, None)?;
         }
         if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
             c.line_number = Some(n);
@@ -344,17 +364,17 @@ impl Interp<'_, '_> {
             return Ok(Flow::Stop);
         }
         w.raw_k = w.get(b'K');
-        self.scale_words(&mut w);
+        self.scale_words(w);
         // A G7x profile block only adds to the profile; LinuxCNC reads it
         // without executing any of its other words.
         if self.g7x_capturing() {
-            self.g7x_profile_block(&w, block.span)?;
+            self.g7x_profile_block(w, block.span)?;
             return Ok(Flow::Next);
         }
         self.inv_rate_set = false;
         let before = (self.out.motions.len(), self.st.tlo);
-        let flow = self.exec_words(fi, bi, &prog, &w, &comments, block.span)?;
-        self.refresh_after_tool_change(&w, before);
+        let flow = self.exec_words(fi, bi, prog, w, &comments, block.span)?;
+        self.refresh_after_tool_change(w, before);
         Ok(flow)
     }
 

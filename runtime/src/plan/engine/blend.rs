@@ -147,6 +147,7 @@ impl Planner {
             tool: prev.tool,
             halve_parabolic: true,
             at_max: false,
+            run_vmax: 0.0,
             optimized: false,
             dogleg: false,
             travel: None,
