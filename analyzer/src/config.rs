@@ -466,6 +466,8 @@ impl Config {
         let spans = Spans::new(text);
         let mut issues = Vec::new();
         let config = Config::from_table(&table, &spans, &mut issues);
+        // In the order of the file (tables iterate by key).
+        issues.sort_by_key(|i| i.span.as_ref().map(|s| s.start));
         (config, issues)
     }
 
@@ -608,6 +610,7 @@ impl MachineConfig {
                 let value = toml::Value::Table(t);
                 let m =
                     read_table(&[], &value, &spans, &mut issues, Self::KEYS).unwrap_or_default();
+                issues.sort_by_key(|i| i.span.as_ref().map(|s| s.start));
                 (m, issues)
             }
             Err(_) => {

@@ -1139,3 +1139,35 @@ fn formatting_renumbers_spaces_and_upper_cases() {
     );
     c.shutdown();
 }
+
+/// A `partscope.toml` with a typo and a bad value: the editor says where each
+/// is, in one message.
+#[test]
+fn config_problems_are_shown_located_and_the_rest_applies() {
+    let root = workspace("badconfig");
+    std::fs::create_dir_all(root.join("shop")).unwrap();
+    let config = root.join("shop/partscope.toml");
+    std::fs::write(
+        &config,
+        "dialect = \"fanuc\"\n[rules]\nignore = [\"W011\"]\n[machine]\nlookahaed = 40\nfeed_override = 20\n",
+    )
+    .unwrap();
+    std::fs::write(root.join("shop/p.nc"), "%\nO1000\nG21 G90\nM30\n%\n").unwrap();
+    let mut c = Client::spawn();
+    initialize(&mut c, &root, json!({}));
+    let (uri, _) = open(&mut c, &root.join("shop/p.nc"), "fanuc");
+    c.diagnostics(&uri, 1);
+    let want = format!(
+        "partscope: {p}:5:1: warning: unknown key `lookahaed`: did you mean `lookahead`? (ignored); \
+         {p}:6:17: warning: `machine.feed_override`: 20 must be between 0.001 and 10 (the default is used)",
+        p = config.display()
+    );
+    let shown = c.wait_for("window/showMessage", |m| {
+        m["message"]
+            .as_str()
+            .is_some_and(|s| s.contains("lookahaed"))
+    });
+    assert_eq!(shown["message"], want.as_str());
+    assert_eq!(shown["type"], 2);
+    assert!(c.shutdown().success());
+}
