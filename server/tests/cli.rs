@@ -740,10 +740,9 @@ fn machine_values_out_of_range_are_located_warnings() {
         assert_eq!(out.status.code(), Some(0), "{cmd}");
         let err = String::from_utf8_lossy(&out.stderr);
         for e in &expected[..4] {
-            assert!(
-                err.contains(&format!("partscope.toml{e}")),
-                "{cmd}: {e}\n{err}"
-            );
+            // One line per problem: `partscope: FILE:LINE:COL: warning: …`.
+            let line = format!("partscope: {}{e}\n", dir.join("partscope.toml").display());
+            assert!(err.contains(&line), "{cmd}: {e}\n{err}");
         }
     }
     // A file that is not TOML stops both commands, located.

@@ -292,7 +292,7 @@ pub fn run(args: RunArgs) -> ExitCode {
                 return fail(located.join("\n"));
             }
             for w in &located {
-                workspace::warn_once(w);
+                workspace::say_once(w);
             }
             machine_table = table;
         }

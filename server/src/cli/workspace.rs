@@ -81,7 +81,7 @@ impl LoadedConfig {
     /// Prints the config's issues on stderr, once per process.
     pub fn warn(&self) {
         for i in &self.issues {
-            warn_once(i);
+            say_once(i);
         }
     }
 
@@ -134,6 +134,12 @@ impl LoadedConfig {
 /// Prints a warning on stderr once per process: a directory of programs under one
 /// config would otherwise repeat it for every file.
 pub fn warn_once(msg: &str) {
+    say_once(&format!("warning: {msg}"));
+}
+
+/// Prints `partscope: {msg}` on stderr once per process (a located message
+/// names its own severity).
+pub fn say_once(msg: &str) {
     static SEEN: Mutex<Vec<String>> = Mutex::new(Vec::new());
     if let Ok(mut seen) = SEEN.lock() {
         if seen.iter().any(|s| s == msg) {
@@ -141,7 +147,7 @@ pub fn warn_once(msg: &str) {
         }
         seen.push(msg.to_string());
     }
-    eprintln!("partscope: warning: {msg}");
+    eprintln!("partscope: {msg}");
 }
 
 /// A LinuxCNC `.ini` as a machine profile, with the tool table and parameter
