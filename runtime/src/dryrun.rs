@@ -201,24 +201,15 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
     let (kind, length) = kind_and_length(m);
     // Feed in mm/s: inverse time gives the move's duration; per-revolution feeds
     // (G95, threads) scale with the spindle speed.
-    if let Some((length, feed)) = exponential_measure(m) {
-        return Segment {
-            kind,
-            start: m.start,
-            end: m.end,
-            length,
-            feed,
-            mode,
-            block: index,
-            tool: m.tool,
+    let (length, feed) = exponential_measure(m).unwrap_or_else(|| {
+        let feed = match (m.inverse_time, m.kind) {
+            (_, MotionKind::Rapid) => 0.0,
+            (Some(inv), _) if inv > 0.0 => length * inv / 60.0,
+            (_, MotionKind::Thread) => m.feed * m.spindle_rpm / 60.0,
+            _ => m.feed / 60.0,
         };
-    }
-    let feed = match (m.inverse_time, m.kind) {
-        (_, MotionKind::Rapid) => 0.0,
-        (Some(inv), _) if inv > 0.0 => length * inv / 60.0,
-        (_, MotionKind::Thread) => m.feed * m.spindle_rpm / 60.0,
-        _ => m.feed / 60.0,
-    };
+        (length, feed)
+    });
     Segment {
         kind,
         start: m.start,
