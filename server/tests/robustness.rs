@@ -573,6 +573,17 @@ fn crash_fixtures_stay_fixed() {
     assert!(files.len() >= 10, "fixtures missing: {files:?}");
     for path in &files {
         let bytes = std::fs::read(path).expect("read fixture");
+        // The `config` fuzz target's property: any text reads as a configuration.
+        let text = String::from_utf8_lossy(&bytes);
+        let (_, issues) = analyzer::Config::load(&text);
+        assert!(
+            issues
+                .iter()
+                .filter_map(|i| i.span.as_ref())
+                .all(|s| s.start <= s.end && s.end <= text.len()),
+            "{}: config issue spans",
+            path.display()
+        );
         for dialect in D::ALL {
             for &variant in variants_of(dialect) {
                 let program = parse(ParseOptions { dialect, variant }, bytes.clone());
