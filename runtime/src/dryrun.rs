@@ -192,10 +192,9 @@ pub fn segment_of(m: &Motion, index: u32) -> Segment {
     } else if m.exact_stop {
         PathMode::ExactStop
     } else {
-        let tolerance = m.blend_tolerance.unwrap_or(0.0);
         PathMode::Blend {
-            tolerance,
-            naive: m.naive_tolerance.unwrap_or(tolerance),
+            tolerance: m.blend_tolerance,
+            naive: m.naive_tolerance,
         }
     };
     let (kind, length) = kind_and_length(m);

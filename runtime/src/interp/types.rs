@@ -140,10 +140,13 @@ pub struct Motion {
     /// LinuxCNC G61 "exact path": the planner stops only at corners, not at tangent
     /// joints (G61.1 and G09 are true exact stops).
     pub exact_path: bool,
-    pub blend_tolerance: Option<f64>,
-    /// LinuxCNC G64 Q, mm: the naive-CAM tolerance; `None` when Q is not given
-    /// (it is then P).
-    pub naive_tolerance: Option<f64>,
+    /// G64 P, mm; 0 when not blending or P is not given (the planner's default
+    /// applies). Resolved here, not kept optional: no reader tells the two apart,
+    /// and a million motions are kept.
+    pub blend_tolerance: f64,
+    /// LinuxCNC G64 Q, mm: the naive-CAM tolerance; `blend_tolerance` when Q is
+    /// not given or the dialect has none.
+    pub naive_tolerance: f64,
     pub file: FileId,
     pub block: u32,
     pub line: u32,

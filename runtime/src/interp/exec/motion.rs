@@ -188,6 +188,10 @@ impl Interp<'_, '_> {
         } else {
             feed
         };
+        let blend_tolerance = match self.st.modal.path_tol {
+            Some(t) if self.st.modal.path == 640 => t * lu,
+            _ => 0.0,
+        };
         Motion {
             kind,
             start: mm(start),
@@ -202,13 +206,12 @@ impl Interp<'_, '_> {
             exact_path: self.st.modal.path == 610
                 && !self.block_exact
                 && self.input.program.dialect == analyzer::Dialect::Rs274ngc,
-            blend_tolerance: if self.st.modal.path == 640 {
-                self.st.modal.path_tol.map(|t| t * lu)
+            blend_tolerance,
+            naive_tolerance: if self.st.modal.path == 640 && self.ngc() {
+                self.naive_tol * lu
             } else {
-                None
+                blend_tolerance
             },
-            naive_tolerance: (self.st.modal.path == 640 && self.ngc())
-                .then_some(self.naive_tol * lu),
             file: self.file_id(),
             block: self.cur.1,
             line: self.cur_line,
