@@ -37,6 +37,16 @@ pub struct ConfigIssue {
     pub severity: Severity,
 }
 
+/// A table read key by key: unknown keys and bad values are issues, the rest is read.
+trait KeyTable: Default {
+    /// Every key of the table, in declaration order.
+    const KEYS: &'static [KeyDoc];
+
+    /// Reads one key: `None` when the table has no such key, else whether the
+    /// value was taken.
+    fn set(&mut self, key: &str, v: &toml::Value) -> Option<Result<(), String>>;
+}
+
 /// Declares a table's struct (every key an `Option`), its key documentation and
 /// the reading of one key, so a key is named exactly once.
 macro_rules! table {
@@ -62,9 +72,11 @@ macro_rules! table {
                     meaning: $meaning,
                 }, )*
             ];
+        }
 
-            /// Reads one key: `None` when the table has no such key, else whether
-            /// the value was taken.
+        impl KeyTable for $name {
+            const KEYS: &'static [KeyDoc] = $name::KEYS;
+
             fn set(&mut self, key: &str, v: &toml::Value) -> Option<Result<(), String>> {
                 match key {
                     $( stringify!($key) => {
@@ -471,14 +483,6 @@ impl Config {
         (config, issues)
     }
 
-    /// A configuration from a table with no text behind it (an editor's
-    /// settings); the issues carry no span.
-    pub fn from_toml_table(table: &toml::Table) -> (Config, Vec<ConfigIssue>) {
-        let mut issues = Vec::new();
-        let config = Config::from_table(table, &Spans::none(), &mut issues);
-        (config, issues)
-    }
-
     /// Reads a configuration and refuses it on the first problem (tests and
     /// tools that want a strict reading).
     pub fn from_toml(text: &str) -> Result<Config, String> {
@@ -495,13 +499,11 @@ impl Config {
         for (key, value) in table {
             match key.as_str() {
                 "rules" => {
-                    config.rules = read_table(&["rules"], value, spans, issues, RulesConfig::KEYS)
-                        .unwrap_or_default()
+                    config.rules = read_table(&["rules"], value, spans, issues).unwrap_or_default()
                 }
                 "machine" => {
                     config.machine =
-                        read_table(&["machine"], value, spans, issues, MachineConfig::KEYS)
-                            .unwrap_or_default()
+                        read_table(&["machine"], value, spans, issues).unwrap_or_default()
                 }
                 _ => match top.set(key, value) {
                     Some(Ok(())) => {}
@@ -532,28 +534,11 @@ impl Config {
     }
 }
 
-/// Tables read key by key: unknown keys and bad values are issues, the rest is read.
-trait KeyTable: Default {
-    fn set_key(&mut self, key: &str, v: &toml::Value) -> Option<Result<(), String>>;
-}
-
-macro_rules! key_table {
-    ($($t:ty),*) => {$(
-        impl KeyTable for $t {
-            fn set_key(&mut self, key: &str, v: &toml::Value) -> Option<Result<(), String>> {
-                self.set(key, v)
-            }
-        }
-    )*};
-}
-key_table!(RulesConfig, MachineConfig, AxisConfig, ToolConfig);
-
 fn read_table<T: KeyTable>(
     path: &[&str],
     value: &toml::Value,
     spans: &Spans,
     issues: &mut Vec<ConfigIssue>,
-    keys: &[KeyDoc],
 ) -> Option<T> {
     let Some(table) = value.as_table() else {
         issues.push(bad_value(path, "must be a table".into(), spans));
@@ -563,11 +548,11 @@ fn read_table<T: KeyTable>(
     for (key, v) in table {
         let mut at: Vec<&str> = path.to_vec();
         at.push(key);
-        match out.set_key(key, v) {
+        match out.set(key, v) {
             Some(Ok(())) => {}
             Some(Err(e)) => issues.push(bad_value(&at, e, spans)),
             None => {
-                let names: Vec<&str> = keys.iter().map(|k| k.name).collect();
+                let names: Vec<&str> = T::KEYS.iter().map(|k| k.name).collect();
                 issues.push(ConfigIssue {
                     key: at.join("."),
                     span: spans.key(&at),
@@ -586,14 +571,7 @@ impl MachineConfig {
     pub fn from_toml_table(table: &toml::Table) -> (MachineConfig, Vec<ConfigIssue>) {
         let mut issues = Vec::new();
         let value = toml::Value::Table(table.clone());
-        let m = read_table(
-            &["machine"],
-            &value,
-            &Spans::none(),
-            &mut issues,
-            Self::KEYS,
-        )
-        .unwrap_or_default();
+        let m = read_table(&["machine"], &value, &Spans::none(), &mut issues).unwrap_or_default();
         (m, issues)
     }
 
@@ -608,8 +586,7 @@ impl MachineConfig {
                 let mut issues = Vec::new();
                 let spans = Spans::new(text);
                 let value = toml::Value::Table(t);
-                let m =
-                    read_table(&[], &value, &spans, &mut issues, Self::KEYS).unwrap_or_default();
+                let m = read_table(&[], &value, &spans, &mut issues).unwrap_or_default();
                 issues.sort_by_key(|i| i.span.as_ref().map(|s| s.start));
                 (m, issues)
             }
@@ -878,17 +855,17 @@ fn drill_shift(v: &toml::Value) -> Result<DrillShift, String> {
 }
 
 /// Reads the entries of a nested table; a bad entry is an error for the whole key.
-fn nested<T: KeyTable>(v: &toml::Value, keys: &[KeyDoc]) -> Result<T, String> {
+fn nested<T: KeyTable>(v: &toml::Value) -> Result<T, String> {
     let t = v
         .as_table()
         .ok_or_else(|| format!("expected a table, found {}", kind(v)))?;
     let mut out = T::default();
     for (k, x) in t {
-        match out.set_key(k, x) {
+        match out.set(k, x) {
             Some(Ok(())) => {}
             Some(Err(e)) => return Err(format!("`{k}`: {e}")),
             None => {
-                let names: Vec<&str> = keys.iter().map(|k| k.name).collect();
+                let names: Vec<&str> = T::KEYS.iter().map(|k| k.name).collect();
                 return Err(unknown_phrase(k, &names));
             }
         }
@@ -907,7 +884,7 @@ fn axes(v: &toml::Value) -> Result<Vec<AxisConfig>, String> {
             Ok(axis)
         }
         _ => {
-            let axis = nested::<AxisConfig>(entry, AxisConfig::KEYS)?;
+            let axis = nested::<AxisConfig>(entry)?;
             match (axis.min_travel, axis.max_travel) {
                 (Some(lo), Some(hi)) if lo > hi => Err(format!(
                     "`min_travel` = {lo} must not exceed `max_travel` = {hi}"
@@ -979,7 +956,7 @@ fn tools(v: &toml::Value) -> Result<BTreeMap<u32, ToolConfig>, String> {
             .trim_start_matches(['T', 't'])
             .parse::<u32>()
             .map_err(|_| format!("`{k}` is not a tool (`T1`, `T2`, …)"))?;
-        let tool = nested::<ToolConfig>(x, ToolConfig::KEYS).map_err(|e| format!("`{k}`: {e}"))?;
+        let tool = nested::<ToolConfig>(x).map_err(|e| format!("`{k}`: {e}"))?;
         out.insert(n, tool);
     }
     Ok(out)

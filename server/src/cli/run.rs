@@ -281,10 +281,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             }
         } else {
             let (table, issues) = analyzer::config::MachineConfig::load(&machine_text);
-            let located: Vec<String> = issues
-                .iter()
-                .map(|i| workspace::locate(m, &machine_text, i))
-                .collect();
+            let located = workspace::locate_all(m, &machine_text, &issues);
             if issues
                 .iter()
                 .any(|i| i.severity == analyzer::Severity::Error)

@@ -223,9 +223,14 @@ pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
         unreadable: issues
             .iter()
             .any(|i| i.severity == analyzer::Severity::Error),
-        issues: issues.iter().map(|i| locate(path, &text, i)).collect(),
+        issues: locate_all(path, &text, &issues),
         files: Arc::default(),
     })
+}
+
+/// Every issue of a configuration text, located ([`locate`]).
+pub fn locate_all(path: &Path, text: &str, issues: &[ConfigIssue]) -> Vec<String> {
+    issues.iter().map(|i| locate(path, text, i)).collect()
 }
 
 /// `path:line:col: severity: message` for one issue (line and column 1-based,

@@ -197,11 +197,7 @@ pub fn resolve(
             Ok(text) => {
                 let (c, issues) = Config::load(&text);
                 config = c;
-                problems.extend(
-                    issues
-                        .iter()
-                        .map(|i| crate::cli::workspace::locate(&path, &text, i)),
-                );
+                problems.extend(crate::cli::workspace::locate_all(&path, &text, &issues));
             }
             Err(e) => problems.push(format!("{}: {e}", path.display())),
         }
@@ -251,11 +247,7 @@ pub fn resolve(
                     Ok(text) => {
                         let (m, issues) = MachineConfig::load(&text);
                         config.machine = m;
-                        problems.extend(
-                            issues
-                                .iter()
-                                .map(|i| crate::cli::workspace::locate(&path, &text, i)),
-                        );
+                        problems.extend(crate::cli::workspace::locate_all(&path, &text, &issues));
                     }
                     Err(e) => problems.push(e),
                 }

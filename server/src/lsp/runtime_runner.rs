@@ -135,7 +135,7 @@ impl DryRunner for RuntimeRunner {
         let previous = input
             .previous
             .and_then(|p| p.lock().unwrap_or_else(|e| e.into_inner()).take());
-        let profile = Some(input.profile.clone());
+        let profile = input.profile;
         let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
         let t0 = std::time::Instant::now();
         let rerun = previous.is_some();
@@ -149,17 +149,15 @@ impl DryRunner for RuntimeRunner {
             // Planned chunks come back to be filled again: fresh memory for
             // every chunk would cost a page fault per 4 KB.
             let (back_tx, back_rx) = std::sync::mpsc::channel::<Chunk>();
-            let planner = profile.as_ref().map(|profile| {
-                s.spawn(move || {
-                    let mut plan = dryrun::RunPlan::new(profile);
-                    for (mut m, mut e) in rx {
-                        plan.push(&m, &e, &|| input.cancel.is_cancelled());
-                        m.clear();
-                        e.clear();
-                        let _ = back_tx.send((m, e));
-                    }
-                    plan
-                })
+            let planner = s.spawn(move || {
+                let mut plan = dryrun::RunPlan::new(profile);
+                for (mut m, mut e) in rx {
+                    plan.push(&m, &e, &|| input.cancel.is_cancelled());
+                    m.clear();
+                    e.clear();
+                    let _ = back_tx.send((m, e));
+                }
+                plan
             });
             let send = |m: &[runtime::Motion], e: &[runtime::Event]| {
                 let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
@@ -173,21 +171,14 @@ impl DryRunner for RuntimeRunner {
                     let out = runtime::rerun(&run_input, true, prev);
                     // The rerun took most of its motions from the previous
                     // run: the planner gets the whole run afterwards.
-                    if planner.is_some() {
-                        send_run(&out, &send);
-                    }
+                    send_run(&out, &send);
                     out
                 }
-                None if planner.is_some() => runtime::run_checkpointed_observed(
+                None => runtime::run_checkpointed_observed(
                     &run_input,
                     true,
                     Some(runtime::ValueLimits::default()),
                     &mut |m, e| send(m, e),
-                ),
-                None => runtime::run_checkpointed_recording(
-                    &run_input,
-                    true,
-                    Some(runtime::ValueLimits::default()),
                 ),
             };
             drop(tx);
@@ -208,14 +199,13 @@ impl DryRunner for RuntimeRunner {
                     // costs points no view of the whole part can show).
                     let chord = CHORD_TOLERANCE
                         .max(motion_extent(&out) / decimate::DEFAULT_VIEW_SIZE / 2.0);
-                    path_of(&out, profile.as_ref(), chord, &|| {
-                        input.cancel.is_cancelled()
-                    })
+                    path_of(&out, Some(profile), chord, &|| input.cancel.is_cancelled())
                 })
                 .flatten();
             let t_path = t0.elapsed();
-            let streamed =
-                planner.map(|p| p.join().unwrap_or_else(|e| std::panic::resume_unwind(e)));
+            let streamed = planner
+                .join()
+                .unwrap_or_else(|e| std::panic::resume_unwind(e));
             (out, path, streamed, t_path)
         });
         // A cancelled run stopped part way: no answer, and nothing to rerun from.
@@ -224,15 +214,12 @@ impl DryRunner for RuntimeRunner {
             return None;
         }
         let stop = || input.cancel.is_cancelled();
-        let plan = match (profile.as_ref(), streamed) {
-            // A run past the servo-simulation limit is planned again in closed form.
-            (Some(profile), Some(p)) if p.over_limit() => {
-                Some(dryrun::plan_run_until(&out, profile, &stop)?)
-            }
-            (_, Some(p)) => Some(p.finish(&out.events)?),
-            _ => None,
+        // A run past the servo-simulation limit is planned again in closed form.
+        let mut plan = if streamed.over_limit() {
+            dryrun::plan_run_until(&out, profile, &stop)?
+        } else {
+            streamed.finish(&out.events)?
         };
-        let mut plan = plan;
         if input.cancel.is_cancelled() {
             return None;
         }
@@ -245,24 +232,18 @@ impl DryRunner for RuntimeRunner {
             );
         }
         let loaded = resolver.loaded();
-        let report = report_of(input.program, &out, path, plan.as_ref(), &loaded);
+        let report = report_of(input.program, &out, path, Some(&plan), &loaded);
         // The canonical lines are not needed again; the rest is what a rerun
         // continues from.
         out.canon = Vec::new();
         // The document's blocks, moved out of the plan (a million of them
         // would be a large copy).
-        let blocks = plan
-            .as_mut()
-            .map(|p| {
-                let mut blocks = std::mem::take(&mut p.blocks);
-                blocks.retain(|b| b.file == 0);
-                blocks
-            })
-            .unwrap_or_default();
-        let breakdown = plan
-            .as_ref()
-            .zip(profile.as_ref())
-            .map(|(p, prof)| super::dry_run::Breakdown::of(&p.totals, prof.traj_max_velocity));
+        let mut blocks = std::mem::take(&mut plan.blocks);
+        blocks.retain(|b| b.file == 0);
+        let breakdown = Some(super::dry_run::Breakdown::of(
+            &plan.totals,
+            profile.traj_max_velocity,
+        ));
         Some(RunReport {
             blocks,
             breakdown,
