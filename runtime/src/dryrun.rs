@@ -654,7 +654,7 @@ pub fn plan_run(out: &RunOutput, profile: &MachineProfile) -> DryRun {
 }
 
 /// [`plan_run`] for a host that may stop it: `None` when `stop` returned
-/// true (it is polled every 1024 planner events).
+/// true (it is polled every 64 planner events).
 pub fn plan_run_until(
     out: &RunOutput,
     profile: &MachineProfile,
@@ -715,7 +715,8 @@ pub struct RunPlan {
     rapid: f64,
     over: bool,
     stopped: bool,
-    /// Planner events pushed (the stop is polled every 1024).
+    /// Planner events pushed (the stop is polled every 64: under the servo
+    /// simulation one event can be thousands of periods).
     pushed: usize,
     /// Per motion so far: file and line, and length.
     motions: Vec<(u32, u32)>,
@@ -762,7 +763,7 @@ impl RunPlan {
 
     /// Plans the next motions and events of the run ([`crate::interp::MotionObserver`]:
     /// an event's `motion_index` counts from the run's first motion). `stop` is
-    /// polled every 1024 planner events.
+    /// polled every 64 planner events.
     pub fn push(&mut self, motions: &[Motion], events: &[IEvent], stop: &dyn Fn() -> bool) {
         let first = self.motions.len();
         let first_event = self.events;
@@ -807,7 +808,7 @@ impl RunPlan {
             }
         };
         interleave_from(motions, events, first, first_event, &mut |ev| {
-            if pushed.is_multiple_of(1024) && stop() {
+            if pushed.is_multiple_of(64) && stop() {
                 *stopped = true;
                 return false;
             }
