@@ -751,6 +751,18 @@ impl RunPlan {
         }
     }
 
+    /// Makes room for the figures of `motions` motions on as many lines of
+    /// the main file (a program's block count is a good guess): tables grown
+    /// by doubling leave their old copies as holes in the allocator's heap.
+    pub fn reserve(&mut self, motions: usize) {
+        let motions = motions.min(RESERVED_MOTIONS);
+        self.motions.reserve(motions);
+        self.lengths.reserve(motions);
+        self.motion_times.reserve(motions);
+        self.blocks.main.reserve(motions);
+        self.blocks.by_line.reserve(motions);
+    }
+
     /// Whether the run passed the servo-simulation limit (nothing more is planned).
     pub fn over_limit(&self) -> bool {
         self.over
@@ -949,6 +961,11 @@ pub struct BlockAcc {
     by_line: Vec<u32>,
     other: BTreeMap<(u32, u32), BlockTime>,
 }
+
+/// The most motions a run's tables make room for before they fill: a file of
+/// empty lines has millions of blocks and no motion, and address space is not
+/// free either.
+pub const RESERVED_MOTIONS: usize = 1 << 21;
 
 /// A main-file line without figures in [`BlockAcc`].
 const NO_BLOCK: u32 = u32::MAX;

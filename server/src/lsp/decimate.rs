@@ -122,11 +122,12 @@ pub struct Decimation {
 
 impl Path {
     /// An empty path with room for `motions` motions of two points each
-    /// (a million-line program's vectors then never move while they fill).
+    /// (a million-line program's vectors then never move while they fill;
+    /// room that is not filled costs address space, not memory).
     pub fn with_capacity(motions: usize) -> Path {
         Path {
-            points: Vec::with_capacity(motions + 1),
-            lines: Vec::with_capacity(motions + 1),
+            points: Vec::with_capacity(2 * motions + 1),
+            lines: Vec::with_capacity(2 * motions + 1),
             motion_start: Vec::with_capacity(motions),
             ..Path::default()
         }

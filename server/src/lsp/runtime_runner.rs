@@ -151,6 +151,7 @@ impl DryRunner for RuntimeRunner {
             let (back_tx, back_rx) = std::sync::mpsc::channel::<Chunk>();
             let planner = s.spawn(move || {
                 let mut plan = dryrun::RunPlan::new(profile);
+                plan.reserve(input.program.blocks.len());
                 for (mut m, mut e) in rx {
                     plan.push(&m, &e, &|| input.cancel.is_cancelled());
                     m.clear();

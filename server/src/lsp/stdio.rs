@@ -83,6 +83,9 @@ const CONTENT_LENGTH: &[u8] = b"content-length";
 /// The longest header line [`header_line_at`] accepts (name, blanks, 20 digits).
 const MAX_LENGTH_LINE: usize = 64;
 const READ_CHUNK: usize = 1 << 16;
+/// Capacity the input buffer keeps between messages; a larger one (a
+/// multi-megabyte `didOpen`) is given back once its message is read.
+const KEPT_CAPACITY: usize = 4 * READ_CHUNK;
 
 /// One unit of input.
 #[derive(Debug, PartialEq)]
@@ -275,6 +278,25 @@ impl<R: AsyncRead + Unpin> FrameReader<R> {
     }
 
     pub async fn next(&mut self) -> std::io::Result<Frame> {
+        let frame = self.next_frame().await;
+        self.compact();
+        frame
+    }
+
+    /// Drops the read bytes and, after a large message, the capacity it grew
+    /// to: the server would otherwise hold the largest message's size for its
+    /// whole life, beside the document it became.
+    fn compact(&mut self) {
+        if self.buf.capacity() > KEPT_CAPACITY {
+            let rest = self.buf.get(self.pos..).unwrap_or_default();
+            let mut kept = Vec::with_capacity(rest.len().max(READ_CHUNK));
+            kept.extend_from_slice(rest);
+            self.buf = kept;
+            self.pos = 0;
+        }
+    }
+
+    async fn next_frame(&mut self) -> std::io::Result<Frame> {
         let len = loop {
             match scan_header(self.data(), self.limits.max_header) {
                 Scan::Found { start, len, body } => {
@@ -801,6 +823,21 @@ mod tests {
 
     fn msg(body: &str) -> String {
         format!("Content-Length: {}\r\n\r\n{body}", body.len())
+    }
+
+    #[tokio::test]
+    async fn a_large_message_leaves_no_large_buffer_behind() {
+        let big = format!(r#"{{"text":"{}"}}"#, "G1 X1\n".repeat(300_000));
+        let small = r#"{"jsonrpc":"2.0","method":"a"}"#;
+        let input = format!("{}{}", msg(&big), msg(small));
+        let mut r = FrameReader::new(input.as_bytes(), Limits::default());
+        assert_eq!(r.next().await.unwrap(), Frame::Body(big.into_bytes()));
+        assert!(r.buf.capacity() <= KEPT_CAPACITY, "{}", r.buf.capacity());
+        assert_eq!(
+            r.next().await.unwrap(),
+            Frame::Body(small.as_bytes().to_vec())
+        );
+        assert_eq!(r.next().await.unwrap(), Frame::Eof);
     }
 
     #[tokio::test]

@@ -254,6 +254,16 @@ fn checkpointed(
     mut observe: Option<&mut MotionObserver<'_>>,
 ) -> RunOutput {
     let mut it = Interp::new(input, snapshots);
+    // The motions stay in the output: room for one per block up front. Grown
+    // by doubling instead, the copies pass through sizes the allocator keeps
+    // in its heap and leave holes there (tens of MB on a million blocks).
+    it.out.motions.reserve(
+        input
+            .program
+            .blocks
+            .len()
+            .min(crate::dryrun::RESERVED_MOTIONS),
+    );
     it.values = values.map(|l| RefCell::new(ValueRecord::new(l)));
     if eligible(input) {
         it.spec.single_pass = true;
