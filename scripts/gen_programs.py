@@ -288,7 +288,8 @@ def macro(w, dialect, budget, rng):
         radius = fmt(5 + rng.random() * 60, 3)
         depth = fmt(1 + rng.random() * 4, 3)
         if dialect == "rs274ngc":
-            label = 100 + loop % 800
+            # LinuxCNC refuses a label used twice: every loop has its own.
+            label = 100 + loop
             w.line("#1 = 0")
             w.line("o%d while [#1 lt %d]" % (label, count))
             w.line("  #2 = [%s * cos[#1 * 360 / %d]]" % (radius, count))

@@ -16,6 +16,7 @@ Generate inputs with scripts/gen_programs.py, e.g.
     python3 scripts/gen_programs.py surfacing --dialect rs274ngc --lines 1000000 > surf1m.ngc
 """
 import argparse
+import hashlib
 import json
 import os
 import subprocess
@@ -142,6 +143,8 @@ def measure(binary, path, tolerance=None, show_stderr=False, init=None):
         "server_bytes_until_answer": bytes_in,
         "peak_rss_mb": round(hwm / 1024, 1) if hwm else None,
         "server_cpu_s": round(cpu, 2),
+        # Equal hashes: two binaries gave the same answer (key order as sent).
+        "answer_sha256": hashlib.sha256(json.dumps(msg.get("result")).encode()).hexdigest()[:16],
     }
     if "error" in msg:
         row["error"] = msg["error"].get("message")

@@ -93,7 +93,7 @@ impl Interp<'_, '_> {
             } else {
                 len * self.st.feed / self.unit()
             };
-            self.canon(format!("SET_FEED_RATE({})", f4(rate)));
+            canon!(self, "SET_FEED_RATE({})", f4(rate));
             self.inv_rate_set = true;
         }
         use std::f64::consts::{FRAC_PI_2, PI};
@@ -405,7 +405,7 @@ impl Interp<'_, '_> {
         let n = self.normal_axis();
         let u = self.unit();
         let rot = if left { -1 } else { 1 };
-        self.canon(format!(
+        canon!(self, 
             "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
             f4(to[a] / u),
             f4(to[b] / u),
@@ -415,8 +415,7 @@ impl Interp<'_, '_> {
             f4(from[n] / u),
             f4(to[3]),
             f4(to[4]),
-            f4(to[5])
-        ));
+            f4(to[5]));
         let mut c3 = from;
         c3[a] = center[a];
         c3[b] = center[b];

@@ -368,10 +368,9 @@ impl Interp<'_, '_> {
             match save_path {
                 611 => self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)"),
                 _ => {
-                    self.canon(format!(
-                        "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
-                    ));
-                    self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(tol)));
+                    canon!(self, 
+                        "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
+                    canon!(self, "SET_NAIVECAM_TOLERANCE({})", f4(tol));
                 }
             }
         }
@@ -395,7 +394,7 @@ impl Interp<'_, '_> {
         let ret = if ngc { clear } else { fanuc_ret(self) };
         let dwell_ev = |s: &mut Self| {
             if dwell > 0.0 || ngc {
-                s.canon(format!("DWELL({})", f4(dwell)));
+                canon!(s, "DWELL({})", f4(dwell));
                 s.event(EventKind::Dwell(dwell));
             }
         };

@@ -534,7 +534,7 @@ impl Interp<'_, '_> {
         if w.has_g(960) {
             self.st.modal.css = true;
             let d = w.get(b'D').map(|v| self.lin(v)).unwrap_or(0.0);
-            self.canon(format!("SET_SPINDLE_MODE(0 {})", f4(d / self.unit())));
+            canon!(self, "SET_SPINDLE_MODE(0 {})", f4(d / self.unit()));
         }
         if w.has_g(970) {
             self.st.modal.css = false;
@@ -548,7 +548,7 @@ impl Interp<'_, '_> {
         ] {
             if w.has_g(code) {
                 self.canon_comment(&format!("interpreter: feed mode set to {text}"));
-                self.canon(format!("SET_FEED_MODE(0, {mode})"));
+                canon!(self, "SET_FEED_MODE(0, {mode})");
                 self.st.modal.feed_mode = code;
                 if code != 930 {
                     self.st.feed = 0.0;
@@ -570,12 +570,12 @@ impl Interp<'_, '_> {
                 f * u
             };
             if self.st.modal.feed_mode != 930 {
-                self.canon(format!("SET_FEED_RATE({})", f4(f)));
+                canon!(self, "SET_FEED_RATE({})", f4(f));
             }
         }
         if let Some(s) = w.get(b'S') {
             self.st.spindle = s;
-            self.canon(format!("SET_SPINDLE_SPEED(0, {})", f4(s)));
+            canon!(self, "SET_SPINDLE_SPEED(0, {})", f4(s));
             if self.st.spindle_dir != 0 {
                 let (rpm, dir) = (s, self.st.spindle_dir);
                 self.event(EventKind::Spindle { rpm, dir });
@@ -585,7 +585,7 @@ impl Interp<'_, '_> {
             let t = t.round().max(0.0) as u32;
             self.st.next_tool = t;
             self.check_tool(t, w.sp(b'T'))?;
-            self.canon(format!("SELECT_TOOL({t})"));
+            canon!(self, "SELECT_TOOL({t})");
             if self.dialect == Dialect::Servoworks {
                 // ServoWorks changes the tool with the T word itself.
                 self.st.tool = t;
@@ -618,7 +618,7 @@ impl Interp<'_, '_> {
         ] {
             if w.has_g(code) {
                 self.st.modal.plane = plane;
-                self.canon(format!("SELECT_PLANE({name})"));
+                canon!(self, "SELECT_PLANE({name})");
             }
         }
         if w.has_g(200) || w.has_g(210) {
@@ -662,7 +662,7 @@ impl Interp<'_, '_> {
         for (code, mode) in [(610u32, "CANON_EXACT_PATH"), (611, "CANON_EXACT_STOP")] {
             if w.has_g(code) {
                 self.st.modal.path = code;
-                self.canon(format!("SET_MOTION_CONTROL_MODE({mode})"));
+                canon!(self, "SET_MOTION_CONTROL_MODE({mode})");
             }
         }
         if w.has_g(640) {
@@ -676,10 +676,9 @@ impl Interp<'_, '_> {
             let tol = pt.unwrap_or(0.0) / self.unit();
             let q = w.get(b'Q').unwrap_or(tol);
             self.naive_tol = q;
-            self.canon(format!(
-                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})"
-            ));
-            self.canon(format!("SET_NAIVECAM_TOLERANCE({})", f4(q)));
+            canon!(self, 
+                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
+            canon!(self, "SET_NAIVECAM_TOLERANCE({})", f4(q));
         }
         for (code, abs) in [(901u32, true), (911, false)] {
             if w.has_g(code) {

@@ -691,7 +691,7 @@ impl Interp<'_, '_> {
             self.st.pos = self.to_program(self.st.mpos);
             let u = self.unit();
             let g = self.g5x_prog();
-            self.canon(format!("SET_G5X_OFFSET(1, {})", Canon::six(&scale6(g, u))));
+            canon!(self, "SET_G5X_OFFSET(1, {})", Canon::six(&scale6(g, u)));
             let r = self.rotation_canon(1);
             self.canon(r);
             if self.st.modal.plane != 170 {

@@ -31,7 +31,7 @@ impl Interp<'_, '_> {
             }
             CommentKind::Msg => {
                 let m = after_comma(&inner);
-                self.canon(format!("MESSAGE(\"{m}\")"));
+                canon!(self, "MESSAGE(\"{m}\")");
                 self.event(EventKind::Message(m));
             }
             CommentKind::Debug | CommentKind::Print => {
@@ -42,7 +42,7 @@ impl Interp<'_, '_> {
                     }
                 } else if !self.ngc() || self.read_param(5599) > 0.0 {
                     // #5599 = 0 silences (DEBUG,) in LinuxCNC.
-                    self.canon(format!("MESSAGE(\"{m}\")"));
+                    canon!(self, "MESSAGE(\"{m}\")");
                 }
             }
             CommentKind::Abort => {

@@ -65,7 +65,7 @@ impl Interp<'_, '_> {
                     .map(|i| i + 1)
                     .unwrap_or(0)
             };
-            self.canon(format!("CHANGE_TOOL({slot})"));
+            canon!(self, "CHANGE_TOOL({slot})");
             self.st.tool = t;
             self.event(EventKind::ToolChange { tool: t });
         }
@@ -81,7 +81,7 @@ impl Interp<'_, '_> {
             if self.canon.is_none() || !ngc {
                 self.st.tool = t;
             }
-            self.canon(format!("CHANGE_TOOL_NUMBER({t})"));
+            canon!(self, "CHANGE_TOOL_NUMBER({t})");
         }
         for (m, dir) in [(30u32, 1i8), (40, -1), (50, 0)] {
             if w.has_m(m) {
@@ -98,7 +98,7 @@ impl Interp<'_, '_> {
         if w.has_m(190) && ngc {
             let r = w.get(b'R').unwrap_or(0.0);
             let q = w.get(b'P').unwrap_or(0.0) as i32;
-            self.canon(format!("ORIENT_SPINDLE(0, {}, {q})", f4(r)));
+            canon!(self, "ORIENT_SPINDLE(0, {}, {q})", f4(r));
         }
         if ngc {
             self.exec_context_codes(w)?;
@@ -150,7 +150,7 @@ impl Interp<'_, '_> {
             ] {
                 if w.has_m(m) {
                     let verb = if on { "ENABLE" } else { "DISABLE" };
-                    self.canon(format!("{verb}_{what}"));
+                    canon!(self, "{verb}_{what}");
                 }
             }
         }
@@ -170,7 +170,7 @@ impl Interp<'_, '_> {
             ] {
                 if w.has_m(m) {
                     let p = w.get(b'P').unwrap_or(0.0) as i32;
-                    self.canon(format!("{text}({p})"));
+                    canon!(self, "{text}({p})");
                 }
             }
         }
@@ -199,7 +199,7 @@ impl Interp<'_, '_> {
                 }
             }
         };
-        self.canon(format!("DWELL({})", f4(secs)));
+        canon!(self, "DWELL({})", f4(secs));
         self.event(EventKind::Dwell(secs.max(0.0)));
         Ok(())
     }

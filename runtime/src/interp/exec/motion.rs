@@ -223,7 +223,7 @@ impl Interp<'_, '_> {
     pub(super) fn rapid_to(&mut self, t: [f64; 6]) {
         if self.canon.is_some() {
             let s = self.canon_pos(&t);
-            self.canon(format!("STRAIGHT_TRAVERSE({s})"));
+            canon!(self, "STRAIGHT_TRAVERSE({s})");
         }
         let end = self.to_machine(t);
         let m = self.motion_base(MotionKind::Rapid, self.st.mpos, end, 0.0);
@@ -246,11 +246,11 @@ impl Interp<'_, '_> {
             } else {
                 len * self.st.feed / self.unit()
             };
-            self.canon(format!("SET_FEED_RATE({})", f4(rate)));
+            canon!(self, "SET_FEED_RATE({})", f4(rate));
         }
         if self.canon.is_some() {
             let s = self.canon_pos(&t);
-            self.canon(format!("STRAIGHT_FEED({s})"));
+            canon!(self, "STRAIGHT_FEED({s})");
         }
         let end = self.to_machine(t);
         let feed = self.effective_feed(dist(&self.st.mpos, &end));
@@ -454,9 +454,9 @@ impl Interp<'_, '_> {
                 self.st.modal.motion = 330;
                 let t = self.target(w);
                 let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
-                self.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", k / self.unit()));
+                canon!(self, "START_SPEED_FEED_SYNC({:.6},0)", k / self.unit());
                 let s = self.canon_pos(&t);
-                self.canon(format!("STRAIGHT_FEED({s})"));
+                canon!(self, "STRAIGHT_FEED({s})");
                 self.canon("STOP_SPEED_FEED_SYNCH()");
                 let end = self.to_machine(t);
                 let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, k);
@@ -472,13 +472,12 @@ impl Interp<'_, '_> {
                 let t = self.target(w);
                 let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
                 let u = self.unit();
-                self.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", k / u));
-                self.canon(format!(
+                canon!(self, "START_SPEED_FEED_SYNC({:.6},0)", k / u);
+                canon!(self, 
                     "RIGID_TAP({}, {}, {})",
                     f4(t[0] / u),
                     f4(t[1] / u),
-                    f4(t[2] / u)
-                ));
+                    f4(t[2] / u));
                 self.canon("STOP_SPEED_FEED_SYNCH()");
                 // The tap feeds in and reverses out: rs274 leaves the current point
                 // where the block started.
@@ -506,7 +505,7 @@ impl Interp<'_, '_> {
                 self.check_feed(bspan)?;
                 self.canon("TURN_PROBE_ON()");
                 let s = self.canon_pos(&t);
-                self.canon(format!("STRAIGHT_PROBE({s})"));
+                canon!(self, "STRAIGHT_PROBE({s})");
                 self.canon("TURN_PROBE_OFF()");
                 let start = self.st.pos;
                 let end = self.to_machine(t);
@@ -652,10 +651,9 @@ impl Interp<'_, '_> {
                 [t[0], t[1]],
             ]
         };
-        self.canon(format!(
+        canon!(self, 
             "NURBS_FEED({}, ...)",
-            if quadratic { 3 } else { 4 }
-        ));
+            if quadratic { 3 } else { 4 });
         self.sampled_curve(&ctrl, t);
         Ok(())
     }
@@ -667,7 +665,7 @@ impl Interp<'_, '_> {
             return Ok(());
         }
         self.check_feed(span)?;
-        self.canon(format!("NURBS_FEED({}, ...)", pts.len() + 1));
+        canon!(self, "NURBS_FEED({}, ...)", pts.len() + 1);
         // Follow the control polygon: a close enough length for cycle time.
         let mut ctrl = vec![[self.st.pos[0], self.st.pos[1]]];
         ctrl.extend(pts.iter().map(|(p, _)| [p[0], p[1]]));
@@ -809,7 +807,7 @@ impl Interp<'_, '_> {
             p[2] = z;
             p
         };
-        let sync = |s: &mut Self, p: f64| s.canon(format!("START_SPEED_FEED_SYNC({:.6},0)", p / u));
+        let sync = |s: &mut Self, p: f64| canon!(s, "START_SPEED_FEED_SYNC({:.6},0)", p / u);
         let mut pass_no = 1.0f64;
         let mut depth = start_depth;
         let mut guard = 0;
@@ -862,7 +860,7 @@ impl Interp<'_, '_> {
     pub(super) fn thread_to(&mut self, t: [f64; 6], pitch: f64) {
         if self.canon.is_some() {
             let s = self.canon_pos(&t);
-            self.canon(format!("STRAIGHT_FEED({s})"));
+            canon!(self, "STRAIGHT_FEED({s})");
         }
         let end = self.to_machine(t);
         let m = self.motion_base(MotionKind::Thread, self.st.mpos, end, pitch);
@@ -995,7 +993,7 @@ impl Interp<'_, '_> {
                 turns - 1,
                 t[n] - self.st.pos[n],
             );
-            self.canon(format!("SET_FEED_RATE({})", f4(len * self.st.feed / u)));
+            canon!(self, "SET_FEED_RATE({})", f4(len * self.st.feed / u));
         }
         let rot = if cw { -turns } else { turns };
         let pe = e2;
@@ -1009,7 +1007,7 @@ impl Interp<'_, '_> {
         let e2_out = [sh(e2[0], shift[a]), sh(e2[1], shift[b])];
         let center_out = [sh(center[0], shift[a]), sh(center[1], shift[b])];
         if self.canon.is_some() {
-            self.canon(format!(
+            canon!(self, 
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
                 f4(e2_out[0] / u),
                 f4(e2_out[1] / u),
@@ -1019,8 +1017,7 @@ impl Interp<'_, '_> {
                 f4(t[n] / u),
                 f4(t[3]),
                 f4(t[4]),
-                f4(t[5])
-            ));
+                f4(t[5]));
         }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;

@@ -215,12 +215,11 @@ impl Interp<'_, '_> {
             s.st.tlo = [x, y, z, 0.0, 0.0, 0.0];
             s.st.pos = s.to_program(s.st.mpos);
             let u = s.unit();
-            s.canon(format!(
+            canon!(s, 
                 "USE_TOOL_LENGTH_OFFSET({} {} {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 f4(x / u),
                 f4(y / u),
-                f4(z / u)
-            ));
+                f4(z / u));
         };
         if w.has_g(490) {
             self.st.modal.tlo_mode = 490;
@@ -334,11 +333,10 @@ impl Interp<'_, '_> {
         let g = self.g5x_prog();
         let g92 = self.st.g92;
         if o < 100 {
-            self.canon(format!(
+            canon!(self, 
                 "SET_G5X_OFFSET({o}, {})",
-                Canon::six(&scale6(g, u))
-            ));
-            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+                Canon::six(&scale6(g, u)));
+            canon!(self, "SET_G92_OFFSET({})", Canon::six(&scale6(g92, u)));
             let r = self.rotation_canon(o);
             self.canon(r);
         }
@@ -455,10 +453,9 @@ impl Interp<'_, '_> {
                     if origin == self.st.modal.origin {
                         self.st.pos = self.to_program(self.st.mpos);
                         let g = self.g5x_of(origin);
-                        self.canon(format!(
+                        canon!(self, 
                             "SET_G5X_OFFSET({origin}, {})",
-                            Canon::six(&scale6(g, u))
-                        ));
+                            Canon::six(&scale6(g, u)));
                         let r = self.rotation_canon(origin);
                         self.canon(r);
                     } else {
@@ -564,9 +561,9 @@ impl Interp<'_, '_> {
                             f4(tool.y_offset),
                             f4(tool.length)
                         );
-                        self.canon(format!("SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})"));
+                        canon!(self, "SET_TOOL_TABLE_ENTRY({slot}, {t}, {entry})");
                         if t == self.st.tool || self.st.tool == 0 {
-                            self.canon(format!("SET_TOOL_TABLE_ENTRY(0, {t}, {entry})"));
+                            canon!(self, "SET_TOOL_TABLE_ENTRY(0, {t}, {entry})");
                         }
                     }
                 }
@@ -693,7 +690,7 @@ impl Interp<'_, '_> {
             }
             self.set_param(5210, Some(1.0));
             self.st.pos = self.to_program(self.st.mpos);
-            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+            canon!(self, "SET_G92_OFFSET({})", Canon::six(&scale6(g92, u)));
             return Ok(true);
         }
         for code in [921u32, 922] {
@@ -707,7 +704,7 @@ impl Interp<'_, '_> {
                     self.set_param(5210, Some(0.0));
                 }
                 self.st.pos = self.to_program(self.st.mpos);
-                self.canon(format!("SET_G92_OFFSET({})", Canon::six(&[0.0; 6])));
+                canon!(self, "SET_G92_OFFSET({})", Canon::six(&[0.0; 6]));
             }
         }
         if w.has_g(923) {
@@ -718,7 +715,7 @@ impl Interp<'_, '_> {
             self.st.g92 = g92;
             self.set_param(5210, Some(1.0));
             self.st.pos = self.to_program(self.st.mpos);
-            self.canon(format!("SET_G92_OFFSET({})", Canon::six(&scale6(g92, u))));
+            canon!(self, "SET_G92_OFFSET({})", Canon::six(&scale6(g92, u)));
         }
         Ok(false)
     }
