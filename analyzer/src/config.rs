@@ -37,6 +37,21 @@ pub struct ConfigIssue {
     pub severity: Severity,
 }
 
+impl ConfigIssue {
+    /// The issue as a finding of rule L016 in the configuration file itself (at
+    /// the start of the file when the issue has no place in it).
+    pub fn diagnostic(&self) -> crate::Diagnostic {
+        let span = self.span.clone().unwrap_or(0..0);
+        let at = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
+        crate::Diagnostic::new(
+            crate::rules::CONFIG_ISSUE.code,
+            self.severity,
+            crate::Span::new(at(span.start), at(span.end)),
+            self.message.clone(),
+        )
+    }
+}
+
 /// A table read key by key: unknown keys and bad values are issues, the rest is read.
 trait KeyTable: Default {
     /// Every key of the table, in declaration order.
@@ -692,7 +707,15 @@ impl Spans {
             table = table.get(p)?.as_table_like()?;
         }
         let (key, item) = table.get_key_value(last)?;
-        Some((key.span(), item.span()))
+        // An array of tables (`[[machine.axes]]`) has no span of its own: its
+        // first header stands for it.
+        let value = item.span().or_else(|| {
+            item.as_array_of_tables()?
+                .iter()
+                .next()
+                .and_then(toml_edit::Table::span)
+        });
+        Some((key.span(), value))
     }
 
     fn key(&self, path: &[&str]) -> Option<Range<usize>> {
@@ -1047,11 +1070,13 @@ searched upward from each program (or the file given with `--config`). Every key
 optional; a missing key keeps the default shown here. Lengths are millimetres, times seconds,
 angles degrees, unless the table says otherwise.
 
-A configuration never stops the analysis: a TOML syntax error is reported and the file is
-ignored; an unknown key (with the nearest valid key when it looks like a typo) or a value of
-the wrong type or outside its range is reported at the key and the key keeps its default.
-`partscope check` and `partscope run` print these as warnings located in the file
-(`partscope.toml:LINE:COL`); the language server shows them once, as a message.
+An unknown key (with the nearest valid key when it looks like a typo), a machine key outside
+`[machine]`, or a value of the wrong type or outside its range is reported at the key or value,
+and the key keeps its default. `partscope check` reports these as warnings of rule L016 in the
+configuration file itself, once, in every output format (`--ignore L016` or `[rules] ignore`
+turns them off); `partscope run` prints them on stderr, located (`partscope.toml:LINE:COL`); the
+language server shows them once, as a message. A file that is not TOML at all stops `check`
+and `run` with exit status 2, located.
 
 ";
 

@@ -735,16 +735,68 @@ fn machine_values_out_of_range_are_located_warnings() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("cycle time"));
 
     std::fs::copy(&machine, dir.join("partscope.toml")).unwrap();
-    for cmd in ["run", "check"] {
-        let out = bin().arg(cmd).arg(&prog).output().unwrap();
-        assert_eq!(out.status.code(), Some(0), "{cmd}");
-        let err = String::from_utf8_lossy(&out.stderr);
-        for e in &expected[..4] {
-            // One line per problem: `partscope: FILE:LINE:COL: warning: …`.
-            let line = format!("partscope: {}{e}\n", dir.join("partscope.toml").display());
-            assert!(err.contains(&line), "{cmd}: {e}\n{err}");
-        }
+    let out = bin().arg("run").arg(&prog).output().unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&out.stderr);
+    for e in &expected[..4] {
+        // One line per problem: `partscope: FILE:LINE:COL: warning: …`.
+        let line = format!("partscope: {}{e}\n", dir.join("partscope.toml").display());
+        assert!(err.contains(&line), "run: {e}\n{err}");
     }
+    // `check` reports them as findings of L016 in the config file, once, in
+    // every format: the warnings fail the check at the default fail level.
+    let out = bin()
+        .args(["check", "--format", "json"])
+        .arg(&prog)
+        .arg(&prog)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(String::from_utf8_lossy(&out.stderr), "");
+    let found: Vec<serde_json::Value> = serde_json::from_slice(&out.stdout).unwrap();
+    let l016: Vec<(u64, u64, &str)> = found
+        .iter()
+        .filter(|d| d["code"] == "L016")
+        .map(|d| {
+            assert!(
+                d["path"].as_str().unwrap().ends_with("partscope.toml"),
+                "{d}"
+            );
+            assert_eq!(d["severity"], "warning");
+            (
+                d["line"].as_u64().unwrap(),
+                d["column"].as_u64().unwrap(),
+                d["message"].as_str().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(found.len(), l016.len(), "{found:?}");
+    let want: Vec<(u64, u64, &str)> = vec![
+        (2, 21, "`machine.traj_max_velocity`: -5 must be greater than 0 (the default is used)"),
+        (3, 20, "`machine.tool_change_time`: NaN is not a finite number (the default is used)"),
+        (4, 16, "`machine.servo_period`: 0.000000001 must be between 0.00001 and 1 (the default is used)"),
+        (5, 1, "unknown key `lookahed`: did you mean `lookahead`? (ignored)"),
+        (7, 1, "`machine.axes`: axis 1: `min_travel` = 10 must not exceed `max_travel` = -10 (the default is used)"),
+    ];
+    assert_eq!(l016, want);
+    let out = bin()
+        .args(["check", "--format", "github"])
+        .arg(&prog)
+        .output()
+        .unwrap();
+    let gh = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        gh.contains("partscope.toml,line=5,col=1,endLine=5,endColumn=9,title=L016 config-issue::unknown key `lookahed`"),
+        "{gh}"
+    );
+    // The rule is turned off like any other.
+    let out = bin()
+        .args(["check", "--ignore", "L016"])
+        .arg(&prog)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("L016"));
     // A file that is not TOML stops both commands, located.
     std::fs::write(dir.join("partscope.toml"), "[machine\n").unwrap();
     for cmd in ["run", "check"] {

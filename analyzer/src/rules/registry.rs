@@ -73,6 +73,7 @@ pub static RULES: &[&RuleMeta] = &[
     &syn::TEXT_AFTER_EOB,
     &syn::EXPRESSION_TOO_DEEP,
     &syn::BLOCK_TOO_MANY_ITEMS,
+    &syn::CONFIG_ISSUE,
     &MODAL_GROUP_CONFLICT,
     &M_GROUP_CONFLICT,
     &TOO_MANY_M_WORDS,

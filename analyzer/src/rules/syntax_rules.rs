@@ -501,6 +501,32 @@ declare_rule! {
 
 declare_rule! {
     /// ## What it does
+    /// Reports a problem in a `partscope.toml` (or a machine profile given with
+    /// `--machine`/`--config`): an unknown key (with the nearest valid one), a machine key
+    /// written outside `[machine]`, a value of the wrong type or outside its range. It is
+    /// reported once per file, at the key or value, in every output format.
+    ///
+    /// ## Why is this bad?
+    /// The key keeps its default, so the check or cycle time is not for the machine the
+    /// file describes: a misspelt `lookahed = 3` leaves the look-ahead at its default.
+    ///
+    /// ## Dialects
+    /// All, warning. A file that is not TOML at all stops `check` and `run` with exit
+    /// status 2 instead. The keys: `docs/configuration.md`.
+    ///
+    /// Implements:
+    pub static CONFIG_ISSUE = {
+        code: "L016",
+        name: "config-issue",
+        summary: "Unknown key or invalid value in a configuration file",
+        implements: &[],
+        origin: Syntax,
+        default_enabled: true,
+    }
+}
+
+declare_rule! {
+    /// ## What it does
     /// Flags a file that is not text (it contains NUL bytes or mostly non-text bytes), and
     /// text that is not valid UTF-8.
     ///

@@ -47,6 +47,12 @@ pub fn run(args: CheckArgs) -> ExitCode {
     for (p, e) in walk_errors {
         reports.push(FileReport::io_error(p, e));
     }
+    // The configurations' own problems, once per file, beside the programs'.
+    let configs = match &explicit {
+        Some(c) => vec![c.clone()],
+        None => cache.found(),
+    };
+    reports.extend(configs.iter().filter_map(|c| config_report(c, &args)));
     reports.sort_by(|a, b| a.path.cmp(&b.path));
     let fail_level = args
         .fail_level
@@ -73,6 +79,40 @@ pub fn run(args: CheckArgs) -> ExitCode {
     } else {
         ExitCode::SUCCESS
     }
+}
+
+/// The findings of rule L016 in a configuration file, unless its own `[rules]`
+/// or the command line turn the rule off.
+fn config_report(c: &LoadedConfig, args: &CheckArgs) -> Option<FileReport> {
+    let path = c.path.clone()?;
+    if c.unreadable {
+        // Every program under it is reported as unreadable already.
+        return None;
+    }
+    // Found by walking up from a program, the path is absolute: shown from the
+    // working directory, like the programs named on the command line.
+    let path = std::env::current_dir()
+        .ok()
+        .and_then(|d| d.canonicalize().ok())
+        .and_then(|d| path.strip_prefix(d).ok().map(Path::to_path_buf))
+        .unwrap_or(path);
+    let settings = workspace::settings_for(
+        &c.config,
+        analyzer::Dialect::Rs274ngc,
+        &args.select,
+        &args.ignore,
+    );
+    if c.findings.is_empty() || !settings.rule_enabled(&analyzer::rules::CONFIG_ISSUE) {
+        return None;
+    }
+    Some(FileReport {
+        path,
+        text: c.text.clone(),
+        diagnostics: c.findings.clone(),
+        io_error: false,
+        extra_files: Vec::new(),
+        dialect: None,
+    })
 }
 
 fn check_file(
@@ -108,7 +148,6 @@ fn check_file(
             Err(e) => return FileReport::io_error(path.to_path_buf(), e),
         },
     };
-    loaded.warn();
     let (dialect, dialect_reason) =
         workspace::resolve_dialect(args.dialect.map(|d| d.dialect()), &loaded, path, &text);
     let mut settings = workspace::settings_for(&loaded.config, dialect, &args.select, &args.ignore);

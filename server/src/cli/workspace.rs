@@ -29,6 +29,10 @@ pub struct LoadedConfig {
     pub issues: Vec<String>,
     /// Whether the file could not be read as TOML at all (its whole content is ignored).
     pub unreadable: bool,
+    /// The same problems as findings of rule L016 in the file, and its text (for
+    /// `check`, which reports them with the programs' findings).
+    pub findings: Vec<analyzer::Diagnostic>,
+    pub text: Arc<[u8]>,
     /// The LinuxCNC files the config names, read on first use and shared by the
     /// clones the [`ConfigCache`] hands out: every program under one config reuses them.
     files: Arc<OnceLock<ConfigFiles>>,
@@ -42,6 +46,19 @@ pub struct ConfigCache {
 
 impl ConfigCache {
     /// The nearest `partscope.toml` at or above `dir`, or the empty config.
+    /// Every configuration file found so far, once each.
+    pub fn found(&self) -> Vec<LoadedConfig> {
+        let mut out: Vec<LoadedConfig> = Vec::new();
+        if let Ok(map) = self.by_dir.lock() {
+            for c in map.values().flatten() {
+                if c.path.is_some() && !out.iter().any(|o| o.path == c.path) {
+                    out.push(c.clone());
+                }
+            }
+        }
+        out
+    }
+
     pub fn for_dir(&self, dir: &Path) -> Result<LoadedConfig, String> {
         if let Ok(map) = self.by_dir.lock() {
             if let Some(c) = map.get(dir) {
@@ -224,6 +241,8 @@ pub fn load_config(path: &Path) -> Result<LoadedConfig, String> {
             .iter()
             .any(|i| i.severity == analyzer::Severity::Error),
         issues: locate_all(path, &text, &issues),
+        findings: issues.iter().map(ConfigIssue::diagnostic).collect(),
+        text: Arc::from(text.as_bytes()),
         files: Arc::default(),
     })
 }

@@ -405,7 +405,8 @@ impl Interp<'_, '_> {
         let n = self.normal_axis();
         let u = self.unit();
         let rot = if left { -1 } else { 1 };
-        canon!(self, 
+        canon!(
+            self,
             "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
             f4(to[a] / u),
             f4(to[b] / u),
@@ -415,7 +416,8 @@ impl Interp<'_, '_> {
             f4(from[n] / u),
             f4(to[3]),
             f4(to[4]),
-            f4(to[5]));
+            f4(to[5])
+        );
         let mut c3 = from;
         c3[a] = center[a];
         c3[b] = center[b];

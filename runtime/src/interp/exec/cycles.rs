@@ -368,8 +368,7 @@ impl Interp<'_, '_> {
             match save_path {
                 611 => self.canon("SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)"),
                 _ => {
-                    canon!(self, 
-                        "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
+                    canon!(self, "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
                     canon!(self, "SET_NAIVECAM_TOLERANCE({})", f4(tol));
                 }
             }

@@ -676,8 +676,7 @@ impl Interp<'_, '_> {
             let tol = pt.unwrap_or(0.0) / self.unit();
             let q = w.get(b'Q').unwrap_or(tol);
             self.naive_tol = q;
-            canon!(self, 
-                "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
+            canon!(self, "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, {tol:.6})");
             canon!(self, "SET_NAIVECAM_TOLERANCE({})", f4(q));
         }
         for (code, abs) in [(901u32, true), (911, false)] {

@@ -473,11 +473,13 @@ impl Interp<'_, '_> {
                 let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
                 let u = self.unit();
                 canon!(self, "START_SPEED_FEED_SYNC({:.6},0)", k / u);
-                canon!(self, 
+                canon!(
+                    self,
                     "RIGID_TAP({}, {}, {})",
                     f4(t[0] / u),
                     f4(t[1] / u),
-                    f4(t[2] / u));
+                    f4(t[2] / u)
+                );
                 self.canon("STOP_SPEED_FEED_SYNCH()");
                 // The tap feeds in and reverses out: rs274 leaves the current point
                 // where the block started.
@@ -651,9 +653,7 @@ impl Interp<'_, '_> {
                 [t[0], t[1]],
             ]
         };
-        canon!(self, 
-            "NURBS_FEED({}, ...)",
-            if quadratic { 3 } else { 4 });
+        canon!(self, "NURBS_FEED({}, ...)", if quadratic { 3 } else { 4 });
         self.sampled_curve(&ctrl, t);
         Ok(())
     }
@@ -1007,7 +1007,8 @@ impl Interp<'_, '_> {
         let e2_out = [sh(e2[0], shift[a]), sh(e2[1], shift[b])];
         let center_out = [sh(center[0], shift[a]), sh(center[1], shift[b])];
         if self.canon.is_some() {
-            canon!(self, 
+            canon!(
+                self,
                 "ARC_FEED({}, {}, {}, {}, {}, {}, {}, {}, {})",
                 f4(e2_out[0] / u),
                 f4(e2_out[1] / u),
@@ -1017,7 +1018,8 @@ impl Interp<'_, '_> {
                 f4(t[n] / u),
                 f4(t[3]),
                 f4(t[4]),
-                f4(t[5]));
+                f4(t[5])
+            );
         }
         // Machine-frame geometry.
         let mut c3 = self.st.pos;

@@ -215,11 +215,13 @@ impl Interp<'_, '_> {
             s.st.tlo = [x, y, z, 0.0, 0.0, 0.0];
             s.st.pos = s.to_program(s.st.mpos);
             let u = s.unit();
-            canon!(s, 
+            canon!(
+                s,
                 "USE_TOOL_LENGTH_OFFSET({} {} {}, 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)",
                 f4(x / u),
                 f4(y / u),
-                f4(z / u));
+                f4(z / u)
+            );
         };
         if w.has_g(490) {
             self.st.modal.tlo_mode = 490;
@@ -333,9 +335,7 @@ impl Interp<'_, '_> {
         let g = self.g5x_prog();
         let g92 = self.st.g92;
         if o < 100 {
-            canon!(self, 
-                "SET_G5X_OFFSET({o}, {})",
-                Canon::six(&scale6(g, u)));
+            canon!(self, "SET_G5X_OFFSET({o}, {})", Canon::six(&scale6(g, u)));
             canon!(self, "SET_G92_OFFSET({})", Canon::six(&scale6(g92, u)));
             let r = self.rotation_canon(o);
             self.canon(r);
@@ -453,9 +453,11 @@ impl Interp<'_, '_> {
                     if origin == self.st.modal.origin {
                         self.st.pos = self.to_program(self.st.mpos);
                         let g = self.g5x_of(origin);
-                        canon!(self, 
+                        canon!(
+                            self,
                             "SET_G5X_OFFSET({origin}, {})",
-                            Canon::six(&scale6(g, u)));
+                            Canon::six(&scale6(g, u))
+                        );
                         let r = self.rotation_canon(origin);
                         self.canon(r);
                     } else {
