@@ -634,6 +634,16 @@ impl MachineConfig {
         *self == MachineConfig::default()
     }
 
+    /// The keys the planner reads (the machine profile); the keys before them are
+    /// the interpreter's and the host's.
+    pub fn planner_keys() -> &'static [KeyDoc] {
+        let split = MachineConfig::KEYS
+            .iter()
+            .position(|k| k.name == PLANNER_KEYS_FROM)
+            .unwrap_or(MachineConfig::KEYS.len());
+        &MachineConfig::KEYS[split..]
+    }
+
     /// The axis letters the machine has, when the table lists axes.
     pub fn axis_letters(&self) -> Option<Vec<char>> {
         let axes = self.axes.as_ref()?;
@@ -1027,11 +1037,8 @@ pub fn reference_markdown() -> String {
     table(&mut out, "Top level", "", &mut TopKeys::KEYS.iter());
     table(&mut out, "`[rules]`", "", &mut RulesConfig::KEYS.iter());
     out.push_str(REFERENCE_RULES_TAIL);
-    let split = MachineConfig::KEYS
-        .iter()
-        .position(|k| k.name == PLANNER_KEYS_FROM)
-        .unwrap_or(MachineConfig::KEYS.len());
-    let (interp, planner) = MachineConfig::KEYS.split_at(split);
+    let planner = MachineConfig::planner_keys();
+    let interp = &MachineConfig::KEYS[..MachineConfig::KEYS.len() - planner.len()];
     table(
         &mut out,
         "`[machine]`: what the interpreter and the host read",
