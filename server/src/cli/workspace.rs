@@ -38,6 +38,57 @@ pub struct LoadedConfig {
     files: Arc<OnceLock<ConfigFiles>>,
 }
 
+/// Configuration files and LinuxCNC `ini` files, read once and kept while they
+/// are unchanged on disk (same length and modification time). The language
+/// server resolves a document's settings on every edit; the CLI reads each
+/// file once per process through [`ConfigCache`].
+#[derive(Default)]
+pub struct FileCache {
+    configs: Mutex<HashMap<PathBuf, (Stamp, Result<LoadedConfig, String>)>>,
+    inis: Mutex<HashMap<PathBuf, (Stamp, Result<IniMachine, String>)>>,
+}
+
+/// What tells a file changed: its length and modification time.
+type Stamp = Option<(u64, std::time::SystemTime)>;
+
+fn stamp(path: &Path) -> Stamp {
+    let m = std::fs::metadata(path).ok()?;
+    Some((m.len(), m.modified().ok()?))
+}
+
+/// `map[path]` while the file's stamp is unchanged, else `read(path)` kept there.
+fn cached<T: Clone>(
+    map: &Mutex<HashMap<PathBuf, (Stamp, Result<T, String>)>>,
+    path: &Path,
+    read: impl FnOnce(&Path) -> Result<T, String>,
+) -> Result<T, String> {
+    let now = stamp(path);
+    if let Ok(map) = map.lock() {
+        if let Some((s, v)) = map.get(path) {
+            if now.is_some() && *s == now {
+                return v.clone();
+            }
+        }
+    }
+    let v = read(path);
+    if let Ok(mut map) = map.lock() {
+        map.insert(path.to_path_buf(), (now, v.clone()));
+    }
+    v
+}
+
+impl FileCache {
+    /// [`load_config`], read again only when the file changed.
+    pub fn config(&self, path: &Path) -> Result<LoadedConfig, String> {
+        cached(&self.configs, path, load_config)
+    }
+
+    /// [`read_ini`], read again only when the file changed.
+    pub fn ini(&self, path: &Path) -> Result<IniMachine, String> {
+        cached(&self.inis, path, read_ini)
+    }
+}
+
 /// Caches `partscope.toml` lookups per directory.
 #[derive(Default)]
 pub struct ConfigCache {
@@ -45,7 +96,6 @@ pub struct ConfigCache {
 }
 
 impl ConfigCache {
-    /// The nearest `partscope.toml` at or above `dir`, or the empty config.
     /// Every configuration file found so far, once each.
     pub fn found(&self) -> Vec<LoadedConfig> {
         let mut out: Vec<LoadedConfig> = Vec::new();
@@ -59,6 +109,7 @@ impl ConfigCache {
         out
     }
 
+    /// The nearest `partscope.toml` at or above `dir`, or the empty config.
     pub fn for_dir(&self, dir: &Path) -> Result<LoadedConfig, String> {
         if let Ok(map) = self.by_dir.lock() {
             if let Some(c) = map.get(dir) {
@@ -169,6 +220,7 @@ pub fn say_once(msg: &str) {
 
 /// A LinuxCNC `.ini` as a machine profile, with the tool table and parameter
 /// file it names (relative paths resolved against the `.ini`'s folder).
+#[derive(Clone)]
 pub struct IniMachine {
     pub profile: runtime::machine::MachineProfile,
     pub tool_table: Option<PathBuf>,
@@ -345,4 +397,30 @@ pub fn collect_files(paths: &[PathBuf]) -> (Vec<PathBuf>, Vec<(PathBuf, String)>
     files.sort();
     files.dedup();
     (files, errors)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cached_config_is_read_again_only_when_it_changes() {
+        let dir = std::env::temp_dir().join(format!("partscope-filecache-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("partscope.toml");
+        std::fs::write(&path, "[machine]\nlookahead = 4\n").unwrap();
+        let files = FileCache::default();
+        let a = files.config(&path).unwrap();
+        let b = files.config(&path).unwrap();
+        // The same reading, not a second one.
+        assert!(Arc::ptr_eq(&a.text, &b.text));
+        assert_eq!(b.config.machine.lookahead, Some(4));
+        std::fs::write(&path, "[machine]\nlookahead = 12\nlookahed = 1\n").unwrap();
+        let c = files.config(&path).unwrap();
+        assert_eq!(c.config.machine.lookahead, Some(12));
+        assert_eq!(c.issues.len(), 1, "{:?}", c.issues);
+        std::fs::remove_file(&path).unwrap();
+        assert!(files.config(&path).is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }

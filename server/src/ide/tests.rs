@@ -54,6 +54,7 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
             ..ClientOptions::default()
         },
         runner: crate::lsp::dry_run::default_runner(),
+        files: Default::default(),
         previous: None,
     };
     let snap = analyze(inputs);

@@ -18,6 +18,8 @@ use std::path::{Path, PathBuf};
 use analyzer::config::MachineConfig;
 use analyzer::settings::{dialect_directive, sniff_file_dialect_why};
 use analyzer::{Config, Dialect, Settings};
+
+use crate::cli::workspace::FileCache;
 use serde_json::Value;
 
 /// Default size above which a document is only parsed (no rules, no dry run).
@@ -187,19 +189,19 @@ pub fn resolve(
     text: &[u8],
     roots: &[PathBuf],
     client: &ClientOptions,
+    files: &FileCache,
 ) -> DocSettings {
     // Every problem of the configuration, located; shown once.
     let mut problems: Vec<String> = Vec::new();
     let mut config_path = None;
     let mut config = Config::default();
     if let Some(path) = doc.and_then(|d| find_config(d, roots)) {
-        match std::fs::read_to_string(&path) {
-            Ok(text) => {
-                let (c, issues) = Config::load(&text);
-                config = c;
-                problems.extend(crate::cli::workspace::locate_all(&path, &text, &issues));
+        match files.config(&path) {
+            Ok(c) => {
+                problems.extend(c.issues);
+                config = c.config;
             }
-            Err(e) => problems.push(format!("{}: {e}", path.display())),
+            Err(e) => problems.push(e),
         }
         config_path = Some(path);
     }
@@ -280,7 +282,7 @@ pub fn resolve(
     if let Some(ini) = beside_config(&config.ini) {
         match crate::lsp::workspace::confine(&ini, roots)
             .ok_or_else(|| format!("{} is outside the workspace", ini.display()))
-            .and_then(|p| crate::cli::workspace::read_ini(&p))
+            .and_then(|p| files.ini(&p))
         {
             Ok(ini) => {
                 ini_profile = Some(ini.profile);
@@ -334,7 +336,13 @@ mod tests {
             find_config(&doc, &roots),
             Some(root.join("a/partscope.toml"))
         );
-        let s = resolve(Some(&doc), b"G0 X1\n", &roots, &ClientOptions::default());
+        let s = resolve(
+            Some(&doc),
+            b"G0 X1\n",
+            &roots,
+            &ClientOptions::default(),
+            &FileCache::default(),
+        );
         assert_eq!(s.settings.dialect, Dialect::Servoworks);
         // With the workspace folder at `a/b`, neither file is seen.
         let inner = vec![root.join("a/b")];
@@ -349,16 +357,23 @@ mod tests {
             &serde_json::json!({"partscope": {"dialect": "fanuc", "ignore": ["L008"]}}),
         );
         assert_eq!(client.dialect, Some(Dialect::Fanuc));
-        let s = resolve(None, b"(partscope: dialect=servoworks)\nG0\n", &[], &client);
+        let s = resolve(
+            None,
+            b"(partscope: dialect=servoworks)\nG0\n",
+            &[],
+            &client,
+            &FileCache::default(),
+        );
         assert_eq!(s.settings.dialect, Dialect::Servoworks);
         assert!(!s.settings.code_enabled("L008"));
-        let s = resolve(None, b"G0\n", &[], &client);
+        let s = resolve(None, b"G0\n", &[], &client, &FileCache::default());
         assert_eq!(s.settings.dialect, Dialect::Fanuc);
         let s = resolve(
             Some(Path::new("/nowhere/x.dat")),
             b"G0\n",
             &[],
             &ClientOptions::default(),
+            &FileCache::default(),
         );
         assert_eq!(s.settings.dialect, Dialect::Servoworks);
         assert_eq!(s.max_file_size, DEFAULT_MAX_FILE_SIZE);
@@ -373,8 +388,29 @@ mod tests {
             b"G0\n",
             std::slice::from_ref(&root),
             &ClientOptions::default(),
+            &FileCache::default(),
         );
         assert!(s.config_error.is_some());
         assert_eq!(s.settings.dialect, Dialect::Rs274ngc);
+    }
+
+    #[test]
+    fn an_edited_config_applies_to_the_next_analysis() {
+        let root = tmp("edited");
+        let doc = root.join("p.nc");
+        let roots = std::slice::from_ref(&root);
+        let files = FileCache::default();
+        let dialect = |files: &FileCache| {
+            resolve(Some(&doc), b"G0\n", roots, &ClientOptions::default(), files)
+                .settings
+                .dialect
+        };
+        std::fs::write(root.join("partscope.toml"), "dialect = \"fanuc\"\n").unwrap();
+        assert_eq!(dialect(&files), Dialect::Fanuc);
+        assert_eq!(dialect(&files), Dialect::Fanuc);
+        std::fs::write(root.join("partscope.toml"), "dialect = \"servoworks\"\n").unwrap();
+        assert_eq!(dialect(&files), Dialect::Servoworks);
+        std::fs::remove_file(root.join("partscope.toml")).unwrap();
+        assert_eq!(dialect(&files), Dialect::Rs274ngc);
     }
 }

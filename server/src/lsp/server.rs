@@ -33,6 +33,7 @@ use super::snapshot::{self, Inputs, Snapshot};
 use super::{
     actions, completion, formatting, goto, rename, semantic, signature, symbols, workspace,
 };
+use crate::cli::workspace::FileCache;
 use crate::ide;
 
 /// How long edits must pause before diagnostics are recomputed: not at all.
@@ -112,6 +113,8 @@ pub struct Backend {
     client: Client,
     state: Arc<Mutex<State>>,
     runner: Arc<dyn DryRunner>,
+    /// The configuration and `ini` files documents' settings come from.
+    files: Arc<FileCache>,
     run_gate: Arc<tokio::sync::Semaphore>,
     /// Signalled whenever a snapshot is stored.
     stored: Arc<tokio::sync::Notify>,
@@ -187,6 +190,7 @@ impl Backend {
             client,
             state: Arc::new(Mutex::new(State::default())),
             runner: dry_run::default_runner(),
+            files: Arc::default(),
             run_gate: Arc::new(tokio::sync::Semaphore::new(1)),
             stored: Arc::new(tokio::sync::Notify::new()),
         }
@@ -225,6 +229,7 @@ impl Backend {
             roots: state.roots.clone(),
             client: Self::client_options(state),
             runner: self.runner.clone(),
+            files: self.files.clone(),
             previous: doc.snapshot.clone(),
         })
     }

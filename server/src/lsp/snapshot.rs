@@ -55,6 +55,7 @@ pub struct Inputs {
     pub roots: Vec<PathBuf>,
     pub client: ClientOptions,
     pub runner: Arc<dyn DryRunner>,
+    pub files: Arc<crate::cli::workspace::FileCache>,
     /// The previous analysis of the document, which an edit updates instead
     /// of analysing the whole text again.
     pub previous: Option<Arc<Snapshot>>,
@@ -93,7 +94,13 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
     let t0 = std::time::Instant::now();
     let text = rope_bytes(&inputs.rope);
-    let doc = config::resolve(inputs.path.as_deref(), &text, &inputs.roots, &inputs.client);
+    let doc = config::resolve(
+        inputs.path.as_deref(),
+        &text,
+        &inputs.roots,
+        &inputs.client,
+        &inputs.files,
+    );
     let t1 = std::time::Instant::now();
     let syntax_only = text.len() > doc.max_file_size;
     let previous = inputs.previous;
