@@ -44,9 +44,12 @@ pub struct LoadedConfig {
 /// file once per process through [`ConfigCache`].
 #[derive(Default)]
 pub struct FileCache {
-    configs: Mutex<HashMap<PathBuf, (Stamp, Result<LoadedConfig, String>)>>,
-    inis: Mutex<HashMap<PathBuf, (Stamp, Result<IniMachine, String>)>>,
+    configs: Stamped<LoadedConfig>,
+    inis: Stamped<IniMachine>,
 }
+
+/// Each file's reading with the stamp it was read at.
+type Stamped<T> = Mutex<HashMap<PathBuf, (Stamp, Result<T, String>)>>;
 
 /// What tells a file changed: its length and modification time.
 type Stamp = Option<(u64, std::time::SystemTime)>;
@@ -58,7 +61,7 @@ fn stamp(path: &Path) -> Stamp {
 
 /// `map[path]` while the file's stamp is unchanged, else `read(path)` kept there.
 fn cached<T: Clone>(
-    map: &Mutex<HashMap<PathBuf, (Stamp, Result<T, String>)>>,
+    map: &Stamped<T>,
     path: &Path,
     read: impl FnOnce(&Path) -> Result<T, String>,
 ) -> Result<T, String> {
