@@ -378,6 +378,12 @@ fn content_dialect(head: &[u8]) -> Option<(Dialect, String)> {
         if let Some(e) = ngc_evidence(&code, first) {
             return Some((Dialect::Rs274ngc, format!("{e} on line {n}")));
         }
+        if semicolon_comment(line) {
+            return Some((
+                Dialect::Rs274ngc,
+                format!("a `;` comment on line {n} (FANUC ends the block at `;` and reads the text after it as words)"),
+            ));
+        }
         if fanuc.is_some() {
             continue;
         }
@@ -511,6 +517,35 @@ fn ngc_evidence(code: &[u8], first: Option<&[u8]>) -> Option<&'static str> {
     None
 }
 
+/// Whether text after a `;` reads as prose: a word of two or more letters
+/// that is no macro keyword or function (`N1 G21; mm mode`). LinuxCNC, Mach and
+/// Grbl take `;` to the end of the line as a comment; on FANUC `;` ends the
+/// block, so no FANUC program has prose after one (it would alarm).
+fn semicolon_comment(line: &[u8]) -> bool {
+    const MACRO_WORDS: &[&[u8]] = &[
+        b"GOTO", b"WHILE", b"DO", b"END", b"IF", b"THEN", b"EQ", b"NE", b"GT", b"LT", b"GE", b"LE",
+        b"AND", b"OR", b"XOR", b"MOD", b"POPEN", b"PCLOS", b"DPRNT", b"BPRNT",
+    ];
+    let mut depth = 0u32;
+    let Some(at) = line.iter().position(|&b| {
+        match b {
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        b == b';' && depth == 0
+    }) else {
+        return false;
+    };
+    let rest = code_of_line(&line[at + 1..]);
+    rest.split(|b| !b.is_ascii_alphabetic())
+        .filter(|w| w.len() >= 2)
+        .any(|w| {
+            !MACRO_WORDS.contains(&w)
+                && crate::syntax::Func::from_name(&String::from_utf8_lossy(w)).is_none()
+        })
+}
+
 /// `O1000` or `:1000` alone on its line (a comment or `;` may follow): a
 /// FANUC program number. Returns it as written.
 fn program_number(code: &[u8]) -> Option<String> {
@@ -542,6 +577,30 @@ mod tests {
             sniff_dialect(Some("fnc"), b"(partscope: dialect=rs274ngc)\nG0 X1\n"),
             Some(Dialect::Rs274ngc)
         );
+    }
+
+    /// A generator's program with `%`, an O number and `;` comments (a real one:
+    /// `N1 G21; mm mode`) is no FANUC program, where `;` ends the block and the
+    /// comment's words would be read as addresses (2 000 errors on one file).
+    /// Text after `;` that is G-code, a macro statement or a `( )` comment keeps
+    /// FANUC.
+    #[test]
+    fn prose_after_a_semicolon_is_a_comment_not_a_fanuc_block_end() {
+        let why = |t: &str| sniff_dialect_why(Some("nc"), t.as_bytes());
+        assert_eq!(
+            why("%\nO0000(MY GCODE)\nN1 G21; mm mode\nN2 G0 X0 Y0\nM30\n%\n"),
+            Some((
+                Dialect::Rs274ngc,
+                "a `;` comment on line 3 (FANUC ends the block at `;` and reads the text after it as words)"
+                    .into()
+            ))
+        );
+        for fanuc in [
+            "%\nO1000\nG0 X1.;\nG1 X2.; (FEED)\nM30;\n%\n",
+            "%\nO1000\nG0 X1.;G1 X2.;\nIF[#1EQ1]GOTO10;\n#2=SIN[#1];\nM30\n%\n",
+        ] {
+            assert_eq!(why(fanuc).map(|w| w.0), Some(Dialect::Fanuc), "{fanuc}");
+        }
     }
 
     /// Content decides for files whose extension does not (`.nc`, `.tap`, …):
