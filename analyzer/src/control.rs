@@ -18,6 +18,8 @@ pub enum Control {
     Lathe { haas: bool },
     /// A Haas mill.
     HaasMill,
+    /// A program in another control's macro language (LNC, Syntec, Fadal).
+    OtherMacro,
 }
 
 impl Control {
@@ -27,6 +29,7 @@ impl Control {
             Control::Lathe { haas: true } => "a Haas lathe",
             Control::Lathe { haas: false } => "a FANUC or Haas lathe",
             Control::HaasMill => "a Haas mill",
+            Control::OtherMacro => "another control's macro language (LNC, Syntec or Fadal)",
         }
     }
 }
@@ -75,12 +78,88 @@ enum Sign {
     DwellSeconds,
     LocalCall,
     Haas154,
+    // Signs of another macro language: none is FANUC syntax (a FANUC control
+    // alarms on each), and two kinds are needed, so one typo never hides a file.
+    SlashComment,
+    AtVariable,
+    UnderscoreName,
+    MacroHeader,
+    LetterVariable,
+    QuoteComment,
+    NotEqual,
 }
 
 impl Sign {
     fn lathe(self) -> bool {
         self <= Sign::FeedPerRev
     }
+
+    fn other_macro(self) -> bool {
+        self >= Sign::SlashComment
+    }
+}
+
+/// The other-macro-language signs in one block's text, outside `( )` comments:
+/// `//` comments and `@100` variables (LNC, Syntec), names with `_` (`END_IF`,
+/// `MSG_OK`), a `%@MACRO` header (Syntec), `#V1`/`#R4` variables and `'`
+/// comments (Fadal), `!=`. Each as (sign, byte offset in the block, length).
+fn text_signs(text: &[u8]) -> Vec<(Sign, usize, usize)> {
+    let mut out = Vec::new();
+    let mut depth = 0u32;
+    let mut i = 0;
+    let at = |k: usize| text.get(k).copied().unwrap_or(0);
+    // `@100`, `#V10`: the mark and the letters and digits after it.
+    let name_len = |k: usize| {
+        1 + text[k + 1..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric())
+            .count()
+    };
+    while i < text.len() {
+        let b = text[i];
+        match b {
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            _ if depth > 0 => {}
+            b'/' if at(i + 1) == b'/' => {
+                out.push((Sign::SlashComment, i, 2));
+                // The rest of the line is the comment.
+                break;
+            }
+            b'\'' => {
+                out.push((Sign::QuoteComment, i, 1));
+                break;
+            }
+            b'%' if text[i..].starts_with(b"%@MACRO") => out.push((Sign::MacroHeader, i, 7)),
+            b'@' if at(i + 1).is_ascii_digit() => out.push((Sign::AtVariable, i, name_len(i))),
+            b'!' if at(i + 1) == b'=' => out.push((Sign::NotEqual, i, 2)),
+            b'#' if at(i + 1).is_ascii_alphabetic() => {
+                out.push((Sign::LetterVariable, i, name_len(i)))
+            }
+            b'_' if i > 0
+                && text[i - 1].is_ascii_alphabetic()
+                && at(i + 1).is_ascii_alphabetic() =>
+            {
+                let start = text[..i]
+                    .iter()
+                    .rposition(|c| !c.is_ascii_alphanumeric())
+                    .map_or(0, |p| p + 1);
+                // FANUC's own names are `#_…` system variables.
+                if start == 0 || text[start - 1] != b'#' {
+                    let end = text[i..]
+                        .iter()
+                        .position(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
+                        .map_or(text.len(), |p| i + p);
+                    out.push((Sign::UnderscoreName, start, end - start));
+                    i = end;
+                    continue;
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    out
 }
 
 fn lit_of(w: &Word) -> Option<f64> {
@@ -142,6 +221,18 @@ fn block_signs(program: &Program, b: &Block, out: &mut Vec<(Sign, Evidence)>) {
                 );
             }
         }
+    }
+    let text = program.slice(b.span);
+    for (sign, at, len) in text_signs(text) {
+        let start = b.span.start + at as u32;
+        let span = Span::new(start, start + len as u32);
+        push(
+            sign,
+            (
+                span,
+                String::from_utf8_lossy(&text[at..at + len]).into_owned(),
+            ),
+        );
     }
     for (it, w) in program.words(b) {
         let Some(n) = w.num() else { continue };
@@ -225,11 +316,14 @@ pub fn control_signature(program: &Program) -> Option<Signature> {
         }
     }
     let lathe = firsts.iter().filter(|(s, _)| s.lathe()).count();
-    let haas = firsts.len() - lathe;
-    let (control, keep): (Control, fn(Sign) -> bool) = if lathe >= 2 {
-        (Control::Lathe { haas: haas > 0 }, |_| true)
+    let other = firsts.iter().filter(|(s, _)| s.other_macro()).count();
+    let haas = firsts.len() - lathe - other;
+    let (control, keep): (Control, fn(Sign) -> bool) = if other >= 2 {
+        (Control::OtherMacro, |s| s.other_macro())
+    } else if lathe >= 2 {
+        (Control::Lathe { haas: haas > 0 }, |s| !s.other_macro())
     } else if haas >= 2 {
-        (Control::HaasMill, |s| !s.lathe())
+        (Control::HaasMill, |s| !s.lathe() && !s.other_macro())
     } else {
         return None;
     };
@@ -287,6 +381,27 @@ mod tests {
         assert_eq!(sig("O1\nG50 S2000\nG50 S3000\nM30\n"), None);
         // G99 with no drilling cycle in the file is a lathe's feed per revolution.
         assert!(sig("O1\nT0101\nG99\nG1 X1. F0.01\nM30\n").is_some());
+    }
+
+    #[test]
+    fn another_macro_language_needs_two_kinds_of_its_signs() {
+        // LNC 6800: `//` comments, `@` variables, `END_IF`.
+        let s =
+            sig("G65 \"PROBECONFIG\"\n// LOAD\n#100 = @100 // TOOL\nIF [#1!=#0]\nEND_IF\nM30\n")
+                .expect("LNC");
+        assert_eq!(s.control, Control::OtherMacro);
+        assert_eq!(
+            s.describe(),
+            "// on line 2, @100 on line 3, != on line 4, END_IF on line 5"
+        );
+        // Fadal Format 2: `#V` variables and `'` comments.
+        let s = sig("%\nO9101\n#V10 = 1 'TOOL NUMBER\n#R4 = V12\nM30\n%\n").expect("Fadal");
+        assert_eq!(s.control, Control::OtherMacro);
+        assert_eq!(s.describe(), "#V10 on line 3, ' on line 3");
+        // One kind, however often, is a broken FANUC program, still checked; so are
+        // FANUC's `#_` system variable names and anything inside a comment.
+        assert_eq!(sig("O1\nG0 X0 // RAPID\nG1 X1 // FEED\nM30\n"), None);
+        assert_eq!(sig("O1\n#1=#_UI[1]\n(DON'T // @1 END_IF)\nM30\n"), None);
     }
 
     #[test]

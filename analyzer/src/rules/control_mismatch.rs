@@ -67,6 +67,7 @@ pub fn mismatch_diagnostic(program: &Program) -> Option<Diagnostic> {
     let what = match sig.control {
         Control::Lathe { .. } => "lathe programs",
         Control::HaasMill => "Haas mill programs",
+        Control::OtherMacro => "programs in other macro languages",
     };
     Some(Diagnostic::warning(
         CONTROL_MISMATCH.code,
