@@ -62,8 +62,6 @@ pub use resume::{
 mod checks;
 #[path = "fast.rs"]
 mod fast;
-#[path = "spec_checks.rs"]
-mod spec_checks;
 
 const NUM_PARAMS: usize = 20_000;
 

@@ -2,10 +2,13 @@
 //! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::syntax::{Item, ItemKind};
 use analyzer::{Severity, Span};
 
-use super::check::Cx;
+use super::check::{Cx, Sink};
 use super::codes;
+use super::polar_interp;
+use crate::interp::State;
 
 declare_rule! {
     /// ## What it does
@@ -181,5 +184,52 @@ fn geometry(cx: &mut Cx<'_, '_>, ccw: bool, s: Span) {
                 "a helical involute moves at most four additional axes; this block moves {extra}"
             ),
         );
+    }
+}
+
+/// FANUC: optional chamfer / corner R (`,C` `,R`) in involute or polar
+/// interpolation mode, found through the items (the word reader drops them).
+/// Also reports K004 (polar-interp) in polar mode.
+pub(crate) fn comma_words(
+    items: &[Item],
+    st: &State,
+    polar_interp: &polar_interp::Mem,
+    out: &mut Sink<'_>,
+) {
+    let involute = matches!(st.modal.motion, 22 | 32);
+    for it in items {
+        let ItemKind::Word(wd) = &it.kind else {
+            continue;
+        };
+        if !wd.comma {
+            continue;
+        }
+        let g_here: Vec<u32> = items
+            .iter()
+            .filter_map(|x| match &x.kind {
+                ItemKind::Word(g) if g.letter == b'G' => g
+                    .num()
+                    .and_then(|n| analyzer::dialect::CodeNum::from_value(n.value))
+                    .map(|c| c.0),
+                _ => None,
+            })
+            .collect();
+        let inv_here = involute && !g_here.iter().any(|g| matches!(g, 0 | 10 | 20 | 30))
+            || g_here.iter().any(|g| matches!(g, 22 | 32));
+        if inv_here {
+            out.diag(
+                codes::INVOLUTE,
+                Severity::Error,
+                it.span,
+                "optional chamfering or corner R cannot be used in involute interpolation mode",
+            );
+        } else if polar_interp.on || st.modal.polar {
+            out.diag(
+                codes::POLAR_INTERP,
+                Severity::Error,
+                it.span,
+                "optional chamfering or corner R cannot be used in polar coordinate mode",
+            );
+        }
     }
 }
