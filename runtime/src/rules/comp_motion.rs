@@ -1,5 +1,7 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! `no_effect::check` also reports this code (NGC427 rotary motion, SW084 G41/G42
+//! without a radius).
 
 use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};

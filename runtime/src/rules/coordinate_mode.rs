@@ -1,5 +1,6 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! `no_effect::check` also reports this code (SW112 G68 centre words).
 
 use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};

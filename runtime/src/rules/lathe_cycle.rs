@@ -1,5 +1,6 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! Running the cycle (`interp/exec/g7x.rs`) reports the profile's own faults.
 
 use analyzer::declare_rule;
 use analyzer::Diagnostic;

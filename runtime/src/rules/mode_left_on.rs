@@ -1,5 +1,5 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
-//! at M2/M30 (`interp/exec/flow.rs`).
+//! at M2/M30 (`Interp::end_checks` in `interp/checks.rs`).
 
 use analyzer::declare_rule;
 use analyzer::{Dialect, Severity, Span};

@@ -1,5 +1,6 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! `involute::comma_words` also reports this code (`,C`/`,R` in polar mode).
 
 use analyzer::declare_rule;
 use analyzer::{Severity, Span};

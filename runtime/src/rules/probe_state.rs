@@ -1,5 +1,6 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! The probe move itself (`interp/exec/motion.rs`) reports the rest.
 
 use analyzer::declare_rule;
 use analyzer::{Diagnostic, Variant};

@@ -1,5 +1,6 @@
 //! Flow-sensitive rule: its metadata and its check, which the interpreter calls
 //! for every block from `interp/checks.rs` (in the order there).
+//! G37's calibration (`interp/exec/g37.rs`) reports its own faults.
 
 use analyzer::declare_rule;
 use analyzer::{Severity, Span};
