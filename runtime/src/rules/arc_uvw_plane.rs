@@ -50,6 +50,7 @@ pub(crate) struct Mem {
 }
 
 /// RS274/NGC: arcs in a UVW plane (G17.1/G18.1/G19.1).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let w = cx.w;
     let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));

@@ -47,6 +47,7 @@ declare_rule! {
 /// Arc words against the active plane, and radius-format arcs whose centre
 /// is ill-defined (sweep near 180° or 360°).
 /// Also reports A009 (arc-ill-conditioned).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let Some((g, span)) = cx.motion else {

@@ -5,6 +5,11 @@
 //! the block, the block's words and its motion; it writes only its own rule's
 //! memory (a field of [`Memory`]) and diagnostics, and stops the block by
 //! returning the error.
+//!
+//! The per-block checks are `#[inline(always)]` and these accessors `#[inline]`:
+//! they run for every block but sit in other codegen units than the block loop,
+//! where as calls they cost measurably more than the methods they replaced. Each
+//! check has one call site, in the dispatch, so forcing it duplicates nothing.
 
 use analyzer::{Diagnostic, Dialect, FileId, Severity, Span, Variant};
 
@@ -20,6 +25,7 @@ use super::{
 pub(crate) const AXES: &[u8; 6] = b"XYZABC";
 
 /// Group-01 codes that move (tenths), canned cycles aside.
+#[inline]
 pub(crate) fn is_feed_motion(g: u32) -> bool {
     matches!(g, 10 | 20 | 30)
 }
@@ -31,6 +37,7 @@ pub(crate) struct Sink<'c> {
 }
 
 impl Sink<'_> {
+    #[inline]
     pub(crate) fn diag(
         &mut self,
         code: &'static str,
@@ -43,6 +50,7 @@ impl Sink<'_> {
     }
 
     /// The error that stops the block (the caller reports it).
+    #[inline]
     pub(crate) fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
         Diagnostic::error(code, span, msg).in_file(self.file)
     }
@@ -94,6 +102,7 @@ pub(crate) struct Cx<'c, 'a> {
 }
 
 impl Cx<'_, '_> {
+    #[inline]
     pub(crate) fn diag(
         &mut self,
         code: &'static str,
@@ -104,27 +113,33 @@ impl Cx<'_, '_> {
         self.out.diag(code, sev, span, msg);
     }
 
+    #[inline]
     pub(crate) fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
         self.out.err(code, span, msg)
     }
 
+    #[inline]
     pub(crate) fn ngc(&self) -> bool {
         self.dialect == Dialect::Rs274ngc
     }
 
     /// Internal length units per program unit.
+    #[inline]
     pub(crate) fn unit(&self) -> f64 {
         crate::interp::unit_of(self.ngc(), self.st.modal.inch)
     }
 
+    #[inline]
     pub(crate) fn lin(&self, v: f64) -> f64 {
         v * self.unit()
     }
 
+    #[inline]
     pub(crate) fn plane_axes(&self) -> (usize, usize) {
         self.st.modal.plane_axes()
     }
 
+    #[inline]
     pub(crate) fn normal_axis(&self) -> usize {
         self.st.modal.normal_axis()
     }
@@ -142,6 +157,7 @@ impl Cx<'_, '_> {
     /// The block's motion mode for the RS274/NGC word checks: splines and NURBS
     /// are not in the motion list of `motion`, so an explicit code of theirs wins,
     /// and with no motion the modal one holds.
+    #[inline]
     pub(crate) fn motion_mode(&self) -> u32 {
         self.w
             .g
@@ -153,6 +169,7 @@ impl Cx<'_, '_> {
     }
 
     /// Whether any motion has been produced (also those already streamed out).
+    #[inline]
     pub(crate) fn any_motion(&self) -> bool {
         self.motions_made > 0
     }

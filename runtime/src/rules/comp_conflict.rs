@@ -49,6 +49,7 @@ declare_rule! {
 
 /// Codes LinuxCNC (and FANUC, for planes and G45–G48) refuse while cutter
 /// radius compensation is on.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     if st.modal.comp == 400 {

@@ -50,6 +50,7 @@ pub(crate) struct Mem {
 }
 
 /// RS274/NGC: M70/M73 save the modal state of a call level; M72 needs one saved.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let w = cx.w;
     // M70/M73 save the modal state of this call level; M72 restores it.
@@ -66,6 +67,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
 
 /// [`check`] on a plain motion line of the fast path: only a return may have
 /// left levels to forget.
+#[inline(always)]
 pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
     if !mem.saved_levels.is_empty() {
         let level = cx.call_level;

@@ -45,6 +45,7 @@ declare_rule! {
 
 /// G53, G29, G52 and unit changes, and (ServoWorks) the order of scaling,
 /// mirror, rotation and cutter compensation.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let d = cx.dialect;

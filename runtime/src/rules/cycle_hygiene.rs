@@ -56,6 +56,7 @@ pub(crate) struct Mem {
 /// Canned-cycle modal hygiene: cancelling by group-01 codes, plane changes,
 /// blocks that make no hole, repeats on one spot, retract levels.
 /// Also reports C003 (cycle-state) for the words of G33/G33.1/G76, first.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let d = cx.dialect;

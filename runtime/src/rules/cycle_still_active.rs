@@ -45,6 +45,7 @@ declare_rule! {
 }
 
 /// RS274/NGC: a cycle repeated by a line that moves only the drilling axis.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) {
     let (w, st) = (cx.w, cx.st);
     let Some((m, s)) = cx.motion else {

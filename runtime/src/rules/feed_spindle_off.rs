@@ -52,6 +52,7 @@ pub(crate) struct Mem {
 
 /// RS274/NGC: feed moves with the spindle stopped (off by default, so computed
 /// only when selected).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let st = cx.st;
     let Some((m, s)) = cx.motion else {
@@ -66,6 +67,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
 }
 
 /// [`check`] on a plain motion line of the fast path (a modal G0 or G1).
+#[inline(always)]
 pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let Some((m, s)) = cx.motion else {
         return;

@@ -46,6 +46,7 @@ declare_rule! {
 }
 
 /// G93: every feed move needs its own F; F alone does nothing; no cycles.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     if !cx.ngc() {

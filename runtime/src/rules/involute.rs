@@ -55,6 +55,7 @@ pub(crate) struct Mem {
 /// FANUC: involute interpolation (G02.2/G03.2): the codes allowed in its mode, its
 /// geometry, and not in cylindrical interpolation. Answers the block's motion with
 /// the involute codes, which the motion list of `Cx::motion` leaves out.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Option<(u32, Span)> {
     let (w, st) = (cx.w, cx.st);
     let involute_mode = matches!(st.modal.motion, 22 | 32);
@@ -190,6 +191,7 @@ fn geometry(cx: &mut Cx<'_, '_>, ccw: bool, s: Span) {
 /// FANUC: optional chamfer / corner R (`,C` `,R`) in involute or polar
 /// interpolation mode, found through the items (the word reader drops them).
 /// Also reports K004 (polar-interp) in polar mode.
+#[inline(always)]
 pub(crate) fn comma_words(
     items: &[Item],
     st: &State,

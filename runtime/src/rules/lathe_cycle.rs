@@ -46,6 +46,7 @@ declare_rule! {
 }
 
 /// RS274/NGC: lathe roughing/finishing cycles, checked in LinuxCNC's order and words.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     // Lathe roughing/finishing cycles, checked in LinuxCNC's order and words.

@@ -56,6 +56,7 @@ pub(crate) struct Mem {
 /// Hints that never stop the run: moves that do nothing, axis words taken
 /// by a non-modal code, polar-mode subtleties, redundant mode switches.
 /// Also reports T004 (comp-motion: NGC427, SW084) and K003 (coordinate-mode: SW112).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let (w, st) = (cx.w, cx.st);
     let d = cx.dialect;

@@ -45,6 +45,7 @@ declare_rule! {
 }
 
 /// RS274/NGC: G5.3 without G5.2, and the words of NURBS control points.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let w = cx.w;
     let modal = cx.st.modal.motion;

@@ -43,6 +43,7 @@ declare_rule! {
 }
 
 /// FANUC: H/D offset numbers and G10 data kinds.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) {
     let w = cx.w;
     // Offset numbers and G10 data.

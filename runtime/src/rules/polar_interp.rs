@@ -54,6 +54,7 @@ pub(crate) struct Mem {
 
 /// FANUC: G12.1/G13.1 switch polar coordinate interpolation; a G00 in it is flagged
 /// (`motion` as `involute::check` answers it).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem, motion: Option<(u32, Span)>) {
     let w = cx.w;
     if w.has_g(121) {

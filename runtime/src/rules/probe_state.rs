@@ -46,6 +46,7 @@ declare_rule! {
 }
 
 /// Probe moves (LinuxCNC G38.2–G38.5).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     if !cx.ngc() {

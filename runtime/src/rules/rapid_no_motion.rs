@@ -60,6 +60,7 @@ pub(crate) struct Mem {
 }
 
 /// RS274/NGC: a G0 to where the tool already is.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let (w, st) = (cx.w, cx.st);
     let Some((m, s)) = cx.motion else {

@@ -48,6 +48,7 @@ declare_rule! {
 }
 
 /// FANUC: the feed of a rigid tapping cycle (`motion` as `involute::check` answers it).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, motion: Option<(u32, Span)>) {
     let (w, st) = (cx.w, cx.st);
     let Some((m, _)) = motion else {

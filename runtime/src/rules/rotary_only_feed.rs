@@ -50,6 +50,7 @@ pub(crate) struct Mem {
 }
 
 /// ServoWorks: under G311 a feed block moving only rotary axes has no feed basis.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let w = cx.w;
     // G311: rotary axes are not part of the feed; a block moving only rotary axes has none.

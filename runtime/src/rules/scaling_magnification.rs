@@ -43,6 +43,7 @@ declare_rule! {
 }
 
 /// FANUC: the G51 scaling magnification.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) {
     let w = cx.w;
     // Scaling magnification.

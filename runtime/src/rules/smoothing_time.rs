@@ -43,6 +43,7 @@ declare_rule! {
 }
 
 /// ServoWorks: G10 L108 smoothing times against the servo rate.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) {
     let w = cx.w;
     // Smoothing time by servo rate (G10 L108).

@@ -46,6 +46,7 @@ declare_rule! {
 
 /// Spindle state against spindle-synchronised motion and canned cycles.
 /// Also reports C005 (cycle-spindle) for FANUC and ServoWorks cycles.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let ngc = cx.ngc();

@@ -43,6 +43,7 @@ declare_rule! {
 }
 
 /// FANUC: a G33 block's lead and spindle speed (`motion` as `involute::check` answers it).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, motion: Option<(u32, Span)>) {
     if let Some((330, s)) = motion {
         lead(cx, s);

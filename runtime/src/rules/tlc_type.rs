@@ -51,6 +51,7 @@ pub(crate) struct Mem {
 
 /// ServoWorks: the axis a G43/G44 length offset goes to, the G49 cancel and G37
 /// calibration, by the machine's tool length compensation type.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let (w, st) = (cx.w, cx.st);
     let tlc_type = cx.input.machine.tlc_type.unwrap_or(0);

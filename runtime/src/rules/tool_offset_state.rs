@@ -55,6 +55,7 @@ pub(crate) struct Mem {
 }
 
 /// Tool selection and length offsets.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let d = cx.dialect;
@@ -140,6 +141,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
 
 /// [`check`] on a plain motion line of the fast path: only Z after an M6 that
 /// kept the old tool's length offset can apply.
+#[inline(always)]
 pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let w = cx.w;
     if mem.m6_without_g43 && w.has(b'Z') {

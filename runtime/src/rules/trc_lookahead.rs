@@ -156,6 +156,7 @@ pub(crate) struct Mem {
 
 /// The look-ahead of ServoWorks radius compensation counts blocks between motions
 /// (every dialect keeps the count).
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let st = cx.st;
     // The look-ahead of ServoWorks radius compensation counts blocks between motions.
@@ -173,6 +174,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
 
 /// [`check`] on a plain motion line of the fast path: compensation is off
 /// there, so the count restarts.
+#[inline(always)]
 pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
     mem.blocks_without_motion = 0;
     mem.motions_seen = cx.motions_buffered;

@@ -51,6 +51,7 @@ pub(crate) struct Mem {
 }
 
 /// RS274/NGC: user M codes M100–M199 against the configured list.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let w = cx.w;
     // User M codes M100–M199 run a program from the configured list.

@@ -62,6 +62,7 @@ impl Reads<'_> {
     /// Reports reads of vacant variables in `e` (FANUC locals #1–#33 and, in
     /// ServoWorks, any variable). Operands of EQ/NE are exempt: comparing with
     /// a vacant value is how macros test whether an argument was given.
+    #[inline]
     pub(crate) fn check(&mut self, prog: &Program, e: ExprId, in_compare: bool) {
         let node = *prog.expr(e);
         match node.expr {

@@ -52,6 +52,7 @@ declare_rule! {
 
 /// RS274/NGC: axis words with no code to take them, words no code of the line uses,
 /// and `$` words.
+#[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     let modal = st.modal.motion;
