@@ -1,5 +1,5 @@
-//! The spec-ledger rules of `interp/spec_checks.rs`: exact line, code and
-//! severity on programs taken from the digests' test vectors.
+//! The spec-ledger rules (their checks in `runtime/src/rules/`): exact line, code
+//! and severity on programs taken from the digests' test vectors.
 
 mod common;
 

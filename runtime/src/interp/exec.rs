@@ -59,6 +59,8 @@ mod params;
 mod record;
 mod recover;
 pub(super) use g37::G37Cfg;
+pub(crate) use motion::target_of;
+pub(crate) use offsets::tool_diameter_of;
 pub use recover::STOP_SUFFIX;
 mod resume;
 use crate::canon::{f4, Canon};
@@ -72,8 +74,6 @@ pub use resume::{
 mod checks;
 #[path = "fast.rs"]
 mod fast;
-#[path = "spec_checks.rs"]
-mod spec_checks;
 
 const NUM_PARAMS: usize = 20_000;
 
@@ -179,24 +179,24 @@ struct Frame {
     motions_at_call: usize,
 }
 
-/// The evaluated words of one block.
+/// The evaluated words of one block (the rule checks in `crate::rules` read them).
 #[derive(Default)]
-struct Words {
-    v: [Option<f64>; 26],
-    span: [Span; 26],
-    point: [bool; 26],
-    g: Vec<(u32, Span)>,
-    m: Vec<(u32, Span)>,
-    pname: Option<String>,
-    n: Option<i64>,
-    ijk_order: Vec<(u8, f64)>,
+pub(crate) struct Words {
+    pub(crate) v: [Option<f64>; 26],
+    pub(crate) span: [Span; 26],
+    pub(crate) point: [bool; 26],
+    pub(crate) g: Vec<(u32, Span)>,
+    pub(crate) m: Vec<(u32, Span)>,
+    pub(crate) pname: Option<String>,
+    pub(crate) n: Option<i64>,
+    pub(crate) ijk_order: Vec<(u8, f64)>,
     /// The N number as written.
-    n_text: Option<String>,
+    pub(crate) n_text: Option<String>,
     /// RS274/NGC polar words `@` (radius) and `^` (angle, degrees).
-    polar_r: Option<f64>,
-    polar_a: Option<f64>,
+    pub(crate) polar_r: Option<f64>,
+    pub(crate) polar_a: Option<f64>,
     /// K as written (a repeat count in FANUC/ServoWorks cycles).
-    raw_k: Option<f64>,
+    pub(crate) raw_k: Option<f64>,
 }
 
 impl Words {
@@ -230,32 +230,40 @@ impl Words {
         *raw_k = None;
     }
 
-    fn get(&self, c: u8) -> Option<f64> {
+    pub(crate) fn get(&self, c: u8) -> Option<f64> {
         self.v.get((c - b'A') as usize).copied().flatten()
     }
-    fn has(&self, c: u8) -> bool {
+    pub(crate) fn has(&self, c: u8) -> bool {
         self.get(c).is_some()
     }
-    fn sp(&self, c: u8) -> Span {
+    pub(crate) fn sp(&self, c: u8) -> Span {
         self.span
             .get((c - b'A') as usize)
             .copied()
             .unwrap_or_default()
     }
-    fn has_g(&self, t: u32) -> bool {
+    pub(crate) fn has_g(&self, t: u32) -> bool {
         self.g.iter().any(|(g, _)| *g == t)
     }
-    fn g_span(&self, t: u32) -> Span {
+    pub(crate) fn g_span(&self, t: u32) -> Span {
         self.g
             .iter()
             .find(|(g, _)| *g == t)
             .map(|(_, s)| *s)
             .unwrap_or_default()
     }
-    fn has_m(&self, t: u32) -> bool {
+    pub(crate) fn has_m(&self, t: u32) -> bool {
         self.m.iter().any(|(m, _)| *m == t)
     }
-    fn any_axis(&self) -> bool {
+    /// The span of M code `t` (tenths), or an empty one.
+    pub(crate) fn m_span(&self, t: u32) -> Span {
+        self.m
+            .iter()
+            .find(|(m, _)| *m == t)
+            .map(|(_, s)| *s)
+            .unwrap_or_default()
+    }
+    pub(crate) fn any_axis(&self) -> bool {
         b"XYZABCUVW".iter().any(|c| self.has(*c))
             || self.polar_r.is_some()
             || self.polar_a.is_some()
@@ -289,8 +297,10 @@ struct Interp<'a, 'i> {
     limit_reports: u32,
     /// G09 in the current block (FANUC/ServoWorks one-shot exact stop).
     block_exact: bool,
-    /// Memory of the state checks (tool words, G40, motion seen).
-    chk: checks::Mem,
+    /// What the rule checks remember between blocks (`crate::rules::check`).
+    rules: crate::rules::check::Memory,
+    /// The block's `$` words and bare axis letters, for the checks.
+    items: crate::rules::check::BlockItems,
     modal_cache: Option<(Modal, std::sync::Arc<[String]>)>,
     /// Motions already handed to a streaming sink.
     motions_drained: usize,
@@ -300,8 +310,6 @@ struct Interp<'a, 'i> {
     spline_pq: (f64, f64),
     /// Control points of an open G5.2 NURBS block.
     nurbs: Vec<([f64; 6], f64)>,
-    /// Memory of the spec-ledger checks (`spec_checks.rs`).
-    spec: spec_checks::SpecMem,
     /// RS274/NGC canon: how far tool-length-offset changes have moved the programmed
     /// point since the last move.  rs274's standalone canon tracks the last commanded
     /// point without tool offsets, and a tool change (M6, M61) makes the interpreter
@@ -464,11 +472,11 @@ impl<'a, 'i> Interp<'a, 'i> {
             main_locals: HashMap::new(),
             limit_reports: 0,
             block_exact: false,
-            chk: checks::Mem::default(),
+            rules: Default::default(),
+            items: Default::default(),
             modal_cache: None,
             spline_pq: (0.0, 0.0),
             nurbs: Vec::new(),
-            spec: Default::default(),
             motions_drained: 0,
             observed: (0, 0),
             tlo_drift: [0.0; 6],
@@ -516,32 +524,17 @@ impl<'a, 'i> Interp<'a, 'i> {
     /// program units as LinuxCNC does (so canonical output rounds identically);
     /// the other dialects keep millimetres.
     fn unit(&self) -> f64 {
-        if self.ngc() || !self.st.modal.inch {
-            1.0
-        } else {
-            25.4
-        }
+        unit_of(self.ngc(), self.st.modal.inch)
     }
 
     /// Millimetres per internal length unit.
     fn lu(&self) -> f64 {
-        if self.ngc() && self.st.modal.inch {
-            25.4
-        } else {
-            1.0
-        }
+        lu_of(self.ngc(), self.st.modal.inch)
     }
 
     /// Internal units per parameter/tool-table unit.
     fn pfac(&self) -> f64 {
-        let lu = self.lu();
-        if self.cfg.param_unit == lu {
-            1.0
-        } else if lu == 1.0 {
-            self.cfg.param_unit
-        } else {
-            self.cfg.param_unit / lu
-        }
+        pfac_of(&self.cfg, self.ngc(), self.st.modal.inch)
     }
 
     fn ngc(&self) -> bool {
@@ -549,19 +542,11 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     fn plane_axes(&self) -> (usize, usize) {
-        match self.st.modal.plane {
-            180 => (2, 0),
-            190 => (1, 2),
-            _ => (0, 1),
-        }
+        self.st.modal.plane_axes()
     }
 
     fn normal_axis(&self) -> usize {
-        match self.st.modal.plane {
-            180 => 1,
-            190 => 0,
-            _ => 2,
-        }
+        self.st.modal.normal_axis()
     }
 
     fn file_id(&self) -> FileId {
@@ -633,11 +618,6 @@ impl<'a, 'i> Interp<'a, 'i> {
         sink(&mut self.out.motions, &mut self.out.events);
         self.out.motions.clear();
         self.out.events.clear();
-    }
-
-    /// Whether any motion has been produced (also those already streamed out).
-    fn any_motion(&self) -> bool {
-        self.motions_drained > 0 || !self.out.motions.is_empty()
     }
 
     fn run_main_with(
@@ -920,11 +900,42 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 }
 
+/// Internal length units per program unit (see `Interp::unit`); the rule checks
+/// share it through `rules::check::Cx`.
+pub(crate) fn unit_of(ngc: bool, inch: bool) -> f64 {
+    if ngc || !inch {
+        1.0
+    } else {
+        25.4
+    }
+}
+
+/// Millimetres per internal length unit.
+fn lu_of(ngc: bool, inch: bool) -> f64 {
+    if ngc && inch {
+        25.4
+    } else {
+        1.0
+    }
+}
+
+/// Internal units per parameter/tool-table unit.
+fn pfac_of(cfg: &MachineCfg, ngc: bool, inch: bool) -> f64 {
+    let lu = lu_of(ngc, inch);
+    if cfg.param_unit == lu {
+        1.0
+    } else if lu == 1.0 {
+        cfg.param_unit
+    } else {
+        cfg.param_unit / lu
+    }
+}
+
 fn scale6(v: [f64; 6], u: f64) -> [f64; 6] {
     v6([v[0] / u, v[1] / u, v[2] / u, v[3], v[4], v[5]])
 }
 
-fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
+pub(crate) fn dist(a: &[f64; 6], b: &[f64; 6]) -> f64 {
     let l = ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt();
     if l > 0.0 {
         l

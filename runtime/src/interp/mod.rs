@@ -27,4 +27,8 @@ pub use exec::{
     MotionObserver, MotionSink, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
 };
 pub use state::{Modal, State};
+// What the rule checks in `crate::rules` read (`rules::check::Cx`).
+pub(crate) use exec::{dist, target_of, tool_diameter_of, unit_of, Words};
+pub(crate) use machine_cfg::MachineCfg;
+pub(crate) use state::{is_cycle, is_group_1, moves_to_axis_words};
 pub use types::*;

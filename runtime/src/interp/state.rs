@@ -231,6 +231,24 @@ impl Modal {
         v
     }
 
+    /// The in-plane axes (indices into X, Y, Z) of the selected plane.
+    pub(crate) fn plane_axes(&self) -> (usize, usize) {
+        match self.plane {
+            180 => (2, 0),
+            190 => (1, 2),
+            _ => (0, 1),
+        }
+    }
+
+    /// The axis (index into X, Y, Z) normal to the selected plane.
+    pub(crate) fn normal_axis(&self) -> usize {
+        match self.plane {
+            180 => 1,
+            190 => 0,
+            _ => 2,
+        }
+    }
+
     pub fn modal_cycle(&self) -> bool {
         is_cycle(self.motion)
     }

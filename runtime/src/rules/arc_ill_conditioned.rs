@@ -1,4 +1,5 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule metadata. The check is the last part of `arc_words::check`
+//! (`rules/arc_words.rs`), which reads the same plane and words.
 
 use analyzer::declare_rule;
 

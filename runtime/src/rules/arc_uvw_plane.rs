@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Diagnostic;
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -35,4 +40,30 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// A UVW plane (G17.1/G18.1/G19.1) is selected.
+    pub(crate) uvw_plane: bool,
+}
+
+/// RS274/NGC: arcs in a UVW plane (G17.1/G18.1/G19.1).
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
+    let w = cx.w;
+    let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
+    // Plane selection for arcs in UVW planes.
+    if let Some(&(g, s)) = cx.motion.as_ref().filter(|m| matches!(m.0, 20 | 30)) {
+        if mem.uvw_plane && !gm(&[170, 180, 190]) {
+            return Err(cx.err(codes::ARC_UVW_PLANE, s, format!("G{} in a UVW plane (G17.1/G18.1/G19.1): LinuxCNC cannot make arcs there; select G17, G18 or G19", g / 10)));
+        }
+    }
+    if gm(&[171, 181, 191]) {
+        mem.uvw_plane = true;
+    } else if gm(&[170, 180, 190]) {
+        mem.uvw_plane = false;
+    }
+    Ok(())
 }

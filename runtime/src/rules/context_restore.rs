@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Diagnostic;
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -34,5 +39,38 @@ declare_rule! {
         implements: &["NGC813"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// Call levels (frame depth) at which M70/M73 saved the modal state.
+    pub(crate) saved_levels: Vec<usize>,
+}
+
+/// RS274/NGC: M70/M73 save the modal state of a call level; M72 needs one saved.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
+    let w = cx.w;
+    // M70/M73 save the modal state of this call level; M72 restores it.
+    let level = cx.call_level;
+    if (w.has_m(700) || w.has_m(730)) && !mem.saved_levels.contains(&level) {
+        mem.saved_levels.push(level);
+    }
+    if w.has_m(720) && !mem.saved_levels.contains(&level) {
+        return Err(cx.err(codes::CONTEXT_RESTORE, w.m_span(720), "M72 restores a modal state that no M70 or M73 saved at this call level: LinuxCNC stops (missing M70/M73?)"));
+    }
+    mem.saved_levels.retain(|l| *l <= level);
+    Ok(())
+}
+
+/// [`check`] on a plain motion line of the fast path: only a return may have
+/// left levels to forget.
+#[inline(always)]
+pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
+    if !mem.saved_levels.is_empty() {
+        let level = cx.call_level;
+        mem.saved_levels.retain(|l| *l <= level);
     }
 }

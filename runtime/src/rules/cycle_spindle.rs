@@ -1,4 +1,5 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule metadata. The check is the end of `spindle_stopped::check`
+//! (`rules/spindle_stopped.rs`), which works out the same spindle state.
 
 use analyzer::declare_rule;
 

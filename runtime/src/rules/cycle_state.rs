@@ -1,4 +1,6 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule metadata. The words of G33/G33.1/G76 are checked at the start
+//! of `cycle_hygiene::check` (`rules/cycle_hygiene.rs`); the other cases are part of
+//! running the cycle or move, in `interp/exec/cycles.rs`, `motion.rs` and `offsets.rs`.
 
 use analyzer::declare_rule;
 

@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Severity;
+
+use super::check::Cx;
+use super::codes;
+use crate::interp::{is_cycle, Words};
 
 declare_rule! {
     /// ## What it does
@@ -36,4 +42,30 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// RS274/NGC: a cycle repeated by a line that moves only the drilling axis.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) {
+    let (w, st) = (cx.w, cx.st);
+    let Some((m, s)) = cx.motion else {
+        return;
+    };
+    // A cycle repeated by a line that moves only the drilling axis.
+    if motion_is_modal(w, m) && is_cycle(m) {
+        let n = b"ZYX"[match st.modal.plane {
+            180 => 1,
+            190 => 2,
+            _ => 0,
+        }];
+        let plane_word = b"XYZ".iter().any(|c| *c != n && w.has(*c));
+        if w.has(n) && !plane_word {
+            cx.diag(codes::CYCLE_STILL_ACTIVE, Severity::Info, s, format!("the canned cycle G{} is still active: this {} move drills again at the same hole instead of moving; give G80 before leaving the holes", m / 10, n as char));
+        }
+    }
+}
+
+/// Whether the motion of the block comes from the modal state (no group-01 code written).
+fn motion_is_modal(w: &Words, m: u32) -> bool {
+    !w.has_g(m)
 }

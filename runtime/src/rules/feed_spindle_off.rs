@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Severity;
+
+use super::check::Cx;
+use super::codes;
+use crate::interp::is_cycle;
 
 declare_rule! {
     /// ## What it does
@@ -33,5 +39,53 @@ declare_rule! {
         implements: &["NGC232"],
         origin: Runtime,
         default_enabled: false,
+    }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// Whether the rule is selected, looked up once: the registry search costs
+    /// more than the rest of a motion block's checks.
+    pub(crate) wanted: Option<bool>,
+}
+
+/// RS274/NGC: feed moves with the spindle stopped (off by default, so computed
+/// only when selected).
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
+    let st = cx.st;
+    let Some((m, s)) = cx.motion else {
+        return;
+    };
+    // Feed moves with the spindle off (optional rule).
+    // Off by default, so it is computed only when selected.
+    let wanted = wanted(cx, mem);
+    if wanted && (matches!(m, 10 | 20 | 30) || is_cycle(m)) && st.spindle_dir == 0 {
+        cx.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
+    }
+}
+
+/// [`check`] on a plain motion line of the fast path (a modal G0 or G1).
+#[inline(always)]
+pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
+    let Some((m, s)) = cx.motion else {
+        return;
+    };
+    if m == 10 && wanted(cx, mem) && cx.st.spindle_dir == 0 {
+        cx.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
+    }
+}
+
+/// Whether the rule is selected (looked up once).
+fn wanted(cx: &Cx<'_, '_>, mem: &mut Mem) -> bool {
+    match mem.wanted {
+        Some(w) => w,
+        None => {
+            let w = super::lookup(codes::FEED_SPINDLE_OFF)
+                .is_some_and(|meta| cx.input.settings.rule_enabled(meta));
+            mem.wanted = Some(w);
+            w
+        }
     }
 }

@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::{Diagnostic, Severity};
+
+use super::check::{is_feed_motion, Cx};
+use super::codes;
+use crate::interp::is_cycle;
 
 declare_rule! {
     /// ## What it does
@@ -36,5 +42,48 @@ declare_rule! {
         implements: &["NGC201", "NGC202", "NGC310"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// G93: every feed move needs its own F; F alone does nothing; no cycles.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+    let (w, st) = (cx.w, cx.st);
+    if !cx.ngc() {
+        return Ok(());
+    }
+    let g93 = w.has_g(930) || (st.modal.feed_mode == 930 && !w.has_g(940) && !w.has_g(950));
+    if !g93 {
+        return Ok(());
+    }
+    let motion = cx.motion;
+    match motion {
+        Some((g, s)) if is_cycle(g) => Err(cx.err(
+            codes::INVERSE_TIME,
+            s,
+            "canned cycles cannot be used in inverse-time feed mode (G93): switch to G94 first",
+        )),
+        Some((g, s)) if is_feed_motion(g) && !w.has(b'F') => Err(cx.err(
+            codes::INVERSE_TIME,
+            s,
+            // LinuxCNC's own words: each move in G93 carries its own F.
+            if g == 10 {
+                "F word missing with inverse time g1 move"
+            } else {
+                "F word missing with inverse time arc move"
+            },
+        )),
+        Some((g, _)) if is_feed_motion(g) => Ok(()),
+        _ => {
+            if w.has(b'F') {
+                cx.diag(
+                    codes::INVERSE_TIME,
+                    Severity::Info,
+                    w.sp(b'F'),
+                    "F on a line without a feed move is ignored in inverse-time mode (G93): each move carries its own F",
+                );
+            }
+            Ok(())
+        }
     }
 }

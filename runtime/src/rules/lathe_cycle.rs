@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
+//! Running the cycle (`interp/exec/g7x.rs`) reports the profile's own faults.
 
 use analyzer::declare_rule;
+use analyzer::Diagnostic;
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -37,4 +43,35 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// RS274/NGC: lathe roughing/finishing cycles, checked in LinuxCNC's order and words.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+    let (w, st) = (cx.w, cx.st);
+    // Lathe roughing/finishing cycles, checked in LinuxCNC's order and words.
+    if let Some(&(g, s)) =
+        w.g.iter()
+            .find(|(g, _)| matches!(g, 700 | 710 | 711 | 712 | 720 | 721 | 722))
+    {
+        let name = format!("G{}.{}", g / 10, g % 10);
+        if !w.has(b'Q') {
+            return Err(cx.err(codes::LATHE_CYCLE, s, "G7x.x  requires a Q word"));
+        }
+        if g != 700 && st.modal.comp != 400 {
+            return Err(cx.err(
+                codes::LATHE_CYCLE,
+                s,
+                format!("{name} cannot be used with cutter compensation enabled"),
+            ));
+        }
+        if st.modal.plane != 180 && !w.has_g(180) {
+            return Err(cx.err(
+                codes::LATHE_CYCLE,
+                s,
+                format!("{name} can only be used in XZ plane (G18)"),
+            ));
+        }
+    }
+    Ok(())
 }

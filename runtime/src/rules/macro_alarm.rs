@@ -1,4 +1,5 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule metadata. The check is part of executing the block, where
+//! the state it needs is computed: `interp/exec/messages.rs`, `interp/exec/params.rs`.
 
 use analyzer::declare_rule;
 

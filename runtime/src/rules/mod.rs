@@ -1,6 +1,8 @@
 //! Flow-sensitive rules: their metadata (one file per rule, same doc format
-//! as the analyzer's static rules) and the codes the interpreter emits. The
-//! checks live in the interpreter, next to the state they need.
+//! as the analyzer's static rules), the codes the interpreter emits and, for the
+//! rules that look at a block against the state before it, the check beside the
+//! doc (a function over `check::Cx`, called in order from `interp/checks.rs`).
+//! The other rules are part of executing the block, in the interpreter.
 
 use analyzer::rules::RuleMeta;
 
@@ -12,60 +14,61 @@ mod arc_polar_ijk;
 mod arc_radius_mismatch;
 mod arc_radius_too_small;
 mod arc_same_end_r;
-mod arc_uvw_plane;
-mod arc_words;
+pub(crate) mod arc_uvw_plane;
+pub(crate) mod arc_words;
 mod call_depth;
-mod comp_conflict;
-mod comp_motion;
-mod context_restore;
+pub(crate) mod check;
+pub(crate) mod comp_conflict;
+pub(crate) mod comp_motion;
+pub(crate) mod context_restore;
 mod coord_during_rotation;
-mod coordinate_mode;
-mod cycle_hygiene;
+pub(crate) mod coordinate_mode;
+pub(crate) mod cycle_hygiene;
 mod cycle_missing;
 mod cycle_q;
 mod cycle_spindle;
 mod cycle_state;
-mod cycle_still_active;
+pub(crate) mod cycle_still_active;
 mod dlacc_incompatible;
 mod dlacc_tcp;
 mod expression;
-mod feed_spindle_off;
+pub(crate) mod feed_spindle_off;
 mod flow;
 mod interp;
-mod inverse_time;
-mod involute;
-mod lathe_cycle;
+pub(crate) mod inverse_time;
+pub(crate) mod involute;
+pub(crate) mod lathe_cycle;
 mod macro_alarm;
 mod missing_end;
-mod mode_left_on;
-mod no_effect;
-mod nurbs_block;
-mod offset_number;
-mod polar_interp;
-mod probe_state;
-mod rapid_no_motion;
+pub(crate) mod mode_left_on;
+pub(crate) mod no_effect;
+pub(crate) mod nurbs_block;
+pub(crate) mod offset_number;
+pub(crate) mod polar_interp;
+pub(crate) mod probe_state;
+pub(crate) mod rapid_no_motion;
 mod rigid_tap;
-mod rigid_tap_feed;
-mod rotary_only_feed;
-mod scaling_magnification;
-mod smoothing_time;
-mod spindle_stopped;
+pub(crate) mod rigid_tap_feed;
+pub(crate) mod rotary_only_feed;
+pub(crate) mod scaling_magnification;
+pub(crate) mod smoothing_time;
+pub(crate) mod spindle_stopped;
 mod step_budget;
 mod sub_not_found;
-mod subprogram_file;
-mod thread_lead;
-mod tlc_type;
-mod tool_offset_state;
-mod tool_table;
+pub(crate) mod subprogram_file;
+pub(crate) mod thread_lead;
+pub(crate) mod tlc_type;
+pub(crate) mod tool_offset_state;
+pub(crate) mod tool_table;
 mod travel_limit;
-mod trc_lookahead;
+pub(crate) mod trc_lookahead;
 mod unknown_code;
 mod unknown_tool;
-mod unknown_user_m;
-mod vacant_read;
+pub(crate) mod unknown_user_m;
+pub(crate) mod vacant_read;
 mod vacant_word;
-mod var_file;
-mod word_unused;
+pub(crate) mod var_file;
+pub(crate) mod word_unused;
 mod zero_feed;
 
 /// Diagnostic codes emitted by the interpreter.

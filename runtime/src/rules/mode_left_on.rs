@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! at M2/M30 (`Interp::end_checks` in `interp/checks.rs`).
 
 use analyzer::declare_rule;
+use analyzer::{Dialect, Severity, Span};
+
+use super::check::Sink;
+use super::codes;
+use crate::interp::State;
 
 declare_rule! {
     /// ## What it does
@@ -35,5 +41,55 @@ declare_rule! {
         implements: &["SW058", "SW086", "SW111", "SW135", "NGC422", "NGC428", "FAN063"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// Modes a program should cancel before M2/M30: each one left on is reported.
+pub(crate) fn check(st: &State, dialect: Dialect, span: Span, out: &mut Sink<'_>) {
+    let d = dialect;
+    let m = &st.modal;
+    let mut left: Vec<&str> = Vec::new();
+    if m.comp != 400 && d != Dialect::Fanuc {
+        left.push("cutter radius compensation (cancel with G40)");
+    }
+    match d {
+        Dialect::Rs274ngc => {
+            if st.g92.iter().any(|v| *v != 0.0) {
+                left.push("a G92/G52 offset (clear with G92.1, or G52 with zeros)");
+            }
+        }
+        Dialect::Servoworks => {
+            if m.dlacc {
+                left.push("3D-DLACC look-ahead (cancel with G08)");
+            }
+            if st.g52.iter().any(|v| *v != 0.0) {
+                left.push("a G52 local coordinate system (cancel with G52 and zero axes)");
+            }
+            if m.modal_cycle() {
+                left.push("a canned cycle (cancel with G80)");
+            }
+        }
+        Dialect::Fanuc => {
+            if m.polar {
+                left.push("polar coordinates (cancel with G15)");
+            }
+            if st.g66.is_some() {
+                left.push("a G66 modal macro call (cancel with G67)");
+            }
+            if m.rotation {
+                left.push("coordinate rotation (cancel with G69)");
+            }
+            if m.scaling {
+                left.push("scaling (cancel with G50)");
+            }
+        }
+    }
+    for what in left {
+        out.diag(
+            codes::MODE_LEFT_ON,
+            Severity::Warning,
+            span,
+            format!("the program ends with {what} still active: the next program or MDI command starts in that mode"),
+        );
     }
 }

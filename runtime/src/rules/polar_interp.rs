@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
+//! `involute::comma_words` also reports this code (`,C`/`,R` in polar mode).
 
 use analyzer::declare_rule;
+use analyzer::{Severity, Span};
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -36,5 +42,27 @@ declare_rule! {
         implements: &["FAN158", "FAN061"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// FANUC: polar coordinate interpolation (G12.1) is on.
+    pub(crate) on: bool,
+}
+
+/// FANUC: G12.1/G13.1 switch polar coordinate interpolation; a G00 in it is flagged
+/// (`motion` as `involute::check` answers it).
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem, motion: Option<(u32, Span)>) {
+    let w = cx.w;
+    if w.has_g(121) {
+        mem.on = true;
+    } else if w.has_g(131) {
+        mem.on = false;
+    }
+    if let Some((0, s)) = motion.filter(|_| mem.on) {
+        cx.diag(codes::POLAR_INTERP, Severity::Warning, s, "G00 in polar coordinate interpolation (G12.1): only G01, G02, G03, G02.2 and G03.2 are allowed there; cancel with G13.1 before rapids");
     }
 }

@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
+//! The probe move itself (`interp/exec/motion.rs`) reports the rest.
 
 use analyzer::declare_rule;
+use analyzer::{Diagnostic, Variant};
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -37,4 +43,44 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// Probe moves (LinuxCNC G38.2–G38.5).
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+    let (w, st) = (cx.w, cx.st);
+    if !cx.ngc() {
+        return Ok(());
+    }
+    let Some((g, s)) = cx.motion else {
+        return Ok(());
+    };
+    if !(382..=385).contains(&g) {
+        return Ok(());
+    }
+    if st.modal.comp != 400 && !w.has_g(400) {
+        return Err(cx.err(
+            codes::PROBE_STATE,
+            s,
+            "probing (G38) is not allowed with cutter radius compensation on: give G40 first",
+        ));
+    }
+    let mode = if w.has_g(950) {
+        950
+    } else if w.has_g(930) {
+        930
+    } else if w.has_g(940) {
+        940
+    } else {
+        st.modal.feed_mode
+    };
+    let emc2 = cx.variant == Variant::Emc2;
+    if mode == 950 || (emc2 && mode == 930) {
+        return Err(cx.err(
+            codes::PROBE_STATE,
+            s,
+            "probing (G38) needs feed per minute: give G94 first",
+        ));
+    }
+    Ok(())
 }

@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Severity;
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -34,5 +39,24 @@ declare_rule! {
         implements: &["FAN157"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// FANUC: the G51 scaling magnification.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) {
+    let w = cx.w;
+    // Scaling magnification.
+    if w.has_g(510) {
+        if let Some(p) = w.get(b'P') {
+            let m = if w.point[(b'P' - b'A') as usize] {
+                p
+            } else {
+                p * 0.001
+            };
+            if m <= 0.0 || m >= 10.0 {
+                cx.diag(codes::SCALING_MAGNIFICATION, Severity::Error, w.sp(b'P'), format!("scaling magnification {m} is out of range (PS0142): it must be above 0 and below 10 (P1 to P9999)"));
+            }
+        }
     }
 }

@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::Severity;
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -34,5 +39,27 @@ declare_rule! {
         implements: &["SW064"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// ServoWorks: G10 L108 smoothing times against the servo rate.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) {
+    let w = cx.w;
+    // Smoothing time by servo rate (G10 L108).
+    if w.has_g(100) && w.get(b'L').map(|l| l.round() as i64) == Some(108) {
+        let khz = cx.input.machine.servo_rate_khz.unwrap_or(1.0);
+        let max = if khz <= 1.0 {
+            5000.0
+        } else if khz <= 2.0 {
+            2500.0
+        } else {
+            1250.0
+        };
+        for c in [b'R', b'X', b'Y', b'Z', b'A', b'B', b'C'] {
+            if let Some(v) = w.get(c).filter(|v| *v < 0.0 || *v > max) {
+                cx.diag(codes::SMOOTHING_TIME, Severity::Error, w.sp(c), format!("smoothing time {v} ms is out of range: at a {khz} kHz servo rate G10 L108 accepts 0 to {max} ms"));
+            }
+        }
     }
 }

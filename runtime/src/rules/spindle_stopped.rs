@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::{Diagnostic, Severity};
+
+use super::check::{is_feed_motion, Cx};
+use super::codes;
+use crate::interp::is_cycle;
 
 declare_rule! {
     /// ## What it does
@@ -36,4 +42,104 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// Spindle state against spindle-synchronised motion and canned cycles.
+/// Also reports C005 (cycle-spindle) for FANUC and ServoWorks cycles.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+    let (w, st) = (cx.w, cx.st);
+    let ngc = cx.ngc();
+    let speed = w.get(b'S').unwrap_or(st.spindle);
+    let dir = if w.has_m(30) {
+        1
+    } else if w.has_m(40) {
+        -1
+    } else if w.has_m(50) {
+        0
+    } else {
+        st.spindle_dir
+    };
+    if ngc && speed <= 0.0 {
+        for m in [30u32, 40] {
+            if w.has_m(m) {
+                let s = w.m_span(m);
+                cx.diag(
+                    codes::SPINDLE_STOPPED,
+                    Severity::Warning,
+                    s,
+                    format!(
+                        "M{} starts the spindle with speed S0: program S before or with M{}",
+                        m / 10,
+                        m / 10
+                    ),
+                );
+            }
+        }
+    }
+    let motion = cx.motion;
+    let Some((g, s)) = motion else {
+        return Ok(());
+    };
+    let feed_mode = if w.has_g(950) {
+        950
+    } else if w.has_g(930) || w.has_g(940) {
+        0
+    } else {
+        st.modal.feed_mode
+    };
+    if ngc {
+        if matches!(g, 330 | 760) && dir == 0 {
+            return Err(cx.err(
+                codes::SPINDLE_STOPPED,
+                s,
+                format!(
+                    "G{} needs the spindle turning (M3 or M4): LinuxCNC stops",
+                    g / 10
+                ),
+            ));
+        }
+        if feed_mode == 950 && is_feed_motion(g) && speed <= 0.0 {
+            return Err(cx.err(codes::SPINDLE_STOPPED, s, "feed per revolution (G95) with spindle speed 0: the move would never finish; program S"));
+        }
+        return Ok(());
+    }
+    if feed_mode == 950 && is_feed_motion(g) && speed <= 0.0 {
+        cx.diag(
+            codes::SPINDLE_STOPPED,
+            Severity::Warning,
+            s,
+            "feed per revolution (G95) with no spindle speed: the feed is zero; program S",
+        );
+    }
+    // Rigid tapping (M29) turns the spindle itself, in position control.
+    let rigid = st.modal.rigid_tap && matches!(g, 740 | 840);
+    if is_cycle(g) {
+        if dir == 0 && !rigid {
+            cx.diag(
+                codes::CYCLE_SPINDLE,
+                Severity::Warning,
+                s,
+                format!(
+                    "G{} drills with the spindle stopped: start it with M03/M04 and S first",
+                    g / 10
+                ),
+            );
+        } else if g == 840 && dir == -1 {
+            cx.diag(
+                codes::CYCLE_SPINDLE,
+                Severity::Warning,
+                s,
+                "G84 taps with the spindle turning CCW (M04): right-hand tapping needs M03",
+            );
+        } else if g == 740 && dir == 1 {
+            cx.diag(
+                codes::CYCLE_SPINDLE,
+                Severity::Warning,
+                s,
+                "G74 taps with the spindle turning CW (M03): left-hand tapping needs M04",
+            );
+        }
+    }
+    Ok(())
 }

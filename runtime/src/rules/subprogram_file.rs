@@ -1,6 +1,12 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter runs on
+//! each ServoWorks subprogram file it loads (`Interp::spec_file_loaded`).
 
 use analyzer::declare_rule;
+use analyzer::syntax::{BlockKind, ItemKind, Program};
+use analyzer::{Severity, Span};
+
+use super::check::Sink;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -32,5 +38,56 @@ declare_rule! {
         implements: &["SW025", "SW027"],
         origin: Runtime,
         default_enabled: true,
+    }
+}
+
+/// The shape of a ServoWorks subprogram file just loaded for `M98 P<name>`:
+/// its O line and its closing M99.
+pub(crate) fn check(prog: &Program, name: &str, out: &mut Sink<'_>) {
+    let mut head: Option<(String, Span)> = None;
+    let mut first_code: Option<Span> = None;
+    let mut last_block: Option<(Span, bool)> = None;
+    for b in &prog.blocks {
+        let items = prog.items_of(b);
+        if items.is_empty() || !matches!(b.kind, BlockKind::Normal) {
+            continue;
+        }
+        let mut has_code = false;
+        let mut m99 = false;
+        for it in items {
+            match &it.kind {
+                ItemKind::ProgramHead { name, .. } if first_code.is_none() => {
+                    head = Some((prog.str_of(*name).into_owned(), it.span));
+                    has_code = true;
+                }
+                ItemKind::Word(wd) => {
+                    has_code = true;
+                    if wd.letter == b'M' && wd.num().is_some_and(|n| n.value == 99.0) {
+                        m99 = true;
+                    }
+                }
+                ItemKind::Assign { .. } | ItemKind::Macro(_) => has_code = true,
+                _ => {}
+            }
+        }
+        if has_code {
+            first_code.get_or_insert(b.span);
+            last_block = Some((b.span, m99));
+        }
+    }
+    let Some((last_span, ends_m99)) = last_block else {
+        return;
+    };
+    if !ends_m99 {
+        out.diag(codes::SUBPROGRAM_FILE, Severity::Warning, last_span, format!("subprogram O{name} does not end with M99: a ServoWorks subprogram returns to its caller only at M99; end it with M99"));
+    }
+    match head {
+        Some((n, s)) if !n.eq_ignore_ascii_case(name) => {
+            out.diag(codes::SUBPROGRAM_FILE, Severity::Info, s, format!("the O line names O{n} but the file was called as O{name}: name the subprogram after its file"));
+        }
+        None => {
+            out.diag(codes::SUBPROGRAM_FILE, Severity::Info, first_code.unwrap_or_default(), format!("subprogram O{name} has no O{name} line: a ServoWorks subprogram starts with its name"));
+        }
+        _ => {}
     }
 }

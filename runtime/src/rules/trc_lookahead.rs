@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::{Dialect, Severity};
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -139,4 +144,38 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// Blocks since the last motion while radius compensation is on.
+    pub(crate) blocks_without_motion: u32,
+    pub(crate) motions_seen: usize,
+}
+
+/// The look-ahead of ServoWorks radius compensation counts blocks between motions
+/// (every dialect keeps the count).
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
+    let st = cx.st;
+    // The look-ahead of ServoWorks radius compensation counts blocks between motions.
+    let n = cx.motions_buffered;
+    if n > mem.motions_seen || st.modal.comp == 400 {
+        mem.blocks_without_motion = 0;
+    } else {
+        mem.blocks_without_motion += 1;
+        if cx.dialect == Dialect::Servoworks && mem.blocks_without_motion == 101 {
+            cx.diag(codes::TRC_LOOKAHEAD, Severity::Info, cx.bspan, "more than 100 blocks without motion in tool radius compensation: the look-ahead buffer holds 100 blocks, so the offset at the next corner cannot see the next move; keep blocks without motion few");
+        }
+    }
+    mem.motions_seen = n;
+}
+
+/// [`check`] on a plain motion line of the fast path: compensation is off
+/// there, so the count restarts.
+#[inline(always)]
+pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
+    mem.blocks_without_motion = 0;
+    mem.motions_seen = cx.motions_buffered;
 }

@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter calls
+//! for every block from `interp/checks.rs` (in the order there).
 
 use analyzer::declare_rule;
+use analyzer::{Diagnostic, Severity};
+
+use super::check::Cx;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -36,4 +41,34 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// User M codes already noted as unconfigured.
+    pub(crate) noted: Vec<i64>,
+}
+
+/// RS274/NGC: user M codes M100–M199 against the configured list.
+#[inline(always)]
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
+    let w = cx.w;
+    // User M codes M100–M199 run a program from the configured list.
+    if let Some(&(m, s)) = w.m.iter().find(|(m, _)| (1000..=1990).contains(m)) {
+        let n = i64::from(m / 10);
+        let listed = cx.input.machine.user_m_codes.as_ref();
+        let known = listed.is_some_and(|a| a.contains(&n));
+        // Without a list and without the machine's search path the program file
+        // M<n> may well exist on the machine: say so once per code, go on.
+        if !known && listed.is_none() && !cx.input.resolver.searches_like_the_control() {
+            if !mem.noted.contains(&n) {
+                mem.noted.push(n);
+                cx.diag(codes::UNKNOWN_USER_M, Severity::Info, s, format!("M{n} is a user M code: LinuxCNC runs the program file M{n} from its USER_M_PATH. None is configured here, so the dry run takes it as doing nothing; list the codes the machine has in `machine.user_m_codes` to have the others reported"));
+            }
+        } else if !known {
+            return Err(cx.err(codes::UNKNOWN_USER_M, s, format!("Unknown m code used: M{n}: no user M-code program M{n} is configured; list it in `machine.user_m_codes` or remove it")));
+        }
+    }
+    Ok(())
 }

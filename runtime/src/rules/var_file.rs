@@ -1,6 +1,11 @@
-//! Flow-sensitive rule metadata; the check runs in the interpreter.
+//! Flow-sensitive rule: its metadata and its check, which the interpreter runs
+//! once before the first block (`Interp::spec_input_files`).
 
 use analyzer::declare_rule;
+use analyzer::{Severity, Span};
+
+use super::check::Sink;
+use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -33,4 +38,41 @@ declare_rule! {
         origin: Runtime,
         default_enabled: true,
     }
+}
+
+/// Reports the problems of the LinuxCNC `.var` file the host read.
+pub(crate) fn check(text: &str, out: &mut Sink<'_>) {
+    for (line, msg) in problems(text) {
+        out.diag(
+            codes::VAR_FILE,
+            Severity::Error,
+            Span::default(),
+            format!("parameter file line {line}: {msg}"),
+        );
+    }
+}
+
+/// Problems of a LinuxCNC `.var` file: (1-based line, message).
+fn problems(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut last: Option<u64> = None;
+    for (k, line) in text.lines().enumerate() {
+        let mut it = line.split_whitespace();
+        let Some(n) = it.next() else { continue };
+        let (Ok(n), Some(Ok(_))) = (n.parse::<u64>(), it.next().map(|v| v.parse::<f64>())) else {
+            out.push((
+                k + 1,
+                format!(
+                    "`{}` is not `number value`: LinuxCNC cannot read the parameter file",
+                    line.trim()
+                ),
+            ));
+            continue;
+        };
+        if last.is_some_and(|l| n <= l) {
+            out.push((k + 1, format!("parameter {n} is out of order (after {}): LinuxCNC requires increasing numbers", last.unwrap_or(0))));
+        }
+        last = Some(n);
+    }
+    out
 }

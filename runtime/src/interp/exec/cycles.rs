@@ -67,7 +67,7 @@ impl Interp<'_, '_> {
         let mut cyc = self.st.cycle.clone();
         if let Some(r) = w.get(b'R') {
             cyc.r = Some(self.lin(r));
-            self.chk.cycle_r_seen = true;
+            self.rules.cycle_r_seen = true;
         }
         if let Some(z) = w.get(zl) {
             cyc.z = Some(self.lin(z));
@@ -91,7 +91,7 @@ impl Interp<'_, '_> {
             // initial level, which the dry run then uses as R. After a G80 that
             // cleared an R the programmer may expect the old one (a warning); a
             // program that never gave R chose to start from where the tool is.
-            let (sev, why) = if self.chk.cycle_r_seen {
+            let (sev, why) = if self.rules.cycle_r_seen {
                 (
                     Severity::Warning,
                     "the R of the earlier cycle was cleared by the cancel",

@@ -619,7 +619,7 @@ impl Interp<'_, '_> {
             return Ok(Flow::Stop);
         }
         if w.has_m(20) || w.has_m(300) {
-            let span = Self::m_span(w, if w.has_m(20) { 20 } else { 300 });
+            let span = w.m_span(if w.has_m(20) { 20 } else { 300 });
             self.end_checks(span);
             self.program_end(w.has_m(300));
             self.saw_end = true;

@@ -8,74 +8,7 @@ use super::*;
 impl Interp<'_, '_> {
     /// The end point of a straight move from the block's axis words.
     pub(super) fn target(&self, w: &Words) -> [f64; 6] {
-        let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
-        let mut t = self.st.pos;
-        let inc = self.st.modal.incremental;
-        if self.ngc() && (w.polar_r.is_some() || w.polar_a.is_some()) {
-            // LinuxCNC polar words: radius/angle about the origin of the plane.
-            let (a, b) = self.plane_axes();
-            let (x, y) = (t[a], t[b]);
-            let (r0, th0) = (x.hypot(y), y.atan2(x));
-            let (r, th) = if inc {
-                (
-                    r0 + w.polar_r.map(|v| self.lin(v)).unwrap_or(0.0),
-                    th0 + w.polar_a.unwrap_or(0.0).to_radians(),
-                )
-            } else {
-                (
-                    w.polar_r.map(|v| self.lin(v)).unwrap_or(r0),
-                    w.polar_a.map(f64::to_radians).unwrap_or(th0),
-                )
-            };
-            t[a] = r * th.cos();
-            t[b] = r * th.sin();
-            let n = self.normal_axis();
-            for i in [n, 3, 4, 5] {
-                if let Some(v) = w.get(letters[i]) {
-                    let v = if i < 3 { self.lin(v) } else { v };
-                    t[i] = if inc { t[i] + v } else { v };
-                }
-            }
-            return t;
-        }
-        if self.st.modal.polar && !self.ngc() {
-            let (a, b) = self.plane_axes();
-            let pl = [b'X', b'Y', b'Z'];
-            if w.has(pl[a]) || w.has(pl[b]) {
-                let (r0, t0) = (
-                    self.st.pos[a].hypot(self.st.pos[b]),
-                    self.st.pos[b].atan2(self.st.pos[a]).to_degrees(),
-                );
-                let r = w
-                    .get(pl[a])
-                    .map(|v| self.lin(v))
-                    .map(|v| if inc { r0 + v } else { v })
-                    .unwrap_or(r0);
-                let th = w
-                    .get(pl[b])
-                    .map(|v| if inc { t0 + v } else { v })
-                    .unwrap_or(t0);
-                t[a] = r * th.to_radians().cos();
-                t[b] = r * th.to_radians().sin();
-            }
-            let n = self.normal_axis();
-            if let Some(v) = w.get(pl[n]) {
-                let v = self.lin(v);
-                t[n] = if inc { t[n] + v } else { v };
-            }
-            return t;
-        }
-        for i in 0..6 {
-            if self.st.torque_axes & (1 << i) != 0 {
-                continue;
-            }
-            if let Some(v) = w.get(letters[i]) {
-                let v = if i < 3 { self.lin(v) } else { v };
-                t[i] = if inc { t[i] + v } else { v };
-            }
-        }
-        // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
-        t
+        target_of(&self.st, self.ngc(), w)
     }
 
     /// Normal direction control after the block's motion (at index `i`): the
@@ -1202,4 +1135,77 @@ fn fmt_g4(v: f64) -> String {
     } else {
         s
     }
+}
+
+/// The end point of a straight move from the block's axis words.
+pub(crate) fn target_of(st: &State, ngc: bool, w: &Words) -> [f64; 6] {
+    let lin = |v: f64| v * unit_of(ngc, st.modal.inch);
+    let letters = [b'X', b'Y', b'Z', b'A', b'B', b'C'];
+    let mut t = st.pos;
+    let inc = st.modal.incremental;
+    if ngc && (w.polar_r.is_some() || w.polar_a.is_some()) {
+        // LinuxCNC polar words: radius/angle about the origin of the plane.
+        let (a, b) = st.modal.plane_axes();
+        let (x, y) = (t[a], t[b]);
+        let (r0, th0) = (x.hypot(y), y.atan2(x));
+        let (r, th) = if inc {
+            (
+                r0 + w.polar_r.map(lin).unwrap_or(0.0),
+                th0 + w.polar_a.unwrap_or(0.0).to_radians(),
+            )
+        } else {
+            (
+                w.polar_r.map(lin).unwrap_or(r0),
+                w.polar_a.map(f64::to_radians).unwrap_or(th0),
+            )
+        };
+        t[a] = r * th.cos();
+        t[b] = r * th.sin();
+        let n = st.modal.normal_axis();
+        for i in [n, 3, 4, 5] {
+            if let Some(v) = w.get(letters[i]) {
+                let v = if i < 3 { lin(v) } else { v };
+                t[i] = if inc { t[i] + v } else { v };
+            }
+        }
+        return t;
+    }
+    if st.modal.polar && !ngc {
+        let (a, b) = st.modal.plane_axes();
+        let pl = [b'X', b'Y', b'Z'];
+        if w.has(pl[a]) || w.has(pl[b]) {
+            let (r0, t0) = (
+                st.pos[a].hypot(st.pos[b]),
+                st.pos[b].atan2(st.pos[a]).to_degrees(),
+            );
+            let r = w
+                .get(pl[a])
+                .map(lin)
+                .map(|v| if inc { r0 + v } else { v })
+                .unwrap_or(r0);
+            let th = w
+                .get(pl[b])
+                .map(|v| if inc { t0 + v } else { v })
+                .unwrap_or(t0);
+            t[a] = r * th.to_radians().cos();
+            t[b] = r * th.to_radians().sin();
+        }
+        let n = st.modal.normal_axis();
+        if let Some(v) = w.get(pl[n]) {
+            let v = lin(v);
+            t[n] = if inc { t[n] + v } else { v };
+        }
+        return t;
+    }
+    for i in 0..6 {
+        if st.torque_axes & (1 << i) != 0 {
+            continue;
+        }
+        if let Some(v) = w.get(letters[i]) {
+            let v = if i < 3 { lin(v) } else { v };
+            t[i] = if inc { t[i] + v } else { v };
+        }
+    }
+    // FANUC/ServoWorks incremental addresses U V W on lathes are not modelled.
+    t
 }

@@ -194,19 +194,7 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn tool_diameter(&self, d: Option<f64>) -> f64 {
-        let idx = d.map(|v| v.round() as u32).unwrap_or(self.st.tool);
-        let Some(t) = self.cfg.tools.get(&idx) else {
-            return 0.0;
-        };
-        if self.ngc() && self.cfg.param_unit == 25.4 {
-            // rs274 divides by its external length unit, the rounded constant
-            // 0.03937007874016 (a hair above 1/25.4), then by 25.4 in an inch program:
-            // compensated points at an exact half of the last printed digit round as
-            // they do there.
-            let prog = if self.st.modal.inch { 25.4 } else { 1.0 };
-            return t.diameter / 0.039_370_078_740_16 / prog;
-        }
-        t.diameter * self.pfac()
+        tool_diameter_of(&self.cfg, &self.st, self.ngc(), d)
     }
 
     pub(super) fn exec_tlo(&mut self, w: &Words) -> Result<(), Diagnostic> {
@@ -748,4 +736,21 @@ impl Interp<'_, '_> {
         }
         p
     }
+}
+
+/// The diameter of tool `d` (the tool in the spindle without one) in internal units.
+pub(crate) fn tool_diameter_of(cfg: &MachineCfg, st: &State, ngc: bool, d: Option<f64>) -> f64 {
+    let idx = d.map(|v| v.round() as u32).unwrap_or(st.tool);
+    let Some(t) = cfg.tools.get(&idx) else {
+        return 0.0;
+    };
+    if ngc && cfg.param_unit == 25.4 {
+        // rs274 divides by its external length unit, the rounded constant
+        // 0.03937007874016 (a hair above 1/25.4), then by 25.4 in an inch program:
+        // compensated points at an exact half of the last printed digit round as
+        // they do there.
+        let prog = if st.modal.inch { 25.4 } else { 1.0 };
+        return t.diameter / 0.039_370_078_740_16 / prog;
+    }
+    t.diameter * pfac_of(cfg, ngc, st.modal.inch)
 }

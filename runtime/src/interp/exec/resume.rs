@@ -82,9 +82,9 @@ pub(super) struct Checkpoint {
     main_locals: HashMap<String, f64>,
     limit_reports: u32,
     block_exact: bool,
-    chk: checks::Mem,
+    rules: crate::rules::check::Memory,
+    items: crate::rules::check::BlockItems,
     spline_pq: (f64, f64),
-    spec: spec_checks::SpecMem,
     tlo_drift: [f64; 6],
     feed_override_off: bool,
     inv_rate_set: bool,
@@ -124,10 +124,10 @@ impl Checkpoint {
         c.steps = (c.steps as i64 + d.blocks).max(0) as u64;
         c.st.line = add(c.st.line, d.lines);
         c.cur_line = add(c.cur_line, d.lines);
-        c.chk.shift_spans(|s| shift_span(s, d.bytes));
-        c.spec.shift_spans(|s| shift_span(s, d.bytes));
+        c.rules.shift_spans(|s| shift_span(s, d.bytes));
+        c.items.shift_spans(|s| shift_span(s, d.bytes));
         c.motions = (c.motions as i64 + d.motions).max(0) as usize;
-        c.spec.shift_motion_count(d.motions);
+        c.rules.shift_motion_count(d.motions);
         c
     }
 
@@ -152,9 +152,9 @@ impl Checkpoint {
             && self.main_locals == o.main_locals
             && self.limit_reports == o.limit_reports
             && self.block_exact == o.block_exact
-            && self.chk == o.chk
+            && self.rules == o.rules
+            && self.items == o.items
             && self.spline_pq == o.spline_pq
-            && self.spec == o.spec
             && self.tlo_drift == o.tlo_drift
             && self.feed_override_off == o.feed_override_off
             && self.inv_rate_set == o.inv_rate_set
@@ -266,7 +266,7 @@ fn checkpointed(
     );
     it.values = values.map(|l| RefCell::new(ValueRecord::new(l)));
     if eligible(input) {
-        it.spec.single_pass = true;
+        it.rules.rapid_no_motion.single_pass = true;
         it.out.checkpoints = Checkpoints {
             key: input_key(input, snapshots),
             text: Some(input.program.text.clone()),
@@ -427,7 +427,7 @@ fn resume_from(input: &RunInput<'_>, snapshots: bool, prev: RunOutput, plan: Pla
     let tail_d = diagnostics.split_off(start.diags.min(diagnostics.len()));
     let tail_s = snaps.split_off((start.block as usize).min(snaps.len()));
     let mut it = Interp::new(input, snapshots);
-    it.spec.single_pass = true;
+    it.rules.rapid_no_motion.single_pass = true;
     it.restore(&start);
     it.values = values.map(RefCell::new);
     it.out.diagnostics = diagnostics;
@@ -490,9 +490,9 @@ impl Interp<'_, '_> {
             main_locals: self.main_locals.clone(),
             limit_reports: self.limit_reports,
             block_exact: self.block_exact,
-            chk: self.chk.clone(),
+            rules: self.rules.clone(),
+            items: self.items.clone(),
             spline_pq: self.spline_pq,
-            spec: self.spec.clone(),
             tlo_drift: self.tlo_drift,
             feed_override_off: self.feed_override_off,
             inv_rate_set: self.inv_rate_set,
@@ -514,9 +514,9 @@ impl Interp<'_, '_> {
         self.main_locals = c.main_locals.clone();
         self.limit_reports = c.limit_reports;
         self.block_exact = c.block_exact;
-        self.chk = c.chk.clone();
+        self.rules = c.rules.clone();
+        self.items = c.items.clone();
         self.spline_pq = c.spline_pq;
-        self.spec = c.spec.clone();
         self.tlo_drift = c.tlo_drift;
         self.feed_override_off = c.feed_override_off;
         self.inv_rate_set = c.inv_rate_set;
