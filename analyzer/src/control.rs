@@ -87,6 +87,7 @@ enum Sign {
     LetterVariable,
     QuoteComment,
     NotEqual,
+    StringLiteral,
 }
 
 impl Sign {
@@ -102,7 +103,8 @@ impl Sign {
 /// The other-macro-language signs in one block's text, outside `( )` comments:
 /// `//` comments and `@100` variables (LNC, Syntec), names with `_` (`END_IF`,
 /// `MSG_OK`), a `%@MACRO` header (Syntec), `#V1`/`#R4` variables and `'`
-/// comments (Fadal), `!=`. Each as (sign, byte offset in the block, length).
+/// comments (Fadal), `!=`, `"…"` strings (`#PRINT "…"`, `G65 "NAME"`). Each as
+/// (sign, byte offset in the block, length).
 fn text_signs(text: &[u8]) -> Vec<(Sign, usize, usize)> {
     let mut out = Vec::new();
     let mut depth = 0u32;
@@ -133,6 +135,15 @@ fn text_signs(text: &[u8]) -> Vec<(Sign, usize, usize)> {
             b'%' if text[i..].starts_with(b"%@MACRO") => out.push((Sign::MacroHeader, i, 7)),
             b'@' if at(i + 1).is_ascii_digit() => out.push((Sign::AtVariable, i, name_len(i))),
             b'!' if at(i + 1) == b'=' => out.push((Sign::NotEqual, i, 2)),
+            b'"' => {
+                let len = text[i + 1..]
+                    .iter()
+                    .position(|c| *c == b'"')
+                    .map_or(text.len() - i, |p| p + 2);
+                out.push((Sign::StringLiteral, i, len));
+                i += len;
+                continue;
+            }
             b'#' if at(i + 1).is_ascii_alphabetic() => {
                 out.push((Sign::LetterVariable, i, name_len(i)))
             }
@@ -392,9 +403,12 @@ mod tests {
         assert_eq!(s.control, Control::OtherMacro);
         assert_eq!(
             s.describe(),
-            "// on line 2, @100 on line 3, != on line 4, END_IF on line 5"
+            "\"PROBECONFIG\" on line 1, // on line 2, @100 on line 3, != on line 4, END_IF on line 5"
         );
-        // Fadal Format 2: `#V` variables and `'` comments.
+        // Fadal Format 2: `#` statements and strings, `#V` variables and `'` comments.
+        let s =
+            sig("%\nN0 O9999 (CHOOSER)\n#PRINT \"Select:\"\n#INPUT V10\nM30\n%\n").expect("Fadal");
+        assert_eq!(s.describe(), "#PRINT on line 3, \"Select:\" on line 3");
         let s = sig("%\nO9101\n#V10 = 1 'TOOL NUMBER\n#R4 = V12\nM30\n%\n").expect("Fadal");
         assert_eq!(s.control, Control::OtherMacro);
         assert_eq!(s.describe(), "#V10 on line 3, ' on line 3");
