@@ -12,9 +12,12 @@ declare_rule! {
     /// Recognises a FANUC or Haas lathe program (a `T0101` tool and offset, `G50 S`
     /// speed clamp, `G70`/`G71`/`G72` with `P`/`Q`, `G28 U W`, `G99` feed per revolution)
     /// or a Haas mill program (`G187`, `G103`, a 5-digit O number, `G04 P1.` in seconds,
-    /// `M97`, `G154 P`) checked in the `fanuc` dialect, from two signs of different kinds,
-    /// and reports it once, at the first sign. Every other finding of the file is dropped
-    /// and the program is not interpreted.
+    /// `M97`, `G154 P`), or a program in another control's macro language (LNC 6800,
+    /// Syntec, Fadal Format 2: `//` comments, `@100` variables, names such as `END_IF`,
+    /// a `%@MACRO` header, `#V10` or `#PRINT`, `'` comments, `!=`, `"…"` strings) checked
+    /// in the `fanuc` dialect, from two signs of different kinds, and reports it once, at
+    /// the first sign. Every other finding of the file is dropped and the program is not
+    /// interpreted.
     ///
     /// ## Why is this bad?
     /// The `fanuc` dialect models the FANUC 30i mill. A lathe program read as a mill
@@ -51,7 +54,7 @@ declare_rule! {
     pub static CONTROL_MISMATCH = {
         code: "P010",
         name: "control-mismatch",
-        summary: "Program for a lathe or Haas mill checked as a FANUC 30i mill program",
+        summary: "Program for a lathe, a Haas mill or another macro language checked as a FANUC 30i mill program",
         implements: &[],
         origin: Static,
         default_enabled: true,
