@@ -23,13 +23,15 @@ pub enum Control {
 }
 
 impl Control {
-    /// How the diagnostic names the control.
+    /// How the diagnostic names the program.
     pub fn name(self) -> &'static str {
         match self {
-            Control::Lathe { haas: true } => "a Haas lathe",
-            Control::Lathe { haas: false } => "a FANUC or Haas lathe",
-            Control::HaasMill => "a Haas mill",
-            Control::OtherMacro => "another control's macro language (LNC, Syntec or Fadal)",
+            Control::Lathe { haas: true } => "a Haas lathe program",
+            Control::Lathe { haas: false } => "a FANUC or Haas lathe program",
+            Control::HaasMill => "a Haas mill program",
+            Control::OtherMacro => {
+                "a program in another control's language (LNC, Syntec, Fadal, LinuxCNC, …)"
+            }
         }
     }
 }

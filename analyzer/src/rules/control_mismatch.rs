@@ -70,13 +70,13 @@ pub fn mismatch_diagnostic(program: &Program) -> Option<Diagnostic> {
     let what = match sig.control {
         Control::Lathe { .. } => "lathe programs",
         Control::HaasMill => "Haas mill programs",
-        Control::OtherMacro => "programs in other macro languages",
+        Control::OtherMacro => "programs in other languages",
     };
     Some(Diagnostic::warning(
         CONTROL_MISMATCH.code,
         first.span,
         format!(
-            "This looks like {} program ({}): Partscope checks FANUC 30i mill programs; {what} are not checked. No other finding and no cycle time is reported for this file.",
+            "This looks like {} ({}): Partscope checks FANUC 30i mill programs; {what} are not checked. No other finding and no cycle time is reported for this file.",
             sig.control.name(),
             sig.describe()
         ),
