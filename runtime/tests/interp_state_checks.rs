@@ -33,6 +33,23 @@ fn inverse_time_vectors() {
     assert!(found(&out, "F009").is_empty(), "{:?}", out.diagnostics);
 }
 
+/// M3 with no S is one fault however often the program turns the spindle (or a
+/// sprayer's valve) on and off: reported at the first M3, and again only after an
+/// S word set the speed to 0 once more.
+#[test]
+fn m3_at_s0_is_reported_once_until_an_s_word() {
+    let out = run_ngc("G1 M3 X1 F100\nM5\nG1 M3 X2\nM5\nM4\nS0 M3\nM5\nS1000 M3\nM2\n");
+    let lines: Vec<u32> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "F010")
+        .map(|d| d.span.start)
+        .collect();
+    assert_eq!(lines.len(), 2, "{:?}", out.diagnostics);
+    let text = "G1 M3 X1 F100\nM5\nG1 M3 X2\nM5\nM4\nS0 M3\n";
+    assert_eq!(lines, vec![3, text.len() as u32 - 3]);
+}
+
 #[test]
 fn spindle_vectors() {
     // NGC220 / NGC338: G33 and G76 need the spindle turning.

@@ -82,7 +82,7 @@ impl<'a> Interp<'a, '_> {
         let cx = &mut cx;
         comp_conflict::check(cx)?;
         inverse_time::check(cx)?;
-        spindle_stopped::check(cx)?;
+        spindle_stopped::check(cx, &mut mem.spindle_stopped)?;
         cycle_hygiene::check(cx, &mut mem.cycle_hygiene)?;
         tool_offset_state::check(cx, &mut mem.tool_offset_state)?;
         coordinate_mode::check(cx)?;

@@ -17,8 +17,8 @@ use crate::interp::{MachineCfg, RunInput, State, Words};
 
 use super::{
     arc_uvw_plane, comp_motion, context_restore, cycle_hygiene, feed_spindle_off, involute,
-    no_effect, polar_interp, rapid_no_motion, rotary_only_feed, tlc_type, tool_offset_state,
-    trc_lookahead, unknown_user_m,
+    no_effect, polar_interp, rapid_no_motion, rotary_only_feed, spindle_stopped, tlc_type,
+    tool_offset_state, trc_lookahead, unknown_user_m,
 };
 
 /// Axis letters whose words (and bare letters) the checks look at.
@@ -219,6 +219,7 @@ pub(crate) struct Memory {
     pub(crate) context_restore: context_restore::Mem,
     pub(crate) feed_spindle_off: feed_spindle_off::Mem,
     pub(crate) rapid_no_motion: rapid_no_motion::Mem,
+    pub(crate) spindle_stopped: spindle_stopped::Mem,
 }
 
 impl Memory {

@@ -44,11 +44,22 @@ declare_rule! {
     }
 }
 
+/// What the check remembers between blocks.
+#[derive(Debug, Default, Clone, PartialEq)]
+pub(crate) struct Mem {
+    /// An M3/M4 at S0 was reported and no S word has come since: the next ones
+    /// are the same fault (a sprayer's program turns M3/M5 on every pass).
+    s0_reported: bool,
+}
+
 /// Spindle state against spindle-synchronised motion and canned cycles.
 /// Also reports C005 (cycle-spindle) for FANUC and ServoWorks cycles.
 #[inline(always)]
-pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
+    if w.has(b'S') {
+        mem.s0_reported = false;
+    }
     let ngc = cx.ngc();
     let speed = w.get(b'S').unwrap_or(st.spindle);
     let dir = if w.has_m(30) {
@@ -60,21 +71,20 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     } else {
         st.spindle_dir
     };
-    if ngc && speed <= 0.0 {
-        for m in [30u32, 40] {
-            if w.has_m(m) {
-                let s = w.m_span(m);
-                cx.diag(
-                    codes::SPINDLE_STOPPED,
-                    Severity::Warning,
-                    s,
-                    format!(
-                        "M{} starts the spindle with speed S0: program S before or with M{}",
-                        m / 10,
-                        m / 10
-                    ),
-                );
-            }
+    if ngc && speed <= 0.0 && !mem.s0_reported {
+        if let Some(m) = [30u32, 40].into_iter().find(|m| w.has_m(*m)) {
+            mem.s0_reported = true;
+            let s = w.m_span(m);
+            cx.diag(
+                codes::SPINDLE_STOPPED,
+                Severity::Warning,
+                s,
+                format!(
+                    "M{} starts the spindle with speed S0: program S before or with M{} (later M3/M4 before an S word are the same fault and not reported again)",
+                    m / 10,
+                    m / 10
+                ),
+            );
         }
     }
     let motion = cx.motion;
