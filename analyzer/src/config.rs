@@ -43,8 +43,7 @@ impl ConfigIssue {
     pub fn diagnostic(&self) -> crate::Diagnostic {
         let span = self.span.clone().unwrap_or(0..0);
         let at = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
-        crate::Diagnostic::new(
-            crate::rules::CONFIG_ISSUE.code,
+        crate::rules::CONFIG_ISSUE.diagnostic(
             self.severity,
             crate::Span::new(at(span.start), at(span.end)),
             self.message.clone(),

@@ -25,6 +25,8 @@ pub use span::{LineIndex, Span};
 
 use std::sync::Arc;
 
+use rules::syntax_rules::{IO_ERROR, NOT_TEXT};
+
 /// The result of the static analysis of one file.
 #[derive(Debug, Clone)]
 pub struct Analysis {
@@ -119,14 +121,14 @@ pub fn reports_l009(parsed: &Parsed, settings: &Settings) -> bool {
     let l009: Vec<Diagnostic> = parsed
         .diagnostics
         .iter()
-        .filter(|d| d.code == "L009")
+        .filter(|d| d.code == NOT_TEXT.code)
         .cloned()
         .collect();
     !l009.is_empty() && !finish(&parsed.program, settings, l009).is_empty()
 }
 
 /// The code of [`rules::control_mismatch`]: a lathe or Haas program in the `fanuc` dialect.
-const MISMATCH: &str = "P010";
+const MISMATCH: &str = rules::control_mismatch::CONTROL_MISMATCH.code;
 
 /// Whether [`analyze`] would report `P010` (the program looks written for a lathe or a
 /// Haas mill, and the report is neither disabled nor suppressed): hosts then skip the
@@ -155,7 +157,10 @@ pub fn finish(
     // LinuxCNC stops reading at a top-level M2/M30: syntax errors in the text after it
     // can never stop the program (spec NGC026; P006 reports the dead text as info).
     let dead_syntax = |d: &Diagnostic| {
-        d.file == FileId(0) && d.code.starts_with('L') && d.code != "L009" && d.code != "L000"
+        d.file == FileId(0)
+            && d.code.starts_with('L')
+            && d.code != NOT_TEXT.code
+            && d.code != IO_ERROR.code
     };
     if program.dialect == Dialect::Rs274ngc && diagnostics.iter().any(dead_syntax) {
         let dead = rules::util::dead_blocks(program);
@@ -308,8 +313,7 @@ pub fn limit_diagnostics(diagnostics: Vec<Diagnostic>, settings: &Settings) -> V
 pub(crate) fn utf8_check(text: &[u8]) -> Option<Diagnostic> {
     let e = std::str::from_utf8(text).err()?;
     let at = e.valid_up_to() as u32;
-    Some(Diagnostic::warning(
-        "L009",
+    Some(NOT_TEXT.warning(
         Span::new(at, at + e.error_len().unwrap_or(1) as u32),
         "the file is not valid UTF-8 (saved in a legacy code page?); text around here may show garbled",
     ))
@@ -350,8 +354,7 @@ pub(crate) fn binary_check(text: &[u8]) -> Option<Diagnostic> {
     }
     if let Some(order) = utf16_order(head) {
         let bom = head.starts_with(&[0xFF, 0xFE]) || head.starts_with(&[0xFE, 0xFF]);
-        return Some(Diagnostic::error(
-            "L009",
+        return Some(NOT_TEXT.error(
             Span::new(0, if bom { 2 } else { 1 }),
             format!(
                 "the file is UTF-16 ({order}) text, which no control reads; save it as ASCII or \
@@ -366,8 +369,7 @@ pub(crate) fn binary_check(text: &[u8]) -> Option<Diagnostic> {
         .count();
     if nul.is_some() || odd * 10 > head.len() {
         let at = nul.unwrap_or(0) as u32;
-        return Some(Diagnostic::error(
-            "L009",
+        return Some(NOT_TEXT.error(
             Span::new(at, at + 1),
             "this is a binary file, not a part program; it was not analysed",
         ));

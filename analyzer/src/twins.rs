@@ -4,6 +4,8 @@
 //! at the same text. Hosts reach it through [`crate::finish`] and [`crate::merge`].
 
 use crate::diagnostic::{Diagnostic, FileId};
+use crate::rules::registry as reg;
+use crate::rules::syntax_rules as syn;
 use crate::span::Span;
 
 /// The note the interpreter appends to an error after which it cannot go on.
@@ -27,138 +29,138 @@ pub struct Twin {
 /// one stays.
 pub const TWINS: &[Twin] = &[
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "A005",
         fault: "an arc without R or I/J/K",
     },
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "X003",
         fault: "a code without a word it needs (G4 without P, …)",
     },
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "C003",
         fault: "a canned cycle without a word it needs (G76 without P, …)",
     },
     Twin {
-        keep: "W015",
+        keep: reg::CONSTANT_EXPRESSION.code,
         drop: "X001",
         fault: "a constant expression that cannot be evaluated",
     },
     Twin {
-        keep: "L003",
-        drop: "L010",
+        keep: syn::MISSING_VALUE.code,
+        drop: syn::BAD_EXPRESSION.code,
         fault: "a `#` without a parameter",
     },
     Twin {
-        keep: "P006",
+        keep: reg::UNREACHABLE_AFTER_END.code,
         drop: "F005",
         fault: "code after M2/M30",
     },
     Twin {
-        keep: "P005",
+        keep: reg::PROGRAM_END.code,
         drop: "F006",
         fault: "a program without an end",
     },
     Twin {
-        keep: "L011",
+        keep: syn::MISPLACED_PERCENT.code,
         drop: "X003",
         fault: "a `%` that is not a program end",
     },
     Twin {
-        keep: "L011",
-        drop: "P005",
+        keep: syn::MISPLACED_PERCENT.code,
+        drop: reg::PROGRAM_END.code,
         fault: "a closing `%` without an opening one, read as the missing end",
     },
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "C002",
         fault: "a peck cycle without Q",
     },
     Twin {
-        keep: "W007",
+        keep: reg::WORD_VALUE_RANGE.code,
         drop: "C002",
         fault: "a negative peck depth Q",
     },
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "F002",
         fault: "M98 or G65 without P",
     },
     Twin {
-        keep: "W003",
+        keep: reg::MISSING_REQUIRED_WORD.code,
         drop: "F011",
         fault: "a probe or motion code without axis words",
     },
     Twin {
-        keep: "W002",
+        keep: reg::CONFLICTING_WORDS.code,
         drop: "A005",
         fault: "an arc with both R and I/J/K",
     },
     Twin {
-        keep: "W002",
+        keep: reg::CONFLICTING_WORDS.code,
         drop: "X008",
         fault: "a D peck clearance LinuxCNC 2.9 does not accept",
     },
     Twin {
-        keep: "W005",
+        keep: reg::UNKNOWN_ADDRESS.code,
         drop: "X003",
         fault: "a word letter the machine or profile does not have",
     },
     Twin {
-        keep: "W007",
+        keep: reg::WORD_VALUE_RANGE.code,
         drop: "X002",
         fault: "a minus sign on an M or G code",
     },
     Twin {
-        keep: "W007",
+        keep: reg::WORD_VALUE_RANGE.code,
         drop: "T007",
         fault: "a negative offset number",
     },
     Twin {
-        keep: "G004",
+        keep: reg::UNKNOWN_CODE.code,
         drop: "X002",
         fault: "a G code that does not exist",
     },
     Twin {
-        keep: "W016",
+        keep: reg::PARAMETER_NUMBER.code,
         drop: "X001",
         fault: "a write to a read-only parameter",
     },
     Twin {
-        keep: "W017",
+        keep: reg::EXPRESSION_FORM.code,
         drop: "X001",
         fault: "EXISTS without a parameter",
     },
     Twin {
-        keep: "W020",
+        keep: reg::CYCLE_WORDS.code,
         drop: "X003",
         fault: "M98 in a block with a canned cycle's axis words",
     },
     Twin {
-        keep: "P001",
+        keep: reg::OWORD_STRUCTURE.code,
         drop: "F007",
         fault: "an O-word statement closing or returning from the wrong block",
     },
     Twin {
-        keep: "P002",
+        keep: reg::MACRO_LOOP_STRUCTURE.code,
         drop: "F007",
         fault: "an END without its DO",
     },
     Twin {
-        keep: "P003",
+        keep: reg::GOTO_TARGET.code,
         drop: "F007",
         fault: "a GOTO to a sequence number that does not exist",
     },
     Twin {
-        keep: "P008",
-        drop: "L005",
+        keep: reg::OWORD_CALLS.code,
+        drop: syn::UNKNOWN_CHARACTER.code,
         fault: "an O-word label written with the digit 0",
     },
     Twin {
-        keep: "P008",
-        drop: "L003",
+        keep: reg::OWORD_CALLS.code,
+        drop: syn::MISSING_VALUE.code,
         fault: "an O-word label written with the digit 0 (its keyword read as words)",
     },
     Twin {

@@ -86,8 +86,7 @@ impl Rule for AxisWordConflict {
             };
             let (gname, mname) = (code_name(d, 'G', gn), code_name(d, 'G', mn));
             let diag = if d == Dialect::Rs274ngc {
-                Diagnostic::error(
-                    "W004",
+                AXIS_WORD_CONFLICT.error(
                     m.span,
                     format!("Cannot use two G codes that both use axis values: {gname} and {mname} both take the axis words of this line. Put {mname} on its own line."),
                 )
@@ -99,9 +98,9 @@ impl Rule for AxisWordConflict {
                 // `G91 G28 G00 X0 Y0` is a shop idiom: G28 moves at rapid anyway and
                 // the G00 only sets the mode, so nothing the block says is lost.
                 if mn.0 == 0 && matches!(gn.0, 280 | 300) {
-                    Diagnostic::info("W004", m.span, text)
+                    AXIS_WORD_CONFLICT.info(m.span, text)
                 } else {
-                    Diagnostic::warning("W004", m.span, text)
+                    AXIS_WORD_CONFLICT.warning(m.span, text)
                 }
             };
             out.push(diag.with_related(g0.span, "group-00 code that uses the axis words"));
@@ -110,8 +109,7 @@ impl Rule for AxisWordConflict {
         if d == Dialect::Rs274ngc && !is_emc2(cx.settings) {
             if let (Some(tlo), Some(m)) = (cx.codes.iter().find(|c| c.is('G', 431)), motion) {
                 out.push(
-                    Diagnostic::error(
-                        "W004",
+                    AXIS_WORD_CONFLICT.error(
                         m.span,
                         "G43.1 takes the axis words of this line as tool offsets, so motion on the same line is refused. Put the move on the next line.",
                     )
@@ -126,8 +124,7 @@ impl Rule for AxisWordConflict {
             if let Some(g80) = cx.codes.iter().find(|c| c.is('G', 800)) {
                 if motion.is_none() && !modern_axis_users {
                     out.push(
-                        Diagnostic::error(
-                            "W004",
+                        AXIS_WORD_CONFLICT.error(
                             axis.span,
                             "Cannot use axis values with G80: G80 cancels the motion mode, so nothing on this line uses the axis words. Remove them, or add the motion code that should use them.",
                         )

@@ -101,11 +101,7 @@ impl Rule for BlockTooLong {
                     Dialect::Servoworks => format!("Line is {len} characters long; ServoWorks blocks are limited to 85. Split the line or shorten its comment."),
                     _ => format!("Command too long: the line has {len} characters and LinuxCNC reads at most {limit}{}. Split it into several lines.", if crlf { " with a CR LF ending" } else { "" }),
                 };
-                out.push(Diagnostic::error(
-                    "W011",
-                    Span::new(start as u32, end as u32),
-                    msg,
-                ));
+                out.push(BLOCK_TOO_LONG.error(Span::new(start as u32, end as u32), msg));
             }
             start = match nl {
                 Some(i) if crlf => i + 2,

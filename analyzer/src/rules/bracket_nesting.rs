@@ -83,8 +83,7 @@ impl Rule for BracketNesting {
                         depth += 1;
                         if depth > MAX_DEPTH {
                             let end = tokens.get(i + 1).map_or(t.start + 1, |n| n.start);
-                            out.push(Diagnostic::error(
-                                "W014",
+                            out.push(BRACKET_NESTING.error(
                                 Span::new(t.start, end),
                                 "Brackets nested more than five levels deep: Custom Macro B evaluates at most five (alarm PS0118). Compute part of the expression into a variable first.",
                             ));

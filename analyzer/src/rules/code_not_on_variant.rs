@@ -95,7 +95,7 @@ impl Rule for CodeNotOnVariant {
                     v.as_str()
                 ),
             };
-            out.push(Diagnostic::error("G005", c.span, msg));
+            out.push(CODE_NOT_ON_VARIANT.error(c.span, msg));
         }
     }
 }

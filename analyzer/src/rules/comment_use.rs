@@ -125,7 +125,7 @@ impl Rule for CommentUse {
             let active = !matches!(kind, CommentKind::Plain | CommentKind::Partscope);
             if active && n + 1 < comments.len() {
                 out.push(
-                    Diagnostic::new("W019", Severity::Info, item.span, "Only the last comment of a line is used: this active comment is disabled by the comment after it. Move the other comment to its own line.")
+                    COMMENT_USE.diagnostic(Severity::Info, item.span, "Only the last comment of a line is used: this active comment is disabled by the comment after it. Move the other comment to its own line.")
                         .with_related(comments[n + 1].0.span, "later comment"),
                 );
             }
@@ -150,8 +150,7 @@ impl Rule for CommentUse {
                 if let Some(kw) =
                     kw.filter(|k| !matches!(**k, "logclose" | "probeopen" | "probeclose"))
                 {
-                    out.push(Diagnostic::warning(
-                        "W019",
+                    out.push(COMMENT_USE.warning(
                         item.span,
                         format!("This looks like a `{}` comment but is an ordinary one: the keyword must be followed directly by a comma, as in `({},text)`.", kw.to_uppercase(), kw.to_uppercase()),
                     ));
@@ -164,8 +163,7 @@ impl Rule for CommentUse {
                 )
             {
                 if let Some(f) = bad_format(&text) {
-                    out.push(Diagnostic::warning(
-                        "W019",
+                    out.push(COMMENT_USE.warning(
                         item.span,
                         format!("Unknown format `{f}`: LinuxCNC knows %d, %f, %lf and %.Nf and prints anything else literally."),
                     ));
@@ -174,7 +172,7 @@ impl Rule for CommentUse {
         }
         if modern && items.iter().any(|i| matches!(i.kind, ItemKind::OWord(_))) {
             if let Some((c, _)) = comments.first() {
-                out.push(Diagnostic::info("W019", c.span, "A comment on an O-word line is undefined behaviour in LinuxCNC. Put the comment on its own line."));
+                out.push(COMMENT_USE.info(c.span, "A comment on an O-word line is undefined behaviour in LinuxCNC. Put the comment on its own line."));
             }
         }
     }

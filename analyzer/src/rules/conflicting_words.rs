@@ -78,13 +78,11 @@ impl Rule for ConflictingWords {
         if let Some(arc) = first_g(cx, &[20, 30]) {
             if let (Some((r, _)), Some(c)) = (word_item(cx, b'R'), ijk(cx)) {
                 let diag = match d {
-                    Dialect::Fanuc => Diagnostic::warning(
-                        "W002",
+                    Dialect::Fanuc => CONFLICTING_WORDS.warning(
                         r.span,
                         "Arc with both R and I/J/K: FANUC uses R and ignores the centre offsets, so the arc may differ from the one I/J/K describe. Keep one form.",
                     ),
-                    _ => Diagnostic::error(
-                        "W002",
+                    _ => CONFLICTING_WORDS.error(
                         r.span,
                         "Arc with both a radius R and centre offsets I/J/K: the control refuses the block. Keep one form (I/J/K is more accurate near 180°).",
                     ),
@@ -95,8 +93,7 @@ impl Rule for ConflictingWords {
                 );
             }
             if d == Dialect::Rs274ngc && !super::util::is_emc2(cx.settings) && has(cx, 'G', 40) {
-                out.push(Diagnostic::error(
-                    "W002",
+                out.push(CONFLICTING_WORDS.error(
                     arc.span,
                     "G4 and an arc on one line both use P (dwell time / number of turns), so LinuxCNC refuses the line. Put the dwell on its own line.",
                 ));
@@ -106,8 +103,7 @@ impl Rule for ConflictingWords {
             if let (Some(arc), Some(comp)) = (first_g(cx, &[20, 30]), first_g(cx, &[400, 410, 420]))
             {
                 out.push(
-                    Diagnostic::error(
-                        "W002",
+                    CONFLICTING_WORDS.error(
                         comp.span,
                         "Cutter compensation cannot start or end in a G02/G03 block (alarm PS0034). Start and cancel it on a straight G00/G01 move.",
                     )
@@ -118,8 +114,7 @@ impl Rule for ConflictingWords {
         if d == Dialect::Rs274ngc {
             if let (Some(g33), Some((f, _))) = (first_g(cx, &[330, 331]), word_item(cx, b'F')) {
                 out.push(
-                    Diagnostic::error(
-                        "W002",
+                    CONFLICTING_WORDS.error(
                         f.span,
                         "F on a spindle-synchronised line: the feed of G33/G33.1 comes from K and the spindle speed, so F is refused. Remove it.",
                     )
@@ -130,8 +125,7 @@ impl Rule for ConflictingWords {
                 if let (Some(peck), Some((dw, _))) = (first_g(cx, &[730, 830]), word_item(cx, b'D'))
                 {
                     out.push(
-                        Diagnostic::warning(
-                            "W002",
+                        CONFLICTING_WORDS.warning(
                             dw.span,
                             "A D peck clearance in G73/G83 exists only in LinuxCNC development versions; 2.9 does not accept it. Remove it.",
                         )
@@ -148,7 +142,7 @@ impl Rule for ConflictingWords {
                     } else {
                         "G43.2 needs H (a tool whose offset is added) or axis words (the offsets to add)."
                     };
-                    out.push(Diagnostic::error("W002", tcp.span, msg));
+                    out.push(CONFLICTING_WORDS.error(tcp.span, msg));
                 }
             }
         }
@@ -165,8 +159,7 @@ impl Rule for ConflictingWords {
                     .into_iter()
                     .find_map(|l| word_item(cx, l)),
             ) {
-                out.push(Diagnostic::warning(
-                    "W002",
+                out.push(CONFLICTING_WORDS.warning(
                     a.span,
                     "This G10 category is documented only in the `G10 L… P… R…` form; the X/Y/Z form may not be supported. Write it in the P/R form.",
                 ));
@@ -177,8 +170,7 @@ impl Rule for ConflictingWords {
                 .into_iter()
                 .find_map(|l| word_item(cx, l))
             {
-                out.push(Diagnostic::warning(
-                    "W002",
+                out.push(CONFLICTING_WORDS.warning(
                     a.span,
                     "G10 with both the P/R form and axis words: the manual documents them as separate formats. Use `G10 L… P… R…` or `G10 L… X… Y… Z…`.",
                 ));
@@ -190,8 +182,7 @@ impl Rule for ConflictingWords {
                 .find(|(i, w)| w.letter != b'G' && w.letter != b'N' && i.span != ndc.span);
             if let Some((i, _)) = extra {
                 out.push(
-                    Diagnostic::warning(
-                        "W002",
+                    CONFLICTING_WORDS.warning(
                         i.span,
                         format!(
                             "`{}` in a normal-direction-control block: the manual lists no parameters for G41.1/G42.1, so the word is probably ignored. Put it on another line.",
@@ -205,8 +196,7 @@ impl Rule for ConflictingWords {
         if has(cx, 'G', 510) {
             if let (Some((p, _)), Some(c)) = (word_item(cx, b'P'), ijk(cx)) {
                 out.push(
-                    Diagnostic::error(
-                        "W002",
+                    CONFLICTING_WORDS.error(
                         p.span,
                         "G51 with both P (one factor for all axes) and I/J/K (per-axis factors): the control refuses it. Use P alone, or I/J/K alone.",
                     )
@@ -217,8 +207,7 @@ impl Rule for ConflictingWords {
         if has(cx, 'G', 40) {
             if let (Some((p, _)), Some((x, _))) = (word_item(cx, b'P'), word_item(cx, b'X')) {
                 out.push(
-                    Diagnostic::warning(
-                        "W002",
+                    CONFLICTING_WORDS.warning(
                         x.span,
                         "G04 with both P (milliseconds) and X (seconds): the manual does not say which one wins. Keep one of them.",
                     )

@@ -56,11 +56,8 @@ struct Eval<'a> {
 
 impl Eval<'_> {
     fn fail(&mut self, id: ExprId, msg: &str) -> Option<f64> {
-        self.out.push(Diagnostic::error(
-            "W015",
-            self.p.expr(id).span,
-            msg.to_string(),
-        ));
+        self.out
+            .push(CONSTANT_EXPRESSION.error(self.p.expr(id).span, msg.to_string()));
         None
     }
 

@@ -72,8 +72,7 @@ pub fn mismatch_diagnostic(program: &Program) -> Option<Diagnostic> {
         Control::HaasMill => "Haas mill programs",
         Control::OtherMacro => "programs in other languages",
     };
-    Some(Diagnostic::warning(
-        CONTROL_MISMATCH.code,
+    Some(CONTROL_MISMATCH.warning(
         first.span,
         format!(
             "This looks like {} ({}): Partscope checks FANUC 30i mill programs; {what} are not checked. No other finding and no cycle time is reported for this file.",

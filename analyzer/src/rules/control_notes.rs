@@ -67,7 +67,7 @@ impl Rule for ControlNotes {
 
     fn check_block(&self, cx: &BlockCx<'_>, out: &mut Vec<Diagnostic>) {
         let note = |out: &mut Vec<Diagnostic>, span, msg: &str| {
-            out.push(Diagnostic::info("W023", span, msg.to_string()))
+            out.push(CONTROL_NOTES.info(span, msg.to_string()))
         };
         match cx.program.dialect {
             Dialect::Servoworks => {

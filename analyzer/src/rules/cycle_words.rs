@@ -86,7 +86,7 @@ impl Rule for CycleWords {
                 for l in unused {
                     if let Some((i, _)) = word_item(cx, *l) {
                         out.push(
-                            Diagnostic::warning("W020", i.span, format!("{name} does not use {}: the word is ignored here but stays as modal data for later cycles.", *l as char))
+                            CYCLE_WORDS.warning(i.span, format!("{name} does not use {}: the word is ignored here but stays as modal data for later cycles.", *l as char))
                                 .with_related(cycle.span, "canned cycle"),
                         );
                     }
@@ -99,7 +99,7 @@ impl Rule for CycleWords {
                     .find(|(_, w)| matches!(w.letter, b'A' | b'B' | b'C'))
                 {
                     out.push(
-                        Diagnostic::error("W020", i.span, format!("{} axis word in a canned-cycle line: LinuxCNC does not move rotary axes in cycles. Move it to its own line.", w.letter_char()))
+                        CYCLE_WORDS.error(i.span, format!("{} axis word in a canned-cycle line: LinuxCNC does not move rotary axes in cycles. Move it to its own line.", w.letter_char()))
                             .with_related(cycle.span, "canned cycle"),
                     );
                 }
@@ -110,12 +110,11 @@ impl Rule for CycleWords {
                     .words()
                     .find(|(_, w)| matches!(w.letter, b'U' | b'V' | b'W'));
                 if let (false, Some(_), Some((i, _))) = (emc2, xyz, uvw) {
-                    out.push(Diagnostic::error("W020", i.span, "X/Y/Z and U/V/W words mixed in a canned cycle: a cycle works on one set of axes."));
+                    out.push(CYCLE_WORDS.error(i.span, "X/Y/Z and U/V/W words mixed in a canned cycle: a cycle works on one set of axes."));
                 }
                 let undefined = matches!(num.0, 870 | 880) || (emc2 && num.0 == 840);
                 if undefined {
-                    out.push(Diagnostic::warning(
-                        "W020",
+                    out.push(CYCLE_WORDS.warning(
                         cycle.span,
                         format!("The behaviour of {name} is not fully defined by RS274/NGC (it depends on manual spindle and operator steps); check it on the machine before relying on it."),
                     ));
@@ -124,7 +123,7 @@ impl Rule for CycleWords {
             Dialect::Fanuc => {
                 if let Some(m98) = cx.codes.iter().find(|c| c.is('M', 980)) {
                     out.push(
-                        Diagnostic::error("W020", m98.span, "M98 in a canned-cycle block: while a cycle is active the subprogram call must be a block of its own.")
+                        CYCLE_WORDS.error(m98.span, "M98 in a canned-cycle block: while a cycle is active the subprogram call must be a block of its own.")
                             .with_related(cycle.span, "canned cycle"),
                     );
                 }

@@ -93,8 +93,7 @@ impl Rule for DlaccForm {
                     new_text: format!(" P{on}"),
                 },
             };
-            let d = Diagnostic::warning(
-                "W008",
+            let d = DLACC_FORM.warning(
                 c.span,
                 format!("{name} with {got} is ignored: look-ahead is switched only by `{name} P{on}` (on) or `{name} P0` (off)."),
             );

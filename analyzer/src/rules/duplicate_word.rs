@@ -98,14 +98,12 @@ impl Rule for DuplicateWord {
             };
             let text = cx.program.str_of(item.span).into_owned();
             let diag = match d {
-                Dialect::Rs274ngc => Diagnostic::error(
-                    "W001",
+                Dialect::Rs274ngc => DUPLICATE_WORD.error(
                     item.span,
                     format!("Multiple {l} words on one line: each letter may appear once. Remove one, or split the line."),
                 ),
                 Dialect::Servoworks => {
-                    let d = Diagnostic::warning(
-                        "W001",
+                    let d = DUPLICATE_WORD.warning(
                         item.span,
                         format!("{l} appears twice in this block; ServoWorks uses only the first one and ignores `{text}`. If this is a second block, put it on its own line."),
                     );
@@ -117,8 +115,7 @@ impl Rule for DuplicateWord {
                         d.with_fix(format!("Remove the ignored `{text}`"), vec![TextEdit { span: removal_span(cx.program, item.span), new_text: String::new() }])
                     }
                 }
-                Dialect::Fanuc => Diagnostic::warning(
-                    "W001",
+                Dialect::Fanuc => DUPLICATE_WORD.warning(
                     item.span,
                     format!("{l} appears twice in this block; a FANUC block takes one word per address (depending on parameters the control raises an alarm or keeps only one). Remove one, or split the block."),
                 ),

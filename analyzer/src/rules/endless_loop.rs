@@ -98,8 +98,7 @@ impl Rule for EndlessLoop {
                         })
                     });
                     if endless && !exits {
-                        out.push(Diagnostic::warning(
-                            "P009",
+                        out.push(ENDLESS_LOOP.warning(
                             head.span,
                             "This loop never ends: DO without WHILE (or WHILE with a constant true condition) repeats until a GOTO leaves it, and there is none inside.",
                         ));
@@ -125,7 +124,7 @@ impl Rule for EndlessLoop {
                                 if let Some(pos) = open.iter().rposition(|f| f.0 == l && f.4) {
                                     let f = open.remove(pos);
                                     if cond.is_some_and(|c| constant_true(p, c)) && !f.3 {
-                                        out.push(Diagnostic::warning("P009", item.span, "This do … while loop has a constant true condition and no break: it never ends."));
+                                        out.push(ENDLESS_LOOP.warning(item.span, "This do … while loop has a constant true condition and no break: it never ends."));
                                     }
                                 } else {
                                     open.push((
@@ -146,7 +145,7 @@ impl Rule for EndlessLoop {
                                 if let Some(pos) = open.iter().rposition(|f| f.0 == l && !f.4) {
                                     let f = open.remove(pos);
                                     if f.2 && !f.3 {
-                                        out.push(Diagnostic::warning("P009", f.1, "This while loop has a constant true condition and no break: it never ends."));
+                                        out.push(ENDLESS_LOOP.warning(f.1, "This while loop has a constant true condition and no break: it never ends."));
                                     }
                                 }
                             }

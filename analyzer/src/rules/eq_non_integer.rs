@@ -89,8 +89,7 @@ impl Rule for EqNonInteger {
                     let frac = |e| matches!(p.expr(e).expr, Expr::Num(n) if n.value.fract() != 0.0);
                     let inexact = |e| may_carry_rounding(p, e, &computed);
                     if (frac(lhs) && inexact(rhs)) || (frac(rhs) && inexact(lhs)) {
-                        out.push(Diagnostic::warning(
-                            "W021",
+                        out.push(EQ_NON_INTEGER.warning(
                             node.span,
                             format!("{} against a fractional number: rounding errors can make an exact comparison fail. Use `ABS[a - b] LT tolerance`.", op.as_str()),
                         ));

@@ -72,8 +72,7 @@ impl Rule for ExpressionForm {
                     Expr::Neg { arg } | Expr::Plus { arg }
                         if emc2 && !matches!(p.expr(arg).expr, Expr::Num(_)) =>
                     {
-                        out.push(Diagnostic::error(
-                            "W017",
+                        out.push(EXPRESSION_FORM.error(
                             node.span,
                             format!("`{}`: the 2007 interpreter accepts a sign only on a number. Write `[0 - …]` instead.", p.str_of(node.span)),
                         ));
@@ -88,8 +87,7 @@ impl Rule for ExpressionForm {
                             a = inner;
                         }
                         if !matches!(p.expr(a).expr, Expr::Named { .. } | Expr::Var { .. }) {
-                            out.push(Diagnostic::error(
-                                "W017",
+                            out.push(EXPRESSION_FORM.error(
                                 node.span,
                                 "EXISTS takes a parameter, `EXISTS[#<name>]` or `EXISTS[#n]`, not a number or an expression.",
                             ));

@@ -72,8 +72,7 @@ impl Rule for G54WithWords {
         if let Some((first, _)) = others.first() {
             let span = others.iter().fold(first.span, |s, (i, _)| s.cover(i.span));
             out.push(
-                Diagnostic::warning(
-                    "W009",
+                G54_WITH_WORDS.warning(
                     span,
                     "Words in a G54–G59 block are ignored by ServoWorks; put the coordinate system selection alone on its line and the other words on the next one.",
                 )

@@ -126,8 +126,7 @@ impl Rule for GotoTarget {
                     continue;
                 };
                 let Some(&tb) = index.get(&(section[bi], n.to_bits())) else {
-                    out.push(Diagnostic::error(
-                        "P003",
+                    out.push(GOTO_TARGET.error(
                         item.span,
                         format!("GOTO {n}: no block N{n} in this program, so the branch stops with alarm PS0128. Add the sequence number or fix the target."),
                     ));
@@ -137,8 +136,7 @@ impl Rule for GotoTarget {
                     .iter()
                     .find(|(s, e)| *s < tb && tb <= *e && !(*s <= bi && bi <= *e))
                 {
-                    let mut d = Diagnostic::error(
-                        "P003",
+                    let mut d = GOTO_TARGET.error(
                         item.span,
                         format!("GOTO {n} jumps into a DO … END loop from outside it: the loop's WHILE is skipped and its END has no open DO. Branch to the WHILE block instead."),
                     );

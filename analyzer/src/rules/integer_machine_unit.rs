@@ -79,8 +79,7 @@ impl Rule for IntegerMachineUnit {
             let Some(n) = w.num() else { continue };
             if !n.has_point && n.value != 0.0 {
                 let text = cx.program.str_of(item.span).into_owned();
-                out.push(Diagnostic::info(
-                    "W022",
+                out.push(INTEGER_MACHINE_UNIT.info(
                     item.span,
                     format!("`{text}` has no decimal point, so with Integer Programming with Machine Unit it counts machine units, not mm or inches. Write `{text}.0` if you mean {}.", n.value),
                 ).with_fix(format!("Write `{text}.0`"), vec![TextEdit { span: crate::Span::new(item.span.end, item.span.end), new_text: ".0".into() }]));

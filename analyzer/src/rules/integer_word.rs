@@ -136,7 +136,7 @@ impl Rule for IntegerWord {
                     };
                     let fix = replace_fix(item.span, l, replacement).filter(|_| !shared(w.letter));
                     out.push(with_replacement(
-                        Diagnostic::new("W006", sev, item.span, msg),
+                        INTEGER_WORD.diagnostic(sev, item.span, msg),
                         fix,
                     ));
                 }
@@ -163,14 +163,10 @@ impl Rule for IntegerWord {
                         // `S2_1500.` names its spindle in the word; no fix rewrites that.
                         let fix = replace_fix(item.span, l, replacement)
                             .filter(|_| w.spindle.is_none() && !shared(w.letter));
-                        out.push(with_replacement(
-                            Diagnostic::warning("W006", item.span, msg),
-                            fix,
-                        ));
+                        out.push(with_replacement(INTEGER_WORD.warning(item.span, msg), fix));
                     } else if dwell && w.letter == b'X' && !n.has_point {
                         let new_text = format!("X{:.1}", n.value);
-                        out.push(Diagnostic::warning(
-                            "W006",
+                        out.push(INTEGER_WORD.warning(
                             item.span,
                             format!("`{}`: G04 X is the dwell in seconds and is written with a decimal point. Write `{new_text}` (or P in milliseconds).", text()),
                         ).with_fix(format!("Write `{new_text}`"), vec![TextEdit { span: item.span, new_text }]));
@@ -187,8 +183,7 @@ impl Rule for IntegerWord {
                         || (w.letter == b'D' && !real_d())
                         || (w.letter == b'P' && has(cx, 'G', 100));
                     if int_here && !near_integer(n.value) {
-                        out.push(Diagnostic::error(
-                            "W006",
+                        out.push(INTEGER_WORD.error(
                             item.span,
                             format!("Non integer value for integer: `{}`; {l} must be within 0.0001 of a whole number.", text()),
                         ));

@@ -65,8 +65,7 @@ impl Rule for M98WithMotion {
         if let Some((first, _)) = axes.next() {
             let span = axes.fold(first.span, |s, (i, _)| s.cover(i.span));
             out.push(
-                Diagnostic::warning(
-                    "W010",
+                M98_WITH_MOTION.warning(
                     span,
                     "The motion in an M98 block is ignored: ServoWorks only calls the subprogram. Put the move on its own line before the call.",
                 )

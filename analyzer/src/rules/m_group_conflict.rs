@@ -87,7 +87,8 @@ impl Rule for MGroupConflict {
                 )
             };
             out.push(
-                Diagnostic::error("G002", later.span, msg)
+                M_GROUP_CONFLICT
+                    .error(later.span, msg)
                     .with_related(earlier.span, "the other code of the group"),
             );
         }

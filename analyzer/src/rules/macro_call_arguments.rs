@@ -80,8 +80,7 @@ impl Rule for MacroCallArguments {
                 });
                 if let Some((i, _)) = before {
                     out.push(
-                        Diagnostic::error(
-                            "W012",
+                        MACRO_CALL_ARGUMENTS.error(
                             i.span,
                             format!("`{}` comes before G65: ServoWorks requires G65 before its arguments. Move G65 to the front of the block.", cx.program.str_of(i.span)),
                         )
@@ -97,13 +96,11 @@ impl Rule for MacroCallArguments {
                         // G codes before G65 are the block's own codes, not arguments:
                         // arguments follow the call (FANUC: "G65 must precede its
                         // arguments"), and no manual page forbids a G code before it.
-                        b'G' if !every_block && i.span.start > call.span.start => out.push(Diagnostic::error(
-                            "W012",
+                        b'G' if !every_block && i.span.start > call.span.start => out.push(MACRO_CALL_ARGUMENTS.error(
                             i.span,
                             format!("`{text}` in a macro call: G cannot be an argument (alarm PS0129; only G66.1 passes G words). Put the G code in its own block."),
                         )),
-                        b'N' if i.span.start > call.span.start => out.push(Diagnostic::warning(
-                            "W012",
+                        b'N' if i.span.start > call.span.start => out.push(MACRO_CALL_ARGUMENTS.warning(
                             i.span,
                             format!("`{text}` after the macro call is not an argument: N is a sequence number and belongs at the start of the block."),
                         )),
@@ -114,8 +111,7 @@ impl Rule for MacroCallArguments {
                         _ => {
                             // Zero is zero in every increment.
                             if w.num().is_some_and(|n| !n.has_point && n.value != 0.0) {
-                                out.push(Diagnostic::warning(
-                                    "W012",
+                                out.push(MACRO_CALL_ARGUMENTS.warning(
                                     i.span,
                                     format!("`{text}`: a macro argument without a decimal point is read in the least input increment of its address (A1 may arrive as 0.001). Write `{text}.`."),
                                 ).with_fix(format!("Write `{text}.`"), vec![TextEdit { span: crate::Span::new(i.span.end, i.span.end), new_text: ".".into() }]));
@@ -145,8 +141,7 @@ impl Rule for MacroCallArguments {
                         let (earlier, _) = args[first];
                         let (later, _) = args[k];
                         out.push(
-                            Diagnostic::warning(
-                                "W012",
+                            MACRO_CALL_ARGUMENTS.warning(
                                 later.span,
                                 format!(
                                     "`{}` and `{}` both set #{var}: argument specifications I and II are mixed (repeated I/J/K fill #4–#33 in sets of three) and the later word wins. Use one specification.",

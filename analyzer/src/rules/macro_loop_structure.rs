@@ -94,8 +94,7 @@ pub(super) fn loops(
     let unclosed = |stack: &mut Vec<Frame>, report: &mut dyn FnMut(Diagnostic)| {
         for f in stack.drain(..) {
             let m = f.m.map(|m| format!("{m}")).unwrap_or_else(|| "m".into());
-            report(Diagnostic::error(
-                "P002",
+            report(MACRO_LOOP_STRUCTURE.error(
                 f.span,
                 format!("DO {m} has no matching END {m} in this program (alarm PS0124). Add `END {m}` after the loop body."),
             ));
@@ -119,8 +118,7 @@ pub(super) fn loops(
                     let mv = literal(p, m);
                     if let Some(v) = mv {
                         if !(v == 1.0 || v == 2.0 || v == 3.0) {
-                            report(Diagnostic::error(
-                                "P002",
+                            report(MACRO_LOOP_STRUCTURE.error(
                                 item.span,
                                 format!(
                                     "DO {v}: the loop identifier must be 1, 2 or 3 (alarm PS0126)."
@@ -129,8 +127,7 @@ pub(super) fn loops(
                         }
                         if let Some(outer) = stack.iter().find(|f| f.m == Some(v)) {
                             report(
-                                Diagnostic::error(
-                                    "P002",
+                                MACRO_LOOP_STRUCTURE.error(
                                     item.span,
                                     format!("DO {v} inside a loop that already uses identifier {v}: the END would close the wrong loop (alarm PS0126). Use another identifier for the inner loop."),
                                 )
@@ -139,8 +136,7 @@ pub(super) fn loops(
                         }
                     }
                     if stack.len() >= 3 {
-                        report(Diagnostic::error(
-                            "P002",
+                        report(MACRO_LOOP_STRUCTURE.error(
                             item.span,
                             "Fourth nested DO loop: Custom Macro B nests loops at most three deep (alarm PS0126). Move the inner loop into a macro called with G65.",
                         ));
@@ -164,8 +160,7 @@ pub(super) fn loops(
                         let crossed = &stack[i + 1..];
                         if let Some(inner) = crossed.last() {
                             report(
-                                Diagnostic::error(
-                                    "P002",
+                                MACRO_LOOP_STRUCTURE.error(
                                     item.span,
                                     format!(
                                         "END {} closes its loop while DO {} inside it is still open: loop ranges must not cross (alarm PS0126). Close the inner loop first.",
@@ -180,8 +175,7 @@ pub(super) fn loops(
                         ranges.push((f.block, bi));
                     } else {
                         let m = mv.map(|v| format!("{v}")).unwrap_or_else(|| "m".into());
-                        report(Diagnostic::error(
-                            "P002",
+                        report(MACRO_LOOP_STRUCTURE.error(
                             item.span,
                             format!("END {m} without an open DO {m} (alarm PS0126). Remove it, or fix the identifier."),
                         ));

@@ -82,8 +82,7 @@ impl Rule for MacroWithNcWords {
             return;
         };
         out.push(
-            Diagnostic::error(
-                "P004",
+            MACRO_WITH_NC_WORDS.error(
                 nc.span,
                 "NC words in the same block as a macro statement: the control raises alarm PS0127. Put the macro statement and the NC words in separate blocks.",
             )

@@ -75,11 +75,7 @@ fn missing(cx: &BlockCx<'_>, c: &BlockCode, what: &str, why: &str, out: &mut Vec
         .num
         .map(|n| code_name(cx.program.dialect, c.letter, n))
         .unwrap_or_default();
-    out.push(Diagnostic::error(
-        "W003",
-        c.span,
-        format!("{name} needs {what}: {why}"),
-    ));
+    out.push(MISSING_REQUIRED_WORD.error(c.span, format!("{name} needs {what}: {why}")));
 }
 
 fn has_word(cx: &BlockCx<'_>, letter: u8) -> bool {
@@ -147,15 +143,13 @@ impl Rule for MissingRequiredWord {
                 }
                 ('G', 730) | ('G', 830) if fanuc => match word_item(cx, b'Q') {
                     None => missing(cx, c, "Q", "the depth of cut per peck (alarm PS0045). Add a positive Q.", out),
-                    Some((q, w)) if lit(w) == Some(0.0) => out.push(Diagnostic::error(
-                        "W003",
+                    Some((q, w)) if lit(w) == Some(0.0) => out.push(MISSING_REQUIRED_WORD.error(
                         q.span,
                         "Q0 in a peck drilling cycle: the depth per peck must not be zero (alarm PS0045).",
                     )),
                     _ => {}
                 },
-                ('G', 23) | ('G', 33) if sw && !(has_word(cx, b'F') && has_word(cx, b'Q')) => out.push(Diagnostic::warning(
-                    "W003",
+                ('G', 23) | ('G', 33) if sw && !(has_word(cx, b'F') && has_word(cx, b'Q')) => out.push(MISSING_REQUIRED_WORD.warning(
                     c.span,
                     "Exponential interpolation needs F (feed at the start) and Q (feed at the end); the feed varies linearly between them. Give both.",
                 )),
@@ -167,7 +161,7 @@ impl Rule for MissingRequiredWord {
 
 fn note(cx: &BlockCx<'_>, c: &BlockCode, sev: Severity, msg: String, out: &mut Vec<Diagnostic>) {
     let _ = cx;
-    out.push(Diagnostic::new("W003", sev, c.span, msg));
+    out.push(MISSING_REQUIRED_WORD.diagnostic(sev, c.span, msg));
 }
 
 /// Word requirements of the less common codes.

@@ -57,7 +57,7 @@ mod style_radius_arc;
 mod style_start_with_g40;
 mod style_units;
 mod subprogram_name_glued;
-mod syntax_rules;
+pub(crate) mod syntax_rules;
 mod too_many_m_words;
 mod unknown_address;
 mod unknown_code;
@@ -66,13 +66,14 @@ pub(crate) mod util;
 mod word_value_range;
 
 pub use context::{BlockCode, BlockCx, BlockWords, Interest, ProgramCx, Seg};
-pub use syntax_rules::CONFIG_ISSUE;
+pub use syntax_rules::{CONFIG_ISSUE, IO_ERROR};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
 pub(crate) mod control_mismatch;
 mod word_without_user;
 
-use crate::diagnostic::Diagnostic;
+use crate::diagnostic::{Diagnostic, Severity};
+use crate::span::Span;
 
 /// Where a rule's check runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -98,6 +99,32 @@ pub struct RuleMeta {
     pub origin: Origin,
     /// Style advice is off unless selected.
     pub default_enabled: bool,
+}
+
+/// A rule's diagnostics are made from its metadata, so the code they carry is the one
+/// the rule declares and documents: no site writes a code as a string
+/// (`analyzer/tests/rule_codes.rs` checks).
+impl RuleMeta {
+    pub fn diagnostic(
+        &self,
+        severity: Severity,
+        span: Span,
+        message: impl Into<String>,
+    ) -> Diagnostic {
+        Diagnostic::new(self.code, severity, span, message)
+    }
+
+    pub fn error(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        self.diagnostic(Severity::Error, span, message)
+    }
+
+    pub fn warning(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        self.diagnostic(Severity::Warning, span, message)
+    }
+
+    pub fn info(&self, span: Span, message: impl Into<String>) -> Diagnostic {
+        self.diagnostic(Severity::Info, span, message)
+    }
 }
 
 /// A static rule: checks one block at a time, or the whole file.
@@ -329,8 +356,7 @@ fn huge_block_head(
     }
     let mut head = *block;
     head.items.1 = block.items.0 + MAX_ITEMS_PER_BLOCK as u32;
-    out.push(Diagnostic::warning(
-        "L015",
+    out.push(syntax_rules::BLOCK_TOO_MANY_ITEMS.warning(
         block.span,
         format!("this block has {n} words and other items; the block rules check the first {MAX_ITEMS_PER_BLOCK} only (no control reads a block this long): split it"),
     ));

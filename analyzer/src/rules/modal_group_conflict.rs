@@ -91,23 +91,20 @@ impl Rule for ModalGroupConflict {
                 Dialect::Rs274ngc if group == 1 && (en.0 == 800 || ln.0 == 800) => {
                     let (g80, other, on) = if en.0 == 800 { (*earlier, &l_name, ln) } else { (*later, &e_name, en) };
                     if is_drilling_cycle(d, on.0) || on.0 == 760 {
-                        Diagnostic::warning(
-                            "G001",
+                        MODAL_GROUP_CONFLICT.warning(
                             g80.span,
                             format!("G80 is dropped: {other} on the same line starts the cycle, so the block drills instead of cancelling. Put the G80 on its own line if the cycle must be cancelled first."),
                         )
                     } else {
                         // `G0 G80` is a common CAM idiom: the motion code ends the cycle anyway.
-                        Diagnostic::info(
-                            "G001",
+                        MODAL_GROUP_CONFLICT.info(
                             g80.span,
                             format!("G80 has no effect: {other} on the same line sets the motion mode, which ends any canned cycle as well."),
                         )
                     }
                 }
                 Dialect::Rs274ngc => {
-                    let d = Diagnostic::error(
-                        "G001",
+                    let d = MODAL_GROUP_CONFLICT.error(
                         later.span,
                         format!("Two G codes used from same modal group: {e_name} and {l_name} are both in group {group}, and the interpreter refuses the line. Keep one, or put them on separate lines."),
                     );
@@ -116,8 +113,7 @@ impl Rule for ModalGroupConflict {
                         None => d,
                     }
                 }
-                _ if en == ln => Diagnostic::warning(
-                    "G001",
+                _ if en == ln => MODAL_GROUP_CONFLICT.warning(
                     later.span,
                     format!("{l_name} is written twice in this block; the second one changes nothing. Remove one (if this is a second block, put it on its own line)."),
                 )
@@ -125,8 +121,7 @@ impl Rule for ModalGroupConflict {
                     format!("Remove the repeated {e_name}"),
                     vec![TextEdit { span: removal_span(cx.program, earlier.span), new_text: String::new() }],
                 ),
-                _ => Diagnostic::warning(
-                    "G001",
+                _ => MODAL_GROUP_CONFLICT.warning(
                     later.span,
                     format!("{e_name} and {l_name} are both in modal group {group:02}; only the last one ({l_name}) takes effect and {e_name} is ignored. Remove {e_name}, or put it on its own line."),
                 )
@@ -157,8 +152,7 @@ impl Rule for ModalGroupConflict {
                     return;
                 };
                 out.push(
-                    Diagnostic::warning(
-                        "G001",
+                    MODAL_GROUP_CONFLICT.warning(
                         m.span,
                         format!(
                             "{} cancels the canned cycle {} written in the same block: the block runs as {} motion and no hole is made. Put the positioning move on its own block before the cycle.",

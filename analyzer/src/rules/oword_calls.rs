@@ -127,8 +127,7 @@ impl Rule for OwordCalls {
                         .next()
                         .unwrap_or("");
                     if OKeyword::from_name(word).is_some() {
-                        out.push(Diagnostic::warning(
-                            "P008",
+                        out.push(OWORD_CALLS.warning(
                             b.span,
                             format!("`{}` starts with the digit 0; an O-word label starts with the letter o, as in `o{}`.", &t[..digits], &t[1..digits]),
                         ));
@@ -177,8 +176,7 @@ impl Rule for OwordCalls {
                             Some(OKeyword::Call) => {
                                 let n = p.expr_list(o.args()).len();
                                 if n > 30 {
-                                    out.push(Diagnostic::error(
-                                        "P008",
+                                    out.push(OWORD_CALLS.error(
                                         item.span,
                                         format!("{n} call arguments: a subroutine receives at most 30 (#1–#30)."),
                                     ));
@@ -219,8 +217,7 @@ impl Rule for OwordCalls {
                             && !is_emc2(cx.settings) =>
                     {
                         // An `o… sub` must end with `endsub`; M99 belongs to Fanuc-style `O…` programs.
-                        out.push(Diagnostic::error(
-                            "P008",
+                        out.push(OWORD_CALLS.error(
                             item.span,
                             "M99 inside an `o… sub` subroutine: LinuxCNC does not mix the two subroutine styles in one definition. End it with `o… endsub`, or write it as a Fanuc-style `O…` program ending in M99.",
                         ));
@@ -238,8 +235,7 @@ impl Rule for OwordCalls {
                             p.str_of(p.expr(target).span).to_ascii_lowercase(),
                         );
                         if global && written.insert(key) {
-                            out.push(Diagnostic::info(
-                                "P008",
+                            out.push(OWORD_CALLS.info(
                                 p.expr(target).span,
                                 format!(
                                     "The subroutine writes the global parameter `{}`; the caller sees the change after the call returns.",
@@ -261,8 +257,7 @@ impl Rule for OwordCalls {
         for (sub, highest, span) in &reads {
             if let Some(&fewest) = fewest_args.get(sub.as_str()) {
                 if (*highest as usize) > fewest {
-                    out.push(Diagnostic::info(
-                        "P008",
+                    out.push(OWORD_CALLS.info(
                         *span,
                         format!(
                             "o{sub} reads #{highest}, but a call passes only {fewest} argument{}: the parameter keeps whatever value it had.",
@@ -276,7 +271,7 @@ impl Rule for OwordCalls {
         for (scope, l, span) in &openers {
             match first_opener.entry((scope.as_str(), l.as_str())) {
                 std::collections::hash_map::Entry::Occupied(first) => out.push(
-                    Diagnostic::warning("P008", *span, format!("Label o{l} already names another block; give every sub, loop and if its own label."))
+                    OWORD_CALLS.warning(*span, format!("Label o{l} already names another block; give every sub, loop and if its own label."))
                         .with_related(*first.get(), "first use of the label"),
                 ),
                 std::collections::hash_map::Entry::Vacant(v) => {
@@ -292,7 +287,7 @@ impl Rule for OwordCalls {
             if let Some(&(dpos, dspan)) = first_def.get(l.as_str()) {
                 if dpos > *pos {
                     out.push(
-                        Diagnostic::warning("P008", *span, format!("o{l} is called before its definition; define subroutines above their first call."))
+                        OWORD_CALLS.warning(*span, format!("o{l} is called before its definition; define subroutines above their first call."))
                             .with_related(dspan, "definition"),
                     );
                 }
@@ -303,8 +298,7 @@ impl Rule for OwordCalls {
         let on_cycle = recursive_subs(&calls);
         for (name, _, dspan) in &defs {
             if on_cycle.contains(name.as_str()) {
-                out.push(Diagnostic::warning(
-                    "P008",
+                out.push(OWORD_CALLS.warning(
                     *dspan,
                     format!("o{name} calls itself unconditionally (directly or through other subroutines): the recursion never stops and exceeds LinuxCNC's 10 call levels."),
                 ));

@@ -150,8 +150,7 @@ impl Rule for OwordStructure {
                 OKeyword::Sub => {
                     if let Some(outer) = stack.iter().find(|f| f.kind == Open::Sub) {
                         out.push(
-                            Diagnostic::error(
-                                "P001",
+                            OWORD_STRUCTURE.error(
                                 span,
                                 "Subroutine defined inside another subroutine: RS274/NGC does not nest definitions. Move this `sub` … `endsub` outside.",
                             )
@@ -175,8 +174,7 @@ impl Rule for OwordStructure {
                     // LinuxCNC accepts `return` with the label of any block inside the
                     // subroutine (its own examples use the label of an enclosing `if`).
                     if !stack.iter().any(|f| f.kind == Open::Sub) {
-                        out.push(Diagnostic::error(
-                            "P001",
+                        out.push(OWORD_STRUCTURE.error(
                             span,
                             format!("`{name} return` is not inside a subroutine: return leaves the subroutine that is running."),
                         ));
@@ -231,14 +229,12 @@ impl Rule for OwordStructure {
                             // rs274 accepts a second `else` and runs the first one: the
                             // later branch is dead code, not an error.
                             let d = if kw == OKeyword::Else {
-                                Diagnostic::warning(
-                                    "P001",
+                                OWORD_STRUCTURE.warning(
                                     span,
                                     format!("`{name} else` after `else` never runs: LinuxCNC takes the first `else` branch. Remove the second one or merge the branches."),
                                 )
                             } else {
-                                Diagnostic::error(
-                                    "P001",
+                                OWORD_STRUCTURE.error(
                                     span,
                                     format!("`{name} {}` after `else`: the `else` branch must be the last one of the `if`.", kw.as_str()),
                                 )
@@ -249,8 +245,7 @@ impl Rule for OwordStructure {
                             top.kind = Open::If { seen_else: true };
                         }
                     }
-                    _ => out.push(Diagnostic::error(
-                        "P001",
+                    _ => out.push(OWORD_STRUCTURE.error(
                         span,
                         format!(
                             "`{name} {}` is not inside an `{name} if` … `endif` block.",
@@ -270,8 +265,7 @@ impl Rule for OwordStructure {
                         .iter()
                         .any(|f| f.kind.is_loop() && same(&f.label, &label))
                     {
-                        out.push(Diagnostic::error(
-                            "P001",
+                        out.push(OWORD_STRUCTURE.error(
                             span,
                             format!(
                                 "`{name} {}` is not inside a loop labelled {name}: break and continue act on the enclosing while, do or repeat of the same label.",
@@ -303,8 +297,7 @@ impl Rule for OwordStructure {
                         })
                     });
             out.push(if end_follows {
-                Diagnostic::warning(
-                    "P001",
+                OWORD_STRUCTURE.warning(
                     f.span,
                     format!(
                         "`{}` is never closed: add the matching `{}` with the same label. LinuxCNC stops only when it has to jump to it; until then the program runs on to the M2/M30 after it (a loop body runs once).",
@@ -313,7 +306,7 @@ impl Rule for OwordStructure {
                     ),
                 )
             } else {
-                Diagnostic::error("P001", f.span, text)
+                OWORD_STRUCTURE.error(f.span, text)
             });
         }
     }
@@ -337,7 +330,7 @@ fn close(
                 "`{name} {closer}` closes the `{}` opened with another label: the statement pairs are found by label, so both must use the same one.",
                 top.kind.opener()
             );
-            out.push(Diagnostic::error("P001", span, msg).with_related(top.span, "opened here"));
+            out.push(OWORD_STRUCTURE.error(span, msg).with_related(top.span, "opened here"));
             stack.pop();
         }
         Some(top) => {
@@ -346,13 +339,12 @@ fn close(
                 top.kind.opener(),
                 top.kind.closer()
             );
-            out.push(Diagnostic::error("P001", span, msg).with_related(top.span, "innermost open block"));
+            out.push(OWORD_STRUCTURE.error(span, msg).with_related(top.span, "innermost open block"));
             if let Some(i) = stack.iter().rposition(|f| want(f.kind)) {
                 stack.truncate(i);
             }
         }
-        None => out.push(Diagnostic::error(
-            "P001",
+        None => out.push(OWORD_STRUCTURE.error(
             span,
             format!("`{name} {closer}` has no matching opening statement. Remove it, or add the statement that opens the block."),
         )),

@@ -83,7 +83,7 @@ impl Rule for ParameterNumber {
         });
         if let Some(node) = first {
             let text = p.str_of(node.span).into_owned();
-            out.push(Diagnostic::info("W016", node.span, format!(
+            out.push(PARAMETER_NUMBER.info(node.span, format!(
                 "`{text}` is a common variable of the additional common variables option (#100–#499; the standard control has #100–#199): checked as if the control has it. Set machine.common_variables = 199 or 499 to say which."
             )));
         }
@@ -148,7 +148,7 @@ impl Rule for ParameterNumber {
                     _ => None,
                 };
                 if let Some(msg) = msg {
-                    out.push(Diagnostic::error("W016", node.span, msg));
+                    out.push(PARAMETER_NUMBER.error(node.span, msg));
                 }
             }
         }
@@ -179,7 +179,7 @@ impl Rule for ParameterNumber {
                         "`{text}` is a read-only parameter; LinuxCNC refuses the assignment."
                     ),
                 };
-                out.push(Diagnostic::error("W016", node.span, msg));
+                out.push(PARAMETER_NUMBER.error(node.span, msg));
             }
         }
     }

@@ -90,13 +90,13 @@ impl Rule for ParameterSameLine {
         for (j, (_, target, k)) in assigns.iter().enumerate() {
             if let Some((_, first, _)) = assigns[..j].iter().find(|(_, _, k2)| k2 == k) {
                 out.push(
-                    Diagnostic::new(
-                        "W018",
-                        Severity::Info,
-                        p.expr(*target).span,
-                        format!("{k} is set twice on this line; only the last setting counts."),
-                    )
-                    .with_related(p.expr(*first).span, "first setting"),
+                    PARAMETER_SAME_LINE
+                        .diagnostic(
+                            Severity::Info,
+                            p.expr(*target).span,
+                            format!("{k} is set twice on this line; only the last setting counts."),
+                        )
+                        .with_related(p.expr(*first).span, "first setting"),
                 );
             }
         }
@@ -125,8 +125,7 @@ impl Rule for ParameterSameLine {
                     }
                     if let Some((_, target, _)) = assigns.iter().find(|(_, _, ak)| *ak == k) {
                         out.push(
-                            Diagnostic::new(
-                                "W018",
+                            PARAMETER_SAME_LINE.diagnostic(
                                 Severity::Warning,
                                 p.expr(id).span,
                                 format!("{k} is read and set on the same line: the read sees the old value, because a line's assignments happen after all its reads. Set it on the line before."),

@@ -159,8 +159,7 @@ impl Rule for ProgramEnd {
                         .count();
                     // Reading stops at M2/M30 too, so the closing `%` is not needed after one.
                     if percents < 2 && !ends(&[2.0, 30.0]) {
-                        out.push(Diagnostic::error(
-                            "P005",
+                        out.push(PROGRAM_END.error(
                             end_span(p),
                             "File ended with no percent sign: the file opens with `%`, so it must end with a second `%` line. Add it after the last line.",
                         ).with_fix("Add the closing `%` line", vec![eof_line(p, "%")]));
@@ -170,8 +169,7 @@ impl Rule for ProgramEnd {
                 // A file that only defines subroutines is a library called by others.
                 let top_level_code = !p.is_ngc_library_named(cx.settings.file_stem.as_deref());
                 if top_level_code && !ends(&[2.0, 30.0]) {
-                    out.push(Diagnostic::error(
-                        "P005",
+                    out.push(PROGRAM_END.error(
                         end_span(p),
                         "File ended with no percent sign or program end: add M2 (or M30) after the last line, or wrap the program in `%` lines.",
                     ).with_fix("Add M2 after the last line", vec![append_block_edit(p, "M2")]));
@@ -187,15 +185,13 @@ impl Rule for ProgramEnd {
                     .is_some_and(|b| b.kind == BlockKind::Percent);
                 if !matches!(last_byte, Some(b'\n') | Some(b'\r')) && !last_is_percent {
                     let n = p.text.len() as u32;
-                    out.push(Diagnostic::warning(
-                        "P005",
+                    out.push(PROGRAM_END.warning(
                         Span::new(n.saturating_sub(1), n),
                         "The file must end with a `%` line or a line break; the last block may not be read. Add a line break at the end.",
                     ).with_fix("Add a line break at the end", vec![TextEdit { span: Span::new(n, n), new_text: line_break(p).into() }]));
                 }
                 if !ends(&[2.0, 30.0, 99.0]) {
-                    out.push(Diagnostic::warning(
-                        "P005",
+                    out.push(PROGRAM_END.warning(
                         end_span(p),
                         "The main program does not end with M02 or M30, so the control does not reset at the end. Add M30 (or M02) as the last block; subprograms end with M99.",
                     )
@@ -222,15 +218,13 @@ impl Rule for ProgramEnd {
                         _ => "has no O program number",
                     };
                     let start = code_blocks.first().map(|b| b.span).unwrap_or_default();
-                    out.push(Diagnostic::warning(
-                        "P005",
+                    out.push(PROGRAM_END.warning(
                         start,
                         format!("The file {what}: a FANUC program is stored as `%`, `O1234;`, blocks, end code, `%`. Text between the first `%` and the first end of block is skipped as the leader."),
                     ));
                 }
                 if !ends(&[2.0, 30.0, 99.0]) && !ends_elsewhere(p) {
-                    out.push(Diagnostic::warning(
-                        "P005",
+                    out.push(PROGRAM_END.warning(
                         end_span(p),
                         "The program does not end with M02, M30 or M99 before the closing `%`. Add M30 (main program) or M99 (subprogram) as the last block.",
                     )

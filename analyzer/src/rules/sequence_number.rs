@@ -109,7 +109,7 @@ impl Rule for SequenceNumber {
                     WordValue::Missing => continue,
                     _ => {
                         if d == Dialect::Fanuc {
-                            out.push(Diagnostic::error("P007", item.span, format!("`{text}`: a sequence number cannot be given by a variable or expression. Write a literal number.")));
+                            out.push(SEQUENCE_NUMBER.error(item.span, format!("`{text}`: a sequence number cannot be given by a variable or expression. Write a literal number.")));
                         }
                         continue;
                     }
@@ -124,14 +124,13 @@ impl Rule for SequenceNumber {
                 match d {
                     Dialect::Rs274ngc => {
                         if idx > 0 {
-                            out.push(Diagnostic::error("P007", item.span, format!("`{text}`: a line number must be the first item of the line (after an optional `/`). Move it to the start or remove it.")));
+                            out.push(SEQUENCE_NUMBER.error(item.span, format!("`{text}`: a line number must be the first item of the line (after an optional `/`). Move it to the start or remove it.")));
                         }
                         if n.value > 99_999.0 || int_digits > 5 {
                             long.push((item.span, text.clone()));
                         }
                         if is_emc2(cx.settings) && n.value.fract() != 0.0 {
-                            out.push(Diagnostic::warning(
-                                "P007",
+                            out.push(SEQUENCE_NUMBER.warning(
                                 item.span,
                                 format!(
                                     "`{text}`: the 2007 interpreter reads only whole line numbers."
@@ -143,8 +142,7 @@ impl Rule for SequenceNumber {
                         if int_digits > max_digits || n.value > max_value {
                             too_long.push((item.span, text));
                         } else if n.value == 0.0 {
-                            out.push(Diagnostic::warning(
-                                "P007",
+                            out.push(SEQUENCE_NUMBER.warning(
                                 item.span,
                                 "N0 must not be used as a sequence number. Start numbering at N1.",
                             ));
@@ -153,7 +151,7 @@ impl Rule for SequenceNumber {
                             .filter(|_| targets.as_ref().is_some_and(|t| t.contains(n.value)))
                         {
                             out.push(
-                                Diagnostic::warning("P007", item.span, format!("`{text}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number."))
+                                SEQUENCE_NUMBER.warning(item.span, format!("`{text}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number."))
                                     .with_related(*first, "first use"),
                             );
                         } else {
@@ -176,7 +174,7 @@ impl Rule for SequenceNumber {
             } else {
                 format!("`{text}` and {} more sequence numbers up to `{last_text}` have more than {digits} digits: the control takes 1 to {max_value} (alarm PS0003). Renumber the program{option}.", too_long.len() - 1)
             };
-            let mut diag = Diagnostic::error("P007", *span, message);
+            let mut diag = SEQUENCE_NUMBER.error(*span, message);
             if too_long.len() > 1 {
                 diag = diag.with_related(*last, "the last one");
             }
@@ -187,8 +185,7 @@ impl Rule for SequenceNumber {
                 1 => String::new(),
                 n => format!(" ({} more lines like it)", n - 1),
             };
-            out.push(Diagnostic::warning(
-                "P007",
+            out.push(SEQUENCE_NUMBER.warning(
                 *span,
                 format!("`{text}`: line numbers have at most five digits (0 to 99999) in RS274/NGC; LinuxCNC accepts more, other readers may not{more}."),
             ));

@@ -91,8 +91,7 @@ impl Rule for TooFewDecimals {
                     } else {
                         "millimetre (G21)"
                     };
-                    out.push(Diagnostic::new(
-                        "S005",
+                    out.push(TOO_FEW_DECIMALS.diagnostic(
                         Severity::Hint,
                         item.span,
                         format!("`{}` has {decimals} decimal place{}; {units} programs should give at least {need}, the precision LinuxCNC checks arcs to.", p.str_of(item.span), if decimals == 1 { "" } else { "s" }),

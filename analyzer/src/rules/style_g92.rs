@@ -75,8 +75,7 @@ impl Rule for G92Offset {
                     .find(|(_, w)| w.letter == b'G' && w.num().is_some_and(|n| n.value == 92.0))
                     .map(|(i, _)| i.span)
                     .unwrap_or(b.span);
-                out.push(Diagnostic::new(
-                    "S010",
+                out.push(G92_OFFSET.diagnostic(
                     Severity::Info,
                     span,
                     "G92 offsets persist after the program ends (LinuxCNC stores them); prefer a work offset G54–G59.3 or G52.",
@@ -87,7 +86,7 @@ impl Rule for G92Offset {
                 if let Some(set) = active.take() {
                     let span = p.items_of(b).first().map(|i| i.span).unwrap_or(b.span);
                     out.push(
-                        Diagnostic::new("S010", Severity::Warning, span, "The program ends with a G92 offset still set; it will shift the next program. Clear it with G92.1 before the end.")
+                        G92_OFFSET.diagnostic(Severity::Warning, span, "The program ends with a G92 offset still set; it will shift the next program. Clear it with G92.1 before the end.")
                             .with_related(set, "offset set here"),
                     );
                 }
@@ -104,7 +103,7 @@ impl Rule for G92Offset {
                 // Where the program stops: after the last block (which may be the G92 itself).
                 let span = crate::span::Span::new(b.span.end, b.span.end);
                 out.push(
-                    Diagnostic::new("S010", Severity::Warning, span, "The file ends with a G92 offset still set; it will shift the next program. Clear it with G92.1 before the end.")
+                    G92_OFFSET.diagnostic(Severity::Warning, span, "The file ends with a G92 offset still set; it will shift the next program. Clear it with G92.1 before the end.")
                         .with_related(set, "offset set here"),
                 );
             }

@@ -99,8 +99,7 @@ impl Rule for LineNumbers {
             for (item, w) in p.words(b) {
                 if w.letter == b'N' {
                     out.push(
-                        Diagnostic::new(
-                            "S001",
+                        LINE_NUMBERS.diagnostic(
                             crate::diagnostic::Severity::Hint,
                             item.span,
                             "Line numbers are unnecessary: error messages report file lines, not N values. Remove it.",
@@ -141,8 +140,7 @@ impl Rule for LineNumberOrder {
                             "is lower than"
                         };
                         out.push(
-                            Diagnostic::new(
-                                "S002",
+                            LINE_NUMBER_ORDER.diagnostic(
                                 crate::diagnostic::Severity::Hint,
                                 item.span,
                                 format!("`{}` {what} the previous line number; number lines once, in increasing order (or not at all).", p.str_of(item.span)),

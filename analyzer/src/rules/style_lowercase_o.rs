@@ -68,8 +68,7 @@ impl Rule for LowercaseO {
             }
             let at = Span::new(item.span.start, item.span.start + 1);
             out.push(
-                Diagnostic::new(
-                    "S009",
+                LOWERCASE_O.diagnostic(
                     Severity::Hint,
                     at,
                     "Write O-codes with a lower-case `o`; it is easier to tell from the digit 0.",

@@ -72,8 +72,7 @@ impl Rule for NumberWhitespace {
                 let span =
                     crate::span::Span::new(n.span.start, n.span.start + trimmed.len() as u32);
                 out.push(
-                    Diagnostic::new(
-                        "S004",
+                    NUMBER_WHITESPACE.diagnostic(
                         Severity::Hint,
                         span,
                         format!("Blanks inside the number `{trimmed}`: it is read as `{compact}`. Write it without blanks."),

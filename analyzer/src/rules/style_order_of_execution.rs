@@ -117,8 +117,7 @@ impl Rule for OrderOfExecution {
             .or_else(|| tool.map(|s| (s, "a T word".to_string())))
             .or_else(|| spindle.then(|| (cx.block.span, "a spindle start with S".to_string())));
         if let Some((span, what)) = other {
-            out.push(Diagnostic::new(
-                "S008",
+            out.push(ORDER_OF_EXECUTION.diagnostic(
                 Severity::Hint,
                 span,
                 format!("Motion on the same line as {what}: what happens first depends on RS274/NGC's order of execution, not on the written order. Put them on separate lines."),

@@ -112,8 +112,7 @@ impl Rule for Preamble {
                     } else {
                         Severity::Warning
                     };
-                    out.push(Diagnostic::new(
-                        "S007",
+                    out.push(PREAMBLE.diagnostic(
                         sev,
                         span,
                         format!("This line uses {by}, but the program has not set {what}; it inherits whatever was active before. Set it in a preamble at the top."),

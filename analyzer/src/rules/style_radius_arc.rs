@@ -59,8 +59,7 @@ impl Rule for RadiusArc {
             return;
         }
         if let Some((r, _)) = word_item(cx, b'R') {
-            out.push(Diagnostic::new(
-                "S003",
+            out.push(RADIUS_ARC.diagnostic(
                 Severity::Hint,
                 r.span,
                 "Prefer centre format (I/J/K) to a radius: the centre computed from R is poorly conditioned near 180° and 360°.",

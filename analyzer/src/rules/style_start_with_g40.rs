@@ -70,8 +70,7 @@ impl Rule for StartWithG40 {
             }
             if g.iter().any(|c| [410, 420, 411, 421].contains(c)) {
                 let span = p.items_of(b).first().map(|i| i.span).unwrap_or(b.span);
-                out.push(Diagnostic::new(
-                    "S011",
+                out.push(START_WITH_G40.diagnostic(
                     Severity::Warning,
                     span,
                     "Cutter compensation is turned on, but the program does not start with G40; after an aborted run the interpreter may still be compensating. Put G40 in the preamble.",

@@ -72,12 +72,11 @@ impl Rule for UnitsSetting {
             if let Some((item, _)) = units_word {
                 if let Some(first) = units_set {
                     out.push(
-                        Diagnostic::new("S006", Severity::Warning, item.span, "Units are set a second time: set G20 or G21 once, at the start of the program.")
+                        UNITS_SETTING.diagnostic(Severity::Warning, item.span, "Units are set a second time: set G20 or G21 once, at the start of the program.")
                             .with_related(first, "units first set here"),
                     );
                 } else if moved {
-                    out.push(Diagnostic::new(
-                        "S006",
+                    out.push(UNITS_SETTING.diagnostic(
                         Severity::Warning,
                         item.span,
                         "Units are set after motion: the moves above ran in whatever units were active. Set G20 or G21 at the start of the program.",
@@ -93,8 +92,7 @@ impl Rule for UnitsSetting {
                         .find(|(_, w)| super::util::is_machine_axis(cx.settings, w.letter))
                         .map(|(i, _)| i.span)
                         .unwrap_or(b.span);
-                    out.push(Diagnostic::new(
-                        "S006",
+                    out.push(UNITS_SETTING.diagnostic(
                         Severity::Warning,
                         span,
                         "First motion before any G20/G21: the units come from the machine's start-up state. Put G21 (mm) or G20 (inch) at the top of the program.",

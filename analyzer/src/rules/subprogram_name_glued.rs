@@ -72,8 +72,7 @@ impl Rule for SubprogramNameGlued {
             let head = String::from_utf8_lossy(&bytes[..digits]).into_owned();
             let tail = String::from_utf8_lossy(&bytes[digits..]).into_owned();
             out.push(
-                Diagnostic::warning(
-                    "W013",
+                SUBPROGRAM_NAME_GLUED.warning(
                     item.span,
                     format!("The subprogram name runs on into `{tail}`: this calls a program named `{head}{tail}`. If `{tail}` is a separate word, put a space before it."),
                 )

@@ -64,18 +64,15 @@ impl Rule for TooManyMWords {
             .collect();
         let n = m.len();
         match cx.program.dialect {
-            Dialect::Rs274ngc if n > 4 => out.push(Diagnostic::error(
-                "G003",
+            Dialect::Rs274ngc if n > 4 => out.push(TOO_MANY_M_WORDS.error(
                 m[4].0.span,
                 format!("Too many m codes on line: {n} M words, LinuxCNC accepts at most 4. Move the extra M codes to another line."),
             )),
-            Dialect::Fanuc if n > 3 => out.push(Diagnostic::error(
-                "G003",
+            Dialect::Fanuc if n > 3 => out.push(TOO_MANY_M_WORDS.error(
                 m[3].0.span,
                 format!("{n} M codes in one block: even with the multiple-M option (parameter 3404#7) a FANUC block takes at most 3. Move the extra M codes to another block."),
             )),
-            Dialect::Fanuc if n > 1 => out.push(Diagnostic::warning(
-                "G003",
+            Dialect::Fanuc if n > 1 => out.push(TOO_MANY_M_WORDS.warning(
                 m[1].0.span,
                 format!("{n} M codes in one block need the multiple-M option (parameter 3404#7 M3B); without it the control raises an alarm. Put each M code in its own block if the option is not set."),
             )),

@@ -131,7 +131,7 @@ impl Rule for UnknownAddress {
                     ),
                     _ => format!("{l} is not an address of this control (FANUC alarm PS0009)."),
                 };
-                out.push(Diagnostic::error("W005", item.span, msg));
+                out.push(UNKNOWN_ADDRESS.error(item.span, msg));
                 continue;
             }
             if macro_call {
@@ -142,8 +142,7 @@ impl Rule for UnknownAddress {
                 && matches!(w.letter, b'E' | b'U' | b'V' | b'W')
                 && configured
             {
-                out.push(Diagnostic::warning(
-                    "W005",
+                out.push(UNKNOWN_ADDRESS.warning(
                     item.span,
                     format!("{l} as an axis name: the ServoWorks manual names axes X, Y, Z, A, B, C only. Make sure the control is configured with a {l} axis."),
                 ));
@@ -161,8 +160,7 @@ impl Rule for UnknownAddress {
             }
             if !configured {
                 let have: String = cx.settings.axes.iter().collect();
-                out.push(Diagnostic::error(
-                    "W005",
+                out.push(UNKNOWN_ADDRESS.error(
                     item.span,
                     format!("The machine has no {l} axis (configured axes: {have}); the control rejects the word. Fix the letter, or add the axis to `machine.axes` in partscope.toml."),
                 ));

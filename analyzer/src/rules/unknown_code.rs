@@ -76,8 +76,7 @@ impl Rule for UnknownCode {
             if n.value < 0.0 {
                 if d == Dialect::Rs274ngc {
                     let what = if c.letter == 'G' { "g" } else { "m" };
-                    out.push(Diagnostic::error(
-                        "G004",
+                    out.push(UNKNOWN_CODE.error(
                         c.span,
                         format!(
                             "Negative {what} code used: `{text}`. Code numbers are never negative."
@@ -94,7 +93,7 @@ impl Rule for UnknownCode {
                         Dialect::Rs274ngc => format!("G code out of range: `{text}` has more than one decimal digit; G numbers are read in tenths (G1, G38.2)."),
                         _ => format!("`{text}` is not a G code: G numbers have at most one decimal digit."),
                     };
-                    out.push(Diagnostic::error("G004", c.span, msg));
+                    out.push(UNKNOWN_CODE.error(c.span, msg));
                 }
                 continue;
             };
@@ -104,8 +103,7 @@ impl Rule for UnknownCode {
             {
                 if let (Dialect::Servoworks, Some(_)) = (d, c.info) {
                     if c.is('G', 1) {
-                        out.push(Diagnostic::warning(
-                            "G004",
+                        out.push(UNKNOWN_CODE.warning(
                             c.span,
                             "G00.1 is not in the ServoWorks G-code tables; the manual mentions it only in a copied paragraph of the G01 section. Use G00 unless your control is known to have G00.1.",
                         ));
@@ -114,25 +112,21 @@ impl Rule for UnknownCode {
                 continue;
             }
             match (d, c.letter) {
-                (Dialect::Rs274ngc, 'G') if num.0 > 999 => out.push(Diagnostic::error(
-                    "G004",
+                (Dialect::Rs274ngc, 'G') if num.0 > 999 => out.push(UNKNOWN_CODE.error(
                     c.span,
                     format!("G code out of range: `{text}`; RS274/NGC G codes go up to G99.9."),
                 )),
                 (Dialect::Rs274ngc, 'M') if !near_integer(n.value) => {}
-                (Dialect::Rs274ngc, 'M') => out.push(Diagnostic::error(
-                    "G004",
+                (Dialect::Rs274ngc, 'M') => out.push(UNKNOWN_CODE.error(
                     c.span,
                     format!("Unknown m code used: M{} is not an RS274/NGC M code. If your configuration defines it (M100–M199 user commands), list it in `rules.custom_codes`.", num.display()),
                 )),
-                (Dialect::Servoworks, 'M') => out.push(Diagnostic::info(
-                    "G004",
+                (Dialect::Servoworks, 'M') => out.push(UNKNOWN_CODE.info(
                     c.span,
                     format!("M{:02} is not in the ServoWorks M-code table: what it does is defined by the PLC ladder or a custom macro. List it in `rules.custom_codes` if it is yours.", num.0 / 10),
                 )),
                 (Dialect::Fanuc, 'M') => {}
-                (Dialect::Servoworks, 'G') if num == CodeNum::whole(88) => out.push(Diagnostic::warning(
-                    "G004",
+                (Dialect::Servoworks, 'G') if num == CodeNum::whole(88) => out.push(UNKNOWN_CODE.warning(
                     c.span,
                     "ServoWorks has no G88 boring cycle: the code is ignored and no cycle is set. Use G89 (dwell at bottom, feed out) or G86.",
                 )),
@@ -145,18 +139,15 @@ impl Rule for UnknownCode {
 
 fn unknown(d: Dialect, span: crate::span::Span, name: &str) -> Diagnostic {
     match d {
-        Dialect::Rs274ngc => Diagnostic::error(
-            "G004",
+        Dialect::Rs274ngc => UNKNOWN_CODE.error(
             span,
             format!("Unknown g code used: {name} is not an RS274/NGC G code. If your configuration remaps it, list it in `rules.custom_codes`."),
         ),
-        Dialect::Servoworks => Diagnostic::warning(
-            "G004",
+        Dialect::Servoworks => UNKNOWN_CODE.warning(
             span,
             format!("{name} is not a ServoWorks G code: the control ignores it as unused data. If a custom macro defines it, list it in `rules.custom_codes`."),
         ),
-        Dialect::Fanuc => Diagnostic::error(
-            "G004",
+        Dialect::Fanuc => UNKNOWN_CODE.error(
             span,
             format!("{name} is not a FANUC 30i G code or needs an option (alarm PS0010). If your machine defines it as a macro call, list it in `rules.custom_codes`."),
         ),

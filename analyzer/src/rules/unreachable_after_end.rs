@@ -256,8 +256,7 @@ fn unreachable(span: crate::span::Span, n: usize, end: &str, severity: Severity)
     } else {
         format!("These {n} blocks are never executed: they follow")
     };
-    Diagnostic::new(
-        "P006",
+    UNREACHABLE_AFTER_END.diagnostic(
         severity,
         span,
         format!("{what} {end}, and the control stops reading at the program end. Move the end code, or remove the dead code."),

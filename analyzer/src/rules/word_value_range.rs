@@ -93,7 +93,7 @@ impl Ctx<'_, '_> {
         if !ok(v) {
             let text = self.cx.program.str_of(item.span).into_owned();
             self.out
-                .push(Diagnostic::new("W007", sev, item.span, msg(&text)));
+                .push(WORD_VALUE_RANGE.diagnostic(sev, item.span, msg(&text)));
         }
     }
 }
@@ -249,8 +249,7 @@ impl Rule for WordValueRange {
                     let text = cx.program.str_of(item.span).into_owned();
                     if let Some(sp) = w.spindle {
                         if !(1..=16).contains(&sp) {
-                            k.out.push(Diagnostic::error(
-                                "W007",
+                            k.out.push(WORD_VALUE_RANGE.error(
                                 item.span,
                                 format!("`{text}`: the spindle number before `_` must be 1 to 16."),
                             ));
@@ -258,15 +257,14 @@ impl Rule for WordValueRange {
                     }
                     if let Some(n) = w.num() {
                         if n.value.abs() > 99_999.0 {
-                            k.out.push(Diagnostic::warning(
-                                "W007",
+                            k.out.push(WORD_VALUE_RANGE.warning(
                                 item.span,
                                 format!(
                                     "`{text}`: a spindle speed has at most 5 digits (0 to 99999)."
                                 ),
                             ));
                         } else if n.value < 0.0 {
-                            k.out.push(Diagnostic::warning("W007", item.span, format!("`{text}`: a negative S (reverse rotation) only works on servo spindles; use M04 for other spindles.")));
+                            k.out.push(WORD_VALUE_RANGE.warning(item.span, format!("`{text}`: a negative S (reverse rotation) only works on servo spindles; use M04 for other spindles.")));
                         }
                     }
                 }
@@ -460,8 +458,7 @@ impl Rule for WordValueRange {
                     let l = w.letter_char();
                     if n.value < 0.0 && unsigned.contains(&w.letter) {
                         let text = text();
-                        k.out.push(Diagnostic::error(
-                            "W007",
+                        k.out.push(WORD_VALUE_RANGE.error(
                             item.span,
                             format!("`{text}`: address {l} takes no minus sign (alarm PS0006)."),
                         ));
@@ -479,8 +476,7 @@ impl Rule for WordValueRange {
                     };
                     if usize::from(n.digits) > max {
                         let text = text();
-                        k.out.push(Diagnostic::error(
-                            "W007",
+                        k.out.push(WORD_VALUE_RANGE.error(
                             item.span,
                             format!("`{text}` has {} digits; address {l} takes at most {max} (alarm PS0003).", n.digits),
                         ));
@@ -499,10 +495,10 @@ impl Rule for WordValueRange {
                                 Some(4) if n > max => format!("1 to {max} (or set machine.program_number_digits = 8 for the 8-digit program number option)"),
                                 Some(_) => format!("1 to {max}"),
                             };
-                            k.out.push(Diagnostic::error("W007", item.span, format!("Program number O{n}: FANUC program numbers are {range} (alarm PS0074).")));
+                            k.out.push(WORD_VALUE_RANGE.error(item.span, format!("Program number O{n}: FANUC program numbers are {range} (alarm PS0074).")));
                         } else if digits.is_none() && n > 9999 {
                             // The program is the evidence the shop's control has the option.
-                            k.out.push(Diagnostic::info("W007", item.span, format!("Program number O{n} needs the 8-digit program number option (the standard control takes 1 to 9999): checked as if the control has it. Set machine.program_number_digits = 4 or 8 to say which.")));
+                            k.out.push(WORD_VALUE_RANGE.info(item.span, format!("Program number O{n} needs the 8-digit program number option (the standard control takes 1 to 9999): checked as if the control has it. Set machine.program_number_digits = 4 or 8 to say which.")));
                         }
                     }
                 }

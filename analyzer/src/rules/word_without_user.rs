@@ -63,16 +63,15 @@ impl Rule for WordWithoutUser {
         if let Some((e, _)) = word_item(cx, b'E') {
             let users = [('G', 760), ('G', 700), ('M', 660), ('M', 670), ('M', 680)];
             if !users.iter().any(|(l, t)| has(cx, *l, *t)) {
-                out.push(Diagnostic::error("W024", e.span, "E word with no code that uses it: only G76, G70 and M66–M68 take E. Remove it."));
+                out.push(WORD_WITHOUT_USER.error(e.span, "E word with no code that uses it: only G76, G70 and M66–M68 take E. Remove it."));
             }
         }
         let polar = word_item(cx, b'@').or_else(|| word_item(cx, b'^'));
         if let Some((pw, _)) = polar {
             if word_item(cx, b'X').is_some() || word_item(cx, b'Y').is_some() {
-                out.push(Diagnostic::error("W024", pw.span, "Polar words @ and ^ replace X and Y; they cannot be used with X or Y on the same line."));
+                out.push(WORD_WITHOUT_USER.error(pw.span, "Polar words @ and ^ replace X and Y; they cannot be used with X or Y on the same line."));
             } else if has(cx, 'G', 530) {
-                out.push(Diagnostic::error(
-                    "W024",
+                out.push(WORD_WITHOUT_USER.error(
                     pw.span,
                     "Polar words cannot be combined with G53 machine coordinates.",
                 ));

@@ -8,26 +8,14 @@
 use std::sync::Arc;
 
 use super::ast::*;
-use crate::diagnostic::{Diagnostic, Severity};
+use crate::diagnostic::Severity;
 use crate::dialect::{Dialect, Variant};
 use crate::span::Span;
 
-/// Stable codes of the diagnostics the parser emits; their docs live in the
-/// rule registry ([`crate::rules`]).
-pub mod codes {
-    pub const UNCLOSED_COMMENT: &str = "L001";
-    pub const NESTED_COMMENT: &str = "L002";
-    pub const MISSING_VALUE: &str = "L003";
-    pub const MALFORMED_NUMBER: &str = "L004";
-    pub const UNKNOWN_CHARACTER: &str = "L005";
-    pub const UNBALANCED_BRACKET: &str = "L006";
-    pub const MISPLACED_BLOCK_SKIP: &str = "L007";
-    pub const LOWERCASE: &str = "L008";
-    pub const BAD_EXPRESSION: &str = "L010";
-    pub const MISPLACED_PERCENT: &str = "L011";
-    pub const TEXT_AFTER_EOB: &str = "L013";
-    pub const EXPRESSION_TOO_DEEP: &str = "L014";
-}
+// The parser's diagnostics are made from their rules' metadata, declared and
+// documented with the other rules.
+use crate::rules::syntax_rules as codes;
+use crate::rules::RuleMeta;
 
 /// Options that change how text is read.
 #[derive(Debug, Clone, Copy)]
@@ -406,7 +394,12 @@ impl Parser {
                 (TokenKind::Whitespace, Severity::Info, "the file starts with a UTF-8 byte-order mark (bytes EF BB BF): Partscope skips it, but a control that reads the file as ISO/EIA code may not; save the file without it if the control rejects it")
             };
             cx.token(0, kind);
-            cx.diag(codes::UNKNOWN_CHARACTER, sev, Span::new(0, bom as u32), msg);
+            cx.diag(
+                &codes::UNKNOWN_CHARACTER,
+                sev,
+                Span::new(0, bom as u32),
+                msg,
+            );
         }
 
         if self.after_end {
@@ -444,7 +437,7 @@ impl Parser {
                     self.after_end = true;
                 } else {
                     cx.diag(
-                        codes::MISPLACED_PERCENT,
+                        &codes::MISPLACED_PERCENT,
                         Severity::Error,
                         Span::new(pct as u32, pct as u32 + 1),
                         "`%` ends the program only when the file opened with a `%` line; here it is an illegal character (rs274: Bad character '%' used)",
@@ -914,10 +907,8 @@ impl<'p> Cx<'p> {
         self.p.tokens.push(Token { start, kind });
     }
 
-    fn diag(&mut self, code: &'static str, sev: Severity, span: Span, msg: impl Into<String>) {
-        self.p
-            .diagnostics
-            .push(Diagnostic::new(code, sev, span, msg));
+    fn diag(&mut self, rule: &RuleMeta, sev: Severity, span: Span, msg: impl Into<String>) {
+        self.p.diagnostics.push(rule.diagnostic(sev, span, msg));
     }
 
     fn push_item(&mut self, kind: ItemKind, start: usize) {
@@ -999,7 +990,7 @@ impl<'p> Cx<'p> {
                     self.pos += 1;
                     self.token(start, TokenKind::BlockSkip);
                     self.diag(
-                        codes::MISPLACED_BLOCK_SKIP,
+                        &codes::MISPLACED_BLOCK_SKIP,
                         sev,
                         Span::new(start as u32, self.pos as u32),
                         msg,
@@ -1015,7 +1006,7 @@ impl<'p> Cx<'p> {
                         Dialect::Fanuc => (Severity::Error, "`%` marks the start or end of the tape and must stand alone on its line"),
                     };
                     self.diag(
-                        codes::MISPLACED_PERCENT,
+                        &codes::MISPLACED_PERCENT,
                         sev,
                         Span::new(start as u32, self.pos as u32),
                         msg,
@@ -1075,7 +1066,7 @@ impl<'p> Cx<'p> {
             ),
         };
         self.token(start, TokenKind::Unknown);
-        self.diag(codes::UNKNOWN_CHARACTER, sev, span, msg);
+        self.diag(&codes::UNKNOWN_CHARACTER, sev, span, msg);
         self.push_item(ItemKind::Error, start);
     }
 
@@ -1108,7 +1099,7 @@ impl<'p> Cx<'p> {
         if !closed {
             let sev = Severity::Error;
             self.diag(
-                codes::UNCLOSED_COMMENT,
+                &codes::UNCLOSED_COMMENT,
                 sev,
                 span,
                 "comment is not closed with `)` before the end of the block",
@@ -1125,7 +1116,7 @@ impl<'p> Cx<'p> {
         if let Some(n) = nested {
             if self.dialect != Dialect::Servoworks {
                 self.diag(
-                    codes::NESTED_COMMENT,
+                    &codes::NESTED_COMMENT,
                     Severity::Error,
                     Span::new(n as u32, n as u32 + 1),
                     "comments do not nest: `(` inside a comment is an error",
@@ -1156,7 +1147,7 @@ impl<'p> Cx<'p> {
                     self.pos = self.limit;
                     self.token(s, TokenKind::Ignored);
                     self.diag(
-                        codes::TEXT_AFTER_EOB,
+                        &codes::TEXT_AFTER_EOB,
                         Severity::Info,
                         Span::new(s as u32, self.pos as u32),
                         "text after `;` is not executed (the manual does not define `;`; it is read as end of block)",
@@ -1187,7 +1178,7 @@ impl<'p> Cx<'p> {
         } else {
             let span = Span::new(start as u32, self.pos as u32);
             self.diag(
-                codes::BAD_EXPRESSION,
+                &codes::BAD_EXPRESSION,
                 Severity::Error,
                 span,
                 "a parameter reference here must be an assignment: `#n = value` (equal sign missing)",
@@ -1222,7 +1213,7 @@ impl<'p> Cx<'p> {
                 self.pos = self.limit;
                 self.token(start, TokenKind::NamedParam);
                 self.diag(
-                    codes::BAD_EXPRESSION,
+                    &codes::BAD_EXPRESSION,
                     Severity::Error,
                     Span::new(start as u32, self.pos as u32),
                     "named parameter is missing its closing `>`",
@@ -1238,7 +1229,7 @@ impl<'p> Cx<'p> {
                 if self.dialect == Dialect::Fanuc {
                     let s = self.pos;
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         Span::new(s as u32, s as u32 + 1),
                         "`##n` is not allowed in Custom Macro B; write `#[#n]`",
@@ -1266,7 +1257,7 @@ impl<'p> Cx<'p> {
             _ => {
                 let span = Span::new(start as u32, self.pos as u32);
                 self.diag(
-                    codes::MISSING_VALUE,
+                    &codes::MISSING_VALUE,
                     Severity::Error,
                     span,
                     "`#` must be followed by a parameter number, `[expression]` or `<name>`",
@@ -1383,9 +1374,12 @@ impl<'p> Cx<'p> {
             "number out of range"
         };
         let (code, span) = if end == start {
-            (codes::MISSING_VALUE, Span::new(start as u32, start as u32))
+            (&codes::MISSING_VALUE, Span::new(start as u32, start as u32))
         } else {
-            (codes::MALFORMED_NUMBER, Span::new(start as u32, end as u32))
+            (
+                &codes::MALFORMED_NUMBER,
+                Span::new(start as u32, end as u32),
+            )
         };
         self.diag(
             code,
@@ -1410,7 +1404,7 @@ impl<'p> Cx<'p> {
         self.pos = self.limit;
         self.token(start, TokenKind::Unknown);
         self.diag(
-            codes::EXPRESSION_TOO_DEEP,
+            &codes::EXPRESSION_TOO_DEEP,
             Severity::Error,
             Span::new(start as u32, self.pos as u32),
             format!("{what}; the rest of the block is not read"),
@@ -1456,7 +1450,7 @@ impl<'p> Cx<'p> {
             _ => {
                 let span = Span::new(start as u32, start as u32);
                 self.diag(
-                    codes::MISSING_VALUE,
+                    &codes::MISSING_VALUE,
                     Severity::Error,
                     span,
                     "a value is missing here",
@@ -1481,7 +1475,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         } else {
             self.diag(
-                codes::UNBALANCED_BRACKET,
+                &codes::UNBALANCED_BRACKET,
                 Severity::Error,
                 Span::new(start as u32, start as u32 + 1),
                 "unclosed expression: this `[` has no matching `]`",
@@ -1615,7 +1609,7 @@ impl<'p> Cx<'p> {
             // Not a function: leave the letter for the caller (it is the next word).
             let span = Span::new(start as u32, start as u32);
             self.diag(
-                codes::MISSING_VALUE,
+                &codes::MISSING_VALUE,
                 Severity::Error,
                 span,
                 "a value is missing here",
@@ -1628,7 +1622,7 @@ impl<'p> Cx<'p> {
         if self.peek() != Some(b'[') {
             let span = Span::new(start as u32, self.pos as u32);
             self.diag(
-                codes::BAD_EXPRESSION,
+                &codes::BAD_EXPRESSION,
                 Severity::Error,
                 span,
                 format!("`{}` must be followed by `[`", name.to_ascii_uppercase()),
@@ -1654,7 +1648,7 @@ impl<'p> Cx<'p> {
                     arg2 = Some(self.group());
                 } else {
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         Span::new(s as u32, self.pos as u32),
                         "`[` missing after the slash of ATAN[y]/[x]",
@@ -1663,7 +1657,7 @@ impl<'p> Cx<'p> {
             } else if self.dialect != Dialect::Fanuc {
                 // The 30i also has a one-argument arc tangent, `ATAN[#j]` (−90° to 90°).
                 self.diag(
-                    codes::BAD_EXPRESSION,
+                    &codes::BAD_EXPRESSION,
                     Severity::Error,
                     Span::new(start as u32, self.pos as u32),
                     "ATAN needs two arguments: ATAN[y]/[x]",
@@ -1696,7 +1690,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         } else {
             self.diag(
-                codes::UNBALANCED_BRACKET,
+                &codes::UNBALANCED_BRACKET,
                 Severity::Error,
                 Span::new(start as u32, start as u32 + 1),
                 "unclosed expression: this `[` has no matching `]`",
@@ -1750,7 +1744,7 @@ impl<'p> Cx<'p> {
             }
             self.token(start, TokenKind::Ignored);
             self.diag(
-                codes::LOWERCASE,
+                &codes::LOWERCASE,
                 Severity::Warning,
                 Span::new(start as u32, self.pos as u32),
                 "ServoWorks ignores lower-case letters outside comments and subprogram names; this word is not executed",
@@ -1761,7 +1755,7 @@ impl<'p> Cx<'p> {
         if lower && self.dialect == Dialect::Fanuc {
             // Spec FAN015 (warning): a 30i reads lower case only with a setting.
             self.diag(
-                codes::LOWERCASE,
+                &codes::LOWERCASE,
                 Severity::Warning,
                 Span::new(start as u32, start as u32 + 1),
                 "lower-case address letter; FANUC programs are upper case (accepted here as upper case)",
@@ -1917,7 +1911,7 @@ impl<'p> Cx<'p> {
 
     fn missing(&mut self, letter: u8, at: usize) -> WordValue {
         self.diag(
-            codes::MISSING_VALUE,
+            &codes::MISSING_VALUE,
             Severity::Error,
             Span::new(at.saturating_sub(1) as u32, at as u32),
             format!("address {} has no value", letter as char),
@@ -1940,7 +1934,7 @@ impl<'p> Cx<'p> {
             self.token(ns, TokenKind::Name);
         } else {
             self.diag(
-                codes::MISSING_VALUE,
+                &codes::MISSING_VALUE,
                 Severity::Error,
                 Span::new(start as u32, self.pos as u32),
                 "program number missing after O",
@@ -1984,7 +1978,7 @@ impl<'p> Cx<'p> {
             self.token(ns, TokenKind::Name);
         } else {
             self.diag(
-                codes::MISSING_VALUE,
+                &codes::MISSING_VALUE,
                 Severity::Error,
                 Span::new(start as u32, self.pos as u32),
                 "program name missing after O",
@@ -2017,7 +2011,7 @@ impl<'p> Cx<'p> {
                     self.pos = self.limit;
                     self.token(ls, TokenKind::Unknown);
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         Span::new(ls as u32, self.pos as u32),
                         "o-word name is missing its closing `>`",
@@ -2036,7 +2030,7 @@ impl<'p> Cx<'p> {
             Some(b'#') | Some(b'[') => OLabel::Expr(self.value_expr()),
             _ => {
                 self.diag(
-                    codes::MISSING_VALUE,
+                    &codes::MISSING_VALUE,
                     Severity::Error,
                     Span::new(start as u32, self.pos as u32),
                     "o-word label missing after O",
@@ -2096,7 +2090,7 @@ impl<'p> Cx<'p> {
                 )
             };
             self.diag(
-                codes::BAD_EXPRESSION,
+                &codes::BAD_EXPRESSION,
                 Severity::Error,
                 if kw_span.is_empty() {
                     Span::new(start as u32, self.pos as u32)
@@ -2129,7 +2123,7 @@ impl<'p> Cx<'p> {
                     let id = *args.last().unwrap_or(&ExprId(0));
                     let span = self.p.expr(id).span;
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         span,
                         "o-word arguments must be in brackets: `[value]`",
@@ -2178,7 +2172,7 @@ impl<'p> Cx<'p> {
                     MacroStmt::IfThen { cond }
                 } else {
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         Span::new(start as u32, self.pos as u32),
                         "IF [condition] must be followed by GOTO n or THEN statement",
@@ -2197,7 +2191,7 @@ impl<'p> Cx<'p> {
                     }
                 } else {
                     self.diag(
-                        codes::BAD_EXPRESSION,
+                        &codes::BAD_EXPRESSION,
                         Severity::Error,
                         Span::new(start as u32, self.pos as u32),
                         "WHILE [condition] must be followed by DO m",
@@ -2250,7 +2244,7 @@ impl<'p> Cx<'p> {
             self.pos += 1;
         } else {
             self.diag(
-                codes::UNBALANCED_BRACKET,
+                &codes::UNBALANCED_BRACKET,
                 Severity::Error,
                 Span::new(open as u32, open as u32 + 1),
                 "unclosed output text: this `[` has no matching `]`",
@@ -2281,7 +2275,7 @@ impl<'p> Cx<'p> {
         } else {
             let s = self.pos;
             self.diag(
-                codes::BAD_EXPRESSION,
+                &codes::BAD_EXPRESSION,
                 Severity::Error,
                 Span::new(s as u32, s as u32),
                 "condition must be in brackets: [ … ]",

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Arc;
 
-use analyzer::{Diagnostic, Severity, Span};
+use analyzer::{Severity, Span};
 use rayon::prelude::*;
 
 use super::output::{self, FileReport};
@@ -245,11 +245,8 @@ impl FileReport {
         FileReport {
             path,
             text: Arc::from(&b""[..]),
-            diagnostics: vec![Diagnostic::error(
-                "L000",
-                Span::new(0, 0),
-                format!("cannot read file: {message}"),
-            )],
+            diagnostics: vec![analyzer::rules::IO_ERROR
+                .error(Span::new(0, 0), format!("cannot read file: {message}"))],
             io_error: true,
             extra_files: Vec::new(),
             dialect: None,
