@@ -61,6 +61,6 @@ fn no_fanuc_mill_program_of_the_repository_looks_like_another_control() {
         }
         p010 += usize::from(expected);
     }
-    assert_eq!(p010, 2, "the two P010 invalid fixtures");
+    assert_eq!(p010, 3, "the three P010 invalid fixtures");
     assert!(fired.is_empty(), "{}", fired.join("\n"));
 }
