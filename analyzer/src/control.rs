@@ -110,7 +110,14 @@ impl Sign {
 fn text_signs(text: &[u8]) -> Vec<(Sign, usize, usize)> {
     let mut out = Vec::new();
     let mut depth = 0u32;
-    let mut i = 0;
+    // Every block of a program is read, and most hold none of the bytes a sign or a
+    // comment starts with: the loop only visits those bytes.
+    let next = |k: usize| {
+        text.get(k..)
+            .and_then(|rest| rest.iter().position(|&c| SIGN_START[usize::from(c)]))
+            .map_or(text.len(), |p| k + p)
+    };
+    let mut i = next(0);
     let at = |k: usize| text.get(k).copied().unwrap_or(0);
     // `@100`, `#V10`: the mark and the letters and digits after it.
     let name_len = |k: usize| {
@@ -170,10 +177,22 @@ fn text_signs(text: &[u8]) -> Vec<(Sign, usize, usize)> {
             }
             _ => {}
         }
-        i += 1;
+        i = next(i + 1);
     }
     out
 }
+
+/// The bytes [`text_signs`] acts on: comment brackets and the first byte of every sign.
+static SIGN_START: [bool; 256] = {
+    let mut t = [false; 256];
+    let starts = b"()/'%@!\"#_";
+    let mut k = 0;
+    while k < starts.len() {
+        t[starts[k] as usize] = true;
+        k += 1;
+    }
+    t
+};
 
 fn lit_of(w: &Word) -> Option<f64> {
     w.num().map(|n| n.value)
