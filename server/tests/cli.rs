@@ -244,6 +244,44 @@ fn sarif_and_github_formats() {
     assert!(s.contains("line=1,col=5,endLine=1,endColumn=10"), "{s}");
 }
 
+/// A reader that closes the pipe early (`partscope rule --all | head -1`) ends the
+/// output; the process exits as it would have, with no panic on standard error.
+#[test]
+fn output_to_a_closed_pipe_ends_quietly() {
+    let dir = tempdir("closed-pipe");
+    let prog = dir.join("p.ngc");
+    let mut text = String::from("G21 G90\n");
+    for i in 0..20000 {
+        text.push_str(&format!("G1 X{i} F100\n"));
+    }
+    text.push_str("M2\n");
+    std::fs::write(&prog, text).unwrap();
+    let prog = prog.to_str().unwrap().to_string();
+    for args in [
+        vec!["rule", "--all"],
+        vec!["rule", "--all", "--json"],
+        vec!["rule", "W012"],
+        vec!["check", "--select", "S", prog.as_str()],
+        vec!["check", "--format", "json", prog.as_str()],
+        vec!["run", "--emit", "toolpath", prog.as_str()],
+        vec!["run", "--format", "json", prog.as_str()],
+    ] {
+        let mut child = bin()
+            .args(&args)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Closed before the program writes anything.
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(out.status.code().is_some(), "{args:?}: killed by a signal");
+        assert_ne!(out.status.code(), Some(101), "{args:?}: {err}");
+    }
+}
+
 #[test]
 fn rule_explains_and_lists() {
     let out = bin().args(["rule", "L001"]).output().unwrap();

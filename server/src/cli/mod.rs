@@ -138,7 +138,7 @@ pub fn main() -> ExitCode {
 
 fn rule(code: Option<String>, all: bool, json: bool) -> ExitCode {
     let rules = crate::rules::all();
-    if json {
+    let text = if json {
         let pick: Vec<_> = rules
             .iter()
             .filter(|r| {
@@ -155,30 +155,50 @@ fn rule(code: Option<String>, all: bool, json: bool) -> ExitCode {
                 })
             })
             .collect();
-        println!("{}", serde_json::Value::Array(pick));
-        return ExitCode::SUCCESS;
-    }
-    if all || code.is_none() {
+        format!("{}\n", serde_json::Value::Array(pick))
+    } else if all || code.is_none() {
+        let mut text = String::new();
         for r in &rules {
             let off = if r.default_enabled {
                 ""
             } else {
                 " (off by default)"
             };
-            println!("{:<6} {:<36} {}{}", r.code, r.name, r.summary, off);
+            text.push_str(&format!(
+                "{:<6} {:<36} {}{}\n",
+                r.code, r.name, r.summary, off
+            ));
         }
-        return ExitCode::SUCCESS;
-    }
-    let code = code.unwrap_or_default();
-    match crate::rules::lookup(&code) {
-        Some(r) => {
-            println!("# {} {}\n", r.code, r.name);
-            println!("{}\n", r.summary);
-            println!("{}", crate::rules::clean_doc(r.doc));
-            ExitCode::SUCCESS
+        text
+    } else {
+        let code = code.unwrap_or_default();
+        match crate::rules::lookup(&code) {
+            Some(r) => format!(
+                "# {} {}\n\n{}\n\n{}\n",
+                r.code,
+                r.name,
+                r.summary,
+                crate::rules::clean_doc(r.doc)
+            ),
+            None => {
+                eprintln!("partscope: unknown rule `{code}` (see `partscope rule --all`)");
+                return ExitCode::from(2);
+            }
         }
-        None => {
-            eprintln!("partscope: unknown rule `{code}` (see `partscope rule --all`)");
+    };
+    print_out(&text)
+}
+
+/// Writes `text` to standard output. A reader that stops early (`partscope rule
+/// --all | head`) closes the pipe: that ends the output, it is no failure.
+fn print_out(text: &str) -> ExitCode {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("partscope: cannot write the output: {e}");
             ExitCode::from(2)
         }
     }
