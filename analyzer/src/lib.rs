@@ -140,10 +140,13 @@ pub fn reports_mismatch(parsed: &Parsed, settings: &Settings) -> bool {
 /// [`reports_mismatch`] of a parsed program (a binary file's has no blocks, so
 /// no mismatch).
 pub fn program_reports_mismatch(program: &syntax::Program, settings: &Settings) -> bool {
-    match rules::control_mismatch::mismatch_diagnostic(program) {
-        Some(d) => !finish(program, settings, vec![d]).is_empty(),
-        None => false,
-    }
+    program_mismatch(program, settings).is_some()
+}
+
+/// The `P010` finding [`program_reports_mismatch`] decides on, when it is reported.
+pub fn program_mismatch(program: &syntax::Program, settings: &Settings) -> Option<Diagnostic> {
+    let d = rules::control_mismatch::mismatch_diagnostic(program)?;
+    finish(program, settings, vec![d]).pop()
 }
 
 /// Applies rule selection and suppression comments, and sorts. Hosts call this

@@ -134,6 +134,42 @@ fn a_missing_subprogram_call_is_skipped() {
     assert_eq!(ends(&out), vec![[5.0, 0.0, 0.0]]);
 }
 
+/// A called file in another control's macro language (here Syntec's: `%@MACRO`,
+/// `//` comments, `@` variables, `END_IF`) is one `P010` in that file and one
+/// skipped call per call site, not a syntax error on every line of it.
+#[test]
+fn a_called_file_for_another_control_is_one_finding_and_the_call_is_skipped() {
+    let syntec = "%@MACRO;  //O9810 move\nWAIT();\nIF #24 <> #0 THEN\n  @100 := #24;\nEND_IF;\nG01 X@100 F#9;\nM99;\n";
+    let out = run_with(
+        Dialect::Fanuc,
+        "O1000;\nG21 G90;\nG65 P9810 X5. F300.;\nG00 X7.;\nG65 P9810 X1. F300.;\nM30;\n",
+        "",
+        &[("9810", syntec)],
+        None,
+    );
+    let found: Vec<(&str, u32)> = out.diagnostics.iter().map(|d| (d.code, d.file.0)).collect();
+    assert_eq!(
+        found,
+        vec![("P010", 1), ("F002", 0), ("F002", 0)],
+        "{:#?}",
+        out.diagnostics
+    );
+    let text = "O1000;\nG21 G90;\nG65 P9810 X5. F300.;\nG00 X7.;\nG65 P9810 X1. F300.;\nM30;\n";
+    let lines: Vec<u32> = out
+        .diagnostics
+        .iter()
+        .filter(|d| d.code == "F002")
+        .map(|d| LineIndex::new(text.as_bytes()).line_col(d.span.start).0)
+        .collect();
+    assert_eq!(lines, vec![2, 4]);
+    assert!(out.diagnostics[1]
+        .message
+        .contains("O9810 looks written for another control"));
+    // The caller runs on past both calls.
+    assert_eq!(ends(&out), vec![[7.0, 0.0, 0.0]]);
+    assert!(out.stopped.is_none());
+}
+
 #[test]
 fn a_value_an_error_left_unknown_reports_nothing_more() {
     // #1 is unknown after line 2; line 3 divides by it and line 4 moves by it: both

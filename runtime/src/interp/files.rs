@@ -60,6 +60,9 @@ pub struct FileEntry<'a> {
     /// The file returns to a caller somewhere (M99): run as the main program, its
     /// locals #1–#33 may be the arguments of a G65 call the check does not see.
     pub returns: bool,
+    /// A called file that looks written for another control (`P010`): its text is
+    /// not FANUC's, so a call of it is skipped instead of run.
+    pub foreign: bool,
 }
 
 /// The key of an O-word label (`100`, `name`).
@@ -93,6 +96,7 @@ impl<'a> FileEntry<'a> {
             branches: false,
             taps: false,
             returns: false,
+            foreign: false,
         };
         f.index();
         let p = f.prog.clone();

@@ -284,15 +284,21 @@ impl Interp<'_, '_> {
         // The interpreter never reads tokens.
         let prog = analyzer::syntax::parse_lean(opts, rf.text.clone());
         let idx = self.files.len();
-        for d in &prog.diagnostics {
+        // A file for another control is reported once, as such; its syntax errors
+        // would be a flood about a language it is not written in.
+        let foreign = analyzer::program_mismatch(&prog, self.input.settings);
+        let reports = match &foreign {
+            Some(d) => std::slice::from_ref(d),
+            None => &prog.diagnostics[..],
+        };
+        for d in reports {
             self.out
                 .diagnostics
                 .push(d.clone().in_file(FileId(idx as u32)));
         }
-        self.files.push(FileEntry::new(
-            ProgRef::Shared(Arc::new(prog)),
-            FileId(idx as u32),
-        ));
+        let mut entry = FileEntry::new(ProgRef::Shared(Arc::new(prog)), FileId(idx as u32));
+        entry.foreign = foreign.is_some();
+        self.files.push(entry);
         self.file_names.insert(key, idx);
         // Keep the resolved path for the output list.
         self.file_names.insert(rf.path.clone(), idx);
@@ -447,6 +453,15 @@ impl Interp<'_, '_> {
                 .load_file(name, span)
                 .or_else(|| number.and_then(|n| self.load_file(&format!("{n:04}"), span)));
             match f {
+                Some(f) if self.files[f].foreign => {
+                    self.skip_call();
+                    return Err(Diagnostic::new(
+                        codes::SUB_NOT_FOUND,
+                        Severity::Warning,
+                        span,
+                        format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown"),
+                    ));
+                }
                 Some(f) => {
                     let p = self.files[f].prog.clone();
                     // Start after the program head, if the file has one.
