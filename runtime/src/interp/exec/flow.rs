@@ -340,7 +340,7 @@ impl Interp<'_, '_> {
         } else {
             if let Some(why) = self.input.resolver.refused(key) {
                 self.skip_call();
-                return Err(refused_call(span, &why));
+                return Err(refused_call(span, &why).in_file(self.file_id()));
             }
             if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
                 // rs274 reads on to the end of the file looking for the definition
@@ -460,7 +460,8 @@ impl Interp<'_, '_> {
                         Severity::Warning,
                         span,
                         format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown"),
-                    ));
+                    )
+                    .in_file(self.file_id()));
                 }
                 Some(f) => {
                     let p = self.files[f].prog.clone();
@@ -478,7 +479,7 @@ impl Interp<'_, '_> {
                     });
                     if let Some(why) = refused {
                         self.skip_call();
-                        return Err(refused_call(span, &why));
+                        return Err(refused_call(span, &why).in_file(self.file_id()));
                     }
                     let what = if self.dialect == Dialect::Servoworks {
                         format!("subprogram O{name} (file O{name}.dat) not found")

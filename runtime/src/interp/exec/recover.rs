@@ -157,7 +157,8 @@ impl Interp<'_, '_> {
             self.out.diagnostics.push(d);
             return false;
         }
-        if d.severity == Severity::Error {
+        // Warnings the dry run recovers from (a skipped call) fold the same way.
+        {
             let key = (d.file, d.code, d.message.clone());
             if let Some(r) = Arc::make_mut(&mut self.st.recovered).get_mut(&key) {
                 // The same fault again: folded into the first report (at finish).
@@ -177,7 +178,9 @@ impl Interp<'_, '_> {
                     spans: Vec::new(),
                 },
             );
-            self.st.runtime_errors = self.st.runtime_errors.saturating_add(1);
+            if d.severity == Severity::Error {
+                self.st.runtime_errors = self.st.runtime_errors.saturating_add(1);
+            }
         }
         self.out.diagnostics.push(d);
         self.recover_position(recover);
