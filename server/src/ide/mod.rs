@@ -5,9 +5,10 @@
 //! hints): a function of an [`Analysis`] and a byte offset that returns plain
 //! data with [`analyzer::Span`]s and strings. Nothing here knows the protocol: no LSP
 //! types, no tokio, no positions in UTF-16 and no files read. The language
-//! server (`crate::lsp`) converts a position to an offset, calls a function
-//! here and converts the answer back; `ide/tests.rs` calls the same functions
-//! in process on cursor fixtures (`$0`).
+//! server converts a position to an offset, calls a function here and
+//! converts the answer back; `ide/tests.rs` calls the same functions in
+//! process on cursor fixtures (`$0`), over documents analysed by
+//! [`crate::document`] as the server analyses them.
 
 pub mod completion;
 pub mod goto;
@@ -23,7 +24,7 @@ use std::sync::Arc;
 use analyzer::syntax::Program;
 use analyzer::{Diagnostic, Settings};
 
-pub use crate::lsp::dry_run::RunReport;
+pub use crate::document::run::RunReport;
 
 /// Line look-ups the features need (the line of a definition a hover names,
 /// the end of a line an inlay hint sits at). Lines end at CR, LF or CRLF.
@@ -32,6 +33,17 @@ pub trait Lines {
     fn line_of(&self, offset: usize) -> usize;
     /// The byte offset where a 0-based line starts; `None` past the last line.
     fn line_start(&self, line: usize) -> Option<usize>;
+}
+
+/// The features find lines in the document's rope.
+impl Lines for ropey::Rope {
+    fn line_of(&self, offset: usize) -> usize {
+        self.byte_to_line(offset.min(self.len_bytes()))
+    }
+
+    fn line_start(&self, line: usize) -> Option<usize> {
+        (line < self.len_lines()).then(|| self.line_to_byte(line))
+    }
 }
 
 /// One analysed version of a document, as the features read it.
@@ -48,7 +60,20 @@ pub struct Analysis<'a> {
     pub run: Option<Arc<RunReport>>,
 }
 
-impl Analysis<'_> {
+impl<'a> Analysis<'a> {
+    /// The features' view of an analysed document: the interpreter's run only
+    /// if it is already made (hover does not wait for one).
+    pub fn of(doc: &'a crate::document::Document) -> Analysis<'a> {
+        Analysis {
+            program: doc.program(),
+            lines: &doc.rope,
+            settings: &doc.doc.settings,
+            dialect_reason: &doc.doc.dialect_reason,
+            diagnostics: doc.diagnostics(),
+            run: doc.cached_run(),
+        }
+    }
+
     /// The byte offset where a line's content ends (before its line break).
     pub fn line_content_end(&self, line: usize) -> Option<usize> {
         let start = self.lines.line_start(line)?;

@@ -1,6 +1,6 @@
 //! The features in process, on cursor fixtures: `$0` marks the cursor and
 //! each `$1…$1` pair a span the answer must name. The document is analysed as
-//! the language server analyses it (`lsp::snapshot::analyze`, the built-in
+//! the language server analyses it (`document::analyze`, the built-in
 //! machine profile of the dialect), without a path or workspace.
 
 use analyzer::names::Sym;
@@ -12,13 +12,13 @@ use super::goto::{self, Definition};
 use super::lens::{self, BlockTimes};
 use super::symbols::{self, RegionKind};
 use super::{hover, signature, Analysis};
-use crate::lsp::config::ClientOptions;
-use crate::lsp::snapshot::{analyze, Inputs, Snapshot};
-use crate::lsp::CancelFlag;
+use crate::document::config::ClientOptions;
+use crate::document::run::{default_runner, CancelFlag};
+use crate::document::{analyze, Document, Inputs};
 
 /// A fixture's text without its markers, the cursor and the marked spans.
 struct Fixture {
-    snap: Snapshot,
+    snap: Document,
     cursor: u32,
     marks: Vec<Span>,
 }
@@ -44,7 +44,6 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
     }
     text.push_str(rest);
     let inputs = Inputs {
-        uri: "file:///fixture/part.nc".parse().expect("uri"),
         version: 1,
         rope: Rope::from_str(&text),
         path: None,
@@ -53,7 +52,7 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
             dialect: Some(dialect),
             ..ClientOptions::default()
         },
-        runner: crate::lsp::dry_run::default_runner(),
+        runner: default_runner(),
         files: Default::default(),
         previous: None,
     };
@@ -70,7 +69,7 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
 
 impl Fixture {
     fn analysis(&self) -> Analysis<'_> {
-        crate::lsp::analysis(&self.snap)
+        Analysis::of(&self.snap)
     }
 
     fn hover(&self) -> (String, Span) {
