@@ -3,7 +3,8 @@
 //! Each module is one feature (hover, go-to and references, symbols and
 //! folding, completion, signature help, the cycle-time lens and inlay
 //! hints): a function of an [`Analysis`] and a byte offset that returns plain
-//! data with [`analyzer::Span`]s and strings. Nothing here knows the protocol: no LSP
+//! data with [`analyzer::Span`]s and strings; highlighting ([`highlight`])
+//! reads the program alone and answers byte ranges with a class. Nothing here knows the protocol: no LSP
 //! types, no tokio, no positions in UTF-16 and no files read. The language
 //! server converts a position to an offset, calls a function here and
 //! converts the answer back; `ide/tests.rs` calls the same functions in
@@ -12,6 +13,7 @@
 
 pub mod completion;
 pub mod goto;
+pub mod highlight;
 pub mod hover;
 pub mod keywords;
 pub mod lens;

@@ -9,6 +9,7 @@ use ropey::Rope;
 
 use super::completion::{self, ItemKind};
 use super::goto::{self, Definition};
+use super::highlight::{self, Class};
 use super::lens::{self, BlockTimes};
 use super::symbols::{self, RegionKind};
 use super::{hover, signature, Analysis};
@@ -643,4 +644,130 @@ fn no_run_no_lens_and_no_hints() {
     let f = fixture(Dialect::Rs274ngc, NGC_RUN, false);
     assert_eq!(lens_title(&f), None);
     assert!(lens::inlay_hints(&f.analysis(), 0, u32::MAX, BlockTimes::Block).is_empty());
+}
+
+// Highlighting.
+
+/// The highlighted tokens starting inside the fixture's first marked span
+/// (the whole text without one): each token's text, byte offset and class.
+fn highlighted(f: &Fixture) -> Vec<(String, u32, Class)> {
+    let range = f.marks.first().copied().unwrap_or(Span::new(0, u32::MAX));
+    highlight::highlights(f.snap.program(), range.start, range.end)
+        .map(|h| (f.text(h.span), h.span.start, h.class))
+        .collect()
+}
+
+fn classes(f: &Fixture) -> Vec<(String, Class)> {
+    highlighted(f).into_iter().map(|(t, _, c)| (t, c)).collect()
+}
+
+fn own(v: &[(&str, Class)]) -> Vec<(String, Class)> {
+    v.iter().map(|(t, c)| (t.to_string(), *c)).collect()
+}
+
+#[test]
+fn highlighting_a_fanuc_macro_line() {
+    let f = fixture(
+        Dialect::Fanuc,
+        "%\nO0001;\n$1#1=SIN[30];\n$1M30;\n%\n",
+        false,
+    );
+    assert_eq!(
+        highlighted(&f),
+        vec![
+            ("#".to_string(), 9, Class::Variable),
+            ("1".to_string(), 10, Class::Number),
+            ("=".to_string(), 11, Class::Operator),
+            ("SIN".to_string(), 12, Class::Keyword),
+            ("[".to_string(), 15, Class::Operator),
+            ("30".to_string(), 16, Class::Number),
+            ("]".to_string(), 18, Class::Operator),
+            (";".to_string(), 19, Class::Mark),
+        ]
+    );
+    let whole = fixture(Dialect::Fanuc, "%\nO0001;\n#1=SIN[30];\nM30;\n%\n", false);
+    let all = classes(&whole);
+    assert_eq!(
+        all[..3],
+        own(&[
+            ("%", Class::Mark),
+            ("O", Class::Address),
+            ("0001", Class::Name)
+        ])[..]
+    );
+    assert_eq!(
+        all[all.len() - 4..],
+        own(&[
+            ("M", Class::Code),
+            ("30", Class::Number),
+            (";", Class::Mark),
+            ("%", Class::Mark)
+        ])[..]
+    );
+}
+
+#[test]
+fn highlighting_an_ngc_o_word_and_comments() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "o100 sub (probe)\nG38.2 Z-#<depth> F[#1*2] ; rest\no100 endsub\n",
+        false,
+    );
+    assert_eq!(
+        classes(&f),
+        own(&[
+            ("o", Class::Address),
+            ("100", Class::Number),
+            ("sub", Class::Keyword),
+            ("(probe)", Class::Comment),
+            ("G", Class::Code),
+            ("38.2", Class::Number),
+            ("Z", Class::Address),
+            ("-", Class::Operator),
+            ("#<depth>", Class::Variable),
+            ("F", Class::Address),
+            ("[", Class::Operator),
+            ("#", Class::Variable),
+            ("1", Class::Number),
+            ("*", Class::Operator),
+            ("2", Class::Number),
+            ("]", Class::Operator),
+            ("; rest", Class::Comment),
+            ("o", Class::Address),
+            ("100", Class::Number),
+            ("endsub", Class::Keyword),
+        ])
+    );
+}
+
+#[test]
+fn highlighting_g_and_m_codes_and_a_range() {
+    // Only tokens starting inside the range: the second line.
+    let f = fixture(
+        Dialect::Servoworks,
+        "G90 G1 X1.5 F100\n$1M3 S1000 T2\n$1M30\n",
+        false,
+    );
+    assert_eq!(
+        highlighted(&f),
+        vec![
+            ("M".to_string(), 17, Class::Code),
+            ("3".to_string(), 18, Class::Number),
+            ("S".to_string(), 20, Class::Address),
+            ("1000".to_string(), 21, Class::Number),
+            ("T".to_string(), 26, Class::Address),
+            ("2".to_string(), 27, Class::Number),
+        ]
+    );
+    let f = fixture(Dialect::Rs274ngc, "/G0 X1\n", false);
+    assert_eq!(
+        classes(&f),
+        own(&[
+            ("/", Class::Mark),
+            ("G", Class::Code),
+            ("0", Class::Number),
+            ("X", Class::Address),
+            ("1", Class::Number),
+        ])
+    );
 }
