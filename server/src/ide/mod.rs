@@ -4,7 +4,8 @@
 //! folding, completion, signature help, the cycle-time lens and inlay
 //! hints): a function of an [`Analysis`] and a byte offset that returns plain
 //! data with [`analyzer::Span`]s and strings; highlighting ([`highlight`])
-//! reads the program alone and answers byte ranges with a class. Nothing here knows the protocol: no LSP
+//! reads the program alone and answers byte ranges with a class, and
+//! [`rename`] answers byte-offset edits for this program and any other one. Nothing here knows the protocol: no LSP
 //! types, no tokio, no positions in UTF-16 and no files read. The language
 //! server converts a position to an offset, calls a function here and
 //! converts the answer back; `ide/tests.rs` calls the same functions in
@@ -17,6 +18,7 @@ pub mod highlight;
 pub mod hover;
 pub mod keywords;
 pub mod lens;
+pub mod rename;
 pub mod signature;
 pub mod symbols;
 pub mod values;

@@ -11,6 +11,7 @@ use super::completion::{self, ItemKind};
 use super::goto::{self, Definition};
 use super::highlight::{self, Class};
 use super::lens::{self, BlockTimes};
+use super::rename;
 use super::symbols::{self, RegionKind};
 use super::{hover, signature, Analysis};
 use crate::document::config::ClientOptions;
@@ -769,5 +770,110 @@ fn highlighting_g_and_m_codes_and_a_range() {
             ("X", Class::Address),
             ("1", Class::Number),
         ])
+    );
+}
+
+// Rename.
+
+/// The edits of a rename as (the span they replace, new text).
+fn edit_texts(edits: &[analyzer::TextEdit]) -> Vec<(Span, String)> {
+    edits.iter().map(|e| (e.span, e.new_text.clone())).collect()
+}
+
+fn program_of(dialect: Dialect, text: &str) -> analyzer::syntax::Program {
+    analyzer::syntax::parse(
+        analyzer::syntax::ParseOptions::new(dialect),
+        text.as_bytes().to_vec(),
+    )
+}
+
+#[test]
+fn renaming_a_local_named_parameter() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "#<$1depth$1> = 2\nG1 Z-#<$1de$0pth$1> F100\nM2\n",
+        false,
+    );
+    let program = f.snap.program();
+    let span = rename::prepare(program, f.cursor).and_then(Result::ok);
+    assert_eq!(span, Some(Span::new(18, 26)));
+    assert_eq!(f.text(Span::new(18, 26)), "#<depth>");
+    let r = rename::rename(program, f.cursor, "#<cut>")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(r.sym, Sym::Var("#<depth>".to_string()));
+    assert_eq!(
+        edit_texts(&r.edits),
+        vec![
+            (f.mark(0), "cut".to_string()),
+            (f.mark(1), "cut".to_string())
+        ]
+    );
+    assert_eq!(r.subroutine, None);
+    // Nothing to rename on a blank.
+    assert_eq!(rename::prepare(program, 12), None);
+    assert_eq!(rename::rename(program, 12, "x"), Ok(None));
+}
+
+#[test]
+fn renaming_an_o_word_subroutine_in_this_and_another_program() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "o$1<drill>$1 sub\nG81 Z-1 R1\no$1<drill>$1 endsub\no$1<dr$0ill>$1 call\nM2\n",
+        false,
+    );
+    let r = rename::rename(f.snap.program(), f.cursor, "bore")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(
+        edit_texts(&r.edits),
+        vec![
+            (f.mark(0), "<bore>".to_string()),
+            (f.mark(1), "<bore>".to_string()),
+            (f.mark(2), "<bore>".to_string())
+        ]
+    );
+    assert_eq!(
+        r.subroutine,
+        Some(rename::SubroutineFile {
+            old: "drill.ngc".to_string(),
+            new: Some("bore.ngc".to_string())
+        })
+    );
+    let caller = program_of(Dialect::Rs274ngc, "G0 X0\no<drill> call\nM2\n");
+    assert_eq!(
+        r.edits_in(&caller),
+        Ok(Some(vec![analyzer::TextEdit {
+            span: Span::new(7, 14),
+            new_text: "<bore>".to_string()
+        }]))
+    );
+    let unrelated = program_of(Dialect::Rs274ngc, "o<other> call\nM2\n");
+    assert_eq!(r.edits_in(&unrelated), Ok(None));
+    // A numbered label is no file's name.
+    let f = fixture(Dialect::Rs274ngc, "o1$000 sub\no100 endsub\nM2\n", false);
+    let r = rename::rename(f.snap.program(), f.cursor, "o200")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(r.edits.len(), 2);
+    assert_eq!(r.subroutine, None);
+}
+
+#[test]
+fn renames_refused_with_their_reason() {
+    let f = fixture(Dialect::Fanuc, "%\nO0001;\n#1$00=1.;\nM30;\n%\n", false);
+    let why = "numbered variables are memory cells, not names: #100 is the same cell in every program and macro, so it cannot be renamed";
+    assert_eq!(
+        rename::prepare(f.snap.program(), f.cursor),
+        Some(Err(why.to_string()))
+    );
+    assert_eq!(
+        rename::rename(f.snap.program(), f.cursor, "#<x>"),
+        Err(why.to_string())
+    );
+    let f = fixture(Dialect::Rs274ngc, "#<a> = 1\n#<b> = #<$0a>\nM2\n", false);
+    assert_eq!(
+        rename::rename(f.snap.program(), f.cursor, "b"),
+        Err("`#<b>` is already used in this file".to_string())
     );
 }
