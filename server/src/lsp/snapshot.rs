@@ -74,9 +74,9 @@ pub fn lsp_diagnostic(uri: &Uri, rope: &Rope, d: &analyzer::Diagnostic) -> LspDi
 /// Resolves settings and analyses one document version ([`document::analyze`]).
 /// Blocking: call it on a blocking thread.
 pub fn analyze(inputs: Inputs) -> Snapshot {
-    // The previous analysis is edited in place when this is its only holder
-    // (the server hands it over once a newer version exists); otherwise,
-    // while a run or a request still reads it, it is copied first.
+    // The previous snapshot is handed over owned when this is its only holder
+    // (so `document::analyze` edits it in place), borrowed while a run or a
+    // request still reads it.
     let shared;
     let previous = match inputs.previous.map(Arc::try_unwrap) {
         Some(Ok(prev)) => Some(Previous::Owned(Box::new(prev.analysed))),
