@@ -3,6 +3,7 @@
 //! benchmarks drive the CLI and the language server in process.
 
 pub mod cli;
+pub mod document;
 pub mod ide;
 pub mod lsp;
 pub mod page;

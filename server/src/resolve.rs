@@ -222,7 +222,7 @@ pub struct FsResolver {
     roots: Vec<PathBuf>,
     limit: SizeLimit,
     /// Polled by the interpreter: the editor's request was cancelled.
-    cancel: Option<crate::lsp::CancelFlag>,
+    cancel: Option<crate::document::run::CancelFlag>,
     /// Folders of resolved files, by FileId (index 0 = main file).
     dirs: Mutex<Vec<PathBuf>>,
     /// Files found but not read, by the name called: why.
@@ -303,7 +303,7 @@ impl FsResolver {
     }
 
     /// Lets the interpreter stop when `cancel` is set.
-    pub fn with_cancel(mut self, cancel: crate::lsp::CancelFlag) -> FsResolver {
+    pub fn with_cancel(mut self, cancel: crate::document::run::CancelFlag) -> FsResolver {
         self.cancel = Some(cancel);
         self
     }

@@ -363,7 +363,7 @@ fn block_state(a: &Analysis<'_>, offset: u32) -> Option<String> {
         md.push_str(&format!(
             "  \nTime: {} ({}), ends at {}",
             lens::block_seconds(b.time_s),
-            crate::lsp::dry_run::Breakdown::of_block(b),
+            crate::document::run::Breakdown::of_block(b),
             lens::format_duration(b.end_s)
         ));
     }

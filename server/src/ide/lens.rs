@@ -2,7 +2,7 @@
 //! read off the document's dry run.
 
 use super::{Analysis, RunReport};
-use crate::lsp::dry_run::Breakdown;
+use crate::document::run::Breakdown;
 
 /// A block's own time: milliseconds below ten seconds, then `m:ss.s`.
 pub fn block_seconds(s: f64) -> String {

@@ -3,17 +3,22 @@
 //! Each module is one feature (hover, go-to and references, symbols and
 //! folding, completion, signature help, the cycle-time lens and inlay
 //! hints): a function of an [`Analysis`] and a byte offset that returns plain
-//! data with [`analyzer::Span`]s and strings. Nothing here knows the protocol: no LSP
+//! data with [`analyzer::Span`]s and strings; highlighting ([`highlight`])
+//! reads the program alone and answers byte ranges with a class, and
+//! [`rename`] answers byte-offset edits for this program and any other one. Nothing here knows the protocol: no LSP
 //! types, no tokio, no positions in UTF-16 and no files read. The language
-//! server (`crate::lsp`) converts a position to an offset, calls a function
-//! here and converts the answer back; `ide/tests.rs` calls the same functions
-//! in process on cursor fixtures (`$0`).
+//! server converts a position to an offset, calls a function here and
+//! converts the answer back; `ide/tests.rs` calls the same functions in
+//! process on cursor fixtures (`$0`), over documents analysed by
+//! [`crate::document`] as the server analyses them.
 
 pub mod completion;
 pub mod goto;
+pub mod highlight;
 pub mod hover;
 pub mod keywords;
 pub mod lens;
+pub mod rename;
 pub mod signature;
 pub mod symbols;
 pub mod values;
@@ -23,7 +28,7 @@ use std::sync::Arc;
 use analyzer::syntax::Program;
 use analyzer::{Diagnostic, Settings};
 
-pub use crate::lsp::dry_run::RunReport;
+pub use crate::document::run::RunReport;
 
 /// Line look-ups the features need (the line of a definition a hover names,
 /// the end of a line an inlay hint sits at). Lines end at CR, LF or CRLF.
@@ -32,6 +37,17 @@ pub trait Lines {
     fn line_of(&self, offset: usize) -> usize;
     /// The byte offset where a 0-based line starts; `None` past the last line.
     fn line_start(&self, line: usize) -> Option<usize>;
+}
+
+/// The features find lines in the document's rope.
+impl Lines for ropey::Rope {
+    fn line_of(&self, offset: usize) -> usize {
+        self.byte_to_line(offset.min(self.len_bytes()))
+    }
+
+    fn line_start(&self, line: usize) -> Option<usize> {
+        (line < self.len_lines()).then(|| self.line_to_byte(line))
+    }
 }
 
 /// One analysed version of a document, as the features read it.
@@ -48,7 +64,20 @@ pub struct Analysis<'a> {
     pub run: Option<Arc<RunReport>>,
 }
 
-impl Analysis<'_> {
+impl<'a> Analysis<'a> {
+    /// The features' view of an analysed document: the interpreter's run only
+    /// if it is already made (hover does not wait for one).
+    pub fn of(doc: &'a crate::document::Document) -> Analysis<'a> {
+        Analysis {
+            program: doc.program(),
+            lines: &doc.rope,
+            settings: &doc.doc.settings,
+            dialect_reason: &doc.doc.dialect_reason,
+            diagnostics: doc.diagnostics(),
+            run: doc.cached_run(),
+        }
+    }
+
     /// The byte offset where a line's content ends (before its line break).
     pub fn line_content_end(&self, line: usize) -> Option<usize> {
         let start = self.lines.line_start(line)?;

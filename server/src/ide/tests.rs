@@ -1,6 +1,6 @@
 //! The features in process, on cursor fixtures: `$0` marks the cursor and
 //! each `$1…$1` pair a span the answer must name. The document is analysed as
-//! the language server analyses it (`lsp::snapshot::analyze`, the built-in
+//! the language server analyses it (`document::analyze`, the built-in
 //! machine profile of the dialect), without a path or workspace.
 
 use analyzer::names::Sym;
@@ -9,16 +9,18 @@ use ropey::Rope;
 
 use super::completion::{self, ItemKind};
 use super::goto::{self, Definition};
+use super::highlight::{self, Class};
 use super::lens::{self, BlockTimes};
+use super::rename;
 use super::symbols::{self, RegionKind};
 use super::{hover, signature, Analysis};
-use crate::lsp::config::ClientOptions;
-use crate::lsp::snapshot::{analyze, Inputs, Snapshot};
-use crate::lsp::CancelFlag;
+use crate::document::config::ClientOptions;
+use crate::document::run::{default_runner, CancelFlag};
+use crate::document::{analyze, Document, Inputs};
 
 /// A fixture's text without its markers, the cursor and the marked spans.
 struct Fixture {
-    snap: Snapshot,
+    snap: Document,
     cursor: u32,
     marks: Vec<Span>,
 }
@@ -44,7 +46,6 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
     }
     text.push_str(rest);
     let inputs = Inputs {
-        uri: "file:///fixture/part.nc".parse().expect("uri"),
         version: 1,
         rope: Rope::from_str(&text),
         path: None,
@@ -53,7 +54,7 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
             dialect: Some(dialect),
             ..ClientOptions::default()
         },
-        runner: crate::lsp::dry_run::default_runner(),
+        runner: default_runner(),
         files: Default::default(),
         previous: None,
     };
@@ -70,7 +71,7 @@ fn fixture(dialect: Dialect, marked: &str, run: bool) -> Fixture {
 
 impl Fixture {
     fn analysis(&self) -> Analysis<'_> {
-        crate::lsp::analysis(&self.snap)
+        Analysis::of(&self.snap)
     }
 
     fn hover(&self) -> (String, Span) {
@@ -644,4 +645,235 @@ fn no_run_no_lens_and_no_hints() {
     let f = fixture(Dialect::Rs274ngc, NGC_RUN, false);
     assert_eq!(lens_title(&f), None);
     assert!(lens::inlay_hints(&f.analysis(), 0, u32::MAX, BlockTimes::Block).is_empty());
+}
+
+// Highlighting.
+
+/// The highlighted tokens starting inside the fixture's first marked span
+/// (the whole text without one): each token's text, byte offset and class.
+fn highlighted(f: &Fixture) -> Vec<(String, u32, Class)> {
+    let range = f.marks.first().copied().unwrap_or(Span::new(0, u32::MAX));
+    highlight::highlights(f.snap.program(), range.start, range.end)
+        .map(|h| (f.text(h.span), h.span.start, h.class))
+        .collect()
+}
+
+fn classes(f: &Fixture) -> Vec<(String, Class)> {
+    highlighted(f).into_iter().map(|(t, _, c)| (t, c)).collect()
+}
+
+fn own(v: &[(&str, Class)]) -> Vec<(String, Class)> {
+    v.iter().map(|(t, c)| (t.to_string(), *c)).collect()
+}
+
+#[test]
+fn highlighting_a_fanuc_macro_line() {
+    let f = fixture(
+        Dialect::Fanuc,
+        "%\nO0001;\n$1#1=SIN[30];\n$1M30;\n%\n",
+        false,
+    );
+    assert_eq!(
+        highlighted(&f),
+        vec![
+            ("#".to_string(), 9, Class::Variable),
+            ("1".to_string(), 10, Class::Number),
+            ("=".to_string(), 11, Class::Operator),
+            ("SIN".to_string(), 12, Class::Keyword),
+            ("[".to_string(), 15, Class::Operator),
+            ("30".to_string(), 16, Class::Number),
+            ("]".to_string(), 18, Class::Operator),
+            (";".to_string(), 19, Class::Mark),
+        ]
+    );
+    let whole = fixture(Dialect::Fanuc, "%\nO0001;\n#1=SIN[30];\nM30;\n%\n", false);
+    let all = classes(&whole);
+    assert_eq!(
+        all[..3],
+        own(&[
+            ("%", Class::Mark),
+            ("O", Class::Address),
+            ("0001", Class::Name)
+        ])[..]
+    );
+    assert_eq!(
+        all[all.len() - 4..],
+        own(&[
+            ("M", Class::Code),
+            ("30", Class::Number),
+            (";", Class::Mark),
+            ("%", Class::Mark)
+        ])[..]
+    );
+}
+
+#[test]
+fn highlighting_an_ngc_o_word_and_comments() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "o100 sub (probe)\nG38.2 Z-#<depth> F[#1*2] ; rest\no100 endsub\n",
+        false,
+    );
+    assert_eq!(
+        classes(&f),
+        own(&[
+            ("o", Class::Address),
+            ("100", Class::Number),
+            ("sub", Class::Keyword),
+            ("(probe)", Class::Comment),
+            ("G", Class::Code),
+            ("38.2", Class::Number),
+            ("Z", Class::Address),
+            ("-", Class::Operator),
+            ("#<depth>", Class::Variable),
+            ("F", Class::Address),
+            ("[", Class::Operator),
+            ("#", Class::Variable),
+            ("1", Class::Number),
+            ("*", Class::Operator),
+            ("2", Class::Number),
+            ("]", Class::Operator),
+            ("; rest", Class::Comment),
+            ("o", Class::Address),
+            ("100", Class::Number),
+            ("endsub", Class::Keyword),
+        ])
+    );
+}
+
+#[test]
+fn highlighting_g_and_m_codes_and_a_range() {
+    // Only tokens starting inside the range: the second line.
+    let f = fixture(
+        Dialect::Servoworks,
+        "G90 G1 X1.5 F100\n$1M3 S1000 T2\n$1M30\n",
+        false,
+    );
+    assert_eq!(
+        highlighted(&f),
+        vec![
+            ("M".to_string(), 17, Class::Code),
+            ("3".to_string(), 18, Class::Number),
+            ("S".to_string(), 20, Class::Address),
+            ("1000".to_string(), 21, Class::Number),
+            ("T".to_string(), 26, Class::Address),
+            ("2".to_string(), 27, Class::Number),
+        ]
+    );
+    let f = fixture(Dialect::Rs274ngc, "/G0 X1\n", false);
+    assert_eq!(
+        classes(&f),
+        own(&[
+            ("/", Class::Mark),
+            ("G", Class::Code),
+            ("0", Class::Number),
+            ("X", Class::Address),
+            ("1", Class::Number),
+        ])
+    );
+}
+
+// Rename.
+
+/// The edits of a rename as (the span they replace, new text).
+fn edit_texts(edits: &[analyzer::TextEdit]) -> Vec<(Span, String)> {
+    edits.iter().map(|e| (e.span, e.new_text.clone())).collect()
+}
+
+fn program_of(dialect: Dialect, text: &str) -> analyzer::syntax::Program {
+    analyzer::syntax::parse(
+        analyzer::syntax::ParseOptions::new(dialect),
+        text.as_bytes().to_vec(),
+    )
+}
+
+#[test]
+fn renaming_a_local_named_parameter() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "#<$1depth$1> = 2\nG1 Z-#<$1de$0pth$1> F100\nM2\n",
+        false,
+    );
+    let program = f.snap.program();
+    let span = rename::prepare(program, f.cursor).and_then(Result::ok);
+    assert_eq!(span, Some(Span::new(18, 26)));
+    assert_eq!(f.text(Span::new(18, 26)), "#<depth>");
+    let r = rename::rename(program, f.cursor, "#<cut>")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(r.sym, Sym::Var("#<depth>".to_string()));
+    assert_eq!(
+        edit_texts(&r.edits),
+        vec![
+            (f.mark(0), "cut".to_string()),
+            (f.mark(1), "cut".to_string())
+        ]
+    );
+    assert_eq!(r.subroutine, None);
+    // Nothing to rename on a blank.
+    assert_eq!(rename::prepare(program, 12), None);
+    assert_eq!(rename::rename(program, 12, "x"), Ok(None));
+}
+
+#[test]
+fn renaming_an_o_word_subroutine_in_this_and_another_program() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "o$1<drill>$1 sub\nG81 Z-1 R1\no$1<drill>$1 endsub\no$1<dr$0ill>$1 call\nM2\n",
+        false,
+    );
+    let r = rename::rename(f.snap.program(), f.cursor, "bore")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(
+        edit_texts(&r.edits),
+        vec![
+            (f.mark(0), "<bore>".to_string()),
+            (f.mark(1), "<bore>".to_string()),
+            (f.mark(2), "<bore>".to_string())
+        ]
+    );
+    assert_eq!(
+        r.subroutine,
+        Some(rename::SubroutineFile {
+            old: "drill.ngc".to_string(),
+            new: Some("bore.ngc".to_string())
+        })
+    );
+    let caller = program_of(Dialect::Rs274ngc, "G0 X0\no<drill> call\nM2\n");
+    assert_eq!(
+        r.edits_in(&caller),
+        Ok(Some(vec![analyzer::TextEdit {
+            span: Span::new(7, 14),
+            new_text: "<bore>".to_string()
+        }]))
+    );
+    let unrelated = program_of(Dialect::Rs274ngc, "o<other> call\nM2\n");
+    assert_eq!(r.edits_in(&unrelated), Ok(None));
+    // A numbered label is no file's name.
+    let f = fixture(Dialect::Rs274ngc, "o1$000 sub\no100 endsub\nM2\n", false);
+    let r = rename::rename(f.snap.program(), f.cursor, "o200")
+        .expect("renamed")
+        .expect("a name");
+    assert_eq!(r.edits.len(), 2);
+    assert_eq!(r.subroutine, None);
+}
+
+#[test]
+fn renames_refused_with_their_reason() {
+    let f = fixture(Dialect::Fanuc, "%\nO0001;\n#1$00=1.;\nM30;\n%\n", false);
+    let why = "numbered variables are memory cells, not names: #100 is the same cell in every program and macro, so it cannot be renamed";
+    assert_eq!(
+        rename::prepare(f.snap.program(), f.cursor),
+        Some(Err(why.to_string()))
+    );
+    assert_eq!(
+        rename::rename(f.snap.program(), f.cursor, "#<x>"),
+        Err(why.to_string())
+    );
+    let f = fixture(Dialect::Rs274ngc, "#<a> = 1\n#<b> = #<$0a>\nM2\n", false);
+    assert_eq!(
+        rename::rename(f.snap.program(), f.cursor, "b"),
+        Err("`#<b>` is already used in this file".to_string())
+    );
 }

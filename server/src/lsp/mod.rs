@@ -19,7 +19,7 @@
 //!   texts). The scheduled analysis takes the previous one over and, when
 //!   nothing else holds it (no run, no request), edits it in place
 //!   (`Incremental::update_owned`); otherwise it updates a copy.
-//! - The interpreter and planner ([`runtime_runner`], behind the
+//! - The interpreter and planner ([`crate::document::runner`], behind the
 //!   [`dry_run::DryRunner`] trait, through `runtime::dryrun`, the glue
 //!   `partscope run` uses too) run with the analysis for files up to
 //!   `maxRunFileSize` (32 MB): the interpreter's diagnostics join the static
@@ -73,43 +73,31 @@
 
 mod actions;
 mod completion;
-pub(crate) mod config;
-mod decimate;
+pub(crate) use crate::document::{config, decimate, workspace};
 pub(crate) mod dry_run;
 mod formatting;
 mod goto;
 pub(crate) use analyzer::names as nav;
 pub(crate) mod position;
 mod rename;
-mod runtime_runner;
 mod semantic;
 mod server;
 mod signature;
 pub(crate) mod snapshot;
 mod stdio;
 mod symbols;
-mod workspace;
 
 use std::process::ExitCode;
 
 use tower_lsp_server::{ClientSocket, LspService};
 
 pub use crate::resolve::Loaded;
-pub(crate) use dry_run::CancelFlag;
-pub use runtime_runner::dry_run_result;
+pub use dry_run::dry_run_result;
 pub use server::Backend;
 
-/// The features' view of one analysed version: the interpreter's run only if
-/// it is already made (hover does not wait for one).
+/// The features' view of one analysed version ([`crate::ide::Analysis::of`]).
 pub(crate) fn analysis(snap: &snapshot::Snapshot) -> crate::ide::Analysis<'_> {
-    crate::ide::Analysis {
-        program: snap.program(),
-        lines: &snap.rope,
-        settings: &snap.doc.settings,
-        dialect_reason: &snap.doc.dialect_reason,
-        diagnostics: snap.diagnostics(),
-        run: snap.cached_run(),
-    }
+    crate::ide::Analysis::of(snap)
 }
 
 /// Builds the protocol service `run` serves over stdio. It is public so an

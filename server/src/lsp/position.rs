@@ -10,6 +10,8 @@ use analyzer::Span;
 use ropey::Rope;
 use tower_lsp_server::ls_types::{Position, Range};
 
+pub use crate::document::rope_bytes;
+
 /// Converts a byte offset into an LSP position. Offsets past the end clamp to
 /// the end; an offset inside a multi-byte character maps to that character.
 pub fn offset_to_position(rope: &Rope, offset: usize) -> Position {
@@ -19,17 +21,6 @@ pub fn offset_to_position(rope: &Rope, offset: usize) -> Position {
     let ch = rope.byte_to_char(offset);
     let col = rope.char_to_utf16_cu(ch) - rope.char_to_utf16_cu(line_char);
     Position::new(line as u32, col as u32)
-}
-
-/// The features (`crate::ide`) find lines in the document's rope.
-impl crate::ide::Lines for Rope {
-    fn line_of(&self, offset: usize) -> usize {
-        self.byte_to_line(offset.min(self.len_bytes()))
-    }
-
-    fn line_start(&self, line: usize) -> Option<usize> {
-        (line < self.len_lines()).then(|| self.line_to_byte(line))
-    }
 }
 
 /// Converts a byte span into an LSP range.
@@ -97,29 +88,6 @@ pub fn apply_change(rope: &mut Rope, range: Option<Range>, text: &str) {
             rope.insert(ca, text);
         }
     }
-}
-
-/// The document's bytes, copied out of the rope for the analyzer.
-pub fn rope_bytes(rope: &Rope) -> std::sync::Arc<[u8]> {
-    // Filled where it lies: collecting a `Vec` and converting it would copy
-    // the whole text twice (tens of megabytes per edit of a large file).
-    let mut out: std::sync::Arc<[u8]> = std::iter::repeat_n(0u8, rope.len_bytes()).collect();
-    if let Some(buf) = std::sync::Arc::get_mut(&mut out) {
-        let mut at = 0;
-        for chunk in rope.chunks() {
-            let b = chunk.as_bytes();
-            if let Some(dst) = buf.get_mut(at..at + b.len()) {
-                dst.copy_from_slice(b);
-            }
-            at += b.len();
-        }
-        return out;
-    }
-    let mut v = Vec::with_capacity(rope.len_bytes());
-    for chunk in rope.chunks() {
-        v.extend_from_slice(chunk.as_bytes());
-    }
-    v.into()
 }
 
 #[cfg(test)]

@@ -3,7 +3,8 @@
 //! renamed everywhere it is called: this document, the other open documents,
 //! the `.ngc` files beside them and in the subroutine path, and its own file
 //! `name.ngc`, which is renamed too when the client can rename files. What is
-//! renamed and how is `analyzer::names`; this module finds the files.
+//! renamed and how is [`crate::ide::rename`]; this module finds the files and
+//! converts the edits.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -16,10 +17,10 @@ use tower_lsp_server::ls_types::{
 
 use super::dry_run::CancelFlag;
 use super::goto::{external_file, parse_rope, OtherDoc};
-use super::nav;
 use super::position::span_to_range;
 use super::snapshot::Snapshot;
 use super::workspace;
+use crate::ide::rename as ide;
 
 /// At most this many workspace files are read to find the calls of a subroutine.
 const MAX_FILES: usize = 2000;
@@ -27,11 +28,7 @@ const MAX_FILES: usize = 2000;
 /// The range of the name under `offset`, or why it cannot be renamed (None:
 /// nothing there).
 pub fn prepare(snap: &Snapshot, offset: u32) -> Option<Result<Range, String>> {
-    let occ = nav::occurrence_at(snap.program(), offset)?;
-    if let Some(why) = nav::rename_refusal(&occ) {
-        return Some(Err(why.to_string()));
-    }
-    Some(Ok(span_to_range(&snap.rope, occ.span)))
+    Some(ide::prepare(snap.program(), offset)?.map(|span| span_to_range(&snap.rope, span)))
 }
 
 /// `.ngc` files directly in the folders where LinuxCNC would look for a
@@ -81,26 +78,20 @@ pub fn rename(
     rename_files: bool,
     cancel: &CancelFlag,
 ) -> Result<Option<WorkspaceEdit>, String> {
-    let program = snap.program();
-    let Some(occ) = nav::occurrence_at(program, offset) else {
+    let Some(plan) = ide::rename(snap.program(), offset, new_name)? else {
         return Ok(None);
     };
-    if let Some(why) = nav::rename_refusal(&occ) {
-        return Err(why.to_string());
-    }
     // (uri, version of an open document, rope, edits), this document first.
     let mut docs: Vec<(Uri, Option<i32>, Rope, Vec<analyzer::TextEdit>)> = Vec::new();
-    let here = nav::rename_edits(program, &occ.sym, new_name)?;
     docs.push((
         snap.uri.clone(),
         Some(snap.version),
         snap.rope.clone(),
-        here,
+        plan.edits.clone(),
     ));
     let mut file_rename: Option<(Uri, Uri)> = None;
     // Only a named subroutine is called from other files (by its file name).
-    if let Some(old_file) = nav::subroutine_file_name(&occ.sym) {
-        let new_sym = nav::new_symbol(&occ.sym, new_name)?;
+    if let Some(sub) = &plan.subroutine {
         let mut seen: Vec<Uri> = vec![snap.uri.clone()];
         let mut add = |uri: Uri, version: Option<i32>, rope: Rope| -> Result<(), String> {
             if seen.contains(&uri) {
@@ -108,23 +99,22 @@ pub fn rename(
             }
             seen.push(uri.clone());
             let other = parse_rope(snap, &rope);
-            if !nav::occurrences(&other).iter().any(|o| o.sym == occ.sym) {
-                return Ok(());
+            if let Some(edits) = plan
+                .edits_in(&other)
+                .map_err(|e| format!("{}: {e}", uri.as_str()))?
+            {
+                docs.push((uri, version, rope, edits));
             }
-            let edits = nav::rename_edits(&other, &occ.sym, new_name)
-                .map_err(|e| format!("{}: {e}", uri.as_str()))?;
-            docs.push((uri, version, rope, edits));
             Ok(())
         };
         for d in others {
             add(d.uri.clone(), d.version, d.rope.clone())?;
         }
-        let sub_file = external_file(snap, &occ.sym, roots).or_else(|| {
+        let sub_file = external_file(snap, &plan.sym, roots).or_else(|| {
             // Renaming from inside the subroutine's own file.
             let p = snap.path.as_deref()?;
             let name = p.file_name()?.to_str()?;
-            name.eq_ignore_ascii_case(&old_file)
-                .then(|| p.to_path_buf())
+            name.eq_ignore_ascii_case(&sub.old).then(|| p.to_path_buf())
         });
         let mut files = library_files(snap, roots);
         files.extend(sub_file.iter().cloned());
@@ -139,8 +129,8 @@ pub fn rename(
                 add(uri, None, Rope::from_str(&text))?;
             }
         }
-        if let (Some(path), Some(new_file)) = (sub_file, nav::subroutine_file_name(&new_sym)) {
-            let target = path.with_file_name(&new_file);
+        if let (Some(path), Some(new_file)) = (sub_file, sub.new.as_deref()) {
+            let target = path.with_file_name(new_file);
             if target.exists() && !target.eq(&path) {
                 return Err(format!(
                     "`{}` exists already: the subroutine's file cannot take its new name",

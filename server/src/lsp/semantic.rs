@@ -1,10 +1,13 @@
-//! Semantic tokens from the lexer's tokens. The legend follows
-//! [`TokenKind`]: comments, numbers, keywords (`GOTO`, `sub`, `SIN`), G/M
+//! Semantic tokens: the highlighted ranges of [`crate::ide::highlight`]
+//! in LSP's legend and delta encoding. The legend follows
+//! [`Class`]: comments, numbers, keywords (`GOTO`, `sub`, `SIN`), G/M
 //! codes as functions, other address letters as parameters, variables,
 //! operators, names as namespaces, and tape/skip marks as macros.
 
-use analyzer::syntax::{Program, TokenKind};
+use analyzer::syntax::Program;
 use tower_lsp_server::ls_types::{SemanticToken, SemanticTokenType, SemanticTokensLegend};
+
+use crate::ide::highlight::{highlights, Class};
 
 /// Legend indices.
 const COMMENT: u32 = 0;
@@ -36,24 +39,20 @@ pub fn legend() -> SemanticTokensLegend {
     }
 }
 
-fn token_type(kind: TokenKind, first_byte: u8) -> Option<u32> {
-    Some(match kind {
-        TokenKind::Comment | TokenKind::LineComment | TokenKind::Ignored => COMMENT,
-        TokenKind::Number => NUMBER,
-        TokenKind::Keyword => KEYWORD,
-        TokenKind::Letter => match first_byte.to_ascii_uppercase() {
-            b'G' | b'M' => FUNCTION,
-            _ => PARAMETER,
-        },
-        TokenKind::Hash | TokenKind::NamedParam => VARIABLE,
-        TokenKind::Operator | TokenKind::LBracket | TokenKind::RBracket | TokenKind::Comma => {
-            OPERATOR
-        }
-        TokenKind::Name => NAMESPACE,
-        TokenKind::Text => STRING,
-        TokenKind::Percent | TokenKind::BlockSkip | TokenKind::Eob => MACRO,
-        TokenKind::Whitespace | TokenKind::Newline | TokenKind::Unknown => return None,
-    })
+/// The legend index of a class.
+fn token_type(class: Class) -> u32 {
+    match class {
+        Class::Comment => COMMENT,
+        Class::Number => NUMBER,
+        Class::Keyword => KEYWORD,
+        Class::Code => FUNCTION,
+        Class::Address => PARAMETER,
+        Class::Variable => VARIABLE,
+        Class::Operator => OPERATOR,
+        Class::Name => NAMESPACE,
+        Class::Mark => MACRO,
+        Class::Text => STRING,
+    }
 }
 
 /// UTF-16 length of a byte run, counted per byte so that runs that cut a
@@ -70,70 +69,57 @@ fn utf16_len(bytes: &[u8]) -> u32 {
         .sum()
 }
 
-/// Encodes the tokens whose start lies in `[from, to)` bytes (all for
-/// `0..u32::MAX`). At most `limit` tokens; `None` when there are more.
+/// Moves `line` and the UTF-16 `col` from byte `from` to byte `to` of `text`
+/// (line breaks: CR, LF, CRLF).
+fn advance(text: &[u8], from: usize, to: usize, line: &mut u32, col: &mut u32) {
+    let gap = text.get(from..to).unwrap_or_default();
+    for (k, &b) in gap.iter().enumerate() {
+        match b {
+            b'\n' => {
+                *line += 1;
+                *col = 0;
+            }
+            b'\r' if text.get(from + k + 1) != Some(&b'\n') => {
+                *line += 1;
+                *col = 0;
+            }
+            b'\r' => {}
+            _ => *col += utf16_len(&[b]),
+        }
+    }
+}
+
+/// Encodes the highlighted tokens whose start lies in `[from, to)` bytes (all
+/// for `0..u32::MAX`). At most `limit` tokens; `None` when there are more.
 pub fn encode(program: &Program, from: u32, to: u32, limit: usize) -> Option<Vec<SemanticToken>> {
     let text = &program.text;
-    let first = program.tokens.partition_point(|t| t.start < from);
-    // Line and UTF-16 column of `first`'s start: computed from the line start.
-    let start_off = program
-        .tokens
-        .get(first)
-        .map(|t| t.start as usize)
-        .unwrap_or(text.len());
-    let mut line: u32 = 0;
-    let mut line_start = 0usize;
-    let mut i = 0usize;
-    // Count lines before start_off (CR, LF, CRLF).
-    while i < start_off {
-        match text[i] {
-            b'\n' => {
-                line += 1;
-                line_start = i + 1;
-            }
-            b'\r' if text.get(i + 1) != Some(&b'\n') => {
-                line += 1;
-                line_start = i + 1;
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    let mut col = utf16_len(&text[line_start..start_off]);
+    // Line and UTF-16 column of byte `pos`; a token's own bytes move the
+    // column only (no token but a line break holds one).
+    let (mut pos, mut line, mut col) = (0usize, 0u32, 0u32);
     let (mut prev_line, mut prev_col) = (0u32, 0u32);
     let mut out = Vec::new();
-    for ti in first..program.tokens.len() {
-        let tok = program.tokens[ti];
-        if tok.start >= to {
-            break;
-        }
-        let span = program.token_span(ti);
-        let bytes = span.slice(text);
-        if tok.kind == TokenKind::Newline {
-            line += 1;
-            col = 0;
-            continue;
-        }
-        let len = utf16_len(bytes);
-        if let Some(ty) = bytes.first().and_then(|&b| token_type(tok.kind, b)) {
-            if len > 0 {
-                if out.len() >= limit {
-                    return None;
-                }
-                let delta_line = line - prev_line;
-                let delta_start = if delta_line == 0 { col - prev_col } else { col };
-                out.push(SemanticToken {
-                    delta_line,
-                    delta_start,
-                    length: len,
-                    token_type: ty,
-                    token_modifiers_bitset: 0,
-                });
-                prev_line = line;
-                prev_col = col;
+    for h in highlights(program, from, to) {
+        let (start, end) = (h.span.start as usize, h.span.end as usize);
+        advance(text, pos, start, &mut line, &mut col);
+        let len = utf16_len(text.get(start..end).unwrap_or_default());
+        if len > 0 {
+            if out.len() >= limit {
+                return None;
             }
+            let delta_line = line - prev_line;
+            let delta_start = if delta_line == 0 { col - prev_col } else { col };
+            out.push(SemanticToken {
+                delta_line,
+                delta_start,
+                length: len,
+                token_type: token_type(h.class),
+                token_modifiers_bitset: 0,
+            });
+            prev_line = line;
+            prev_col = col;
         }
         col += len;
+        pos = end.max(start);
     }
     Some(out)
 }
@@ -177,5 +163,32 @@ mod tests {
         assert_eq!(second[0].delta_line, 1);
         assert_eq!(second.len(), 2);
         assert_eq!(encode(&p, 0, u32::MAX, 3), None);
+    }
+
+    #[test]
+    fn crlf_and_cr_each_end_one_line() {
+        let p = parse(
+            ParseOptions::new(Dialect::Rs274ngc),
+            b"G1\r\nM2\rX1 (\xf0\x9f\x98\x80) Y2".to_vec(),
+        );
+        let flat: Vec<(u32, u32, u32, u32)> = encode(&p, 0, u32::MAX, 1000)
+            .unwrap()
+            .iter()
+            .map(|t| (t.delta_line, t.delta_start, t.length, t.token_type))
+            .collect();
+        assert_eq!(
+            flat,
+            vec![
+                (0, 0, 1, FUNCTION),
+                (0, 1, 1, NUMBER),
+                (1, 0, 1, FUNCTION),
+                (0, 1, 1, NUMBER),
+                (1, 0, 1, PARAMETER),
+                (0, 1, 1, NUMBER),
+                (0, 2, 4, COMMENT),
+                (0, 5, 1, PARAMETER),
+                (0, 1, 1, NUMBER),
+            ]
+        );
     }
 }

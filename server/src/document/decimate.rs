@@ -15,7 +15,7 @@
 
 use serde::Serialize;
 
-use super::dry_run::{Segment, SegmentKind};
+use super::run::{Segment, SegmentKind};
 
 /// Points simplified together at most; the ends of such a stretch are always
 /// kept. Bounds the algorithm's quadratic worst case on one long run.

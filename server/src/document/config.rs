@@ -42,7 +42,7 @@ pub struct ClientOptions {
     pub max_file_size: Option<usize>,
     pub max_run_file_size: Option<usize>,
     /// Cap on the toolpath points of a `partscope/dryRun` answer
-    /// (`maxToolpathPoints`; `lsp::decimate`).
+    /// (`maxToolpathPoints`; `document::decimate`).
     pub max_toolpath_points: Option<usize>,
     /// The `format` object: defaults of document formatting (`numbers`,
     /// `start`, `step`, `spacing`, `uppercase`; see `lsp::formatting`).
@@ -237,7 +237,7 @@ pub fn resolve(
                 let base = roots.first().cloned().unwrap_or_default();
                 let path = base.join(p);
                 // The profile must stay inside the workspace, like every file the server reads.
-                match crate::lsp::workspace::confine(&path, roots)
+                match crate::resolve::confine(&path, roots)
                     .ok_or_else(|| {
                         format!(
                             "machine profile {} is outside the workspace",
@@ -280,7 +280,7 @@ pub fn resolve(
     // `partscope check`. Like every file the server reads, it must be inside
     // the workspace.
     if let Some(ini) = beside_config(&config.ini) {
-        match crate::lsp::workspace::confine(&ini, roots)
+        match crate::resolve::confine(&ini, roots)
             .ok_or_else(|| format!("{} is outside the workspace", ini.display()))
             .and_then(|p| files.ini(&p))
         {

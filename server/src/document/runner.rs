@@ -14,15 +14,10 @@ use runtime::dryrun::{self, DryRun};
 use runtime::machine::MachineProfile;
 use runtime::{EventKind, RunInput};
 
-use tower_lsp_server::ls_types::Uri;
+use analyzer::names::{self as nav, Sym};
 
 use super::decimate::{self, Path};
-use super::dry_run::{
-    summarize, DryRunInput, DryRunResult, DryRunner, Request, RunReport, SegmentKind, StoppedAt,
-    Timing,
-};
-use super::nav::{self, Sym};
-use super::snapshot::lsp_diagnostic;
+use super::run::{DryRunInput, DryRunner, RunReport, SegmentKind, StoppedAt, Timing};
 use super::workspace;
 use crate::resolve::{FsResolver, SizeLimit};
 
@@ -35,7 +30,7 @@ pub const STEP_BUDGET: u64 = 5_000_000;
 #[cfg(fuzzing)]
 pub const STEP_BUDGET: u64 = 20_000;
 /// Chord tolerance for sampling arcs in the preview, mm: the finest used.
-const CHORD_TOLERANCE: f64 = 0.01;
+pub(crate) const CHORD_TOLERANCE: f64 = 0.01;
 /// Chunks of motions waiting for the planner: enough to ride out its
 /// uneven pace, few enough that memory stays flat.
 const PLAN_QUEUE: usize = 4;
@@ -241,7 +236,7 @@ impl DryRunner for RuntimeRunner {
         // would be a large copy).
         let mut blocks = std::mem::take(&mut plan.blocks);
         blocks.retain(|b| b.file == 0);
-        let breakdown = Some(super::dry_run::Breakdown::of(
+        let breakdown = Some(super::run::Breakdown::of(
             &plan.totals,
             profile.traj_max_velocity,
         ));
@@ -404,46 +399,11 @@ pub fn report_of(
     }
 }
 
-/// The `partscope/dryRun` result of a run the command line made
-/// (`partscope run --html`): the request's own conversion, from the
-/// program's run, plan and loaded files instead of an open document.
-pub fn dry_run_result(
-    program: &analyzer::syntax::Program,
-    path: &std::path::Path,
-    out: &runtime::RunOutput,
-    profile: &MachineProfile,
-    plan: &DryRun,
-    loaded: &[Loaded],
-) -> DryRunResult {
-    let toolpath = path_of(out, Some(profile), CHORD_TOLERANCE, &|| false).unwrap_or_default();
-    let report = report_of(program, out, toolpath, Some(plan), loaded);
-    // Ranges are counted in a rope of the text; an invalid byte becomes one `?`
-    // (not U+FFFD, three bytes) so byte offsets stay those of the file.
-    let mut text = String::with_capacity(program.text.len());
-    for chunk in program.text.utf8_chunks() {
-        text.push_str(chunk.valid());
-        text.extend(std::iter::repeat_n('?', chunk.invalid().len()));
-    }
-    let rope = ropey::Rope::from_str(&text);
-    let uri = std::path::absolute(path)
-        .ok()
-        .and_then(Uri::from_file_path)
-        .or_else(|| "file:///".parse().ok());
-    let diagnostics = match &uri {
-        Some(uri) => report
-            .diagnostics
-            .iter()
-            .filter_map(|d| serde_json::to_value(lsp_diagnostic(uri, &rope, d)).ok())
-            .collect(),
-        None => Vec::new(),
-    };
-    summarize(0, &report, diagnostics, Request::EXACT)
-}
-
 #[cfg(test)]
 mod run_tests {
     use super::*;
-    use crate::lsp::CancelFlag;
+    use crate::document::decimate::Request;
+    use crate::document::run::CancelFlag;
     use analyzer::{Dialect, Settings};
 
     fn run(text: &str) -> RunReport {
@@ -469,7 +429,7 @@ mod run_tests {
         RuntimeRunner.run(&input).unwrap()
     }
 
-    fn segments(r: &RunReport) -> Vec<super::super::dry_run::Segment> {
+    fn segments(r: &RunReport) -> Vec<crate::document::run::Segment> {
         r.path.select(Request::EXACT).0
     }
 
