@@ -66,7 +66,7 @@ pub(crate) mod util;
 mod word_value_range;
 
 pub use context::{BlockCode, BlockCx, BlockWords, Interest, ProgramCx, Seg};
-pub use syntax_rules::{CONFIG_ISSUE, IO_ERROR};
+pub use syntax_rules::{BAD_EXPRESSION, CONFIG_ISSUE, IO_ERROR};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
 pub(crate) mod control_mismatch;

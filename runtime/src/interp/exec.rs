@@ -16,6 +16,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use analyzer::rules::RuleMeta;
 use analyzer::syntax::{
     BlockKind, CommentKind, Expr, ExprId, ItemKind, MacroStmt, OKeyword, OLabel, Program, WordValue,
 };
@@ -64,7 +65,9 @@ pub(crate) use offsets::tool_diameter_of;
 pub use recover::STOP_SUFFIX;
 mod resume;
 use crate::canon::{f4, Canon};
-use crate::rules::codes;
+use crate::rules::{
+    interp::INTERP, missing_end::MISSING_END, step_budget::STEP_BUDGET, travel_limit::TRAVEL_LIMIT,
+};
 use messages::{rs274_message, rs274_parameter_message};
 pub use resume::{
     rerun, run_checkpointed, run_checkpointed_observed, run_checkpointed_recording, Checkpoints,
@@ -498,7 +501,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         if let Some(n) = bad_origin {
             if it.variant == Variant::Emc2 {
                 it.diag(
-                    codes::INTERP,
+                    &INTERP,
                     Severity::Error,
                     Span::default(),
                     format!("parameter #5220 is {n}: the start-up coordinate system must be a whole number 1 to 9 (G54 to G59.3); the control faults"),
@@ -553,8 +556,8 @@ impl<'a, 'i> Interp<'a, 'i> {
         self.files.get(self.cur.0).map(|f| f.id).unwrap_or_default()
     }
 
-    fn diag(&mut self, code: &'static str, sev: Severity, span: Span, msg: impl Into<String>) {
-        let d = Diagnostic::new(code, sev, span, msg).in_file(self.file_id());
+    fn diag(&mut self, rule: &'static RuleMeta, sev: Severity, span: Span, msg: impl Into<String>) {
+        let d = rule.diagnostic(sev, span, msg).in_file(self.file_id());
         self.out.diagnostics.push(d);
     }
 
@@ -667,13 +670,13 @@ impl<'a, 'i> Interp<'a, 'i> {
                     // A handshake loop (`WHILE [#890 NE 3]`, a dwell, `END`) ends
                     // when the machine or a cell controller sets the variable.
                     Some((var, line)) => self.diag(
-                        codes::STEP_BUDGET,
+                        &STEP_BUDGET,
                         Severity::Info,
                         span,
                         format!("execution stopped after {budget} blocks in a loop that waits for #{var} (tested on line {}), {}: the machine or a cell controller changes it, the dry run cannot; the time from here on is unknown", line + 1, machine_vars::describe(var)),
                     ),
                     None => self.diag(
-                        codes::STEP_BUDGET,
+                        &STEP_BUDGET,
                         Severity::Warning,
                         span,
                         format!("execution stopped after {budget} blocks: the step budget was reached and the rest of the program is not simulated; raise it with --step-budget"),
@@ -786,7 +789,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.limit_reports += 1;
             let (lo, hi) = self.cfg.limits[i].unwrap_or((0.0, 0.0));
             let letter = ['X', 'Y', 'Z', 'A', 'B', 'C'][i];
-            let d = Diagnostic::warning(codes::TRAVEL_LIMIT, span, format!("this block moves {letter} outside its travel ({lo} to {hi} in machine coordinates): the control stops with a soft-limit alarm")).in_file(file);
+            let d = TRAVEL_LIMIT.warning(span, format!("this block moves {letter} outside its travel ({lo} to {hi} in machine coordinates): the control stops with a soft-limit alarm")).in_file(file);
             self.out.diagnostics.push(d);
         }
     }
@@ -821,12 +824,10 @@ impl<'a, 'i> Interp<'a, 'i> {
                     };
                     self.out.canon_error = Some(format!("{text}\n{last}"));
                 }
-                self.out
-                    .diagnostics
-                    .push(Diagnostic::error(codes::MISSING_END, span, msg));
+                self.out.diagnostics.push(MISSING_END.error(span, msg));
             }
             _ => {
-                self.out.diagnostics.push(Diagnostic::warning(codes::MISSING_END, span, "program has no end code (M02/M30): the control stops at the end of the file without the end-of-program resets"));
+                self.out.diagnostics.push(MISSING_END.warning(span, "program has no end code (M02/M30): the control stops at the end of the file without the end-of-program resets"));
             }
         }
     }
@@ -895,8 +896,8 @@ impl<'a, 'i> Interp<'a, 'i> {
             .unwrap_or_default()
     }
 
-    fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
-        Diagnostic::error(code, span, msg).in_file(self.file_id())
+    fn err(&self, rule: &'static RuleMeta, span: Span, msg: impl Into<String>) -> Diagnostic {
+        rule.error(span, msg).in_file(self.file_id())
     }
 }
 

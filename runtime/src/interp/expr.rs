@@ -3,16 +3,19 @@
 //! Values are `Option<f64>`: `None` is FANUC Macro B's *vacant* (null); in
 //! RS274/NGC every parameter has a number (unset ones read as 0).
 
+use analyzer::rules::RuleMeta;
 use analyzer::syntax::{BinOp, Expr, ExprId, Func, Program, MAX_EXPR_HEIGHT};
 use analyzer::{Dialect, Span};
+
+use crate::rules::expression::EXPRESSION;
 
 /// An evaluation error with the span of the failing node.
 #[derive(Debug, Clone)]
 pub struct EvalError {
     pub span: Span,
     pub message: String,
-    /// FANUC alarm number, when the error has one.
-    pub code: &'static str,
+    /// The rule the error is reported under.
+    pub rule: &'static RuleMeta,
 }
 
 pub type Val = Option<f64>;
@@ -29,11 +32,11 @@ pub trait VarSource {
 /// (`[1 EQ 1.00009]` is true there); the digest's vector wins here.
 pub const NGC_EQ_TOL: f64 = 1e-6;
 
-fn err(span: Span, code: &'static str, message: impl Into<String>) -> EvalError {
+fn err(span: Span, rule: &'static RuleMeta, message: impl Into<String>) -> EvalError {
     EvalError {
         span,
         message: message.into(),
-        code,
+        rule,
     }
 }
 
@@ -49,7 +52,7 @@ pub fn eval(
     let span = node.span;
     // The parser bounds every tree's height; this guards trees built elsewhere.
     if depth > MAX_EXPR_HEIGHT {
-        return Err(err(span, "X006", "expression nested too deeply"));
+        return Err(err(span, &EXPRESSION, "expression nested too deeply"));
     }
     let num = |v: Val| v.unwrap_or(0.0);
     match node.expr {
@@ -60,7 +63,7 @@ pub fn eval(
             if (i - r).abs() > 1e-4 {
                 return Err(err(
                     span,
-                    "X006",
+                    &EXPRESSION,
                     format!("parameter number {i} is not an integer"),
                 ));
             }
@@ -74,7 +77,7 @@ pub fn eval(
         Expr::Neg { arg } => Ok(Some(-num(eval(p, arg, dialect, vars, depth + 1)?))),
         Expr::Plus { arg } => Ok(Some(num(eval(p, arg, dialect, vars, depth + 1)?))),
         Expr::Group { inner } => eval(p, inner, dialect, vars, depth + 1),
-        Expr::Error => Err(err(span, "X006", "expression could not be parsed")),
+        Expr::Error => Err(err(span, &EXPRESSION, "expression could not be parsed")),
         Expr::Call { func, arg, arg2 } => {
             if func == Func::Exists {
                 return exists(p, arg, dialect, vars, depth);
@@ -124,7 +127,7 @@ fn exists(
             if (i - r).abs() > 1e-4 {
                 return Err(err(
                     inner.span,
-                    "X006",
+                    &EXPRESSION,
                     format!("parameter number {i} is not an integer"),
                 ));
             }
@@ -140,7 +143,7 @@ fn exists(
             } else {
                 "Expected # reading parameter"
             };
-            Err(err(inner.span, "X006", message))
+            Err(err(inner.span, &EXPRESSION, message))
         }
     }
 }
@@ -158,10 +161,14 @@ pub fn named_key(text: &str) -> String {
 
 fn check(v: f64, span: Span) -> Result<f64, EvalError> {
     if v.is_nan() {
-        return Err(err(span, "X006", "calculation resulted in 'not a number'"));
+        return Err(err(
+            span,
+            &EXPRESSION,
+            "calculation resulted in 'not a number'",
+        ));
     }
     if v.is_infinite() {
-        return Err(err(span, "X006", "calculation resulted in 'infinity'"));
+        return Err(err(span, &EXPRESSION, "calculation resulted in 'infinity'"));
     }
     Ok(v)
 }
@@ -177,7 +184,7 @@ fn call(
     let range = |name: &str| {
         err(
             span,
-            if fanuc { "X007" } else { "X006" },
+            &EXPRESSION,
             format!(
                 "argument to {name} out of range{}",
                 if fanuc { " (PS0119)" } else { "" }
@@ -294,7 +301,7 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
             if y == 0.0 {
                 return Err(err(
                     span,
-                    if ngc { "X006" } else { "X007" },
+                    &EXPRESSION,
                     if ngc {
                         "attempt to divide by zero"
                     } else {
@@ -308,7 +315,7 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
             if y == 0.0 {
                 return Err(err(
                     span,
-                    "X006",
+                    &EXPRESSION,
                     "calculation resulted in 'not a number' (MOD by zero)",
                 ));
             }
@@ -323,7 +330,7 @@ fn binary(op: BinOp, a: Val, b: Val, dialect: Dialect, span: Span) -> Result<Val
             if x < 0.0 && y.fract() != 0.0 {
                 return Err(err(
                     span,
-                    "X006",
+                    &EXPRESSION,
                     "attempt to raise negative to non integer power",
                 ));
             }

@@ -4,6 +4,7 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
+use analyzer::rules::BAD_EXPRESSION;
 use analyzer::syntax::{Expr, ItemKind, MacroStmt, OKeyword, OLabel, Program};
 use analyzer::FileId;
 
@@ -103,7 +104,7 @@ impl<'a> FileEntry<'a> {
         for d in &p.diagnostics {
             // A bare O-word (`O1`, `O<name>`) is a program title or M98 target for
             // LinuxCNC 2.9, which runs on; the parser's L010 is stricter.
-            if d.severity == analyzer::Severity::Error && d.code != "L010" {
+            if d.severity == analyzer::Severity::Error && d.code != BAD_EXPRESSION.code {
                 if let Some(b) = p.block_at(d.span.start) {
                     f.error_blocks.insert(b as u32);
                 }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -57,7 +56,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     // Plane selection for arcs in UVW planes.
     if let Some(&(g, s)) = cx.motion.as_ref().filter(|m| matches!(m.0, 20 | 30)) {
         if mem.uvw_plane && !gm(&[170, 180, 190]) {
-            return Err(cx.err(codes::ARC_UVW_PLANE, s, format!("G{} in a UVW plane (G17.1/G18.1/G19.1): LinuxCNC cannot make arcs there; select G17, G18 or G19", g / 10)));
+            return Err(cx.out.err(&ARC_UVW_PLANE, s, format!("G{} in a UVW plane (G17.1/G18.1/G19.1): LinuxCNC cannot make arcs there; select G17, G18 or G19", g / 10)));
         }
     }
     if gm(&[171, 181, 191]) {

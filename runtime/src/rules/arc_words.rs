@@ -4,8 +4,8 @@
 use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};
 
+use super::arc_ill_conditioned::ARC_ILL_CONDITIONED;
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -80,19 +80,19 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
             ijk[n] as char, ijk[a] as char, ijk[b] as char
         );
         if ngc {
-            return Err(cx.err(codes::ARC_WORDS, w.sp(ijk[n]), msg));
+            return Err(cx.out.err(&ARC_WORDS, w.sp(ijk[n]), msg));
         }
-        cx.diag(codes::ARC_WORDS, Severity::Error, w.sp(ijk[n]), msg);
+        cx.out.diag(&ARC_WORDS, Severity::Error, w.sp(ijk[n]), msg);
     }
     let in_plane_end = w.has(axes[a]) || w.has(axes[b]);
     if ngc && !in_plane_end {
         let emc2 = cx.variant == Variant::Emc2;
         if has_r {
-            return Err(cx.err(codes::ARC_WORDS, span, format!("a radius-format arc needs an end point in the {plane} plane ({} or {}): without one there is no arc", axes[a] as char, axes[b] as char)));
+            return Err(cx.out.err(&ARC_WORDS, span, format!("a radius-format arc needs an end point in the {plane} plane ({} or {}): without one there is no arc", axes[a] as char, axes[b] as char)));
         }
         if emc2 && has_c {
-            return Err(cx.err(
-                codes::ARC_WORDS,
+            return Err(cx.out.err(
+                &ARC_WORDS,
                 span,
                 format!(
                     "a centre-format arc needs an end point in the {plane} plane ({} or {})",
@@ -102,8 +102,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         }
     }
     if ngc && !has_r && st.modal.ijk_abs && has_c && !(w.has(ijk[a]) && w.has(ijk[b])) {
-        return Err(cx.err(
-            codes::ARC_WORDS,
+        return Err(cx.out.err(
+            &ARC_WORDS,
             span,
             format!(
                 "with absolute arc centres (G90.1) both {} and {} are needed",
@@ -113,14 +113,14 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     }
     if d == Dialect::Servoworks {
         if w.has(axes[n]) && (w.has(axes[a]) != w.has(axes[b])) {
-            cx.diag(codes::ARC_WORDS, Severity::Error, span, format!("the arc's axis words do not match the {plane} plane: give both {} and {} (or neither) with a helical {}", axes[a] as char, axes[b] as char, axes[n] as char));
+            cx.out.diag(&ARC_WORDS, Severity::Error, span, format!("the arc's axis words do not match the {plane} plane: give both {} and {} (or neither) with a helical {}", axes[a] as char, axes[b] as char, axes[n] as char));
         }
         let extra = b"XYZABCUVW"
             .iter()
             .filter(|c| **c != axes[a] && **c != axes[b] && w.has(**c))
             .count();
         if extra > 2 {
-            cx.diag(codes::ARC_WORDS, Severity::Error, span, format!("{extra} axes outside the {plane} plane move with this arc: at most two helical axes are allowed"));
+            cx.out.diag(&ARC_WORDS, Severity::Error, span, format!("{extra} axes outside the {plane} plane move with this arc: at most two helical axes are allowed"));
         }
     }
     // Radius format: the sweep follows from the chord and |R|.
@@ -142,7 +142,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         } else {
             "as a negative radius it is an almost full circle of that size; check the sign and the radius".to_string()
         };
-        cx.diag(codes::ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("radius {} is over a million times the chord ({chord:.4}): the centre lies too far away to be computed exactly, and {shape}", r.abs()));
+        cx.out.diag(&ARC_ILL_CONDITIONED, Severity::Warning, w.sp(b'R'), format!("radius {} is over a million times the chord ({chord:.4}): the centre lies too far away to be computed exactly, and {shape}", r.abs()));
         return Ok(());
     }
     let half = (chord / (2.0 * r.abs())).min(1.0).asin().to_degrees();
@@ -154,7 +154,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let near_half = (165.0..=195.0).contains(&sweep);
     let near_full = ngc && sweep >= 345.0;
     if near_half || near_full {
-        cx.diag(codes::ARC_ILL_CONDITIONED, Severity::Info, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
+        cx.out.diag(&ARC_ILL_CONDITIONED, Severity::Info, w.sp(b'R'), format!("this radius-format arc sweeps {sweep:.1}°: near {}° a tiny change of the end point moves the centre a lot; program the centre with {}/{}", if near_full { 360 } else { 180 }, ijk[a] as char, ijk[b] as char));
     }
     Ok(())
 }

@@ -11,6 +11,7 @@
 //! where as calls they cost measurably more than the methods they replaced. Each
 //! check has one call site, in the dispatch, so forcing it duplicates nothing.
 
+use analyzer::rules::RuleMeta;
 use analyzer::{Diagnostic, Dialect, FileId, Severity, Span, Variant};
 
 use crate::interp::{MachineCfg, RunInput, State, Words};
@@ -40,28 +41,33 @@ impl Sink<'_> {
     #[inline]
     pub(crate) fn diag(
         &mut self,
-        code: &'static str,
+        rule: &'static RuleMeta,
         sev: Severity,
         span: Span,
         msg: impl Into<String>,
     ) {
         self.diags
-            .push(Diagnostic::new(code, sev, span, msg).in_file(self.file));
+            .push(rule.diagnostic(sev, span, msg).in_file(self.file));
     }
 
     /// The error that stops the block (the caller reports it).
     #[inline]
-    pub(crate) fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
-        Diagnostic::error(code, span, msg).in_file(self.file)
+    pub(crate) fn err(
+        &self,
+        rule: &'static RuleMeta,
+        span: Span,
+        msg: impl Into<String>,
+    ) -> Diagnostic {
+        rule.error(span, msg).in_file(self.file)
     }
 
-    /// Removes the last diagnostic of `code` at `span` in this file; false when there is none.
-    pub(crate) fn withdraw(&mut self, code: &str, span: Span) -> bool {
+    /// Removes the last diagnostic of `rule` at `span` in this file; false when there is none.
+    pub(crate) fn withdraw(&mut self, rule: &RuleMeta, span: Span) -> bool {
         let file = self.file;
         match self
             .diags
             .iter()
-            .rposition(|d| d.code == code && d.span == span && d.file == file)
+            .rposition(|d| d.code == rule.code && d.span == span && d.file == file)
         {
             Some(j) => {
                 self.diags.remove(j);
@@ -102,22 +108,6 @@ pub(crate) struct Cx<'c, 'a> {
 }
 
 impl Cx<'_, '_> {
-    #[inline]
-    pub(crate) fn diag(
-        &mut self,
-        code: &'static str,
-        sev: Severity,
-        span: Span,
-        msg: impl Into<String>,
-    ) {
-        self.out.diag(code, sev, span, msg);
-    }
-
-    #[inline]
-    pub(crate) fn err(&self, code: &'static str, span: Span, msg: impl Into<String>) -> Diagnostic {
-        self.out.err(code, span, msg)
-    }
-
     #[inline]
     pub(crate) fn ngc(&self) -> bool {
         self.dialect == Dialect::Rs274ngc

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -59,11 +58,11 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if cx.dialect == Dialect::Fanuc {
         if let Some((p, s)) = plane {
             if p != st.modal.plane {
-                cx.diag(codes::COMP_CONFLICT, Severity::Error, s, "the plane cannot be changed while cutter compensation (G41/G42) is on: the control alarms (PS0037); cancel with G40 first");
+                cx.out.diag(&COMP_CONFLICT, Severity::Error, s, "the plane cannot be changed while cutter compensation (G41/G42) is on: the control alarms (PS0037); cancel with G40 first");
             }
         }
         if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
-            cx.diag(codes::COMP_CONFLICT, Severity::Error, s, format!("G{} tool position offset cannot be used while cutter compensation (G41/G42) is on: the control alarms (PS0042); cancel with G40 first", g / 10));
+            cx.out.diag(&COMP_CONFLICT, Severity::Error, s, format!("G{} tool position offset cannot be used while cutter compensation (G41/G42) is on: the control alarms (PS0042); cancel with G40 first", g / 10));
         }
         return Ok(());
     }
@@ -77,8 +76,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if let Some((p, s)) = plane {
         let bad = if emc2 { p != 170 } else { p != st.modal.plane };
         if bad {
-            return Err(cx.err(
-                codes::COMP_CONFLICT,
+            return Err(cx.out.err(
+                &COMP_CONFLICT,
                 s,
                 format!("cannot change the plane to G{} {msg_tail}", p / 10),
             ));
@@ -87,8 +86,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     // LinuxCNC 2.9 accepts a units change under compensation; the 2007 EMC2 refused it.
     for (code, inch) in [(200u32, true), (210, false)] {
         if emc2 && w.has_g(code) && inch != st.modal.inch {
-            return Err(cx.err(
-                codes::COMP_CONFLICT,
+            return Err(cx.out.err(
+                &COMP_CONFLICT,
                 w.g_span(code),
                 format!("cannot change units {msg_tail}"),
             ));
@@ -98,8 +97,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         return Ok(());
     }
     if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
-        return Err(cx.err(
-            codes::COMP_CONFLICT,
+        return Err(cx.out.err(
+            &COMP_CONFLICT,
             s,
             format!(
                 "G{}{} turns cutter radius compensation on when it is already on: LinuxCNC stops; give G40 first",
@@ -124,8 +123,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         (52, "run a NURBS block (G5.2)"),
     ];
     if let Some((code, what)) = modes.iter().find(|(c, _)| w.has_g(*c)) {
-        return Err(cx.err(
-            codes::COMP_CONFLICT,
+        return Err(cx.out.err(
+            &COMP_CONFLICT,
             w.g_span(*code),
             format!("cannot {what} {msg_tail}"),
         ));
@@ -134,8 +133,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         w.m.iter()
             .find(|m| (480..=530).contains(&m.0) || (620..=680).contains(&m.0))
     {
-        return Err(cx.err(
-            codes::COMP_CONFLICT,
+        return Err(cx.out.err(
+            &COMP_CONFLICT,
             s,
             format!(
                 "M{} (overrides or motion I/O) cannot be used {msg_tail}",
@@ -149,8 +148,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         let active = p == 0 || p == st.modal.origin;
         // LinuxCNC 2.9 refuses only a change of the active system; EMC2 also tool data.
         if (emc2 && matches!(l, 1 | 10 | 11)) || (matches!(l, 2 | 20) && active) {
-            return Err(cx.err(
-                codes::COMP_CONFLICT,
+            return Err(cx.out.err(
+                &COMP_CONFLICT,
                 w.g_span(100),
                 format!("G10 L{l} changes an offset in use {msg_tail}"),
             ));
@@ -164,8 +163,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         (520, "G52 offset"),
     ] {
         if w.has_g(code) {
-            return Err(cx.err(
-                codes::COMP_CONFLICT,
+            return Err(cx.out.err(
+                &COMP_CONFLICT,
                 w.g_span(code),
                 format!("cannot use {what} {msg_tail}"),
             ));
@@ -177,8 +176,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         } else {
             format!("G{}.{}", g / 10, g % 10)
         };
-        return Err(cx.err(
-            codes::COMP_CONFLICT,
+        return Err(cx.out.err(
+            &COMP_CONFLICT,
             s,
             format!("cannot change the coordinate system to {name} {msg_tail}"),
         ));
@@ -186,13 +185,11 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if w.has_m(60) {
         let s = w.m_span(60);
         if emc2 {
-            cx.diag(codes::COMP_CONFLICT, Severity::Warning, s, "tool change while cutter radius compensation is on: the old tool's radius stays in use; give G40 before M6");
+            cx.out.diag(&COMP_CONFLICT, Severity::Warning, s, "tool change while cutter radius compensation is on: the old tool's radius stays in use; give G40 before M6");
         } else {
-            return Err(cx.err(
-                codes::COMP_CONFLICT,
-                s,
-                format!("cannot change tools {msg_tail}"),
-            ));
+            return Err(cx
+                .out
+                .err(&COMP_CONFLICT, s, format!("cannot change tools {msg_tail}")));
         }
     }
     Ok(())

@@ -7,7 +7,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -98,7 +97,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
                     .unwrap_or(st.modal.plane);
             let emc2 = cx.variant == Variant::Emc2;
             if (emc2 && plane != 170) || plane == 190 {
-                return Err(Stop::error(cx.err(codes::COMP_MOTION, s, format!("cutter radius compensation (G{}) is not allowed in the G{} plane: LinuxCNC compensates only in {}", g / 10, plane / 10, if emc2 { "G17" } else { "G17 and G18" }))));
+                return Err(Stop::error(cx.out.err(&COMP_MOTION, s, format!("cutter radius compensation (G{}) is not allowed in the G{} plane: LinuxCNC compensates only in {}", g / 10, plane / 10, if emc2 { "G17" } else { "G17 and G18" }))));
             }
         }
         if cancel {
@@ -112,7 +111,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
                     // moves) before it rejects the arc.
                     return Err(Stop {
                         release_comp: cancel && cx.ngc(),
-                        error: cx.err(codes::COMP_MOTION, s, format!("G{} is the first move after G40: LinuxCNC needs a straight move to leave cutter compensation", g / 10)),
+                        error: cx.out.err(&COMP_MOTION, s, format!("G{} is the first move after G40: LinuxCNC needs a straight move to leave cutter compensation", g / 10)),
                     });
                 }
             }
@@ -126,7 +125,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
         let first = w.g.iter().any(|x| matches!(x.0, 410 | 420)) || (comp_on && st.comp_first);
         if arc && (first || cancel) {
             let which = if cancel { "last" } else { "first" };
-            cx.diag(codes::COMP_MOTION, Severity::Error, s, format!("the {which} motion of tool radius compensation cannot be G{:02}: use G00 or G01 to start and end it", g / 10));
+            cx.out.diag(&COMP_MOTION, Severity::Error, s, format!("the {which} motion of tool radius compensation cannot be G{:02}: use G00 or G01 to start and end it", g / 10));
         }
     }
     if comp_on && !cancel {
@@ -139,7 +138,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
             } else {
                 format!("G{}.{}", g / 10, g % 10)
             };
-            cx.diag(codes::COMP_MOTION, Severity::Error, s, format!("{name} is not allowed in tool radius compensation mode (only G00–G03, G04, M, S, B and F): cancel with G40 first"));
+            cx.out.diag(&COMP_MOTION, Severity::Error, s, format!("{name} is not allowed in tool radius compensation mode (only G00–G03, G04, M, S, B and F): cancel with G40 first"));
         }
     }
     Ok(())

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -59,7 +58,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         mem.saved_levels.push(level);
     }
     if w.has_m(720) && !mem.saved_levels.contains(&level) {
-        return Err(cx.err(codes::CONTEXT_RESTORE, w.m_span(720), "M72 restores a modal state that no M70 or M73 saved at this call level: LinuxCNC stops (missing M70/M73?)"));
+        return Err(cx.out.err(&CONTEXT_RESTORE, w.m_span(720), "M72 restores a modal state that no M70 or M73 saved at this call level: LinuxCNC stops (missing M70/M73?)"));
     }
     mem.saved_levels.retain(|l| *l <= level);
     Ok(())

@@ -6,7 +6,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Variant};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -54,16 +53,16 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         let s = w.g_span(530);
         if let Some((g, _)) = cx.motion {
             if !matches!(g, 0 | 10) {
-                return Err(cx.err(
-                    codes::COORDINATE_MODE,
+                return Err(cx.out.err(
+                    &COORDINATE_MODE,
                     s,
                     "G53 works only with G0 or G1: LinuxCNC stops",
                 ));
             }
         }
         if (m.incremental && !w.has_g(900)) || w.has_g(910) {
-            return Err(cx.err(
-                codes::COORDINATE_MODE,
+            return Err(cx.out.err(
+                &COORDINATE_MODE,
                 s,
                 "G53 cannot be used in incremental mode (G91): give G90 on the line",
             ));
@@ -83,30 +82,30 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
                 .map(|v| format!("L{v}"))
                 .collect::<Vec<_>>()
                 .join(", ");
-            return Err(cx.err(
-                codes::COORDINATE_MODE,
+            return Err(cx.out.err(
+                &COORDINATE_MODE,
                 s,
                 format!("G10 needs one of {list}: LinuxCNC stops"),
             ));
         }
         if l == Some(0) && st.tool != 0 {
-            return Err(cx.err(codes::COORDINATE_MODE, s, format!("G10 L0 (reload the tool table) is not allowed while tool {} is loaded: unload it with T0 M6 first", st.tool)));
+            return Err(cx.out.err(&COORDINATE_MODE, s, format!("G10 L0 (reload the tool table) is not allowed while tool {} is loaded: unload it with T0 M6 first", st.tool)));
         }
     }
     if d != Dialect::Servoworks {
         return Ok(());
     }
     if w.has_g(290) && st.g28_mid.is_none() {
-        cx.diag(codes::COORDINATE_MODE, Severity::Warning, w.g_span(290), "G29 without an earlier G28/G30: there is no intermediate point, so the move goes straight to the target");
+        cx.out.diag(&COORDINATE_MODE, Severity::Warning, w.g_span(290), "G29 without an earlier G28/G30: there is no intermediate point, so the move goes straight to the target");
     }
     for (code, inch) in [(200u32, true), (210, false)] {
         if w.has_g(code) && inch != m.inch && cx.any_motion() {
-            cx.diag(codes::COORDINATE_MODE, Severity::Info, w.g_span(code), "units change after motion has been programmed: positions, offsets and feeds given earlier are not converted; set G20/G21 once at the top");
+            cx.out.diag(&COORDINATE_MODE, Severity::Info, w.g_span(code), "units change after motion has been programmed: positions, offsets and feeds given earlier are not converted; set G20/G21 once at the top");
         }
     }
     if w.has_g(520) && ((m.incremental && !w.has_g(900)) || w.has_g(910)) {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Warning,
             w.g_span(520),
             "G52 in incremental mode (G91) is ignored: give it in G90",
@@ -115,44 +114,44 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let comp_on = m.comp != 400 && !w.has_g(400);
     if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420)) {
         if m.scaling || m.mirror || w.has_g(510) || w.has_g(511) {
-            cx.diag(codes::COORDINATE_MODE, Severity::Error, s, format!("G{} cannot be combined with scaling (G51) or mirror image (G51.1): cancel them first", g / 10));
+            cx.out.diag(&COORDINATE_MODE, Severity::Error, s, format!("G{} cannot be combined with scaling (G51) or mirror image (G51.1): cancel them first", g / 10));
         }
     }
     if w.has_g(510) && (m.mirror || w.has_g(511)) {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Error,
             w.g_span(510),
             "scaling (G51) cannot be active together with mirror image (G51.1)",
         );
     }
     if w.has_g(511) && (m.scaling || w.has_g(510)) {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Error,
             w.g_span(511),
             "mirror image (G51.1) cannot be active together with scaling (G51)",
         );
     }
     if w.has_g(510) && (m.rotation || comp_on) {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Warning,
             w.g_span(510),
             "G51 after G68 or G41/G42: the order must be G51, then G68, then G41/G42",
         );
     }
     if w.has_g(680) && comp_on {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Warning,
             w.g_span(680),
             "G68 after G41/G42: the order must be G51, then G68, then G41/G42",
         );
     }
     if w.has_g(500) && m.rotation && !w.has_g(690) {
-        cx.diag(
-            codes::COORDINATE_MODE,
+        cx.out.diag(
+            &COORDINATE_MODE,
             Severity::Warning,
             w.g_span(500),
             "G50 while rotation (G68) is on: cancel rotation with G69 before scaling",

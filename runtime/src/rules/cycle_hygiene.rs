@@ -5,7 +5,7 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity};
 
 use super::check::Cx;
-use super::codes;
+use super::cycle_state::CYCLE_STATE;
 use crate::interp::is_cycle;
 
 declare_rule! {
@@ -80,7 +80,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             None
         };
         if let Some(msg) = missing {
-            return Err(cx.err(codes::CYCLE_STATE, span, msg));
+            return Err(cx.out.err(&CYCLE_STATE, span, msg));
         }
     }
     let modal = st.modal.modal_cycle() && !w.has_g(800);
@@ -98,7 +98,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             } else {
                 (Severity::Warning, format!("G{:02} while canned cycle G{} is modal: the manual does not say what happens (assumed to cancel the cycle); give G80 first", g / 10, st.modal.motion / 10))
             };
-            cx.diag(codes::CYCLE_HYGIENE, sev, s, msg);
+            cx.out.diag(&CYCLE_HYGIENE, sev, s, msg);
         }
         if let Some(&(p, s)) = w.g.iter().find(|g| matches!(g.0, 170 | 180 | 190)) {
             if p != st.modal.plane {
@@ -107,7 +107,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
                 } else {
                     Severity::Error
                 };
-                cx.diag(codes::CYCLE_HYGIENE, sev, s, "the plane (drilling axis) changes while a canned cycle is modal: cancel the cycle with G80 first");
+                cx.out.diag(&CYCLE_HYGIENE, sev, s, "the plane (drilling axis) changes while a canned cycle is modal: cancel the cycle with G80 first");
             }
         }
     }
@@ -120,7 +120,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         let kept: &[u8] = if fanuc { b"QP" } else { b"QR" };
         if !w.any_axis() {
             if let Some(c) = kept.iter().copied().find(|c| w.has(*c)) {
-                cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, w.sp(c), format!("{} in a canned-cycle block that makes no hole is not stored as cycle data: give it with the hole position", c as char));
+                cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, w.sp(c), format!("{} in a canned-cycle block that makes no hole is not stored as cycle data: give it with the hole position", c as char));
             }
         }
         if fanuc {
@@ -134,14 +134,14 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             let same_either_way = initial.abs() < 1e-9 && c.r.is_none_or(|r| r.abs() < 1e-9);
             if changes && !(w.has(b'R') && w.has(zl)) && !same_either_way {
                 let s = w.g_span(if w.has_g(900) { 900 } else { 910 });
-                cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, "G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again");
+                cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, s, "G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again");
             }
             if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 430 | 440 | 490)) {
-                cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, format!("G{} in canned-cycle mode: the new length offset takes effect at the positioning to point R, not at once", g / 10));
+                cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, s, format!("G{} in canned-cycle mode: the new length offset takes effect at the positioning to point R, not at once", g / 10));
             }
             if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
-                cx.diag(
-                    codes::CYCLE_HYGIENE,
+                cx.out.diag(
+                    &CYCLE_HYGIENE,
                     Severity::Warning,
                     s,
                     format!(
@@ -165,7 +165,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             if let Some(before) = class(from) {
                 if before != now && (w.any_axis() || explicit.is_some()) {
                     let s = explicit.map(|e| e.1).unwrap_or_default();
-                    cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, s, format!("G{} reuses Q stored by G{}: the {before} becomes the {now}; give Q on this block", mode / 10, from / 10));
+                    cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, s, format!("G{} reuses Q stored by G{}: the {before} becomes the {now}; give Q on this block", mode / 10, from / 10));
                     mem.q_from = Some(mode);
                 }
             }
@@ -175,12 +175,12 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         return Ok(());
     };
     if d == Dialect::Servoworks && st.modal.comp != 400 && !w.has_g(400) {
-        cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, "tool radius compensation is ignored inside canned cycles: the holes are drilled at the programmed points");
+        cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, span, "tool radius compensation is ignored inside canned cycles: the holes are drilled at the programmed points");
     }
     let n = cx.normal_axis();
     let zl = [b'X', b'Y', b'Z'][n];
     if !ngc && !w.any_axis() && !w.has(b'R') {
-        cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, "a canned-cycle block without X/Y/Z/R or other axis words makes no hole: it only stores the cycle data");
+        cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, span, "a canned-cycle block without X/Y/Z/R or other axis words makes no hole: it only stores the cycle data");
     }
     let absolute = if w.has_g(910) {
         false
@@ -200,7 +200,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     if let Some(k) = repeats {
         if k >= 2 && absolute {
             let which = if ngc { "L" } else { "K" };
-            cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, w.sp(if ngc { b'L' } else { b'K' }), format!("{which}{k} repeats the cycle in absolute mode (G90): every repeat drills the same hole; use G91 to step between holes"));
+            cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, w.sp(if ngc { b'L' } else { b'K' }), format!("{which}{k} repeats the cycle in absolute mode (G90): every repeat drills the same hole; use G91 to step between holes"));
         }
     }
     let g98 = if w.has_g(990) {
@@ -220,7 +220,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
                 "G87 works only with G98: G99 is an error; use G98",
             )
         };
-        cx.diag(codes::CYCLE_HYGIENE, sev, span, msg);
+        cx.out.diag(&CYCLE_HYGIENE, sev, span, msg);
     }
     if !absolute {
         return Ok(());
@@ -242,7 +242,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     if ngc {
         if let Some(r) = r {
             if g98 && init < r - eps {
-                cx.diag(codes::CYCLE_HYGIENE, Severity::Info, span, format!("G98 has no effect here: the start height {} is below R {}, so the cycle retracts to R", fmt_len(init / cx.unit()), fmt_len(r / cx.unit())));
+                cx.out.diag(&CYCLE_HYGIENE, Severity::Info, span, format!("G98 has no effect here: the start height {} is below R {}, so the cycle retracts to R", fmt_len(init / cx.unit()), fmt_len(r / cx.unit())));
             }
         }
         return Ok(());
@@ -253,15 +253,15 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     let u = if st.modal.inch { 25.4 } else { 1.0 };
     if mode == 870 {
         if r > z + eps {
-            cx.diag(codes::CYCLE_HYGIENE, Severity::Warning, span, format!("in G87 point R ({}) must lie beyond point Z ({}): the back-boring cycle starts below the hole", fmt_len(r / u), fmt_len(z / u)));
+            cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, span, format!("in G87 point R ({}) must lie beyond point Z ({}): the back-boring cycle starts below the hole", fmt_len(r / u), fmt_len(z / u)));
         }
     } else if r > init + eps {
         // Advice, not a fault: the cycle rapids up to R and drills from there,
         // and real programs run that way (FAN081; the tool moves away from the work).
-        cx.diag(codes::CYCLE_HYGIENE, Severity::Info, span, format!("point R ({}) is above the initial level ({}): the tool retracts upward to R before drilling", fmt_len(r / u), fmt_len(init / u)));
+        cx.out.diag(&CYCLE_HYGIENE, Severity::Info, span, format!("point R ({}) is above the initial level ({}): the tool retracts upward to R before drilling", fmt_len(r / u), fmt_len(init / u)));
     } else if z > r + eps {
-        cx.diag(
-            codes::CYCLE_HYGIENE,
+        cx.out.diag(
+            &CYCLE_HYGIENE,
             Severity::Warning,
             span,
             format!(

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 use crate::interp::{is_cycle, Words};
 
 declare_rule! {
@@ -60,7 +59,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
         }];
         let plane_word = b"XYZ".iter().any(|c| *c != n && w.has(*c));
         if w.has(n) && !plane_word {
-            cx.diag(codes::CYCLE_STILL_ACTIVE, Severity::Info, s, format!("the canned cycle G{} is still active: this {} move drills again at the same hole instead of moving; give G80 before leaving the holes", m / 10, n as char));
+            cx.out.diag(&CYCLE_STILL_ACTIVE, Severity::Info, s, format!("the canned cycle G{} is still active: this {} move drills again at the same hole instead of moving; give G80 before leaving the holes", m / 10, n as char));
         }
     }
 }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 use crate::interp::is_cycle;
 
 declare_rule! {
@@ -62,7 +61,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     // Off by default, so it is computed only when selected.
     let wanted = wanted(cx, mem);
     if wanted && (matches!(m, 10 | 20 | 30) || is_cycle(m)) && st.spindle_dir == 0 {
-        cx.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
+        cx.out.diag(&FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
     }
 }
 
@@ -73,7 +72,7 @@ pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         return;
     };
     if m == 10 && wanted(cx, mem) && cx.st.spindle_dir == 0 {
-        cx.diag(codes::FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
+        cx.out.diag(&FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
     }
 }
 
@@ -82,8 +81,7 @@ fn wanted(cx: &Cx<'_, '_>, mem: &mut Mem) -> bool {
     match mem.wanted {
         Some(w) => w,
         None => {
-            let w = super::lookup(codes::FEED_SPINDLE_OFF)
-                .is_some_and(|meta| cx.input.settings.rule_enabled(meta));
+            let w = cx.input.settings.rule_enabled(&FEED_SPINDLE_OFF);
             mem.wanted = Some(w);
             w
         }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Severity};
 
 use super::check::{is_feed_motion, Cx};
-use super::codes;
 use crate::interp::is_cycle;
 
 declare_rule! {
@@ -58,13 +57,13 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     }
     let motion = cx.motion;
     match motion {
-        Some((g, s)) if is_cycle(g) => Err(cx.err(
-            codes::INVERSE_TIME,
+        Some((g, s)) if is_cycle(g) => Err(cx.out.err(
+            &INVERSE_TIME,
             s,
             "canned cycles cannot be used in inverse-time feed mode (G93): switch to G94 first",
         )),
-        Some((g, s)) if is_feed_motion(g) && !w.has(b'F') => Err(cx.err(
-            codes::INVERSE_TIME,
+        Some((g, s)) if is_feed_motion(g) && !w.has(b'F') => Err(cx.out.err(
+            &INVERSE_TIME,
             s,
             // LinuxCNC's own words: each move in G93 carries its own F.
             if g == 10 {
@@ -76,8 +75,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         Some((g, _)) if is_feed_motion(g) => Ok(()),
         _ => {
             if w.has(b'F') {
-                cx.diag(
-                    codes::INVERSE_TIME,
+                cx.out.diag(
+                    &INVERSE_TIME,
                     Severity::Info,
                     w.sp(b'F'),
                     "F on a line without a feed move is ignored in inverse-time mode (G93): each move carries its own F",

@@ -6,8 +6,8 @@ use analyzer::syntax::{Item, ItemKind};
 use analyzer::{Severity, Span};
 
 use super::check::{Cx, Sink};
-use super::codes;
 use super::polar_interp;
+use super::polar_interp::POLAR_INTERP;
 use crate::interp::State;
 
 declare_rule! {
@@ -84,7 +84,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Option<(u32, Span)> {
     if involute_mode || invol_block {
         for &(g, s) in &w.g {
             if matches!(g, 400 | 410 | 420) && involute_mode {
-                cx.diag(codes::INVOLUTE, Severity::Error, s, format!("G{} cannot be commanded in involute interpolation mode: give G41/G42 before G02.2/G03.2 and G40 after leaving it", g / 10));
+                cx.out.diag(&INVOLUTE, Severity::Error, s, format!("G{} cannot be commanded in involute interpolation mode: give G41/G42 before G02.2/G03.2 and G40 after leaving it", g / 10));
             } else if involute_mode
                 && !matches!(
                     g,
@@ -105,14 +105,14 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Option<(u32, Span)> {
                         | 30
                 )
             {
-                cx.diag(codes::INVOLUTE, Severity::Error, s, format!("G{} is not allowed in involute interpolation mode (only G04, G10, G17–G19, G65–G67, G90, G91)", analyzer::dialect::CodeNum(g).display()));
+                cx.out.diag(&INVOLUTE, Severity::Error, s, format!("G{} is not allowed in involute interpolation mode (only G04, G10, G17–G19, G65–G67, G90, G91)", analyzer::dialect::CodeNum(g).display()));
             }
         }
     }
     if let Some((m, s)) = motion {
         if matches!(m, 22 | 32) {
             if mem.cylindrical {
-                cx.diag(codes::INVOLUTE, Severity::Error, s, "involute interpolation is not allowed in cylindrical interpolation (G07.1) mode");
+                cx.out.diag(&INVOLUTE, Severity::Error, s, "involute interpolation is not allowed in cylindrical interpolation (G07.1) mode");
             }
             geometry(cx, m == 32, s);
         }
@@ -143,14 +143,14 @@ fn geometry(cx: &mut Cx<'_, '_>, ccw: bool, s: Span) {
     let tol = 1e-6;
     if rs < r - tol || re < r - tol {
         let which = if rs < r - tol { "start" } else { "end" };
-        cx.diag(codes::INVOLUTE, Severity::Error, s, format!("the involute's {which} point lies inside the base circle (radius {r}): the control alarms (PS0242)"));
+        cx.out.diag(&INVOLUTE, Severity::Error, s, format!("the involute's {which} point lies inside the base circle (radius {r}): the control alarms (PS0242)"));
         return;
     }
     // Unwinding angle of each point and the angle where its involute leaves the circle.
     let phi = |rr: f64| ((rr / r).powi(2) - 1.0).max(0.0).sqrt();
     let (ps, pe) = (phi(rs), phi(re));
     if ps.max(pe) > 100.0 * std::f64::consts::TAU {
-        cx.diag(codes::INVOLUTE, Severity::Error, s, "the involute's start or end point is more than 100 turns from where the involute leaves the base circle: the control alarms (PS0242)");
+        cx.out.diag(&INVOLUTE, Severity::Error, s, "the involute's start or end point is more than 100 turns from where the involute leaves the base circle: the control alarms (PS0242)");
         return;
     }
     // G03.2 turns counter-clockwise: outward the involute unwinds with the turn, inward against it.
@@ -163,13 +163,13 @@ fn geometry(cx: &mut Cx<'_, '_>, ccw: bool, s: Span) {
     let dev = 2.0 * re * (d.abs() / 2.0).sin();
     let limit = cx.input.machine.involute_tolerance.unwrap_or(0.01);
     if dev > limit {
-        cx.diag(codes::INVOLUTE, Severity::Error, s, format!("the end point is {dev:.4} mm off the involute through the start point, more than the allowed {limit} mm (parameter 5610): the control alarms (PS0243)"));
+        cx.out.diag(&INVOLUTE, Severity::Error, s, format!("the end point is {dev:.4} mm off the involute through the start point, more than the allowed {limit} mm (parameter 5610): the control alarms (PS0243)"));
     }
     // Cutter compensation on the concave side shortens the unwound string by the radius.
     let inner = matches!((st.modal.comp, ccw), (410, true) | (420, false));
     let rc = st.comp_radius;
     if inner && rc > 0.0 && rc > r * ps.min(pe) {
-        cx.diag(codes::INVOLUTE, Severity::Warning, s, format!("with cutter compensation (radius {rc}) the tool-centre involute enters the base circle near the start: the control alarms (PS0242); start farther from the base circle or use a smaller tool"));
+        cx.out.diag(&INVOLUTE, Severity::Warning, s, format!("with cutter compensation (radius {rc}) the tool-centre involute enters the base circle near the start: the control alarms (PS0242); start farther from the base circle or use a smaller tool"));
     }
     let extra = b"XYZABCUVW"
         .iter()
@@ -177,8 +177,8 @@ fn geometry(cx: &mut Cx<'_, '_>, ccw: bool, s: Span) {
         .filter(|(k, c)| *k != a && *k != b && w.has(**c))
         .count();
     if extra > 4 {
-        cx.diag(
-            codes::INVOLUTE,
+        cx.out.diag(
+            &INVOLUTE,
             Severity::Error,
             s,
             format!(
@@ -220,14 +220,14 @@ pub(crate) fn comma_words(
             || g_here.iter().any(|g| matches!(g, 22 | 32));
         if inv_here {
             out.diag(
-                codes::INVOLUTE,
+                &INVOLUTE,
                 Severity::Error,
                 it.span,
                 "optional chamfering or corner R cannot be used in involute interpolation mode",
             );
         } else if polar_interp.on || st.modal.polar {
             out.diag(
-                codes::POLAR_INTERP,
+                &POLAR_INTERP,
                 Severity::Error,
                 it.span,
                 "optional chamfering or corner R cannot be used in polar coordinate mode",

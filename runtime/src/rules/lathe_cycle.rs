@@ -6,7 +6,6 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -56,18 +55,18 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     {
         let name = format!("G{}.{}", g / 10, g % 10);
         if !w.has(b'Q') {
-            return Err(cx.err(codes::LATHE_CYCLE, s, "G7x.x  requires a Q word"));
+            return Err(cx.out.err(&LATHE_CYCLE, s, "G7x.x  requires a Q word"));
         }
         if g != 700 && st.modal.comp != 400 {
-            return Err(cx.err(
-                codes::LATHE_CYCLE,
+            return Err(cx.out.err(
+                &LATHE_CYCLE,
                 s,
                 format!("{name} cannot be used with cutter compensation enabled"),
             ));
         }
         if st.modal.plane != 180 && !w.has_g(180) {
-            return Err(cx.err(
-                codes::LATHE_CYCLE,
+            return Err(cx.out.err(
+                &LATHE_CYCLE,
                 s,
                 format!("{name} can only be used in XZ plane (G18)"),
             ));

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Dialect, Severity, Span};
 
 use super::check::Sink;
-use super::codes;
 use crate::interp::State;
 
 declare_rule! {
@@ -86,7 +85,7 @@ pub(crate) fn check(st: &State, dialect: Dialect, span: Span, out: &mut Sink<'_>
     }
     for what in left {
         out.diag(
-            codes::MODE_LEFT_ON,
+            &MODE_LEFT_ON,
             Severity::Warning,
             span,
             format!("the program ends with {what} still active: the next program or MDI command starts in that mode"),

@@ -5,7 +5,7 @@ use analyzer::declare_rule;
 use analyzer::{Dialect, Severity};
 
 use super::check::Cx;
-use super::codes;
+use super::{comp_motion::COMP_MOTION, coordinate_mode::COORDINATE_MODE};
 use crate::interp::moves_to_axis_words;
 
 declare_rule! {
@@ -70,28 +70,28 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         {
             if !explicit && st.modal.motion != 800 {
                 let name = analyzer::dialect::CodeNum(g).display();
-                cx.diag(codes::NO_EFFECT, Severity::Info, s, format!("the axis words of this line belong to G{name}: the modal motion G{} does not run here", analyzer::dialect::CodeNum(st.modal.motion).display()));
+                cx.out.diag(&NO_EFFECT, Severity::Info, s, format!("the axis words of this line belong to G{name}: the modal motion G{} does not run here", analyzer::dialect::CodeNum(st.modal.motion).display()));
             }
         }
     }
     // NGC427: rotary axis motion under cutter compensation.
     if d == Dialect::Rs274ngc && st.modal.comp != 400 && !w.has_g(400) && motion.is_some() {
         if let Some(c) = b"ABC".iter().copied().find(|c| w.has(*c)) {
-            cx.diag(codes::COMP_MOTION, Severity::Info, w.sp(c), format!("{} moves while cutter radius compensation is on: the offset is computed in the plane only, so check the path", c as char));
+            cx.out.diag(&COMP_MOTION, Severity::Info, w.sp(c), format!("{} moves while cutter radius compensation is on: the offset is computed in the plane only, so check the path", c as char));
         }
     }
     // SW084: G41/G42 with no D/H and no radius for the current tool.
     if d == Dialect::Servoworks {
         if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420)) {
             if !w.has(b'D') && !w.has(b'H') && cx.tool_diameter() == 0.0 {
-                cx.diag(codes::COMP_MOTION, Severity::Warning, s, format!("G{} without D or H and no radius for tool {}: the compensation offset is zero", g / 10, st.tool));
+                cx.out.diag(&COMP_MOTION, Severity::Warning, s, format!("G{} without D or H and no radius for tool {}: the compensation offset is zero", g / 10, st.tool));
             }
         }
         // SW112: G68 centre words outside the plane.
         if w.has_g(680) {
             let n = [b'X', b'Y', b'Z'][cx.normal_axis()];
             if w.has(n) {
-                cx.diag(codes::COORDINATE_MODE, Severity::Warning, w.sp(n), format!("{} is not in the G{} plane: the G68 rotation centre takes only the plane's two axes", n as char, st.modal.plane / 10));
+                cx.out.diag(&COORDINATE_MODE, Severity::Warning, w.sp(n), format!("{} is not in the G{} plane: the G68 rotation centre takes only the plane's two axes", n as char, st.modal.plane / 10));
             }
         }
         // SW059: G05 P10000 / G08 P1 while on, or P0 while off.
@@ -100,8 +100,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
                 if let Some(p) = w.get(b'P') {
                     let on = p != 0.0;
                     if on == st.modal.dlacc {
-                        cx.diag(
-                            codes::NO_EFFECT,
+                        cx.out.diag(
+                            &NO_EFFECT,
                             Severity::Info,
                             w.g_span(code),
                             format!(
@@ -125,14 +125,14 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
                 .find(|g| matches!(g.0, 40 | 100 | 520 | 920 | 530 | 220 | 680 | 510))
         {
             if w.any_axis() {
-                cx.diag(codes::NO_EFFECT, Severity::Info, s, format!("in polar mode (G16) the axis words of G{:02} are Cartesian, not radius and angle", g / 10));
+                cx.out.diag(&NO_EFFECT, Severity::Info, s, format!("in polar mode (G16) the axis words of G{:02} are Cartesian, not radius and angle", g / 10));
             }
         }
         if let Some((g, s)) = motion {
             let (a, b) = cx.plane_axes();
             let axes = [b'X', b'Y', b'Z'];
             if matches!(g, 0 | 10 | 20 | 30) && w.has(axes[b]) && !w.has(axes[a]) {
-                cx.diag(codes::NO_EFFECT, Severity::Warning, s, format!("polar radius ({}) omitted: the current distance from the workpiece origin is used as the radius", axes[a] as char));
+                cx.out.diag(&NO_EFFECT, Severity::Warning, s, format!("polar radius ({}) omitted: the current distance from the workpiece origin is used as the radius", axes[a] as char));
             }
         }
     }
@@ -143,7 +143,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     if mem.rigid_s_cleared {
         if let Some(&(m, s)) = w.m.iter().find(|m| matches!(m.0, 30 | 40)) {
             mem.rigid_s_cleared = false;
-            cx.diag(codes::NO_EFFECT, Severity::Info, s, format!("M{:02} after rigid tapping was cancelled: S was cleared to S0, so give S again", m / 10));
+            cx.out.diag(&NO_EFFECT, Severity::Info, s, format!("M{:02} after rigid tapping was cancelled: S was cleared to S0, so give S again", m / 10));
         }
     }
     if st.modal.rigid_tap && (w.has_g(800) || w.g.iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30))) {

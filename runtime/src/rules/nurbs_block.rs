@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -52,16 +51,16 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let mode = cx.motion_mode();
     // NURBS blocks.
     if w.has_g(53) && modal != 52 {
-        return Err(cx.err(
-            codes::NURBS_BLOCK,
+        return Err(cx.out.err(
+            &NURBS_BLOCK,
             w.g_span(53),
             "Cannot use G5.3 without G5.2 first",
         ));
     }
     if mode == 52 && (w.has_g(52) || w.any_axis()) {
         if let Some(p) = w.get(b'P').filter(|p| *p <= 0.0) {
-            return Err(cx.err(
-                codes::NURBS_BLOCK,
+            return Err(cx.out.err(
+                &NURBS_BLOCK,
                 w.sp(b'P'),
                 format!("NURBS weight P{p} must be positive"),
             ));
@@ -71,15 +70,15 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         // always an error.
         let span = cx.motion.map(|m| m.1).unwrap_or(cx.bspan);
         if w.has(b'X') != w.has(b'Y') {
-            return Err(cx.err(
-                codes::NURBS_BLOCK,
+            return Err(cx.out.err(
+                &NURBS_BLOCK,
                 span,
                 "You must specify both X and Y coordinates for Control Points",
             ));
         }
         if !w.has(b'X') && w.get(b'P').is_some_and(|p| p > 0.0) && cx.nurbs_open {
-            return Err(cx.err(
-                codes::NURBS_BLOCK,
+            return Err(cx.out.err(
+                &NURBS_BLOCK,
                 span,
                 "Can specify P without X and Y only for the first control point",
             ));

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -56,7 +55,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
                 w.g.iter().any(|g| matches!(g.0, 410 | 420))
             };
             if uses && (v < 0.0 || v > count) {
-                cx.diag(codes::OFFSET_NUMBER, Severity::Error, w.sp(c), format!("offset number {}{v} is beyond the {count} offsets of this control (PS0030): use 0 to {count}", c as char));
+                cx.out.diag(&OFFSET_NUMBER, Severity::Error, w.sp(c), format!("offset number {}{v} is beyond the {count} offsets of this control (PS0030): use 0 to {count}", c as char));
             }
         }
     }
@@ -69,17 +68,17 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
             } else {
                 w.g_span(100)
             };
-            cx.diag(codes::OFFSET_NUMBER, Severity::Error, span, format!("G10 {}: the data kind L is missing or not one the control knows (PS0031); use L1/L10–L13 tool offsets, L2/L20 work offsets", l.map(|l| format!("L{l}")).unwrap_or_else(|| "without L".into())));
+            cx.out.diag(&OFFSET_NUMBER, Severity::Error, span, format!("G10 {}: the data kind L is missing or not one the control knows (PS0031); use L1/L10–L13 tool offsets, L2/L20 work offsets", l.map(|l| format!("L{l}")).unwrap_or_else(|| "without L".into())));
         } else if matches!(l, Some(1 | 10 | 11 | 12 | 13)) && !w.has(b'P') {
-            cx.diag(
-                codes::OFFSET_NUMBER,
+            cx.out.diag(
+                &OFFSET_NUMBER,
                 Severity::Error,
                 w.g_span(100),
                 "G10 tool offset data without P (the offset number): the control alarms (PS0031)",
             );
         } else if l == Some(2) && w.get(b'P').is_some_and(|p| !(0.0..=6.0).contains(&p)) {
-            cx.diag(
-                codes::OFFSET_NUMBER,
+            cx.out.diag(
+                &OFFSET_NUMBER,
                 Severity::Error,
                 w.sp(b'P'),
                 "G10 L2 takes P0 (external) to P6 (G59): other P values are illegal (PS0031)",

@@ -6,7 +6,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -63,6 +62,6 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem, motion: Option<(u32, Spa
         mem.on = false;
     }
     if let Some((0, s)) = motion.filter(|_| mem.on) {
-        cx.diag(codes::POLAR_INTERP, Severity::Warning, s, "G00 in polar coordinate interpolation (G12.1): only G01, G02, G03, G02.2 and G03.2 are allowed there; cancel with G13.1 before rapids");
+        cx.out.diag(&POLAR_INTERP, Severity::Warning, s, "G00 in polar coordinate interpolation (G12.1): only G01, G02, G03, G02.2 and G03.2 are allowed there; cancel with G13.1 before rapids");
     }
 }

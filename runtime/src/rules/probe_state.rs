@@ -6,7 +6,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Variant};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -59,8 +58,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         return Ok(());
     }
     if st.modal.comp != 400 && !w.has_g(400) {
-        return Err(cx.err(
-            codes::PROBE_STATE,
+        return Err(cx.out.err(
+            &PROBE_STATE,
             s,
             "probing (G38) is not allowed with cutter radius compensation on: give G40 first",
         ));
@@ -76,8 +75,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     };
     let emc2 = cx.variant == Variant::Emc2;
     if mode == 950 || (emc2 && mode == 930) {
-        return Err(cx.err(
-            codes::PROBE_STATE,
+        return Err(cx.out.err(
+            &PROBE_STATE,
             s,
             "probing (G38) needs feed per minute: give G94 first",
         ));

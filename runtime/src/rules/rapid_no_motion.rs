@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::Cx;
-use super::codes;
 use crate::interp::dist;
 
 declare_rule! {
@@ -80,10 +79,10 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
             }
         } else if dist(&t, &st.pos) < 1e-9 {
             if mem.single_pass {
-                cx.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
+                cx.out.diag(&RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
             } else if !mem.moved.contains(&here) && !mem.noted.contains(&here) {
                 mem.noted.insert(here);
-                cx.diag(codes::RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
+                cx.out.diag(&RAPID_NO_MOTION, Severity::Info, s, "this rapid goes to where the tool already is: it does nothing but costs a block; remove it or check the coordinates");
             }
         } else if !mem.single_pass && mem.moved.insert(here) {
             withdraw(cx, mem, here, s);
@@ -94,6 +93,6 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
 /// Removes the note of a rapid block that has now moved the tool.
 fn withdraw(cx: &mut Cx<'_, '_>, mem: &mut Mem, here: (usize, u32), span: Span) {
     if mem.noted.remove(&here) {
-        cx.out.withdraw(codes::RAPID_NO_MOTION, span);
+        cx.out.withdraw(&RAPID_NO_MOTION, span);
     }
 }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::Cx;
-use super::codes;
 use crate::interp::is_cycle;
 
 declare_rule! {
@@ -57,7 +56,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, motion: Option<(u32, Span)>) {
     if is_cycle(m) && matches!(m, 840 | 740) && st.modal.rigid_tap {
         if let Some(f) = w.get(b'F') {
             if f == 0.0 {
-                cx.diag(codes::RIGID_TAP_FEED, Severity::Error, w.sp(b'F'), "rigid tapping with F0: the lead is zero, so the tap cannot advance (PS0201); give F = lead × S");
+                cx.out.diag(&RIGID_TAP_FEED, Severity::Error, w.sp(b'F'), "rigid tapping with F0: the lead is zero, so the tap cannot advance (PS0201); give F = lead × S");
             } else if let Some(max) = cx.input.machine.max_cutting_feed {
                 let f_mm = if st.modal.feed_mode == 950 {
                     f * st.spindle
@@ -65,7 +64,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, motion: Option<(u32, Span)>) {
                     f
                 } * if st.modal.inch { 25.4 } else { 1.0 };
                 if f_mm > max {
-                    cx.diag(codes::RIGID_TAP_FEED, Severity::Error, w.sp(b'F'), format!("rigid tapping feed {f_mm} mm/min is above the cutting-feed upper limit {max} mm/min: the control alarms; lower S or the lead"));
+                    cx.out.diag(&RIGID_TAP_FEED, Severity::Error, w.sp(b'F'), format!("rigid tapping feed {f_mm} mm/min is above the cutting-feed upper limit {max} mm/min: the control alarms; lower S or the lead"));
                 }
             }
         }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -63,7 +62,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         let rotary = b"ABC".iter().any(|c| w.has(*c));
         let linear = b"XYZ".iter().any(|c| w.has(*c));
         if mem.g311 && matches!(m, 10 | 20 | 30) && rotary && !linear {
-            cx.diag(codes::ROTARY_ONLY_FEED, Severity::Warning, s, "G311 leaves rotary axes out of the feed, and this block moves only rotary axes: the feed has no basis; use G310 for this block");
+            cx.out.diag(&ROTARY_ONLY_FEED, Severity::Warning, s, "G311 leaves rotary axes out of the feed, and this block moves only rotary axes: the feed has no basis; use G310 for this block");
         }
     }
 }

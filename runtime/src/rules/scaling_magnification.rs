@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -55,7 +54,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
                 p * 0.001
             };
             if m <= 0.0 || m >= 10.0 {
-                cx.diag(codes::SCALING_MAGNIFICATION, Severity::Error, w.sp(b'P'), format!("scaling magnification {m} is out of range (PS0142): it must be above 0 and below 10 (P1 to P9999)"));
+                cx.out.diag(&SCALING_MAGNIFICATION, Severity::Error, w.sp(b'P'), format!("scaling magnification {m} is out of range (PS0142): it must be above 0 and below 10 (P1 to P9999)"));
             }
         }
     }

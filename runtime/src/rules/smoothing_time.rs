@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Severity;
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -58,7 +57,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
         };
         for c in [b'R', b'X', b'Y', b'Z', b'A', b'B', b'C'] {
             if let Some(v) = w.get(c).filter(|v| *v < 0.0 || *v > max) {
-                cx.diag(codes::SMOOTHING_TIME, Severity::Error, w.sp(c), format!("smoothing time {v} ms is out of range: at a {khz} kHz servo rate G10 L108 accepts 0 to {max} ms"));
+                cx.out.diag(&SMOOTHING_TIME, Severity::Error, w.sp(c), format!("smoothing time {v} ms is out of range: at a {khz} kHz servo rate G10 L108 accepts 0 to {max} ms"));
             }
         }
     }

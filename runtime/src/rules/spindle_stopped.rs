@@ -5,7 +5,7 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Severity};
 
 use super::check::{is_feed_motion, Cx};
-use super::codes;
+use super::cycle_spindle::CYCLE_SPINDLE;
 use crate::interp::is_cycle;
 
 declare_rule! {
@@ -75,8 +75,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         if let Some(m) = [30u32, 40].into_iter().find(|m| w.has_m(*m)) {
             mem.s0_reported = true;
             let s = w.m_span(m);
-            cx.diag(
-                codes::SPINDLE_STOPPED,
+            cx.out.diag(
+                &SPINDLE_STOPPED,
                 Severity::Warning,
                 s,
                 format!(
@@ -100,8 +100,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     };
     if ngc {
         if matches!(g, 330 | 760) && dir == 0 {
-            return Err(cx.err(
-                codes::SPINDLE_STOPPED,
+            return Err(cx.out.err(
+                &SPINDLE_STOPPED,
                 s,
                 format!(
                     "G{} needs the spindle turning (M3 or M4): LinuxCNC stops",
@@ -110,13 +110,13 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             ));
         }
         if feed_mode == 950 && is_feed_motion(g) && speed <= 0.0 {
-            return Err(cx.err(codes::SPINDLE_STOPPED, s, "feed per revolution (G95) with spindle speed 0: the move would never finish; program S"));
+            return Err(cx.out.err(&SPINDLE_STOPPED, s, "feed per revolution (G95) with spindle speed 0: the move would never finish; program S"));
         }
         return Ok(());
     }
     if feed_mode == 950 && is_feed_motion(g) && speed <= 0.0 {
-        cx.diag(
-            codes::SPINDLE_STOPPED,
+        cx.out.diag(
+            &SPINDLE_STOPPED,
             Severity::Warning,
             s,
             "feed per revolution (G95) with no spindle speed: the feed is zero; program S",
@@ -126,8 +126,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     let rigid = st.modal.rigid_tap && matches!(g, 740 | 840);
     if is_cycle(g) {
         if dir == 0 && !rigid {
-            cx.diag(
-                codes::CYCLE_SPINDLE,
+            cx.out.diag(
+                &CYCLE_SPINDLE,
                 Severity::Warning,
                 s,
                 format!(
@@ -136,15 +136,15 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
                 ),
             );
         } else if g == 840 && dir == -1 {
-            cx.diag(
-                codes::CYCLE_SPINDLE,
+            cx.out.diag(
+                &CYCLE_SPINDLE,
                 Severity::Warning,
                 s,
                 "G84 taps with the spindle turning CCW (M04): right-hand tapping needs M03",
             );
         } else if g == 740 && dir == 1 {
-            cx.diag(
-                codes::CYCLE_SPINDLE,
+            cx.out.diag(
+                &CYCLE_SPINDLE,
                 Severity::Warning,
                 s,
                 "G74 taps with the spindle turning CW (M03): left-hand tapping needs M04",

@@ -6,7 +6,6 @@ use analyzer::syntax::{BlockKind, ItemKind, Program};
 use analyzer::{Severity, Span};
 
 use super::check::Sink;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -79,14 +78,14 @@ pub(crate) fn check(prog: &Program, name: &str, out: &mut Sink<'_>) {
         return;
     };
     if !ends_m99 {
-        out.diag(codes::SUBPROGRAM_FILE, Severity::Warning, last_span, format!("subprogram O{name} does not end with M99: a ServoWorks subprogram returns to its caller only at M99; end it with M99"));
+        out.diag(&SUBPROGRAM_FILE, Severity::Warning, last_span, format!("subprogram O{name} does not end with M99: a ServoWorks subprogram returns to its caller only at M99; end it with M99"));
     }
     match head {
         Some((n, s)) if !n.eq_ignore_ascii_case(name) => {
-            out.diag(codes::SUBPROGRAM_FILE, Severity::Info, s, format!("the O line names O{n} but the file was called as O{name}: name the subprogram after its file"));
+            out.diag(&SUBPROGRAM_FILE, Severity::Info, s, format!("the O line names O{n} but the file was called as O{name}: name the subprogram after its file"));
         }
         None => {
-            out.diag(codes::SUBPROGRAM_FILE, Severity::Info, first_code.unwrap_or_default(), format!("subprogram O{name} has no O{name} line: a ServoWorks subprogram starts with its name"));
+            out.diag(&SUBPROGRAM_FILE, Severity::Info, first_code.unwrap_or_default(), format!("subprogram O{name} has no O{name} line: a ServoWorks subprogram starts with its name"));
         }
         _ => {}
     }

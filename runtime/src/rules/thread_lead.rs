@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -69,8 +68,8 @@ fn lead(cx: &mut Cx<'_, '_>, s: Span) {
         (0.01, 500.0, "mm")
     };
     if lead < lo - 1e-12 || lead > hi + 1e-9 {
-        cx.diag(
-            codes::THREAD_LEAD,
+        cx.out.diag(
+            &THREAD_LEAD,
             Severity::Error,
             w.sp(b'F'),
             format!(
@@ -83,7 +82,7 @@ fn lead(cx: &mut Cx<'_, '_>, s: Span) {
     if let Some(fmax) = cx.input.machine.max_cutting_feed {
         let smax = fmax / lead_mm;
         if st.spindle > smax + 1e-9 {
-            cx.diag(codes::THREAD_LEAD, Severity::Warning, s, format!("spindle speed S{} exceeds the threading limit {:.1} min⁻¹ (maximum feed {fmax} mm/min ÷ lead {lead_mm} mm): the axis cannot follow the spindle; lower S", st.spindle, smax));
+            cx.out.diag(&THREAD_LEAD, Severity::Warning, s, format!("spindle speed S{} exceeds the threading limit {:.1} min⁻¹ (maximum feed {fmax} mm/min ÷ lead {lead_mm} mm): the axis cannot follow the spindle; lower S", st.spindle, smax));
         }
     }
 }

@@ -6,7 +6,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::{Cx, AXES};
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -89,8 +88,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         {
             let letter = AXES[i] as char;
             match tlc_type {
-                0 if i != 2 => cx.diag(codes::TLC_TYPE, Severity::Error, s, format!("tool length compensation type 0 (A) compensates only Z: G{} {letter} raises an alarm; use Z or set machine.tlc_type", g / 10)),
-                1 if i != perpendicular => cx.diag(codes::TLC_TYPE, Severity::Error, s, format!("tool length compensation type 1 (B) compensates the axis perpendicular to the plane ({}): G{} {letter} raises an alarm; select the matching plane first", AXES[perpendicular] as char, g / 10)),
+                0 if i != 2 => cx.out.diag(&TLC_TYPE, Severity::Error, s, format!("tool length compensation type 0 (A) compensates only Z: G{} {letter} raises an alarm; use Z or set machine.tlc_type", g / 10)),
+                1 if i != perpendicular => cx.out.diag(&TLC_TYPE, Severity::Error, s, format!("tool length compensation type 1 (B) compensates the axis perpendicular to the plane ({}): G{} {letter} raises an alarm; select the matching plane first", AXES[perpendicular] as char, g / 10)),
                 _ => {}
             }
         }
@@ -104,21 +103,21 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         mem.tlc_h = false;
         // Type C cancels only with G49 and H0 in the same block.
         if tlc_type == 2 && w.get(b'H') != Some(0.0) {
-            cx.diag(codes::TLC_TYPE, Severity::Error, w.g_span(490), "with tool length compensation type 2 (C) the cancel needs both G49 and H0: G49 alone raises an alarm; write G49 H0");
+            cx.out.diag(&TLC_TYPE, Severity::Error, w.g_span(490), "with tool length compensation type 2 (C) the cancel needs both G49 and H0: G49 alone raises an alarm; write G49 H0");
         }
     }
     // G37 automatic tool length calibration.
     if w.has_g(370) {
         let s = w.g_span(370);
         if tlc_type == 2 {
-            cx.diag(codes::TLC_TYPE, Severity::Error, s, "G37 is not supported with tool length compensation type 2 (C): the control raises an error");
+            cx.out.diag(&TLC_TYPE, Severity::Error, s, "G37 is not supported with tool length compensation type 2 (C): the control raises an error");
         } else if !mem.tlc_h {
-            cx.diag(codes::TLC_TYPE, Severity::Error, s, "G37 needs a preceding G43 or G44 with a non-zero H: the calibrated offset has no tool to go to");
+            cx.out.diag(&TLC_TYPE, Severity::Error, s, "G37 needs a preceding G43 or G44 with a non-zero H: the calibrated offset has no tool to go to");
         }
         let allowed = if tlc_type == 1 { perpendicular } else { 2 };
         if tlc_type != 2 {
             if let Some(&(i, ws)) = axis_words.iter().find(|(i, _)| *i != allowed) {
-                cx.diag(codes::TLC_TYPE, Severity::Error, ws, format!("G37 with {} is not allowed: with tool length compensation type {tlc_type} only {} can be calibrated", AXES[i] as char, AXES[allowed] as char));
+                cx.out.diag(&TLC_TYPE, Severity::Error, ws, format!("G37 with {} is not allowed: with tool length compensation type {tlc_type} only {} can be calibrated", AXES[i] as char, AXES[allowed] as char));
             }
         }
     }

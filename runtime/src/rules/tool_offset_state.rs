@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Dialect, Severity, Span, Variant};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -64,12 +63,12 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         if st.modal.tlo_mode == 432 {
             for code in [430u32, 440] {
                 if w.has_g(code) {
-                    cx.diag(codes::TOOL_OFFSET_STATE, Severity::Error, w.g_span(code), format!("G{} cannot be given while tool centre point control (G43.2) is on: cancel it with G49 first", code / 10));
+                    cx.out.diag(&TOOL_OFFSET_STATE, Severity::Error, w.g_span(code), format!("G{} cannot be given while tool centre point control (G43.2) is on: cancel it with G49 first", code / 10));
                 }
             }
         }
         if w.has(b'T') && matches!(st.modal.tlo_mode, 430 | 440) && !w.has(b'H') {
-            cx.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'T'), "the tool changes while length compensation is on: the old length offset stays until G43/G44 with an explicit H");
+            cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.sp(b'T'), "the tool changes while length compensation is on: the old length offset stays until G43/G44 with an explicit H");
         }
         return Ok(());
     }
@@ -79,12 +78,12 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     if w.has_g(430) {
         if let Some(h) = w.get(b'H') {
             if h < 0.0 {
-                return Err(cx.err(codes::TOOL_OFFSET_STATE, w.sp(b'H'), format!("G43 H{h}: negative tool numbers do not exist; use G43.1 for a dynamic offset")));
+                return Err(cx.out.err(&TOOL_OFFSET_STATE, w.sp(b'H'), format!("G43 H{h}: negative tool numbers do not exist; use G43.1 for a dynamic offset")));
             }
             let h = h.round() as u32;
             if h != st.tool {
-                cx.diag(
-                    codes::TOOL_OFFSET_STATE,
+                cx.out.diag(
+                    &TOOL_OFFSET_STATE,
                     Severity::Info,
                     w.sp(b'H'),
                     format!(
@@ -101,14 +100,14 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             // LinuxCNC's G43 without H takes the tool in the spindle (spec/rs274ngc.md
             // 3.12); before any M6 (or after M61 Q0) that is tool 0, whose length is zero.
             // A program may expect the tool already in the spindle: a note, not a warning.
-            cx.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.g_span(430), "G43 without H applies the length of the tool in the spindle, and none is loaded (tool 0): the offset is zero; load the tool first (T… M6) or give H");
+            cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.g_span(430), "G43 without H applies the length of the tool in the spindle, and none is loaded (tool 0): the offset is zero; load the tool first (T… M6) or give H");
         }
     }
     if w.has(b'T') {
         if let Some(prev) = mem.t_unused {
             if !w.has_m(60) {
                 let _ = prev;
-                cx.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'T'), "this T replaces an earlier T that no M6 used: only the last selected tool is loaded");
+                cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.sp(b'T'), "this T replaces an earlier T that no M6 used: only the last selected tool is loaded");
             }
         }
         mem.t_seen = true;
@@ -118,8 +117,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         let s = w.m_span(60);
         // LinuxCNC 2.9 (its rs274) loads tool 0 without complaint: a warning only.
         if !mem.t_seen {
-            cx.diag(
-                codes::TOOL_OFFSET_STATE,
+            cx.out.diag(
+                &TOOL_OFFSET_STATE,
                 Severity::Warning,
                 s,
                 "M6 with no tool selected: the spindle gets tool 0 (no tool); give T before M6",
@@ -134,7 +133,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         mem.m6_without_g43 = false;
     } else if mem.m6_without_g43 && w.has(b'Z') && !w.has_m(60) {
         mem.m6_without_g43 = false;
-        cx.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
+        cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
     }
     Ok(())
 }
@@ -146,6 +145,6 @@ pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let w = cx.w;
     if mem.m6_without_g43 && w.has(b'Z') {
         mem.m6_without_g43 = false;
-        cx.diag(codes::TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
+        cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
     }
 }

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Dialect, Severity};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -166,7 +165,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     } else {
         mem.blocks_without_motion += 1;
         if cx.dialect == Dialect::Servoworks && mem.blocks_without_motion == 101 {
-            cx.diag(codes::TRC_LOOKAHEAD, Severity::Info, cx.bspan, "more than 100 blocks without motion in tool radius compensation: the look-ahead buffer holds 100 blocks, so the offset at the next corner cannot see the next move; keep blocks without motion few");
+            cx.out.diag(&TRC_LOOKAHEAD, Severity::Info, cx.bspan, "more than 100 blocks without motion in tool radius compensation: the look-ahead buffer holds 100 blocks, so the offset at the next corner cannot see the next move; keep blocks without motion few");
         }
     }
     mem.motions_seen = n;

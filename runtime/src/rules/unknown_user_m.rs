@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Diagnostic, Severity};
 
 use super::check::Cx;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -64,10 +63,10 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
         if !known && listed.is_none() && !cx.input.resolver.searches_like_the_control() {
             if !mem.noted.contains(&n) {
                 mem.noted.push(n);
-                cx.diag(codes::UNKNOWN_USER_M, Severity::Info, s, format!("M{n} is a user M code: LinuxCNC runs the program file M{n} from its USER_M_PATH. None is configured here, so the dry run takes it as doing nothing; list the codes the machine has in `machine.user_m_codes` to have the others reported"));
+                cx.out.diag(&UNKNOWN_USER_M, Severity::Info, s, format!("M{n} is a user M code: LinuxCNC runs the program file M{n} from its USER_M_PATH. None is configured here, so the dry run takes it as doing nothing; list the codes the machine has in `machine.user_m_codes` to have the others reported"));
             }
         } else if !known {
-            return Err(cx.err(codes::UNKNOWN_USER_M, s, format!("Unknown m code used: M{n}: no user M-code program M{n} is configured; list it in `machine.user_m_codes` or remove it")));
+            return Err(cx.out.err(&UNKNOWN_USER_M, s, format!("Unknown m code used: M{n}: no user M-code program M{n} is configured; list it in `machine.user_m_codes` or remove it")));
         }
     }
     Ok(())

@@ -6,7 +6,6 @@ use analyzer::syntax::{BinOp, Expr, ExprId, Program};
 use analyzer::{Dialect, Severity};
 
 use super::check::Sink;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -87,7 +86,7 @@ impl Reads<'_> {
                             )
                         };
                         self.out.diag(
-                            codes::VACANT_READ,
+                            &VACANT_READ,
                             sev,
                             node.span,
                             format!(

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::{Severity, Span};
 
 use super::check::Sink;
-use super::codes;
 
 declare_rule! {
     /// ## What it does
@@ -44,7 +43,7 @@ declare_rule! {
 pub(crate) fn check(text: &str, out: &mut Sink<'_>) {
     for (line, msg) in problems(text) {
         out.diag(
-            codes::VAR_FILE,
+            &VAR_FILE,
             Severity::Error,
             Span::default(),
             format!("parameter file line {line}: {msg}"),

@@ -5,7 +5,6 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use super::codes;
 use crate::interp::{is_cycle, is_group_1};
 
 declare_rule! {
@@ -73,8 +72,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
             .find(|c| w.has(**c))
             .map(|c| w.sp(*c))
             .unwrap_or(cx.bspan);
-        return Err(cx.err(
-            codes::WORD_UNUSED,
+        return Err(cx.out.err(
+            &WORD_UNUSED,
             span,
             "cannot use axis values without a g code that uses them: no motion mode is active \
              (G80, or none yet since the program start), so LinuxCNC stops here; give G0 or G1 \
@@ -99,8 +98,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     ];
     for (c, used, msg) in unused {
         if w.has(c) && !used {
-            return Err(cx.err(
-                codes::WORD_UNUSED,
+            return Err(cx.out.err(
+                &WORD_UNUSED,
                 w.sp(c),
                 format!(
                     "{msg}: LinuxCNC stops here; remove the word or add the code it belongs to"
@@ -111,11 +110,11 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if let Some(&(v, s)) = cx.items.dollar.first() {
         let takes = mm(&[30, 40, 50, 190, 510]) || gm(&[330, 331, 760, 950, 960, 970]);
         if !takes {
-            return Err(cx.err(codes::WORD_UNUSED, s, "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it: LinuxCNC stops here"));
+            return Err(cx.out.err(&WORD_UNUSED, s, "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it: LinuxCNC stops here"));
         }
         let spindles = cx.input.machine.spindles.unwrap_or(1.0);
         if v != -1.0 && (v < 0.0 || v >= spindles || v.fract() != 0.0) {
-            return Err(cx.err(codes::WORD_UNUSED, s, format!("${v} selects a spindle this machine does not have (spindles 0 to {}, or $-1 for all): LinuxCNC stops here", spindles - 1.0)));
+            return Err(cx.out.err(&WORD_UNUSED, s, format!("${v} selects a spindle this machine does not have (spindles 0 to {}, or $-1 for all): LinuxCNC stops here", spindles - 1.0)));
         }
     }
     Ok(())

@@ -561,8 +561,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             } else {
                 0
             };
-            report.diagnostics.push(Diagnostic::warning(
-                runtime::rules::codes::STEP_BUDGET,
+            report.diagnostics.push(runtime::rules::STEP_BUDGET.warning(
                 Span::new(at, at),
                 format!("the SVG picture is cut off here to keep it under {max_mb} MB; raise the limit with --max-svg-mb"),
             ));
@@ -597,8 +596,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             let at = analyzer::LineIndex::new(&text)
                 .line_start(line)
                 .unwrap_or(0);
-            report.diagnostics.push(Diagnostic::warning(
-                runtime::rules::codes::STEP_BUDGET,
+            report.diagnostics.push(runtime::rules::STEP_BUDGET.warning(
                 Span::new(at, at),
                 format!("the HTML page's toolpath is cut off here to keep it under {max_mb} MB; raise the limit with --max-html-mb"),
             ));
@@ -842,7 +840,7 @@ fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileRe
     Stop {
         partial: at.is_some() || partial(report),
         at,
-        budget: stopped.is_some_and(|s| s.code == runtime::rules::codes::STEP_BUDGET),
+        budget: stopped.is_some_and(|s| s.code == runtime::rules::STEP_BUDGET.code),
     }
 }
 
@@ -1107,7 +1105,7 @@ fn partial(report: &FileReport) -> bool {
     report
         .diagnostics
         .iter()
-        .any(|d| d.code == runtime::rules::codes::STEP_BUDGET)
+        .any(|d| d.code == runtime::rules::STEP_BUDGET.code)
 }
 
 /// `"  (3 changes)"`, or nothing for none.

@@ -131,8 +131,7 @@ impl Snapshot {
             .map(|d| self.to_lsp(d))
             .collect();
         if let Some(reason) = self.run_skipped_reason() {
-            let d = analyzer::Diagnostic::new(
-                runtime::rules::codes::STEP_BUDGET,
+            let d = runtime::rules::STEP_BUDGET.diagnostic(
                 Severity::Info,
                 analyzer::Span::new(0, 0),
                 reason,

@@ -2,6 +2,7 @@
 //! (`L100000000` repeats, pecks), so the step budget alone does not bound memory.
 
 use super::*;
+use crate::rules::step_budget::STEP_BUDGET;
 
 impl Interp<'_, '_> {
     /// Motions produced so far, those already streamed out included.
@@ -20,10 +21,10 @@ impl Interp<'_, '_> {
             .out
             .diagnostics
             .iter()
-            .any(|d| d.code == codes::STEP_BUDGET && d.message.contains("motion budget"));
+            .any(|d| d.code == STEP_BUDGET.code && d.message.contains("motion budget"));
         if !reported {
             self.diag(
-                codes::STEP_BUDGET,
+                &STEP_BUDGET,
                 Severity::Warning,
                 span,
                 format!("execution stopped after {budget} motions: the motion budget was reached and the rest of the program is not simulated; raise it with --motion-budget"),

@@ -4,6 +4,7 @@
 //! the gouge checks.
 
 use super::*;
+use crate::rules::interp::INTERP;
 
 /// The 2007 EMC2 interpreter refuses every concave corner under cutter radius
 /// compensation (rs274ngc.md NGC416); LinuxCNC 2.9 stops the tool short instead.
@@ -112,7 +113,7 @@ impl Interp<'_, '_> {
             let dist = (t[a] - op[a]).hypot(t[b] - op[b]);
             if dist <= r && self.ngc() {
                 return Err(self.err(
-                    codes::INTERP,
+                    &INTERP,
                     span,
                     "length of cutter compensation entry move is not greater than the tool radius",
                 ));
@@ -182,14 +183,14 @@ impl Interp<'_, '_> {
             self.st.comp_endpoint = Some([mid[a], mid[b]]);
         } else if concave {
             if self.variant == Variant::Emc2 {
-                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+                return Err(self.err(&INTERP, span, EMC2_CONCAVE));
             }
             match front_arc {
                 None => {
                     let half = (beta + PI) / 2.0;
                     if half == 0.0 {
                         return Err(self.err(
-                            codes::INTERP,
+                            &INTERP,
                             span,
                             "zero degree inside corner is invalid for cutter compensation",
                         ));
@@ -217,7 +218,7 @@ impl Interp<'_, '_> {
                     let l = d2 / oldrad;
                     if !(-1.0..=1.0).contains(&l) {
                         return Err(self.err(
-                            codes::INTERP,
+                            &INTERP,
                             span,
                             "Arc to straight motion makes a corner the compensated tool can't fit in without gouging",
                         ));
@@ -321,7 +322,7 @@ impl Interp<'_, '_> {
                     if q.sweep != 0.0 && new_sweep.abs() > q.sweep.abs() + tol {
                         self.st.comp_queue.clone_from(&queue);
                         return Err(self.err(
-                            codes::INTERP,
+                            &INTERP,
                             span,
                             "Arc move in concave corner cannot be reached by the tool without gouging",
                         ));
@@ -337,7 +338,7 @@ impl Interp<'_, '_> {
                         "Straight feed"
                     };
                     return Err(self.err(
-                        codes::INTERP,
+                        &INTERP,
                         span,
                         format!("{what} in concave corner cannot be reached by the tool without gouging"),
                     ));
@@ -476,7 +477,7 @@ impl Interp<'_, '_> {
         let o2 = [op[a], op[b]];
         let too_big = || {
             self.err(
-                codes::INTERP,
+                &INTERP,
                 span,
                 "Tool radius not less than arc radius with comp",
             )
@@ -486,7 +487,7 @@ impl Interp<'_, '_> {
             // new centre so that it still starts at the current point.
             if (e2[0] - o2[0]).hypot(e2[1] - o2[1]) <= rt {
                 return Err(self.err(
-                    codes::INTERP,
+                    &INTERP,
                     span,
                     "Radius of cutter compensation entry arc is not greater than the tool radius",
                 ));
@@ -562,14 +563,14 @@ impl Interp<'_, '_> {
         };
         let gouge = |s: &Self, what: &str| -> Diagnostic {
             s.err(
-                codes::INTERP,
+                &INTERP,
                 span,
                 format!("{what} makes a corner the compensated tool can't fit in without gouging"),
             )
         };
         if beta < -small || beta > PI + small || ((beta - PI).abs() < small && !inside) {
             if self.variant == Variant::Emc2 {
-                return Err(self.err(codes::INTERP, span, EMC2_CONCAVE));
+                return Err(self.err(&INTERP, span, EMC2_CONCAVE));
             }
             let front_arc = self.st.comp_queue.first().copied().filter(|q| q.kind == 2);
             let mid = match front_arc {
@@ -584,7 +585,7 @@ impl Interp<'_, '_> {
                     let l = toward / dist;
                     if !(-1.0..=1.0).contains(&l) {
                         return Err(self.err(
-                            codes::INTERP,
+                            &INTERP,
                             span,
                             "Arc move in concave corner cannot be reached by the tool without gouging",
                         ));
@@ -603,7 +604,7 @@ impl Interp<'_, '_> {
                     let arc_cc = (prev.center[1] - c[1]).hypot(prev.center[0] - c[0]);
                     if oldrad == 0.0 || arc_cc == 0.0 {
                         return Err(self.err(
-                            codes::INTERP,
+                            &INTERP,
                             span,
                             "Arc to arc motion is invalid because the arcs have the same center",
                         ));

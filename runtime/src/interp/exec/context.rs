@@ -8,6 +8,7 @@
 //! differing M code, then one block per further M code.
 
 use super::*;
+use crate::rules::flow::FLOW;
 
 /// The state M70/M73 saves, in LinuxCNC's own terms (`active_g_codes` slots as ten
 /// times the G number, `active_m_codes` slots, `active_settings`).
@@ -108,7 +109,7 @@ impl Interp<'_, '_> {
         } else if w.has_m(720) {
             let Some(saved) = self.context_slot().clone() else {
                 return Err(self.err(
-                    codes::FLOW,
+                    &FLOW,
                     w.m.iter()
                         .find(|(m, _)| *m == 720)
                         .map(|x| x.1)

@@ -3,6 +3,10 @@
 //! retract planes (G98/G99) and the G76/G87 shift.
 
 use super::*;
+use crate::rules::{
+    cycle_missing::CYCLE_MISSING, cycle_q::CYCLE_Q, cycle_state::CYCLE_STATE, interp::INTERP,
+    rigid_tap::RIGID_TAP, step_budget::STEP_BUDGET,
+};
 
 /// Pecks per hole after which a peck cycle finishes the hole in one move.
 const MAX_PECKS: u32 = 1_000;
@@ -32,7 +36,7 @@ impl Interp<'_, '_> {
             for c in [b'A', b'B', b'C'] {
                 if w.has(c) {
                     return Err(self.err(
-                        codes::INTERP,
+                        &INTERP,
                         w.sp(c),
                         format!(
                             "Cannot put a{} {} in canned cycle",
@@ -53,7 +57,7 @@ impl Interp<'_, '_> {
         }
         if self.st.modal.comp != 400 && ngc {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 "cannot use canned cycles with cutter compensation on",
             ));
@@ -74,14 +78,14 @@ impl Interp<'_, '_> {
         }
         if ngc && (cyc.r.is_none() || (!same && !w.has(b'R'))) {
             return Err(self.err(
-                codes::CYCLE_MISSING,
+                &CYCLE_MISSING,
                 span,
                 "R clearance plane unspecified in cycle",
             ));
         }
         if cyc.r.is_none() && self.dialect == Dialect::Servoworks {
             return Err(self.err(
-                codes::CYCLE_MISSING,
+                &CYCLE_MISSING,
                 span,
                 "canned cycle without R (point R level)",
             ));
@@ -100,7 +104,7 @@ impl Interp<'_, '_> {
                 (Severity::Info, "no R has been given in this program")
             };
             self.diag(
-                codes::CYCLE_MISSING,
+                &CYCLE_MISSING,
                 sev,
                 span,
                 format!("canned cycle without R (point R level), {why}: the cycle feeds from the initial level. Give R to start the feed closer to the work"),
@@ -109,7 +113,7 @@ impl Interp<'_, '_> {
         }
         if cyc.z.is_none() || (ngc && !same && !w.has(zl)) {
             return Err(self.err(
-                codes::CYCLE_MISSING,
+                &CYCLE_MISSING,
                 span,
                 format!("{} value unspecified in canned cycle", zl as char),
             ));
@@ -126,9 +130,9 @@ impl Interp<'_, '_> {
                     "peck depth Q must be positive"
                 };
                 if ngc {
-                    return Err(self.err(codes::CYCLE_Q, w.sp(b'Q'), msg));
+                    return Err(self.err(&CYCLE_Q, w.sp(b'Q'), msg));
                 }
-                self.diag(codes::CYCLE_Q, Severity::Warning, w.sp(b'Q'), msg);
+                self.diag(&CYCLE_Q, Severity::Warning, w.sp(b'Q'), msg);
             }
             // ServoWorks ignores a negative G73/G83 Q and keeps the modal one
             // (SW122; servoworks.md TV-64 recommends it).
@@ -155,7 +159,7 @@ impl Interp<'_, '_> {
         let missing_q = matches!(mode, 730 | 830) && cyc.q.is_none();
         let missing_p = matches!(mode, 820 | 860 | 880 | 890) && ngc && cyc.p.is_none();
         if missing_q && !ngc {
-            return Err(self.err(codes::CYCLE_Q, span, "Q word missing with G73/G83"));
+            return Err(self.err(&CYCLE_Q, span, "Q word missing with G73/G83"));
         }
         // Rigid tapping (FANUC M29) checks.
         if self.dialect == Dialect::Fanuc
@@ -164,29 +168,25 @@ impl Interp<'_, '_> {
             && self.st.spindle <= 0.0
         {
             self.diag(
-                codes::RIGID_TAP,
+                &RIGID_TAP,
                 Severity::Error,
                 span,
                 "rigid tapping (M29) needs a spindle speed S (PS0203)",
             );
         }
         if ngc && mode == 840 && self.st.spindle_dir != 1 {
-            return Err(self.err(
-                codes::CYCLE_STATE,
-                span,
-                "spindle not turning clockwise in G84",
-            ));
+            return Err(self.err(&CYCLE_STATE, span, "spindle not turning clockwise in G84"));
         }
         if ngc && mode == 740 && self.st.spindle_dir != -1 {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 "spindle not turning counterclockwise in G74",
             ));
         }
         if ngc && matches!(mode, 860 | 870 | 880) && self.st.spindle_dir == 0 {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 format!("spindle not turning in G{}", mode / 10),
             ));
@@ -194,7 +194,7 @@ impl Interp<'_, '_> {
         let repeats = if ngc {
             let l = w.get(b'L').unwrap_or(1.0).round() as i64;
             if l == 0 {
-                return Err(self.err(codes::CYCLE_STATE, span, "cannot do zero repeats of cycle"));
+                return Err(self.err(&CYCLE_STATE, span, "cannot do zero repeats of cycle"));
             }
             l.max(1)
         } else {
@@ -238,7 +238,7 @@ impl Interp<'_, '_> {
         self.st.cycle = cyc.clone();
         if r < bottom && ngc {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 match self.st.modal.plane {
                     180 => "R less than y in cycle in xz plane",
@@ -270,14 +270,14 @@ impl Interp<'_, '_> {
         }
         if missing_q {
             return Err(self.err(
-                codes::CYCLE_Q,
+                &CYCLE_Q,
                 span,
                 format!("Q word missing with g{}", mode / 10),
             ));
         }
         if missing_p {
             return Err(self.err(
-                codes::CYCLE_MISSING,
+                &CYCLE_MISSING,
                 span,
                 format!("dwell time P word missing with G{}", mode / 10),
             ));
@@ -300,7 +300,7 @@ impl Interp<'_, '_> {
         // Each repetition counts against the step budget, so `L1000000000` stays bounded.
         let left = self.input.step_budget.saturating_sub(self.steps);
         let repeats = if repeats as u64 > left {
-            self.diag(codes::STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated (raise it with --step-budget)"));
+            self.diag(&STEP_BUDGET, Severity::Warning, span, format!("{repeats} cycle repetitions exceed the remaining step budget; only {left} are simulated (raise it with --step-budget)"));
             left as i64
         } else {
             repeats

@@ -13,6 +13,10 @@ use analyzer::syntax::{Block, Item};
 use super::flow::macro_args;
 use super::messages::rs274_parameter_message;
 use super::*;
+use crate::rules::{
+    after_end::AFTER_END, coord_during_rotation::COORD_DURING_ROTATION, flow::FLOW, interp::INTERP,
+    sub_not_found::SUB_NOT_FOUND, unknown_code::UNKNOWN_CODE, vacant_word::VACANT_WORD,
+};
 
 impl Interp<'_, '_> {
     pub(super) fn exec_block(&mut self, fi: usize, bi: u32) -> Result<Flow, Diagnostic> {
@@ -41,7 +45,7 @@ impl Interp<'_, '_> {
                 {
                     // Only a file that opens with `%` may close with one; elsewhere
                     // rs274 reads `%` as a bad character.
-                    return Err(self.err(codes::INTERP, block.span, "Bad character '%' used"));
+                    return Err(self.err(&INTERP, block.span, "Bad character '%' used"));
                 }
                 if self.dialect == Dialect::Fanuc && fi == 0 && self.seen_code_before(&prog, bi) {
                     self.saw_end = true;
@@ -144,7 +148,7 @@ impl Interp<'_, '_> {
                             if c.unwrap_or(0.0) == 0.0 {
                                 let Some(end) = self.files[fi].loops.get(&bi).copied() else {
                                     return Err(self.err(
-                                        codes::FLOW,
+                                        &FLOW,
                                         it.span,
                                         "WHILE … DO has no matching END (PS0124)",
                                     ));
@@ -156,7 +160,7 @@ impl Interp<'_, '_> {
                         MacroStmt::End { .. } => {
                             let Some(head) = self.files[fi].loops.get(&bi).copied() else {
                                 return Err(self.err(
-                                    codes::FLOW,
+                                    &FLOW,
                                     it.span,
                                     "END has no matching DO (PS0126)",
                                 ));
@@ -225,7 +229,7 @@ impl Interp<'_, '_> {
                             && machine_value.is_none()
                         {
                             let letter = word.letter as char;
-                            self.diag(codes::VACANT_WORD, Severity::Warning, it.span, format!("the value of {letter} is vacant (an unset variable): the control omits the whole {letter} word; set the variable or leave the word out"));
+                            self.diag(&VACANT_WORD, Severity::Warning, it.span, format!("the value of {letter} is vacant (an unset variable): the control omits the whole {letter} word; set the variable or leave the word out"));
                         }
                         continue;
                     };
@@ -234,7 +238,7 @@ impl Interp<'_, '_> {
                             Some(c) => w.g.push((c.0, it.span)),
                             None => {
                                 return Err(self.err(
-                                    codes::UNKNOWN_CODE,
+                                    &UNKNOWN_CODE,
                                     it.span,
                                     format!("G{val} is not a G code"),
                                 ))
@@ -250,7 +254,7 @@ impl Interp<'_, '_> {
                             };
                             if val < 0.0 || val.fract().abs() > 1e-6 {
                                 return Err(self.err(
-                                    codes::UNKNOWN_CODE,
+                                    &UNKNOWN_CODE,
                                     it.span,
                                     format!("M{val} is not an M code"),
                                 ));
@@ -277,7 +281,7 @@ impl Interp<'_, '_> {
                                 && !(self.g7x_capturing() && c != b'V') =>
                         {
                             return Err(self.err(
-                                codes::INTERP,
+                                &INTERP,
                                 it.span,
                                 format!(
                                     "bad character '{}' used: this machine has no {} axis",
@@ -350,7 +354,7 @@ impl Interp<'_, '_> {
             if !self.after_end_reported {
                 self.after_end_reported = true;
                 self.diag(
-                    codes::AFTER_END,
+                    &AFTER_END,
                     if self.dialect == Dialect::Fanuc {
                         // An operator may start there (cursor, sequence-number search).
                         Severity::Info
@@ -406,7 +410,7 @@ impl Interp<'_, '_> {
                     } else {
                         format!("Unknown m code used: M{}", n / 10)
                     };
-                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                    return Err(self.err(&UNKNOWN_CODE, span, msg));
                 };
                 let Some(group) = info.group else { continue };
                 if let Some(&(_, _, other)) =
@@ -421,7 +425,7 @@ impl Interp<'_, '_> {
                     } else {
                         "Two m codes used from same modal group"
                     };
-                    return Err(self.err(codes::UNKNOWN_CODE, span, msg));
+                    return Err(self.err(&UNKNOWN_CODE, span, msg));
                 }
                 seen.push((letter, group, n));
             }
@@ -609,7 +613,7 @@ impl Interp<'_, '_> {
                     .find(|g| matches!(g.0, 170 | 180 | 190))
                     .map(|g| g.1)
                     .unwrap_or_default();
-            self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "the plane cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
+            self.diag(&COORD_DURING_ROTATION, Severity::Error, span, "the plane cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         for (code, name, plane) in [
             (170u32, "CANON_PLANE_XY", 170u32),
@@ -723,7 +727,7 @@ impl Interp<'_, '_> {
         if !ngc && w.has_g(660) {
             let Some(p) = w.get(b'P') else {
                 return Err(self.err(
-                    codes::SUB_NOT_FOUND,
+                    &SUB_NOT_FOUND,
                     w.g_span(660),
                     "G66 without P (macro number)",
                 ));

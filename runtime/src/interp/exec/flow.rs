@@ -4,6 +4,10 @@
 //! and the stops and ends (M0, M1, M2, M30, M99 at the top level).
 
 use super::*;
+use crate::rules::{
+    after_end::AFTER_END, call_depth::CALL_DEPTH, flow::FLOW, interp::INTERP,
+    sub_not_found::SUB_NOT_FOUND,
+};
 
 impl Interp<'_, '_> {
     pub(super) fn goto_seq(
@@ -23,7 +27,7 @@ impl Interp<'_, '_> {
             return Ok(Flow::Goto(fi, *b));
         }
         Err(self.err(
-            codes::FLOW,
+            &FLOW,
             span,
             format!("sequence number N{n} not found (PS0128)"),
         ))
@@ -55,7 +59,7 @@ impl Interp<'_, '_> {
         let after = |b: Option<u32>| -> Result<u32, Diagnostic> {
             b.map(|b| b + 1).ok_or_else(|| {
                 self.err(
-                    codes::FLOW,
+                    &FLOW,
                     span,
                     format!("O-word `{}` has no matching end", kw.as_str()),
                 )
@@ -74,7 +78,7 @@ impl Interp<'_, '_> {
         {
             // rs274 finds no open block of that label when it reaches the closer.
             return Err(self.err(
-                codes::FLOW,
+                &FLOW,
                 span,
                 format!(
                     "{}: undefined O-word label: '{}'",
@@ -98,7 +102,7 @@ impl Interp<'_, '_> {
                 if let (true, Some(b)) = (self.ngc(), nested) {
                     self.cur = (fi, b);
                     let at = p.blocks.get(b as usize).map(|x| x.span).unwrap_or(span);
-                    return Err(self.err(codes::FLOW, at, "Nested subroutine definition"));
+                    return Err(self.err(&FLOW, at, "Nested subroutine definition"));
                 }
                 if self.ngc() && fi == 0 && ctrl.partner.is_none() {
                     // rs274 skips the definition looking for its endsub and runs off
@@ -115,7 +119,7 @@ impl Interp<'_, '_> {
                 };
                 if self.frames.is_empty() {
                     if kw == OKeyword::Return {
-                        return Err(self.err(codes::FLOW, span, "`return` outside a subroutine"));
+                        return Err(self.err(&FLOW, span, "`return` outside a subroutine"));
                     }
                     return Ok(Flow::Next);
                 }
@@ -140,7 +144,7 @@ impl Interp<'_, '_> {
                     _ => label_key(p, &ow),
                 };
                 let Some(key) = key else {
-                    return Err(self.err(codes::FLOW, span, "call without a subroutine name"));
+                    return Err(self.err(&FLOW, span, "call without a subroutine name"));
                 };
                 self.call_ngc(fi, bi, &key, vals, span)
             }
@@ -225,11 +229,7 @@ impl Interp<'_, '_> {
             OKeyword::Endif => Ok(Flow::Next),
             OKeyword::Break | OKeyword::Continue => {
                 let Some(head) = ctrl.partner else {
-                    return Err(self.err(
-                        codes::FLOW,
-                        span,
-                        format!("`{}` outside a loop", kw.as_str()),
-                    ));
+                    return Err(self.err(&FLOW, span, format!("`{}` outside a loop", kw.as_str())));
                 };
                 let hc = self.files[fi].ctrl.get(&head).cloned().unwrap_or_default();
                 let end = hc.partner.unwrap_or(head);
@@ -311,7 +311,7 @@ impl Interp<'_, '_> {
     pub(super) fn depth_check(&self, span: Span) -> Result<(), Diagnostic> {
         if self.frames.len() >= self.cfg.max_depth {
             return Err(self.err(
-                codes::CALL_DEPTH,
+                &CALL_DEPTH,
                 span,
                 format!("subprogram nesting deeper than {} levels (recursion?): the control alarms here", self.cfg.max_depth),
             ));
@@ -362,15 +362,14 @@ impl Interp<'_, '_> {
             if !self.input.resolver.searches_like_the_control() {
                 // LinuxCNC would also look in PROGRAM_PREFIX and SUBROUTINE_PATH,
                 // which nobody configured here: the file may well be on the machine.
-                return Err(Diagnostic::new(
-                    codes::SUB_NOT_FOUND,
+                return Err(SUB_NOT_FOUND.diagnostic(
                     Severity::Info,
                     span,
                     format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found beside it; LinuxCNC also searches its SUBROUTINE_PATH, so the dry run skips the call. Set machine.subroutine_path (or ini) to check the call"),
                 )
                 .in_file(self.file_id()));
             }
-            return Err(self.err(codes::SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
+            return Err(self.err(&SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
         let saved: Vec<Option<f64>> = (1..=30)
@@ -486,7 +485,7 @@ impl Interp<'_, '_> {
                     } else {
                         format!("program O{name} not found (PS0076)")
                     };
-                    return Err(self.err(codes::SUB_NOT_FOUND, span, what));
+                    return Err(self.err(&SUB_NOT_FOUND, span, what));
                 }
             }
         };
@@ -531,7 +530,7 @@ impl Interp<'_, '_> {
                 .unwrap_or(w.g_span(650));
         if w.has_g(650) {
             let Some(p) = w.get(b'P') else {
-                return Err(self.err(codes::SUB_NOT_FOUND, span, "G65 without P (macro number)"));
+                return Err(self.err(&SUB_NOT_FOUND, span, "G65 without P (macro number)"));
             };
             let l = w.get(b'L').unwrap_or(1.0).max(1.0) as u32;
             let args = macro_args(w);
@@ -555,16 +554,12 @@ impl Interp<'_, '_> {
                 }
             }
             (None, None) => {
-                return Err(self.err(
-                    codes::SUB_NOT_FOUND,
-                    span,
-                    "M98 without P (subprogram name)",
-                ))
+                return Err(self.err(&SUB_NOT_FOUND, span, "M98 without P (subprogram name)"))
             }
         };
         if w.any_axis() {
             self.diag(
-                codes::INTERP,
+                &INTERP,
                 Severity::Warning,
                 span,
                 "M98 shares its block with axis words: the motion in this block is ignored",
@@ -609,7 +604,7 @@ impl Interp<'_, '_> {
                 }
                 // M99 in a main program: the control loops back to the start.
                 self.diag(
-                    codes::INTERP,
+                    &INTERP,
                     Severity::Warning,
                     w.m.iter()
                         .find(|m| m.0 == 990)
@@ -685,7 +680,7 @@ impl Interp<'_, '_> {
                 return;
             }
             self.diag(
-                codes::AFTER_END,
+                &AFTER_END,
                 if self.dialect == Dialect::Fanuc {
                     // An operator may start there (cursor, sequence-number search).
                     Severity::Info
@@ -783,8 +778,7 @@ pub(super) fn macro_args(w: &Words) -> Vec<Option<f64>> {
 
 /// The call of a file the host found but would not read: the dry run skips it.
 fn refused_call(span: Span, why: &str) -> Diagnostic {
-    Diagnostic::new(
-        codes::SUB_NOT_FOUND,
+    SUB_NOT_FOUND.diagnostic(
         Severity::Warning,
         span,
         format!("the called file was not read, so the dry run skips the call: {why}"),

@@ -10,6 +10,7 @@
 //! G37 Limit checked for an assumed measurement.
 
 use super::*;
+use crate::rules::tlc_type::TLC_TYPE;
 
 /// The `[machine]` keys of G37.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,7 +85,7 @@ impl Interp<'_, '_> {
         if let Some(l) = cfg.limit {
             if calibration.abs() >= l {
                 return Err(self.err(
-                    codes::TLC_TYPE,
+                    &TLC_TYPE,
                     w.sp(letter),
                     format!("G37 measured {calibration:+.4} from the surface position, outside the G37 Limit ±{l}: the control stops with an error"),
                 ));

@@ -8,6 +8,7 @@
 
 use super::g7x_geom::{self, c, Out, Path, Seg, C};
 use super::*;
+use crate::rules::{lathe_cycle::LATHE_CYCLE, step_budget::STEP_BUDGET};
 
 /// The profile being read from the Q subroutine.
 #[derive(Debug, Clone)]
@@ -49,7 +50,7 @@ impl Interp<'_, '_> {
         w: &Words,
         bspan: Span,
     ) -> Result<(), Diagnostic> {
-        let err = |s: &Self, m: &str| s.err(codes::LATHE_CYCLE, bspan, m);
+        let err = |s: &Self, m: &str| s.err(&LATHE_CYCLE, bspan, m);
         let start = cap.start;
         let mut end = if cap.incremental { c(0.0, 0.0) } else { start };
         let mut center = c(0.0, 0.0);
@@ -141,19 +142,19 @@ impl Interp<'_, '_> {
     pub(super) fn exec_g7x(&mut self, mode: u32, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let span = w.g.iter().find(|g| g.0 == mode).map_or(bspan, |g| g.1);
         let Some(q) = w.get(b'Q') else {
-            return Err(self.err(codes::LATHE_CYCLE, span, "G7x.x  requires a Q word"));
+            return Err(self.err(&LATHE_CYCLE, span, "G7x.x  requires a Q word"));
         };
         let (cycle, sub) = (mode / 10, mode % 10);
         if self.st.modal.comp != 400 && cycle != 70 {
             return Err(self.err(
-                codes::LATHE_CYCLE,
+                &LATHE_CYCLE,
                 span,
                 format!("G{cycle}.{sub} cannot be used with cutter compensation enabled"),
             ));
         }
         if self.st.modal.plane != 180 {
             return Err(self.err(
-                codes::LATHE_CYCLE,
+                &LATHE_CYCLE,
                 span,
                 format!("G{cycle}.{sub} can only be used in XZ plane (G18)"),
             ));
@@ -205,7 +206,7 @@ impl Interp<'_, '_> {
             if at.1 as usize >= nblocks {
                 if at.0 == 0 || !self.ret_from_sub(None) {
                     break Err(self.err(
-                        codes::LATHE_CYCLE,
+                        &LATHE_CYCLE,
                         span,
                         "the profile subroutine of the cycle never returns",
                     ));
@@ -216,7 +217,7 @@ impl Interp<'_, '_> {
             self.steps += 1;
             if self.steps > budget {
                 break Err(self.err(
-                    codes::STEP_BUDGET,
+                    &STEP_BUDGET,
                     span,
                     format!("execution stopped after {budget} blocks while reading a G7x profile: the step budget was reached; raise it with --step-budget"),
                 ));
@@ -228,7 +229,7 @@ impl Interp<'_, '_> {
                 Ok(Flow::Goto(f, b)) => at = (f, b),
                 Ok(Flow::Stop) => {
                     break Err(self.err(
-                        codes::LATHE_CYCLE,
+                        &LATHE_CYCLE,
                         span,
                         "the program stopped inside the profile of a G7x cycle",
                     ))
@@ -262,7 +263,7 @@ impl Interp<'_, '_> {
         );
         if i <= 0.0 {
             return Err(self.err(
-                codes::LATHE_CYCLE,
+                &LATHE_CYCLE,
                 span,
                 "G7X error: I must be greater than zero.",
             ));
@@ -286,7 +287,7 @@ impl Interp<'_, '_> {
             self.g7x_emit(&path, m, span)?;
         }
         if let Err(s) = res {
-            return Err(self.err(codes::LATHE_CYCLE, span, format!("G7X error: {s}")));
+            return Err(self.err(&LATHE_CYCLE, span, format!("G7X error: {s}")));
         }
         self.cur = here;
         Ok(())

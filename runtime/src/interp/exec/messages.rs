@@ -4,6 +4,7 @@
 
 use super::params::predefined;
 use super::*;
+use crate::rules::macro_alarm::MACRO_ALARM;
 
 impl Interp<'_, '_> {
     pub(super) fn exec_comment(
@@ -47,7 +48,7 @@ impl Interp<'_, '_> {
             }
             CommentKind::Abort => {
                 let m = self.substitute(&after_comma(&inner));
-                return Err(self.err(codes::MACRO_ALARM, s, format!("abort: {m}")));
+                return Err(self.err(&MACRO_ALARM, s, format!("abort: {m}")));
             }
             _ => {}
         }

@@ -5,6 +5,10 @@
 //! (G50.1/G51.1), rotation (G68/G69), rigid tapping (M29) and ServoWorks 3D-DLACC.
 
 use super::*;
+use crate::rules::{
+    dlacc_incompatible::DLACC_INCOMPATIBLE, dlacc_tcp::DLACC_TCP, interp::INTERP,
+    rigid_tap::RIGID_TAP,
+};
 
 impl Interp<'_, '_> {
     /// Switches RS274/NGC program units, converting the stored lengths as
@@ -183,7 +187,7 @@ impl Interp<'_, '_> {
                 Some(p) => p,
                 None => {
                     return Err(self.err(
-                        codes::INTERP,
+                        &INTERP,
                         w.g_span(40),
                         "dwell time P word missing with G4",
                     ))
@@ -228,7 +232,7 @@ impl Interp<'_, '_> {
                     .map(|c| w.sp(*c))
                     .unwrap_or_default()
             };
-            self.diag(codes::RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
+            self.diag(&RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
         }
         // M29 is the rigid-tapping code (parameter 5210's default) only where a tap
         // follows: without any G84/G74 in the file it is a builder's M code.
@@ -240,7 +244,7 @@ impl Interp<'_, '_> {
                     .map(|m| m.1)
                     .unwrap_or_default();
             if matches!(self.st.modal.motion, 740 | 840) {
-                self.diag(codes::RIGID_TAP, Severity::Error, span, "M29 given while a tapping cycle is already modal: give M29 before G84/G74 (PS0204)");
+                self.diag(&RIGID_TAP, Severity::Error, span, "M29 given while a tapping cycle is already modal: give M29 before G84/G74 (PS0204)");
             }
             self.st.modal.rigid_tap = true;
         }
@@ -347,7 +351,7 @@ impl Interp<'_, '_> {
                         .find(|g| g.0 == 50 || g.0 == 80)
                         .map(|g| g.1)
                         .unwrap_or_default();
-                return Err(self.err(codes::DLACC_TCP, span, "3D-DLACC cannot be combined with tool centre point control (G43.2): the control stops"));
+                return Err(self.err(&DLACC_TCP, span, "3D-DLACC cannot be combined with tool centre point control (G43.2): the control stops"));
             }
             if let Some(on) = on {
                 self.st.modal.dlacc = on;
@@ -370,12 +374,12 @@ impl Interp<'_, '_> {
         for (g, s) in &w.g {
             if !ALLOWED.contains(g) {
                 let name = analyzer::dialect::CodeNum(*g).display();
-                let code = if *g == 432 {
-                    codes::DLACC_TCP
+                let rule = if *g == 432 {
+                    &DLACC_TCP
                 } else {
-                    codes::DLACC_INCOMPATIBLE
+                    &DLACC_INCOMPATIBLE
                 };
-                return Err(self.err(code, *s, format!("G{name} cannot be used while 3D dynamic look-ahead is on: turn it off with G08 P0 (or G05 P0) first")));
+                return Err(self.err(rule, *s, format!("G{name} cannot be used while 3D dynamic look-ahead is on: turn it off with G08 P0 (or G05 P0) first")));
             }
         }
         Ok(())

@@ -4,6 +4,18 @@
 //! G5/G5.1 splines, G5.2 NURBS) and threading (G33, G33.1, G76).
 
 use super::*;
+use crate::rules::{
+    arc_corrected::{ARC_CORRECTED_IJK, ARC_CORRECTED_R},
+    arc_no_center::ARC_NO_CENTER,
+    arc_polar_ijk::ARC_POLAR_IJK,
+    arc_radius_mismatch::ARC_RADIUS_MISMATCH,
+    arc_radius_too_small::ARC_RADIUS_TOO_SMALL,
+    arc_same_end_r::ARC_SAME_END_R,
+    cycle_state::CYCLE_STATE,
+    interp::INTERP,
+    probe_state::PROBE_STATE,
+    zero_feed::ZERO_FEED,
+};
 
 impl Interp<'_, '_> {
     /// The end point of a straight move from the block's axis words.
@@ -216,7 +228,7 @@ impl Interp<'_, '_> {
                     "feed rate is zero on a cutting move: program F before the first G01/G02/G03"
                 }
             };
-            let e = self.err(codes::ZERO_FEED, span, msg);
+            let e = self.err(&ZERO_FEED, span, msg);
             if self.ngc() {
                 return Err(e);
             }
@@ -356,7 +368,7 @@ impl Interp<'_, '_> {
                         // An arc off its circle goes straight to its end; any other
                         // arc that cannot be made leaves the tool at its end.
                         let t = self.target(w);
-                        self.recover_to = Some(if e.code == codes::ARC_RADIUS_MISMATCH {
+                        self.recover_to = Some(if e.code == ARC_RADIUS_MISMATCH.code {
                             recover::Recover::Feed(t)
                         } else {
                             recover::Recover::SetPos(t)
@@ -400,7 +412,7 @@ impl Interp<'_, '_> {
             331 if self.ngc() => {
                 self.st.modal.motion = 331;
                 if self.st.spindle_dir == 0 {
-                    return Err(self.err(codes::INTERP, bspan, "Spindle not turning in G33.1"));
+                    return Err(self.err(&INTERP, bspan, "Spindle not turning in G33.1"));
                 }
                 let t = self.target(w);
                 let k = w.get(b'K').map(|v| self.lin(v)).unwrap_or(0.0);
@@ -425,17 +437,13 @@ impl Interp<'_, '_> {
             }
             382..=385 => {
                 if self.ngc() && !w.any_axis() {
-                    return Err(self.err(
-                        codes::PROBE_STATE,
-                        bspan,
-                        "All axes missing with motion code",
-                    ));
+                    return Err(self.err(&PROBE_STATE, bspan, "All axes missing with motion code"));
                 }
                 let t = self.target(w);
                 // G38.3 and G38.5 report a failed probe in #5070 instead of
                 // stopping, so LinuxCNC lets them start at their target.
                 if self.ngc() && matches!(mode, 382 | 384) && dist(&self.st.pos, &t) == 0.0 {
-                    return Err(self.err(codes::PROBE_STATE, bspan, "Start point too close to probe point: a G38.2/G38.4 move needs a target away from the current position"));
+                    return Err(self.err(&PROBE_STATE, bspan, "Start point too close to probe point: a G38.2/G38.4 move needs a target away from the current position"));
                 }
                 self.check_feed(bspan)?;
                 self.canon("TURN_PROBE_ON()");
@@ -647,7 +655,7 @@ impl Interp<'_, '_> {
         use std::f64::consts::PI;
         if self.st.modal.comp != 400 {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 "cannot use G76 threading cycle with cutter radius compensation on",
             ));
@@ -657,7 +665,7 @@ impl Interp<'_, '_> {
         let emc2 = self.variant == Variant::Emc2;
         if emc2 && self.st.modal.plane != 180 {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 span,
                 "G76 threading works only in the XZ plane: select G18 first",
             ));
@@ -665,7 +673,7 @@ impl Interp<'_, '_> {
         let refused: &[u8] = if emc2 { b"XYABC" } else { b"ABC" };
         if let Some(c) = refused.iter().copied().find(|c| w.has(*c)) {
             return Err(self.err(
-                codes::CYCLE_STATE,
+                &CYCLE_STATE,
                 w.sp(c),
                 format!(
                     "G76 does not accept {}: the thread runs along Z from the current position",
@@ -683,19 +691,19 @@ impl Interp<'_, '_> {
             if e > half + 1e-9 {
                 let msg = "G76 taper length E is longer than half the thread: shorten E";
                 if emc2 {
-                    return Err(self.err(codes::CYCLE_STATE, w.sp(b'E'), msg));
+                    return Err(self.err(&CYCLE_STATE, w.sp(b'E'), msg));
                 }
-                self.diag(codes::CYCLE_STATE, Severity::Warning, w.sp(b'E'), msg);
+                self.diag(&CYCLE_STATE, Severity::Warning, w.sp(b'E'), msg);
             }
         }
         if i == 0.0 {
-            return Err(self.err(codes::CYCLE_STATE, span, "in G76, I must not be 0"));
+            return Err(self.err(&CYCLE_STATE, span, "in G76, I must not be 0"));
         }
         if j <= 0.0 {
-            return Err(self.err(codes::CYCLE_STATE, span, "in G76, J must be greater than 0"));
+            return Err(self.err(&CYCLE_STATE, span, "in G76, J must be greater than 0"));
         }
         if k <= j {
-            return Err(self.err(codes::CYCLE_STATE, span, "in G76, K must be greater than J"));
+            return Err(self.err(&CYCLE_STATE, span, "in G76, K must be greater than J"));
         }
         // In diameter mode (G7) rs274 halves I, J and K after checking them, as it halves X:
         // they are diameters too.
@@ -819,7 +827,7 @@ impl Interp<'_, '_> {
                 .unwrap_or(bspan);
         if self.st.modal.polar && !self.ngc() && has_c {
             self.diag(
-                codes::ARC_POLAR_IJK,
+                &ARC_POLAR_IJK,
                 Severity::Error,
                 span,
                 "I/J/K centre words cannot be used in polar coordinate mode (G16): use R",
@@ -828,13 +836,13 @@ impl Interp<'_, '_> {
         if !has_r && !has_c {
             if self.ngc() {
                 return Err(self.err(
-                    codes::ARC_NO_CENTER,
+                    &ARC_NO_CENTER,
                     span,
                     "R, I, J and K words all missing for arc",
                 ));
             }
             self.diag(
-                codes::ARC_NO_CENTER,
+                &ARC_NO_CENTER,
                 Severity::Error,
                 span,
                 "arc without R or centre words (I/J/K)",
@@ -844,14 +852,14 @@ impl Interp<'_, '_> {
         }
         if has_r && has_c && self.ngc() && self.canon.is_some() {
             return Err(self.err(
-                codes::ARC_NO_CENTER,
+                &ARC_NO_CENTER,
                 w.sp(b'R'),
                 "Mixed radius ijk format for arc",
             ));
         }
         if has_r && has_c && self.dialect == Dialect::Servoworks {
             return Err(self.err(
-                codes::ARC_NO_CENTER,
+                &ARC_NO_CENTER,
                 w.sp(b'R'),
                 "R and I/J/K in one arc block: the control reports an error",
             ));
@@ -888,13 +896,13 @@ impl Interp<'_, '_> {
         // such arcs without complaint, so only a correction beyond it is worth a warning.
         let resolution = (2.0 * self.cfg.machine_unit * self.cfg.machine_unit).sqrt();
         if sol.corrected && self.dialect == Dialect::Servoworks && sol.mismatch > resolution {
-            let code = if has_r {
-                codes::ARC_CORRECTED_R
+            let rule = if has_r {
+                &ARC_CORRECTED_R
             } else {
-                codes::ARC_CORRECTED_IJK
+                &ARC_CORRECTED_IJK
             };
             self.diag(
-                code,
+                rule,
                 Severity::Warning,
                 span,
                 format!(
@@ -1024,7 +1032,7 @@ impl Interp<'_, '_> {
                     Dialect::Rs274ngc => "current point same as end point of arc: an R-format arc cannot be a full circle; use I/J/K".to_string(),
                     _ => "R-format arc with the end point equal to the start point: use I/J/K for a full circle".to_string(),
                 };
-                self.err(codes::ARC_SAME_END_R, span, msg)
+                self.err(&ARC_SAME_END_R, span, msg)
             }
             ArcError::RadiusTooSmall(gap) => {
                 let msg = match d {
@@ -1035,7 +1043,7 @@ impl Interp<'_, '_> {
                         self.cfg.circle_error_allowance
                     ),
                 };
-                self.err(codes::ARC_RADIUS_TOO_SMALL, span, msg)
+                self.err(&ARC_RADIUS_TOO_SMALL, span, msg)
             }
             ArcError::RadiusMismatch(r1, r2) => {
                 let c = match spec {
@@ -1076,7 +1084,7 @@ impl Interp<'_, '_> {
                         self.cfg.circle_error_allowance
                     ),
                 };
-                self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
+                self.err(&ARC_RADIUS_MISMATCH, span, msg)
             }
             ArcError::ZeroRadius => match (d, spec) {
                 (Dialect::Rs274ngc, ArcSpec::Center(c)) => {
@@ -1097,9 +1105,9 @@ impl Interp<'_, '_> {
                         en[0] / u,
                         en[1] / u,
                     );
-                    self.err(codes::ARC_RADIUS_MISMATCH, span, msg)
+                    self.err(&ARC_RADIUS_MISMATCH, span, msg)
                 }
-                _ => self.err(codes::ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
+                _ => self.err(&ARC_RADIUS_MISMATCH, span, "zero-radius arc"),
             },
         }
     }

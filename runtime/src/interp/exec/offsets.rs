@@ -6,6 +6,10 @@
 
 use super::*;
 use crate::interp::frame;
+use crate::rules::{
+    coord_during_rotation::COORD_DURING_ROTATION, cycle_state::CYCLE_STATE, interp::INTERP,
+    unknown_tool::UNKNOWN_TOOL,
+};
 
 impl Interp<'_, '_> {
     /// Work offset of the active origin, mm.
@@ -178,13 +182,13 @@ impl Interp<'_, '_> {
         if have_table && t != 0 && !self.cfg.tools.contains_key(&t) {
             if self.ngc() {
                 return Err(self.err(
-                    codes::UNKNOWN_TOOL,
+                    &UNKNOWN_TOOL,
                     span,
                     format!("Requested tool {t} not found in the tool table"),
                 ));
             }
             self.diag(
-                codes::UNKNOWN_TOOL,
+                &UNKNOWN_TOOL,
                 Severity::Warning,
                 span,
                 format!("tool T{t} is not in the tool table"),
@@ -254,7 +258,7 @@ impl Interp<'_, '_> {
                 } else {
                     // LinuxCNC 2.9 looks up tool -1 for G43.2 without H and stops.
                     return Err(self.err(
-                        codes::UNKNOWN_TOOL,
+                        &UNKNOWN_TOOL,
                         w.g_span(432),
                         "Requested tool -1 not found in the tool table",
                     ));
@@ -311,7 +315,7 @@ impl Interp<'_, '_> {
                     .find(|(g, _)| (540..=593).contains(g))
                     .map(|x| x.1)
                     .unwrap_or_default();
-            self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "work coordinate systems cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
+            self.diag(&COORD_DURING_ROTATION, Severity::Error, span, "work coordinate systems cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         if o == self.st.modal.origin {
             self.canon_comment("interpreter: continuing to use same coordinate system");
@@ -387,11 +391,7 @@ impl Interp<'_, '_> {
                     let base = 5201 + 20 * origin;
                     if let Some(r) = w.get(b'R').filter(|_| self.ngc()) {
                         if l == 20 {
-                            return Err(self.err(
-                                codes::INTERP,
-                                w.sp(b'R'),
-                                "R not allowed in G10 L20",
-                            ));
+                            return Err(self.err(&INTERP, w.sp(b'R'), "R not allowed in G10 L20"));
                         }
                         self.set_param(5210 + 20 * origin, Some(r));
                     }
@@ -575,12 +575,12 @@ impl Interp<'_, '_> {
             let g30 = w.has_g(300);
             let span = w.g_span(if g30 { 300 } else { 280 });
             if self.st.modal.rotation {
-                self.diag(codes::COORD_DURING_ROTATION, Severity::Error, span, "reference-position return (G28/G30) is not allowed while coordinate rotation (G68) is on");
+                self.diag(&COORD_DURING_ROTATION, Severity::Error, span, "reference-position return (G28/G30) is not allowed while coordinate rotation (G68) is on");
             }
             // G80 in the same block cancels the cycle first (`G80 G28 G91 X0 Y0 Z0`
             // ends the FANUC manual's cycle examples).
             if !self.ngc() && self.st.modal.modal_cycle() && !w.has_g(800) {
-                self.diag(codes::CYCLE_STATE, Severity::Error, span, "reference-position return while a canned cycle is modal: cancel it with G80 first (PS0044)");
+                self.diag(&CYCLE_STATE, Severity::Error, span, "reference-position return while a canned cycle is modal: cancel it with G80 first (PS0044)");
                 self.st.modal.motion = 800;
                 self.st.cycle = CycleMem::default();
             }
@@ -641,7 +641,7 @@ impl Interp<'_, '_> {
             }
             if self.st.modal.rotation {
                 self.diag(
-                    codes::COORD_DURING_ROTATION,
+                    &COORD_DURING_ROTATION,
                     Severity::Error,
                     w.g_span(520),
                     "G52 is not allowed while coordinate rotation (G68) is on",

@@ -3,6 +3,7 @@
 //! `#<_x>` …), expression evaluation against them, and assignment.
 
 use super::*;
+use crate::rules::{expression::EXPRESSION, macro_alarm::MACRO_ALARM};
 
 impl Interp<'_, '_> {
     pub(super) fn param(&self, n: usize) -> f64 {
@@ -16,7 +17,7 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn eval_err(&self, e: EvalError) -> Diagnostic {
-        self.err(codes::EXPRESSION, e.span, e.message)
+        self.err(e.rule, e.span, e.message)
     }
 
     /// Evaluates an expression. While recovering (`recover.rs`), a failed one is
@@ -114,19 +115,19 @@ impl Interp<'_, '_> {
                     // value; the dry run says once that it does not follow them.
                     if !self.machine_vars.unmodelled_noted {
                         self.machine_vars.unmodelled_noted = true;
-                        self.diag(codes::EXPRESSION, Severity::Info, span, format!("#{n} is in a variable range of a control option this dry run does not model (#20000 and above): its value is left to the machine, and reads of such variables are unknown"));
+                        self.diag(&EXPRESSION, Severity::Info, span, format!("#{n} is in a variable range of a control option this dry run does not model (#20000 and above): its value is left to the machine, and reads of such variables are unknown"));
                     }
                     return Ok(());
                 }
                 if n < 0.0 || n as usize >= NUM_PARAMS {
                     return Err(self.err(
-                        codes::EXPRESSION,
+                        &EXPRESSION,
                         span,
                         format!("parameter number #{n} out of range"),
                     ));
                 }
                 if n == 0.0 && !self.ngc() {
-                    return Err(self.err(codes::EXPRESSION, span, "#0 is read-only (PS0116)"));
+                    return Err(self.err(&EXPRESSION, span, "#0 is read-only (PS0116)"));
                 }
                 let v = if self.ngc() {
                     Some(v.unwrap_or(0.0))
@@ -138,7 +139,7 @@ impl Interp<'_, '_> {
                     self.event(EventKind::Message(format!("#{} = {}", n, v.unwrap_or(0.0))));
                     if stop {
                         let alarm = format!("macro alarm #3000 = {}", v.unwrap_or(0.0));
-                        let mut d = self.err(codes::MACRO_ALARM, span, &alarm);
+                        let mut d = self.err(&MACRO_ALARM, span, &alarm);
                         // Reached only because a machine value was read as vacant.
                         if let Some(why) = self.machine_dependence() {
                             d.severity = Severity::Info;
@@ -209,15 +210,10 @@ impl VarSource for Vars<'_> {
             return Ok(None);
         }
         if n < 0 || n as usize >= NUM_PARAMS {
-            let code = if self.dialect == Dialect::Rs274ngc {
-                "X006"
-            } else {
-                "X007"
-            };
             return Err(EvalError {
                 span,
                 message: format!("parameter number #{n} out of range"),
-                code,
+                rule: &EXPRESSION,
             });
         }
         if self.dialect == Dialect::Rs274ngc && (5401..=5403).contains(&n) {
@@ -270,7 +266,7 @@ impl VarSource for Vars<'_> {
         Err(EvalError {
             span,
             message: format!("named parameter #<{name}> not defined"),
-            code: "X006",
+            rule: &EXPRESSION,
         })
     }
     fn named_exists(&self, name: &str) -> bool {

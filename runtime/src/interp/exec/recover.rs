@@ -12,6 +12,13 @@
 use std::cell::{Cell, RefCell};
 
 use super::*;
+use crate::rules::{
+    arc_no_center::ARC_NO_CENTER, arc_radius_mismatch::ARC_RADIUS_MISMATCH,
+    arc_radius_too_small::ARC_RADIUS_TOO_SMALL, arc_same_end_r::ARC_SAME_END_R,
+    arc_words::ARC_WORDS, cycle_missing::CYCLE_MISSING, cycle_q::CYCLE_Q, expression::EXPRESSION,
+    interp::INTERP, step_budget::STEP_BUDGET, sub_not_found::SUB_NOT_FOUND,
+    unknown_code::UNKNOWN_CODE, zero_feed::ZERO_FEED,
+};
 
 /// What a recoverable error leaves the position at.
 #[derive(Debug, Clone, Copy)]
@@ -29,20 +36,21 @@ pub(super) enum Recover {
 /// Each rule's doc says how ("After this error the dry run continues as if …");
 /// every other error stops the run.
 fn recoverable(code: &str) -> bool {
-    matches!(
-        code,
-        codes::ARC_RADIUS_MISMATCH
-            | codes::ARC_RADIUS_TOO_SMALL
-            | codes::ARC_NO_CENTER
-            | codes::ARC_SAME_END_R
-            | codes::ARC_WORDS
-            | codes::CYCLE_MISSING
-            | codes::CYCLE_Q
-            | codes::ZERO_FEED
-            | codes::SUB_NOT_FOUND
-            | codes::EXPRESSION
-            | codes::UNKNOWN_CODE
-    )
+    [
+        &ARC_RADIUS_MISMATCH,
+        &ARC_RADIUS_TOO_SMALL,
+        &ARC_NO_CENTER,
+        &ARC_SAME_END_R,
+        &ARC_WORDS,
+        &CYCLE_MISSING,
+        &CYCLE_Q,
+        &ZERO_FEED,
+        &SUB_NOT_FOUND,
+        &EXPRESSION,
+        &UNKNOWN_CODE,
+    ]
+    .iter()
+    .any(|r| r.code == code)
 }
 
 /// Said at the end of the message of an error that stops the run.
@@ -96,8 +104,7 @@ impl Interp<'_, '_> {
         if !self.taint.last.get() {
             return;
         }
-        let d = Diagnostic::new(
-            codes::EXPRESSION,
+        let d = EXPRESSION.diagnostic(
             Severity::Info,
             span,
             "this condition reads a value an earlier error left unknown (taken as 0): the branch the dry run takes may not be the one the control takes",
@@ -240,7 +247,7 @@ impl Interp<'_, '_> {
             });
         }
         // The budgets' messages say already that execution stopped.
-        if d.code != codes::STEP_BUDGET && !d.message.ends_with(STOP_SUFFIX) {
+        if d.code != STEP_BUDGET.code && !d.message.ends_with(STOP_SUFFIX) {
             d.message.push_str(STOP_SUFFIX);
         }
     }
@@ -265,7 +272,7 @@ impl Interp<'_, '_> {
                 file: self.files.get(fi).map(|f| f.id).unwrap_or_default(),
                 span,
                 line: self.cur_line,
-                code: codes::INTERP,
+                code: INTERP.code,
                 reason: reason.to_string(),
             });
         }
@@ -280,7 +287,7 @@ impl Interp<'_, '_> {
         }
         let span = self.block_span(fi, bi);
         self.diag(
-            codes::STEP_BUDGET,
+            &STEP_BUDGET,
             Severity::Warning,
             span,
             format!("execution stopped after {cap} runtime errors: the rest of the program is not simulated and its faults are not reported; raise the limit with --max-runtime-errors"),
