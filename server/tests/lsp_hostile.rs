@@ -469,6 +469,9 @@ fn runs_stop_when_their_request_is_cancelled_or_their_document_closes() {
     let idle = Duration::from_millis(60);
     let busy = Duration::from_millis(200);
     let busy_window = 2 * window;
+    // What a stopped run does after its answer (dropping its tables, the
+    // cancelled request's error reply) is not a run going on: measured after it.
+    let settle = Duration::from_millis(300);
     // A small document runs with its analysis, for its diagnostics: closing
     // the document stops that run.
     let small = uri.replace("part.ngc", "small.ngc");
@@ -479,6 +482,7 @@ fn runs_stop_when_their_request_is_cancelled_or_their_document_closes() {
         json!({"textDocument": {"uri": small}}),
     );
     hover_ok(&mut c, &uri, "the close");
+    std::thread::sleep(settle);
     let after_close = cpu_over(&c, window);
     // Above 256 KB the document's own run waits for edits to pause, so the
     // dry run is the request's: its cancel stops it (the close stops the
@@ -494,6 +498,7 @@ fn runs_stop_when_their_request_is_cancelled_or_their_document_closes() {
         json!({"textDocument": {"uri": large}}),
     );
     assert_eq!(take_response(&mut c, run).unwrap()["error"]["code"], -32800);
+    std::thread::sleep(settle);
     let after_cancel = cpu_over(&c, window);
     eprintln!(
         "server CPU: document run {running:?} per {busy_window:?}, after its close {after_close:?} per {window:?}; \

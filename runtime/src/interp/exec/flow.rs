@@ -454,13 +454,12 @@ impl Interp<'_, '_> {
             match f {
                 Some(f) if self.files[f].foreign => {
                     self.skip_call();
-                    return Err(Diagnostic::new(
-                        codes::SUB_NOT_FOUND,
-                        Severity::Warning,
-                        span,
-                        format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown"),
-                    )
-                    .in_file(self.file_id()));
+                    return Err(SUB_NOT_FOUND
+                        .warning(
+                            span,
+                            format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown"),
+                        )
+                        .in_file(self.file_id()));
                 }
                 Some(f) => {
                     let p = self.files[f].prog.clone();

@@ -164,30 +164,29 @@ impl Interp<'_, '_> {
             self.out.diagnostics.push(d);
             return false;
         }
-        // Warnings the dry run recovers from (a skipped call) fold the same way.
-        {
-            let key = (d.file, d.code, d.message.clone());
-            if let Some(r) = Arc::make_mut(&mut self.st.recovered).get_mut(&key) {
-                // The same fault again: folded into the first report (at finish).
-                r.count = r.count.saturating_add(1);
-                if r.spans.len() < MAX_REPEAT_LOCATIONS {
-                    r.spans.push((d.file, d.span));
-                }
-                self.recover_position(recover);
-                return true;
+        // A repeat (same file, code and message) of a recovered error or warning,
+        // such as a skipped call, is folded into its first report.
+        let key = (d.file, d.code, d.message.clone());
+        if let Some(r) = Arc::make_mut(&mut self.st.recovered).get_mut(&key) {
+            // The same fault again: folded into the first report (at finish).
+            r.count = r.count.saturating_add(1);
+            if r.spans.len() < MAX_REPEAT_LOCATIONS {
+                r.spans.push((d.file, d.span));
             }
-            let index = self.out.diagnostics.len();
-            Arc::make_mut(&mut self.st.recovered).insert(
-                key,
-                crate::interp::state::Repeated {
-                    index,
-                    count: 0,
-                    spans: Vec::new(),
-                },
-            );
-            if d.severity == Severity::Error {
-                self.st.runtime_errors = self.st.runtime_errors.saturating_add(1);
-            }
+            self.recover_position(recover);
+            return true;
+        }
+        let index = self.out.diagnostics.len();
+        Arc::make_mut(&mut self.st.recovered).insert(
+            key,
+            crate::interp::state::Repeated {
+                index,
+                count: 0,
+                spans: Vec::new(),
+            },
+        );
+        if d.severity == Severity::Error {
+            self.st.runtime_errors = self.st.runtime_errors.saturating_add(1);
         }
         self.out.diagnostics.push(d);
         self.recover_position(recover);
