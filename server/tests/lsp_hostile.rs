@@ -391,8 +391,17 @@ fn exit_status_follows_the_protocol() {
 }
 
 /// An RS274/NGC program that runs until the step budget stops it.
+/// A loop that never ends, each pass made costly (500 sine evaluations) so that its
+/// step budget takes far longer than any of these tests waits, however fast the
+/// machine: a run that ended by itself would answer instead of being cancelled.
 fn endless() -> String {
-    "#1=0\no100 while [1 GT 0]\n#1=[#1+1]\nG1 X[#1 MOD 100] F1000\no100 endwhile\nM2\n".to_string()
+    let sines = vec!["SIN[#1]"; 100].join("+");
+    let mut text = String::from("#1=0\no100 while [1 GT 0]\n#1=[#1+1]\n");
+    for n in 2..7 {
+        text.push_str(&format!("#{n}=[{sines}]\n"));
+    }
+    text.push_str("G1 X[#1 MOD 100] F1000\no100 endwhile\nM2\n");
+    text
 }
 
 fn open(c: &mut Client, uri: &str, text: &str) {
