@@ -282,6 +282,50 @@ fn output_to_a_closed_pipe_ends_quietly() {
     }
 }
 
+/// A call the dry run skips leaves its time out of the figures: `run` says they are
+/// partial (JSON, human summary, exit status 1), as it does for a run that stopped.
+#[test]
+fn a_skipped_call_makes_the_run_partial() {
+    let dir = tempdir("skipped-call");
+    let prog = write(
+        &dir,
+        "p.ngc",
+        b"G21 G90\nG1 X10 F600\no<not_here> call\nG1 X20\nM2\n",
+    );
+    let out = bin()
+        .args(["run", "--format", "json"])
+        .arg(&prog)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["partial"], true, "{v}");
+    assert_eq!(v["complete"], false);
+    assert_eq!(v["stopped_at"], serde_json::Value::Null);
+    assert_eq!(out.status.code(), Some(1));
+    let out = bin().arg("run").arg(&prog).output().unwrap();
+    let s = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        s.contains(
+            "partial: a called program was not run (F002); the figures leave out what it does"
+        ),
+        "{s}"
+    );
+    // With the subroutine beside it, nothing is skipped.
+    write(
+        &dir,
+        "not_here.ngc",
+        b"o<not_here> sub\nG1 Y5\no<not_here> endsub\nM2\n",
+    );
+    let out = bin()
+        .args(["run", "--format", "json"])
+        .arg(&prog)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["partial"], false, "{v}");
+    assert_eq!(out.status.code(), Some(0));
+}
+
 #[test]
 fn rule_explains_and_lists() {
     let out = bin().args(["rule", "L001"]).output().unwrap();

@@ -842,6 +842,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             self.out.canon = c.lines;
         }
         self.fold_repeats();
+        self.out.skipped_calls = self.st.skipped_call;
         self.out.values = self.values.take().map(std::cell::RefCell::into_inner);
         self.out
     }

@@ -129,8 +129,9 @@ pub struct State {
     /// on a later block, e.g. every feed move of a program without F) is folded
     /// into the first report and does not count towards the cap.
     pub recovered: Arc<HashMap<(FileId, &'static str, String), Repeated>>,
-    /// A call was skipped because its subroutine was not found: the globals it
-    /// would have set are unknown, not undefined.
+    /// A call was skipped because its subroutine was not found or not read: the
+    /// globals it would have set are unknown, not undefined, and the run's figures
+    /// leave out what it runs (`RunOutput::skipped_calls`).
     pub skipped_call: bool,
 }
 

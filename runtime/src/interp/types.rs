@@ -236,6 +236,9 @@ pub struct RunOutput {
     /// cannot read): the motions and totals then cover only what ran. `None` when
     /// the run reached the end of the program (recovered errors included).
     pub stopped: Option<Stopped>,
+    /// A call the run could not follow (its file not found, not read, or written for
+    /// another control) was skipped: the motions and totals leave out what it runs.
+    pub skipped_calls: bool,
     /// The values the main file's expressions took, when the run was asked to
     /// record them ([`super::run_checkpointed_recording`]).
     pub values: Option<super::values::ValueRecord>,

@@ -451,7 +451,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             blocks,
             ..DryRun::default()
         };
-        let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
+        let stop = stop_of(out.stopped.as_ref(), &out.files, out.skipped_calls, &report);
         let what_ifs = match args.what_if {
             AutoSwitch::Off => WhatIfs::Off,
             _ => WhatIfs::Skipped(format!(
@@ -612,7 +612,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             return fail(format_args!("{}: {e}", html.display()));
         }
     }
-    let stop = stop_of(out.stopped.as_ref(), &out.files, &report);
+    let stop = stop_of(out.stopped.as_ref(), &out.files, out.skipped_calls, &report);
     let stdout = std::io::stdout();
     let mut w = std::io::BufWriter::new(stdout.lock());
     let res = match args.emit {
@@ -823,9 +823,18 @@ struct Stop {
     at: Option<(String, u32, String)>,
     /// A budget (F004) stopped it.
     budget: bool,
+    /// A budget diagnostic (F004) cut the figures short.
+    cut: bool,
+    /// A call the run could not follow was skipped (F002).
+    skipped_calls: bool,
 }
 
-fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileReport) -> Stop {
+fn stop_of(
+    stopped: Option<&runtime::Stopped>,
+    files: &[String],
+    skipped_calls: bool,
+    report: &FileReport,
+) -> Stop {
     let at = stopped.map(|s| {
         let path = if s.file == analyzer::FileId(0) {
             report.path.display().to_string()
@@ -838,9 +847,11 @@ fn stop_of(stopped: Option<&runtime::Stopped>, files: &[String], report: &FileRe
         (path, s.line + 1, s.reason.clone())
     });
     Stop {
-        partial: at.is_some() || partial(report),
+        partial: at.is_some() || partial(report) || skipped_calls,
         at,
         budget: stopped.is_some_and(|s| s.code == runtime::rules::STEP_BUDGET.code),
+        cut: partial(report),
+        skipped_calls,
     }
 }
 
@@ -1226,10 +1237,16 @@ fn human(
             w,
             "  partial: the run stopped early; the figures cover only what ran"
         )?;
-    } else if stop.partial {
+    } else if stop.at.is_some() || stop.cut {
         writeln!(
             w,
             "  partial: a budget stopped the run (F004); the figures cover only what ran"
+        )?;
+    }
+    if stop.skipped_calls {
+        writeln!(
+            w,
+            "  partial: a called program was not run (F002); the figures leave out what it does"
         )?;
     }
     if !t.per_tool.is_empty() {

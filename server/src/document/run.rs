@@ -100,6 +100,9 @@ pub struct RunReport {
     /// Where the run stopped before the program's end, when it did: the times
     /// and toolpath then cover only what ran.
     pub stopped: Option<StoppedAt>,
+    /// A call the run could not follow was skipped (F002): the times leave out
+    /// what it runs.
+    pub skipped_calls: bool,
     /// The values the document's expressions took (hover), kept apart from
     /// `run` because the next version's run takes that.
     pub values: Option<Arc<runtime::ValueRecord>>,

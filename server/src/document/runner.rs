@@ -394,6 +394,7 @@ pub fn report_of(
         diagnostics,
         run: Arc::default(),
         stopped,
+        skipped_calls: out.skipped_calls,
         blocks: Vec::new(),
         breakdown: None,
     }

@@ -50,6 +50,10 @@ pub fn cycle_time_title(run: Option<&RunReport>, skipped: Option<String>) -> Opt
             format_duration(t.cycle_time_s),
             s.describe()
         ),
+        None if r.skipped_calls => format!(
+            "Cycle time {} partial {times}: a called program was not run",
+            format_duration(t.cycle_time_s)
+        ),
         None => format!("Cycle time {} {times}", format_duration(t.cycle_time_s)),
     })
 }

@@ -640,6 +640,21 @@ fn lens_and_inlay_hints_fanuc_and_servoworks() {
     }
 }
 
+/// A call the run cannot follow leaves its time out: the lens says the figure is
+/// partial, as `partscope run` does.
+#[test]
+fn a_skipped_call_makes_the_lens_partial() {
+    let f = fixture(
+        Dialect::Rs274ngc,
+        "G21 G90\nG1 X10 F600\no<not_here> call\nG1 X20\nM2\n",
+        true,
+    );
+    assert_eq!(
+        lens_title(&f).as_deref(),
+        Some("Cycle time 0:02.0 partial (cutting 0:02.0, rapid 0:00.0, tool change 0:00.0): a called program was not run")
+    );
+}
+
 #[test]
 fn no_run_no_lens_and_no_hints() {
     let f = fixture(Dialect::Rs274ngc, NGC_RUN, false);

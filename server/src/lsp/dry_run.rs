@@ -259,6 +259,7 @@ mod tests {
             diagnostics: vec![],
             run: Default::default(),
             stopped: None,
+            skipped_calls: false,
             values: None,
             blocks: vec![],
             breakdown: None,

@@ -369,6 +369,7 @@ impl Interp<'_, '_> {
                 )
                 .in_file(self.file_id()));
             }
+            self.st.skipped_call = true;
             return Err(self.err(&SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
@@ -484,6 +485,9 @@ impl Interp<'_, '_> {
                     } else {
                         format!("program O{name} not found (PS0076)")
                     };
+                    // The run goes on without the call, so its figures leave the
+                    // call out; the feed is not made unknown, as the control alarms here.
+                    self.st.skipped_call = true;
                     return Err(self.err(&SUB_NOT_FOUND, span, what));
                 }
             }
