@@ -846,11 +846,12 @@ fn stop_of(
         };
         (path, s.line + 1, s.reason.clone())
     });
+    let cut = partial(report);
     Stop {
-        partial: at.is_some() || partial(report) || skipped_calls,
+        partial: at.is_some() || cut || skipped_calls,
         at,
         budget: stopped.is_some_and(|s| s.code == runtime::rules::STEP_BUDGET.code),
-        cut: partial(report),
+        cut,
         skipped_calls,
     }
 }

@@ -140,13 +140,8 @@ mod tests {
             },
             text.as_bytes().to_vec(),
         );
-        let toks = encode(&p, 0, u32::MAX, 1000).unwrap();
-        let flat: Vec<(u32, u32, u32, u32)> = toks
-            .iter()
-            .map(|t| (t.delta_line, t.delta_start, t.length, t.token_type))
-            .collect();
         assert_eq!(
-            flat,
+            flat(&p),
             vec![
                 (0, 0, 3, COMMENT),
                 (0, 4, 1, FUNCTION),
@@ -165,19 +160,23 @@ mod tests {
         assert_eq!(encode(&p, 0, u32::MAX, 3), None);
     }
 
+    /// The whole program's tokens as (delta line, delta start, length, type).
+    fn flat(p: &Program) -> Vec<(u32, u32, u32, u32)> {
+        encode(p, 0, u32::MAX, 1000)
+            .unwrap()
+            .iter()
+            .map(|t| (t.delta_line, t.delta_start, t.length, t.token_type))
+            .collect()
+    }
+
     #[test]
     fn crlf_and_cr_each_end_one_line() {
         let p = parse(
             ParseOptions::new(Dialect::Rs274ngc),
             b"G1\r\nM2\rX1 (\xf0\x9f\x98\x80) Y2".to_vec(),
         );
-        let flat: Vec<(u32, u32, u32, u32)> = encode(&p, 0, u32::MAX, 1000)
-            .unwrap()
-            .iter()
-            .map(|t| (t.delta_line, t.delta_start, t.length, t.token_type))
-            .collect();
         assert_eq!(
-            flat,
+            flat(&p),
             vec![
                 (0, 0, 1, FUNCTION),
                 (0, 1, 1, NUMBER),

@@ -339,8 +339,7 @@ impl Interp<'_, '_> {
             }
         } else {
             if let Some(why) = self.input.resolver.refused(key) {
-                self.skip_call();
-                return Err(refused_call(span, &why).in_file(self.file_id()));
+                return Err(self.skip_call(Severity::Warning, span, refused_call(&why)));
             }
             if self.ngc() && self.canon.is_some() && self.out.canon_error.is_none() {
                 // rs274 reads on to the end of the file looking for the definition
@@ -358,19 +357,16 @@ impl Interp<'_, '_> {
                     self.cur_line + 1
                 ));
             }
-            self.skip_call();
             if !self.input.resolver.searches_like_the_control() {
                 // LinuxCNC would also look in PROGRAM_PREFIX and SUBROUTINE_PATH,
                 // which nobody configured here: the file may well be on the machine.
-                return Err(SUB_NOT_FOUND.diagnostic(
+                return Err(self.skip_call(
                     Severity::Info,
                     span,
                     format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found beside it; LinuxCNC also searches its SUBROUTINE_PATH, so the dry run skips the call. Set machine.subroutine_path (or ini) to check the call"),
-                )
-                .in_file(self.file_id()));
+                ));
             }
-            self.st.skipped_call = true;
-            return Err(self.err(&SUB_NOT_FOUND, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
+            return Err(self.skip_call(Severity::Error, span, format!("subroutine o<{key}> is not defined in this file and no file `{key}.ngc` was found")));
         };
         // Save the caller's #1-#30 and pass the arguments.
         let saved: Vec<Option<f64>> = (1..=30)
@@ -454,13 +450,7 @@ impl Interp<'_, '_> {
                 .or_else(|| number.and_then(|n| self.load_file(&format!("{n:04}"), span)));
             match f {
                 Some(f) if self.files[f].foreign => {
-                    self.skip_call();
-                    return Err(SUB_NOT_FOUND
-                        .warning(
-                            span,
-                            format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown"),
-                        )
-                        .in_file(self.file_id()));
+                    return Err(self.skip_call(Severity::Warning, span, format!("O{name} looks written for another control (P010 in its file): the dry run skips the call, so what it would set and move is unknown")));
                 }
                 Some(f) => {
                     let p = self.files[f].prog.clone();
@@ -477,8 +467,7 @@ impl Interp<'_, '_> {
                         number.and_then(|n| self.input.resolver.refused(&format!("{n:04}")))
                     });
                     if let Some(why) = refused {
-                        self.skip_call();
-                        return Err(refused_call(span, &why).in_file(self.file_id()));
+                        return Err(self.skip_call(Severity::Warning, span, refused_call(&why)));
                     }
                     let what = if self.dialect == Dialect::Servoworks {
                         format!("subprogram O{name} (file O{name}.dat) not found")
@@ -780,19 +769,19 @@ pub(super) fn macro_args(w: &Words) -> Vec<Option<f64>> {
 }
 
 /// The call of a file the host found but would not read: the dry run skips it.
-fn refused_call(span: Span, why: &str) -> Diagnostic {
-    SUB_NOT_FOUND.diagnostic(
-        Severity::Warning,
-        span,
-        format!("the called file was not read, so the dry run skips the call: {why}"),
-    )
+fn refused_call(why: &str) -> String {
+    format!("the called file was not read, so the dry run skips the call: {why}")
 }
 
 impl Interp<'_, '_> {
     /// A call the run cannot follow: the globals it may set are unknown, and so is
-    /// the feed rate, which a called subprogram often programs.
-    fn skip_call(&mut self) {
+    /// the feed rate, which a called subprogram often programs. The diagnostic
+    /// (`SUB_NOT_FOUND`, in the calling file) says why.
+    fn skip_call(&mut self, severity: Severity, span: Span, msg: String) -> Diagnostic {
         self.st.skipped_call = true;
         self.mark_taint(|| "F".into(), true);
+        SUB_NOT_FOUND
+            .diagnostic(severity, span, msg)
+            .in_file(self.file_id())
     }
 }
