@@ -325,46 +325,71 @@ fn block_drills(program: &Program, b: &Block) -> bool {
 /// a lathe needs two kinds of lathe sign, a Haas mill two kinds of Haas sign.
 /// Other dialects, and programs with fewer signs, give `None`.
 pub fn control_signature(program: &Program) -> Option<Signature> {
-    if program.dialect != Dialect::Fanuc {
-        return None;
-    }
-    // One pass over the blocks (the program is large, its items are read once).
-    let mut drilling = false;
-    let mut found = Vec::new();
-    for b in &program.blocks {
-        drilling = drilling || block_drills(program, b);
-        block_signs(program, b, &mut found);
-    }
-    // On a mill G99 returns a canned cycle to the R level; without any drilling
-    // cycle in the file it is a lathe's feed per revolution.
-    if drilling {
-        found.retain(|(s, _)| *s != Sign::FeedPerRev);
-    }
-    // The first evidence of each kind, in file order.
-    let mut firsts: Vec<(Sign, Evidence)> = Vec::new();
-    for (s, e) in found {
-        if !firsts.iter().any(|(k, _)| *k == s) {
-            firsts.push((s, e));
+    let mut scan = SignScan::default();
+    scan.add(program);
+    scan.finish()
+}
+
+/// [`control_signature`] of a file read in parts (windows, in file order).
+#[derive(Debug, Default)]
+pub struct SignScan {
+    fanuc: bool,
+    drilling: bool,
+    /// The first evidence of each kind, in file order (a FANUC feed per
+    /// revolution is kept apart: it counts only in a file without drilling).
+    firsts: Vec<(Sign, Evidence)>,
+}
+
+impl SignScan {
+    /// Reads the signs of one part of the file.
+    pub fn add(&mut self, program: &Program) {
+        if program.dialect != Dialect::Fanuc {
+            return;
+        }
+        self.fanuc = true;
+        // One pass over the blocks (the program is large, its items are read once).
+        let mut found = Vec::new();
+        for b in &program.blocks {
+            self.drilling = self.drilling || block_drills(program, b);
+            block_signs(program, b, &mut found);
+        }
+        for (s, e) in found {
+            if !self.firsts.iter().any(|(k, _)| *k == s) {
+                self.firsts.push((s, e));
+            }
         }
     }
-    let lathe = firsts.iter().filter(|(s, _)| s.lathe()).count();
-    let other = firsts.iter().filter(|(s, _)| s.other_macro()).count();
-    let haas = firsts.len() - lathe - other;
-    let (control, keep): (Control, fn(Sign) -> bool) = if other >= 2 {
-        (Control::OtherMacro, |s| s.other_macro())
-    } else if lathe >= 2 {
-        (Control::Lathe { haas: haas > 0 }, |s| !s.other_macro())
-    } else if haas >= 2 {
-        (Control::HaasMill, |s| !s.lathe() && !s.other_macro())
-    } else {
-        return None;
-    };
-    let evidence = firsts
-        .into_iter()
-        .filter(|(s, _)| keep(*s))
-        .map(|(_, e)| e)
-        .collect();
-    Some(Signature { control, evidence })
+
+    /// The signature of everything read.
+    pub fn finish(mut self) -> Option<Signature> {
+        if !self.fanuc {
+            return None;
+        }
+        // On a mill G99 returns a canned cycle to the R level; without any drilling
+        // cycle in the file it is a lathe's feed per revolution.
+        if self.drilling {
+            self.firsts.retain(|(s, _)| *s != Sign::FeedPerRev);
+        }
+        let firsts = self.firsts;
+        let lathe = firsts.iter().filter(|(s, _)| s.lathe()).count();
+        let other = firsts.iter().filter(|(s, _)| s.other_macro()).count();
+        let haas = firsts.len() - lathe - other;
+        let (control, keep): (Control, fn(Sign) -> bool) = if other >= 2 {
+            (Control::OtherMacro, |s| s.other_macro())
+        } else if lathe >= 2 {
+            (Control::Lathe { haas: haas > 0 }, |s| !s.other_macro())
+        } else if haas >= 2 {
+            (Control::HaasMill, |s| !s.lathe() && !s.other_macro())
+        } else {
+            return None;
+        };
+        let evidence = firsts
+            .into_iter()
+            .filter(|(s, _)| keep(*s))
+            .map(|(_, e)| e)
+            .collect();
+        Some(Signature { control, evidence })
+    }
 }
 
 #[cfg(test)]

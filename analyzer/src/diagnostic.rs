@@ -72,6 +72,24 @@ pub struct Diagnostic {
 }
 
 impl Diagnostic {
+    /// Moves the diagnostic's spans (its own, its related locations' in the
+    /// same file, its fixes' edits) `bytes` further into the file.
+    pub fn shift(&mut self, bytes: u32) {
+        let sp = |s: &mut Span| {
+            s.start = s.start.saturating_add(bytes);
+            s.end = s.end.saturating_add(bytes);
+        };
+        sp(&mut self.span);
+        for r in self.related.iter_mut().filter(|r| r.file == self.file) {
+            sp(&mut r.span);
+        }
+        for f in &mut self.fixes {
+            for e in &mut f.edits {
+                sp(&mut e.span);
+            }
+        }
+    }
+
     pub fn new(
         code: &'static str,
         severity: Severity,

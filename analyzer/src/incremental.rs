@@ -140,6 +140,7 @@ fn empty_program(settings: &Settings, text: Arc<[u8]>, like: Option<&Program>) -
         expr_lists: Vec::with_capacity(cap(like.map(|p| p.expr_lists.len()), 0)),
         diagnostics: Vec::new(),
         text,
+        base: 0,
     }
 }
 
@@ -453,6 +454,7 @@ fn splice_in_place(
         expr_lists: Vec::new(),
         diagnostics: Vec::new(),
         text: text.clone(),
+        base: 0,
     };
     let seeded = s.tokens.len();
     let mut sx = Index::default();

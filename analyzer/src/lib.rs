@@ -14,6 +14,7 @@ pub mod names;
 pub mod rules;
 pub mod settings;
 pub mod span;
+pub mod stream;
 pub mod syntax;
 pub mod twins;
 
@@ -154,9 +155,38 @@ pub fn program_mismatch(program: &syntax::Program, settings: &Settings) -> Optio
 pub fn finish(
     program: &syntax::Program,
     settings: &Settings,
+    diagnostics: Vec<Diagnostic>,
+) -> Vec<Diagnostic> {
+    finish_in(program, None, settings, diagnostics)
+}
+
+/// [`finish`] for a file read in windows: `program` is the window the
+/// diagnostics were found in (or any window, for findings elsewhere), and
+/// `file` says what only the whole file knows (its suppressions, the text the
+/// control never reads).
+pub fn finish_window(
+    program: &syntax::Program,
+    file: &stream::FileFacts,
+    settings: &Settings,
+    diagnostics: Vec<Diagnostic>,
+) -> Vec<Diagnostic> {
+    finish_in(program, Some(file), settings, diagnostics)
+}
+
+fn finish_in(
+    program: &syntax::Program,
+    file: Option<&stream::FileFacts>,
+    settings: &Settings,
     mut diagnostics: Vec<Diagnostic>,
 ) -> Vec<Diagnostic> {
-    let sup = Suppressions::collect(program);
+    let collected;
+    let sup = match file {
+        Some(f) => &f.suppressions,
+        None => {
+            collected = Suppressions::collect(program);
+            &collected
+        }
+    };
     // LinuxCNC stops reading at a top-level M2/M30: syntax errors in the text after it
     // can never stop the program (spec NGC026; P006 reports the dead text as info).
     let dead_syntax = |d: &Diagnostic| {
@@ -166,14 +196,19 @@ pub fn finish(
             && d.code != IO_ERROR.code
     };
     if program.dialect == Dialect::Rs274ngc && diagnostics.iter().any(dead_syntax) {
-        let dead = rules::util::dead_blocks(program);
-        if dead.iter().any(|&x| x) {
-            diagnostics.retain(|d| {
-                !(dead_syntax(d)
-                    && program
-                        .block_at(d.span.start)
-                        .is_some_and(|b| dead.get(b).copied().unwrap_or(false)))
-            });
+        match file {
+            Some(f) => diagnostics.retain(|d| !(dead_syntax(d) && f.never_read(d.span.start))),
+            None => {
+                let dead = rules::util::dead_blocks(program);
+                if dead.iter().any(|&x| x) {
+                    diagnostics.retain(|d| {
+                        !(dead_syntax(d)
+                            && program
+                                .block_at(d.span.start)
+                                .is_some_and(|b| dead.get(b).copied().unwrap_or(false)))
+                    });
+                }
+            }
         }
     }
     // FANUC reads no text that an unconditional GOTO, M99 or M30 jumps over (up to
@@ -183,13 +218,19 @@ pub fn finish(
             .iter()
             .any(|d| dead_syntax(d) && d.severity == diagnostic::Severity::Error)
     {
-        let over = rules::util::jumped_over_blocks(program);
+        let over = match file {
+            Some(_) => Vec::new(),
+            None => rules::util::jumped_over_blocks(program),
+        };
         for d in diagnostics.iter_mut() {
             let jumped = dead_syntax(d)
                 && d.severity == diagnostic::Severity::Error
-                && program
-                    .block_at(d.span.start)
-                    .is_some_and(|b| over.get(b).copied().unwrap_or(false));
+                && match file {
+                    Some(f) => f.never_read(d.span.start),
+                    None => program
+                        .block_at(d.span.start)
+                        .is_some_and(|b| over.get(b).copied().unwrap_or(false)),
+                };
             if jumped {
                 // Text nobody reads needs no repair: a fix there could only uncover
                 // findings its error hid.
@@ -203,21 +244,15 @@ pub fn finish(
         }
     }
     for d in diagnostics.iter_mut().filter(|d| d.file == FileId(0)) {
-        d.fixes.retain(|f| {
-            rules::block_too_long::edits_keep_line_length(
-                &program.text,
-                program.dialect,
-                settings,
-                &f.edits,
-            )
-        });
+        d.fixes
+            .retain(|f| rules::block_too_long::edits_keep_line_length(program, settings, &f.edits));
     }
     diagnostics.retain(|d| {
         let enabled = match rules::registry::lookup(d.code) {
             Some(meta) => settings.rule_enabled(meta),
             None => settings.code_enabled(d.code),
         };
-        enabled && (d.file != FileId(0) || !sup.is_suppressed(program, d))
+        enabled && (d.file != FileId(0) || !sup.is_suppressed(d))
     });
     // A program for another control (P010) gets that one finding: the others would
     // only describe the mismatch, many times over.

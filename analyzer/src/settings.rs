@@ -6,6 +6,7 @@
 use crate::diagnostic::Diagnostic;
 use crate::dialect::{Dialect, Variant};
 use crate::rules::RuleMeta;
+use crate::span::Span;
 use crate::syntax::{CommentKind, ItemKind, Program};
 
 pub use crate::config::{fail_level, Config};
@@ -157,22 +158,55 @@ impl Settings {
 /// `(partscope: dialect=NAME)` on the first line chooses the dialect.
 #[derive(Debug, Default, Clone)]
 pub struct Suppressions {
-    /// (block index, code) pairs.
-    block: Vec<(usize, String)>,
+    /// (the file offsets a block owns, code) pairs: from the block's start to
+    /// the next block's, as [`Program::block_at`] assigns offsets to blocks.
+    block: Vec<(Span, String)>,
     file: Vec<String>,
 }
 
+/// The offsets block `bi` owns ([`Program::block_at`]).
+fn owned_range(program: &Program, bi: usize) -> Span {
+    // Offsets before the first block belong to it.
+    let start = match bi {
+        0 => program.base,
+        _ => program.blocks.get(bi).map_or(0, |b| b.span.start),
+    };
+    let end = program
+        .blocks
+        .get(bi + 1)
+        .map_or(u32::MAX, |b| b.span.start);
+    Span::new(start, end)
+}
+
 impl Suppressions {
+    /// Moves the block directives with `f` (a host that collected them from
+    /// a stand-in for the file maps them back to the file's offsets).
+    pub fn map_spans(&mut self, f: impl Fn(Span) -> Span) {
+        for (s, _) in &mut self.block {
+            *s = f(*s);
+        }
+    }
+
+    /// Adds another part of the same file's directives.
+    pub fn extend(&mut self, other: Suppressions) {
+        self.block.extend(other.block);
+        self.file.extend(other.file);
+    }
+
     pub fn collect(program: &Program) -> Suppressions {
         let mut s = Suppressions::default();
         // Directive comments are rare, and every directive holds a `:`
         // (`partscope:`): only the blocks with a `:` in their text are read, found
         // with a byte search instead of a walk over every item of the file.
         let text = &program.text[..];
+        let base = program.base as usize;
         let mut from = 0usize;
         while let Some(at) = text.get(from..).and_then(|t| memchr::memchr(b':', t)) {
             let at = from + at;
-            let Some(bi) = u32::try_from(at).ok().and_then(|a| program.block_at(a)) else {
+            let Some(bi) = u32::try_from(at + base)
+                .ok()
+                .and_then(|a| program.block_at(a))
+            else {
                 break;
             };
             let Some(block) = program.blocks.get(bi) else {
@@ -184,7 +218,7 @@ impl Suppressions {
             let next = program
                 .blocks
                 .get(bi + 1)
-                .map_or(text.len(), |b| b.span.start as usize);
+                .map_or(text.len(), |b| (b.span.start as usize).saturating_sub(base));
             from = next.max(at + 1);
         }
         s
@@ -200,7 +234,8 @@ impl Suppressions {
             for directive in parse_directives(&text) {
                 match directive {
                     Directive::Allow(codes) => {
-                        self.block.extend(codes.into_iter().map(|c| (bi, c)))
+                        let range = owned_range(program, bi);
+                        self.block.extend(codes.into_iter().map(|c| (range, c)))
                     }
                     Directive::AllowFile(codes) => self.file.extend(codes),
                     Directive::Dialect(_) => {}
@@ -228,7 +263,10 @@ impl Suppressions {
             let text = program.str_of(item.span).into_owned();
             for directive in parse_directives(&text) {
                 match directive {
-                    Directive::Allow(codes) => s.block.extend(codes.into_iter().map(|c| (bi, c))),
+                    Directive::Allow(codes) => {
+                        let range = owned_range(program, bi);
+                        s.block.extend(codes.into_iter().map(|c| (range, c)))
+                    }
                     Directive::AllowFile(codes) => s.file.extend(codes),
                     Directive::Dialect(_) => {}
                 }
@@ -237,18 +275,15 @@ impl Suppressions {
         s
     }
 
-    pub fn is_suppressed(&self, program: &Program, d: &Diagnostic) -> bool {
+    pub fn is_suppressed(&self, d: &Diagnostic) -> bool {
         let m = |c: &String| c.eq_ignore_ascii_case(d.code) || c.eq_ignore_ascii_case("all");
         if self.file.iter().any(m) {
             return true;
         }
-        if self.block.is_empty() {
-            return false;
-        }
-        let Some(bi) = program.block_at(d.span.start) else {
-            return false;
-        };
-        self.block.iter().any(|(b, c)| *b == bi && m(c))
+        let at = d.span.start;
+        self.block
+            .iter()
+            .any(|(r, c)| r.start <= at && at < r.end && m(c))
     }
 }
 

@@ -46,6 +46,7 @@ pub fn parse_and_analyze(dialect: Dialect, variant_pick: u8, data: &[u8]) {
     let mut chunked = Program {
         dialect,
         text: text.clone(),
+        base: 0,
         tokens: Vec::new(),
         blocks: Vec::new(),
         items: Vec::new(),

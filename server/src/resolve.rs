@@ -90,6 +90,27 @@ fn file_kind(meta: &std::fs::Metadata) -> &'static str {
 /// reading, and by reading at most one byte more than the limit, so a device or
 /// pipe without a size (`/dev/zero`) cannot exhaust memory either. Every
 /// program either host reads, main or called, comes through here.
+/// The first `n` bytes of a program [`read_program`] would read (a host that
+/// reads the rest in windows looks at them first), with the same refusals.
+pub fn read_head(path: &Path, limit: &SizeLimit, n: u64) -> Result<Arc<[u8]>, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err(format!(
+            "not a regular file ({}): partscope reads programs only from regular files",
+            file_kind(&meta)
+        ));
+    }
+    if meta.len() > limit.bytes {
+        return Err(limit.too_large(meta.len()));
+    }
+    let mut head = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(n).read_to_end(&mut head))
+        .map_err(|e| e.to_string())?;
+    Ok(Arc::from(head))
+}
+
 pub fn read_program(path: &Path, limit: &SizeLimit) -> Result<Arc<[u8]>, String> {
     use std::io::Read;
     // Opening a FIFO blocks until a writer comes, and a device may never end:

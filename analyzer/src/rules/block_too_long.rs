@@ -125,16 +125,24 @@ fn line_limit(dialect: Dialect, settings: &crate::Settings, crlf: bool) -> usize
 
 /// Whether applying `edits` leaves every line they touch within the dialect's line
 /// limit (or no longer than it was): a fix must not make a block too long (W011).
+/// An edit outside the text `program` holds (another window of the file) is
+/// taken as it is.
 pub fn edits_keep_line_length(
-    text: &[u8],
-    dialect: Dialect,
+    program: &crate::syntax::Program,
     settings: &crate::Settings,
     edits: &[crate::TextEdit],
 ) -> bool {
+    let text = &program.text[..];
     // The stricter CR LF limit: the edit does not know the line's ending.
-    let limit = line_limit(dialect, settings, true);
+    let limit = line_limit(program.dialect, settings, true);
     edits.iter().all(|e| {
-        let (s, t) = (e.span.start as usize, e.span.end as usize);
+        let (Some(s), Some(t)) = (
+            e.span.start.checked_sub(program.base),
+            e.span.end.checked_sub(program.base),
+        ) else {
+            return true;
+        };
+        let (s, t) = (s as usize, t as usize);
         if s > t || t > text.len() || e.new_text.contains('\n') {
             return true;
         }

@@ -40,6 +40,8 @@ pub struct BlockCx<'a> {
     pub codes: &'a [BlockCode],
     /// What the block holds ([`block_words`]).
     pub contents: BlockWords,
+    /// What is known of the whole file when `program` is one window of it.
+    pub file: Option<&'a crate::stream::FileFacts>,
 }
 
 impl<'a> BlockCx<'a> {
@@ -60,6 +62,7 @@ impl<'a> BlockCx<'a> {
             settings,
             codes,
             contents: block_words(program, block),
+            file: None,
         })
     }
 
@@ -100,6 +103,13 @@ pub struct ProgramCx<'a> {
     /// keeps that per block (an incremental update re-derives it only for
     /// the blocks it re-parsed); computed on first use otherwise.
     pub plain: Option<&'a [bool]>,
+    /// How many blocks of the file each block stands for, when the program is
+    /// a stand-in for a larger file (`crate::stream::Skeleton`: a run of plain
+    /// blocks kept as its first). `None`: each block is itself.
+    pub stands_for: Option<&'a [u32]>,
+    /// What is known of the whole file when the program is one window of it
+    /// (`crate::stream`); `None` for a whole file.
+    pub file: Option<&'a crate::stream::FileFacts>,
     segments: std::sync::OnceLock<Vec<Seg>>,
 }
 
@@ -126,6 +136,8 @@ impl<'a> ProgramCx<'a> {
             program,
             settings,
             plain: None,
+            stands_for: None,
+            file: None,
             segments: std::sync::OnceLock::new(),
         }
     }
@@ -139,6 +151,17 @@ impl<'a> ProgramCx<'a> {
         ProgramCx {
             plain: (plain.len() == program.blocks.len()).then_some(plain),
             ..ProgramCx::new(program, settings)
+        }
+    }
+
+    /// How many blocks of the file a stretch holds.
+    pub fn blocks_in(&self, seg: &Seg) -> usize {
+        match self
+            .stands_for
+            .and_then(|w| w.get(seg.first..seg.first + seg.len))
+        {
+            Some(w) => w.iter().map(|&n| n as usize).sum(),
+            None => seg.len,
         }
     }
 

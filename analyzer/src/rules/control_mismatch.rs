@@ -1,6 +1,6 @@
 //! P010: a lathe or Haas mill program checked as a FANUC 30i mill program.
 
-use crate::control::{control_signature, Control};
+use crate::control::{control_signature, Control, Signature};
 use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::syntax::Program;
@@ -65,7 +65,11 @@ pub struct ControlMismatch;
 
 /// The P010 diagnostic of a program, if it looks written for another control.
 pub fn mismatch_diagnostic(program: &Program) -> Option<Diagnostic> {
-    let sig = control_signature(program)?;
+    signature_diagnostic(&control_signature(program)?)
+}
+
+/// The P010 diagnostic of a signature.
+pub fn signature_diagnostic(sig: &Signature) -> Option<Diagnostic> {
     let first = sig.evidence.first()?;
     let what = match sig.control {
         Control::Lathe { .. } => "lathe programs",

@@ -59,14 +59,14 @@ mod style_units;
 mod subprogram_name_glued;
 pub(crate) mod syntax_rules;
 mod too_many_m_words;
-mod unknown_address;
+pub(crate) mod unknown_address;
 mod unknown_code;
 mod unreachable_after_end;
 pub(crate) mod util;
 mod word_value_range;
 
 pub use context::{BlockCode, BlockCx, BlockWords, Interest, ProgramCx, Seg};
-pub use syntax_rules::{BAD_EXPRESSION, CONFIG_ISSUE, IO_ERROR};
+pub use syntax_rules::{BAD_EXPRESSION, CONFIG_ISSUE, IO_ERROR, NOT_TEXT};
 
 // Declared apart from the sorted list above so that branches adding rules merge cleanly.
 pub(crate) mod control_mismatch;
@@ -325,6 +325,7 @@ impl BlockRules {
             settings: cx.settings,
             codes,
             contents,
+            file: cx.file,
         };
         let call = |r: &dyn Rule, out: &mut Vec<Diagnostic>| r.check_block(&bcx, out);
         // In registry order, as the diagnostics of one position are kept in it.

@@ -221,7 +221,9 @@ fn split_fix(cx: &BlockCx<'_>, item: usize) -> Option<TextEdit> {
     }
     let at = items.get(item)?.span.start;
     let mut start = at as usize;
-    while start > 0 && matches!(cx.program.text.get(start - 1), Some(b' ') | Some(b'\t')) {
+    while start > cx.program.base as usize
+        && matches!(cx.program.byte_at(start - 1), Some(b' ') | Some(b'\t'))
+    {
         start -= 1;
     }
     Some(TextEdit {

@@ -62,7 +62,7 @@ impl Rule for LowercaseO {
         }
         for item in cx.items() {
             if !matches!(item.kind, ItemKind::OWord(_))
-                || cx.program.text.get(item.span.start as usize) != Some(&b'O')
+                || cx.program.byte_at(item.span.start as usize) != Some(b'O')
             {
                 continue;
             }

@@ -154,7 +154,9 @@ impl Rule for UnknownAddress {
             if !configured
                 && d == Dialect::Rs274ngc
                 && matches!(w.letter, b'U' | b'W')
-                && has_lathe_cycle(cx.program)
+                && cx
+                    .file
+                    .map_or_else(|| has_lathe_cycle(cx.program), |f| f.lathe_cycle)
             {
                 continue;
             }
@@ -170,7 +172,7 @@ impl Rule for UnknownAddress {
 }
 
 /// Whether the program has a G70, G71 or G72 cycle (any form) with a literal code.
-fn has_lathe_cycle(p: &crate::syntax::Program) -> bool {
+pub(crate) fn has_lathe_cycle(p: &crate::syntax::Program) -> bool {
     p.blocks.iter().any(|b| {
         p.items_of(b).iter().any(|it| match &it.kind {
             crate::syntax::ItemKind::Word(w) => {

@@ -113,9 +113,10 @@ impl Rule for UnreachableAfterEnd {
                         continue;
                     }
                     let span = b.span.cover(last.span);
+                    let k = cx.blocks_in(seg);
                     run = Some(match run {
-                        Some((s, n)) => (s.cover(span), n + seg.len),
-                        None => (span, seg.len),
+                        Some((s, n)) => (s.cover(span), n + k),
+                        None => (span, k),
                     });
                     continue;
                 }
@@ -170,9 +171,10 @@ impl Rule for UnreachableAfterEnd {
                 // dead as a whole.
                 if ended.is_some() {
                     let span = b.span.cover(last.span);
+                    let n = cx.blocks_in(seg);
                     run = Some(match run {
-                        Some((s, n)) => (s.cover(span), n + seg.len),
-                        None => (span, seg.len),
+                        Some((s, k)) => (s.cover(span), k + n),
+                        None => (span, n),
                     });
                 }
                 continue;

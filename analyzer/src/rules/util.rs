@@ -167,28 +167,30 @@ pub fn near_integer(v: f64) -> bool {
 /// When nothing but the end of the line follows, the blanks before it go
 /// instead, so that no stray blank is left at the end of the block.
 pub fn removal_span(program: &Program, span: Span) -> Span {
-    let blank = |b: Option<&u8>| matches!(b, Some(b' ') | Some(b'\t'));
+    let blank = |b: Option<u8>| matches!(b, Some(b' ') | Some(b'\t'));
     let mut end = span.end as usize;
-    while blank(program.text.get(end)) {
+    while blank(program.byte_at(end)) {
         end += 1;
     }
     let line_ends = matches!(
-        program.text.get(end),
+        program.byte_at(end),
         None | Some(b'\n') | Some(b'\r') | Some(b';')
     );
     // A `;` ends a block only in FANUC and ServoWorks; in RS274/NGC it starts a comment.
-    let line_ends = line_ends
-        && !(program.dialect == Dialect::Rs274ngc && program.text.get(end) == Some(&b';'));
+    let line_ends =
+        line_ends && !(program.dialect == Dialect::Rs274ngc && program.byte_at(end) == Some(b';'));
     if !line_ends {
         return Span::new(span.start, end as u32);
     }
     let mut start = span.start as usize;
-    while start > 0 && blank(program.text.get(start - 1)) {
+    while start > program.base as usize && blank(program.byte_at(start - 1)) {
         start -= 1;
     }
     // An item alone on its line keeps the line's indentation rule simple: only
     // the blanks after it go.
-    if start == 0 || matches!(program.text.get(start - 1), Some(b'\n') | Some(b'\r')) {
+    if start == program.base as usize
+        || matches!(program.byte_at(start - 1), Some(b'\n') | Some(b'\r'))
+    {
         return Span::new(span.start, end as u32);
     }
     Span::new(start as u32, end as u32)
@@ -332,7 +334,7 @@ pub fn is_plain(program: &Program, b: &Block) -> bool {
         || b.end().end.saturating_sub(b.span.start) > 80
         // Ends its line, so no line holds two blocks.
         || b.end().end == 0
-        || program.text.get(b.end().end as usize - 1) != Some(&b'\n')
+        || program.byte_at(b.end().end as usize - 1) != Some(b'\n')
     {
         return false;
     }

@@ -506,7 +506,12 @@ impl Block {
 #[derive(Debug, Clone)]
 pub struct Program {
     pub dialect: Dialect,
+    /// The bytes this tree was parsed from: the whole file, or one window of it
+    /// starting at file offset [`Program::base`].
     pub text: Arc<[u8]>,
+    /// File offset of `text[0]`: 0 for a whole file. Spans and lines are the
+    /// file's, so a window's findings need no translation ([`Program::rebase`]).
+    pub base: u32,
     pub tokens: Vec<Token>,
     pub blocks: Vec<Block>,
     pub items: Vec<Item>,
@@ -603,7 +608,75 @@ impl Program {
     }
 
     pub fn slice(&self, span: Span) -> &[u8] {
-        span.slice(&self.text)
+        if self.base == 0 {
+            return span.slice(&self.text);
+        }
+        let (Some(start), Some(end)) = (
+            span.start.checked_sub(self.base),
+            span.end.checked_sub(self.base),
+        ) else {
+            return &[];
+        };
+        Span::new(start, end).slice(&self.text)
+    }
+
+    /// The byte at file offset `at`, if this tree's text holds it.
+    pub fn byte_at(&self, at: usize) -> Option<u8> {
+        self.text.get(at.checked_sub(self.base as usize)?).copied()
+    }
+
+    /// File offset just past the last byte of this tree's text.
+    pub fn end_offset(&self) -> u32 {
+        self.base.saturating_add(self.text.len() as u32)
+    }
+
+    /// Moves every position of the tree by `bytes` and its lines by `lines`:
+    /// a window parsed on its own gets the file's spans and lines, so every
+    /// rule and the interpreter read it as they read the whole file.
+    pub fn rebase(&mut self, bytes: u32, lines: u32) {
+        let sp = |s: &mut Span| {
+            s.start = s.start.saturating_add(bytes);
+            s.end = s.end.saturating_add(bytes);
+        };
+        self.base = self.base.saturating_add(bytes);
+        for t in &mut self.tokens {
+            t.start = t.start.saturating_add(bytes);
+        }
+        for b in &mut self.blocks {
+            sp(&mut b.span);
+            b.term_end = b.term_end.saturating_add(bytes);
+            if b.skip_level > 0 {
+                b.skip_at = b.skip_at.saturating_add(bytes);
+            }
+            b.line = b.line.saturating_add(lines);
+        }
+        for it in &mut self.items {
+            sp(&mut it.span);
+            match &mut it.kind {
+                ItemKind::Word(w) => match &mut w.value {
+                    WordValue::Num(n) => sp(&mut n.span),
+                    WordValue::Name(s) => sp(s),
+                    WordValue::Expr(_) | WordValue::Missing => {}
+                },
+                ItemKind::OWord(o) => sp(&mut o.label_span),
+                ItemKind::ProgramHead { name, .. } => sp(name),
+                ItemKind::Assign { .. }
+                | ItemKind::Comment(_)
+                | ItemKind::Macro(_)
+                | ItemKind::Error => {}
+            }
+        }
+        for e in &mut self.exprs {
+            sp(&mut e.span);
+            match &mut e.expr {
+                Expr::Num(n) => sp(&mut n.span),
+                Expr::Named { name } => sp(name),
+                _ => {}
+            }
+        }
+        for d in &mut self.diagnostics {
+            d.shift(bytes);
+        }
     }
 
     /// The text of a span, lossily decoded.
@@ -617,7 +690,7 @@ impl Program {
             .tokens
             .get(i + 1)
             .map(|t| t.start)
-            .unwrap_or(self.text.len() as u32);
+            .unwrap_or(self.end_offset());
         Span::new(start, end)
     }
 
@@ -625,7 +698,7 @@ impl Program {
     pub fn print(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(self.text.len());
         for i in 0..self.tokens.len() {
-            out.extend_from_slice(self.token_span(i).slice(&self.text));
+            out.extend_from_slice(self.slice(self.token_span(i)));
         }
         out
     }

@@ -12,6 +12,6 @@ mod parser;
 
 pub use ast::*;
 pub use parser::{
-    block_tokens, parse, parse_lean, parse_serial, ParseOptions, Parser, ParserState,
+    block_tokens, parse, parse_lean, parse_serial, parse_window, ParseOptions, Parser, ParserState,
     MAX_EXPR_HEIGHT,
 };

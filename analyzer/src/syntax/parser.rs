@@ -59,6 +59,7 @@ fn with_capacity(dialect: Dialect, text: Arc<[u8]>, len: usize, tokens: bool) ->
     Program {
         dialect,
         text,
+        base: 0,
         tokens: if tokens {
             Vec::with_capacity(len / 2 + 1)
         } else {
@@ -101,7 +102,10 @@ pub fn parse_lean(opts: ParseOptions, text: impl Into<Arc<[u8]>>) -> Program {
 /// decide the kind of `%` and ignored blocks; those are rebuilt from the kind
 /// recorded in the block.
 pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
-    let start = block.span.start as usize;
+    let Some(start) = block.span.start.checked_sub(program.base) else {
+        return Vec::new();
+    };
+    let start = start as usize;
     if start >= program.text.len() {
         return Vec::new();
     }
@@ -114,6 +118,7 @@ pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
     let mut scratch = Program {
         dialect: program.dialect,
         text: program.text.clone(),
+        base: 0,
         tokens: Vec::new(),
         blocks: Vec::new(),
         items: Vec::new(),
@@ -123,7 +128,31 @@ pub fn block_tokens(program: &Program, block: &Block) -> Vec<Token> {
     };
     let mut parser = Parser::resume(opts, program.text.clone(), start, block.line, state);
     parser.parse_blocks(&mut scratch, 1);
+    for t in &mut scratch.tokens {
+        t.start = t.start.saturating_add(program.base);
+    }
     scratch.tokens
+}
+
+/// Parses one window of a file: `text` holds whole lines starting at file
+/// offset `base` on 0-based line `line`, and `state` is what the parser
+/// carried out of the window before ([`ParserState::default`] for the first).
+/// The tree has the file's spans and lines ([`Program::rebase`]); the state
+/// returned goes to the next window. A host that reads a file too large to
+/// hold parses it window by window with this.
+pub fn parse_window(
+    opts: ParseOptions,
+    text: Arc<[u8]>,
+    base: u32,
+    line: u32,
+    state: ParserState,
+) -> (Program, ParserState) {
+    let mut program = with_capacity(opts.dialect, text.clone(), text.len(), false);
+    let mut parser = Parser::resume(opts, text, 0, 0, state).without_tokens();
+    parser.parse_blocks(&mut program, usize::MAX);
+    let state = parser.state();
+    program.rebase(base, line);
+    (program, state)
 }
 
 /// A resumable parser over one file's text.

@@ -64,6 +64,7 @@ pub(crate) use motion::target_of;
 pub(crate) use offsets::tool_diameter_of;
 pub use recover::STOP_SUFFIX;
 mod resume;
+mod windows;
 use crate::canon::{f4, Canon};
 use crate::rules::{
     interp::INTERP, missing_end::MISSING_END, step_budget::STEP_BUDGET, travel_limit::TRAVEL_LIMIT,
@@ -72,6 +73,7 @@ use messages::{rs274_message, rs274_parameter_message};
 pub use resume::{
     rerun, run_checkpointed, run_checkpointed_observed, run_checkpointed_recording, Checkpoints,
 };
+pub use windows::{not_run_in_windows, run_windowed, FileFacts as MainFileFacts, NextWindow};
 
 #[path = "checks.rs"]
 mod checks;
@@ -139,7 +141,7 @@ pub type MotionObserver<'s> = dyn FnMut(&[Motion], &[Event]) + 's;
 /// [`run_streaming`] handing over the buffers themselves ([`OwnedMotionSink`]).
 pub fn run_streaming_owned(input: &RunInput<'_>, sink: &mut OwnedMotionSink<'_>) -> RunOutput {
     let mut it = Interp::new(input, false);
-    it.run_main_with(Some(sink), None);
+    it.run_main_with(Some(sink), None, None);
     let mut out = it.finish();
     if !out.motions.is_empty() || !out.events.is_empty() {
         sink(&mut out.motions, &mut out.events);
@@ -343,6 +345,8 @@ struct Interp<'a, 'i> {
     pending_break: bool,
     /// Checkpoints and rerun state (`resume.rs`); `None` for plain runs.
     resume: Option<resume::Resume>,
+    /// The main file runs in windows (`windows.rs`): what is known of all of it.
+    windows: Option<windows::FileFacts>,
     /// RS274/NGC: the profile of a G70-G72 cycle being read from its subroutine.
     g7x: Option<g7x::Capture>,
     /// Where a recoverable error of this block leaves the position (`recover.rs`).
@@ -494,6 +498,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             pending_break: false,
             g7x: None,
             resume: None,
+            windows: None,
             recover_to: None,
             taint: Default::default(),
             values: None,
@@ -594,7 +599,7 @@ impl<'a, 'i> Interp<'a, 'i> {
     // ----------------------------------------------------------------- main loop
 
     fn run_main(&mut self) {
-        self.run_main_with(None, None);
+        self.run_main_with(None, None, None);
     }
 
     /// Shows `observe` the motions and events it has not seen, unless a
@@ -627,6 +632,7 @@ impl<'a, 'i> Interp<'a, 'i> {
         &mut self,
         mut sink: Option<&mut OwnedMotionSink<'_>>,
         mut observe: Option<&mut MotionObserver<'_>>,
+        mut more: Option<&mut windows::NextWindow<'_>>,
     ) {
         // A restored rerun has the input files' diagnostics from before.
         if !self.resume.as_ref().is_some_and(|r| r.restored) {
@@ -647,6 +653,14 @@ impl<'a, 'i> Interp<'a, 'i> {
             let (fi, bi) = self.cur;
             let nblocks = self.files.get(fi).map(|f| f.prog.blocks.len()).unwrap_or(0);
             if bi as usize >= nblocks {
+                // A main file read in windows goes on in the next one.
+                if fi == 0 && self.frames.is_empty() {
+                    if let Some(next) = more.as_deref_mut() {
+                        if self.next_window(next) {
+                            continue;
+                        }
+                    }
+                }
                 if self.frames.is_empty() || fi == 0 {
                     self.end_of_file();
                     break;
@@ -799,7 +813,7 @@ impl<'a, 'i> Interp<'a, 'i> {
             return;
         }
         let p = self.files[0].prog.clone();
-        let end = p.text.len() as u32;
+        let end = p.end_offset();
         let span = Span::new(end, end);
         match self.dialect {
             Dialect::Rs274ngc => {

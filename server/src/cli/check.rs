@@ -112,6 +112,7 @@ fn config_report(c: &LoadedConfig, args: &CheckArgs) -> Option<FileReport> {
         io_error: false,
         extra_files: Vec::new(),
         dialect: None,
+        sparse: None,
     })
 }
 
@@ -121,12 +122,21 @@ fn check_file(
     explicit: Option<&LoadedConfig>,
     cache: &ConfigCache,
 ) -> FileReport {
-    let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let text =
-        match crate::resolve::read_program(path, &crate::resolve::SizeLimit::megabytes(max_mb)) {
-            Ok(b) => b,
-            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
-        };
+    let max_mb = args.max_file_size.unwrap_or(u64::MAX >> 20);
+    let limit = crate::resolve::SizeLimit::megabytes(max_mb);
+    // A program too large to hold is read in windows; its head names the dialect.
+    let size = std::fs::metadata(path).map_or(0, |m| m.len());
+    let window = args
+        .window_bytes
+        .or_else(|| (size > super::stream::STREAM_ABOVE).then_some(super::stream::WINDOW_BYTES));
+    let text = match window {
+        Some(_) => crate::resolve::read_head(path, &limit, 64 * 1024),
+        None => crate::resolve::read_program(path, &limit),
+    };
+    let mut text = match text {
+        Ok(b) => b,
+        Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+    };
     let dir = path
         .parent()
         .map(|p| {
@@ -160,12 +170,7 @@ fn check_file(
         .file_stem()
         .and_then(|s| s.to_str())
         .map(str::to_string);
-    let parsed = analyzer::parse_text_lean(text.clone(), &settings);
-    // Subprogram files are analysed when they are called, from the caller's point of
-    // view: ServoWorks `O<name>.dat` files, RS274/NGC files that only define
-    // `o<name> sub`s, and FANUC/ServoWorks files that return with M99 and never end
-    // the program (as the language server judges them).
-    let is_subprogram = (dialect == analyzer::Dialect::Servoworks
+    let dat_subprogram = dialect == analyzer::Dialect::Servoworks
         && path
             .extension()
             .and_then(|e| e.to_str())
@@ -173,7 +178,36 @@ fn check_file(
         && path
             .file_name()
             .and_then(|n| n.to_str())
-            .is_some_and(|n| n.starts_with('O')))
+            .is_some_and(|n| n.starts_with('O'));
+    if let Some(window) = window {
+        let called = crate::resolve::SizeLimit::megabytes(
+            args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB),
+        );
+        let job = super::stream::Job {
+            path,
+            args,
+            loaded: &loaded,
+            settings: &settings,
+            window,
+            called,
+            subprogram_by_name: dat_subprogram,
+        };
+        let reason = (dialect, dialect_reason.clone());
+        if let Some(r) = super::stream::check_file(&job, text, reason) {
+            return r;
+        }
+        // Flow control in a file small enough to hold: read it whole.
+        text = match crate::resolve::read_program(path, &limit) {
+            Ok(b) => b,
+            Err(e) => return FileReport::io_error(path.to_path_buf(), e),
+        };
+    }
+    let parsed = analyzer::parse_text_lean(text.clone(), &settings);
+    // Subprogram files are analysed when they are called, from the caller's point of
+    // view: ServoWorks `O<name>.dat` files, RS274/NGC files that only define
+    // `o<name> sub`s, and FANUC/ServoWorks files that return with M99 and never end
+    // the program (as the language server judges them).
+    let is_subprogram = dat_subprogram
         || runtime::interp::files::is_subprogram_file(
             &parsed.program,
             settings.file_stem.as_deref(),
@@ -196,7 +230,7 @@ fn check_file(
                 dialect,
                 &loaded.config.machine,
                 loaded.path.as_deref(),
-                crate::resolve::SizeLimit::megabytes(max_mb),
+                limit,
             );
             let files = loaded.linuxcnc_files();
             for w in &files.warnings {
@@ -237,6 +271,7 @@ fn check_file(
         io_error: false,
         extra_files,
         dialect: Some((dialect, dialect_reason)),
+        sparse: None,
     }
 }
 
@@ -250,6 +285,7 @@ impl FileReport {
             io_error: true,
             extra_files: Vec::new(),
             dialect: None,
+            sparse: None,
         }
     }
 }

@@ -4,6 +4,7 @@ pub mod check;
 mod excerpt;
 mod output;
 mod run;
+mod stream;
 pub mod workspace;
 
 use std::path::PathBuf;
@@ -91,10 +92,15 @@ pub struct CheckArgs {
     /// stops (default 100, `[rules] max_runtime_errors`).
     #[arg(long)]
     pub max_runtime_errors: Option<usize>,
-    /// Largest program to read, in MB (default 128); a larger file gets one
-    /// located error (L000) and exit status 2 instead of exhausting memory.
+    /// Largest program to read, in MB (default: no limit); a larger file gets
+    /// one located error (L000) and exit status 2. Programs above 32 MB are
+    /// read in windows of 8 MB, so memory does not grow with the file.
     #[arg(long)]
     pub max_file_size: Option<u64>,
+    /// Read every program in windows of this many bytes (tests compare it
+    /// with the whole-file check).
+    #[arg(long, hide = true)]
+    pub window_bytes: Option<usize>,
 }
 
 #[derive(Subcommand)]

@@ -20,6 +20,70 @@ pub struct FileReport {
     pub extra_files: Vec<(PathBuf, Arc<[u8]>)>,
     /// The dialect the file was read in, and why (`None` for a file not read).
     pub dialect: Option<(analyzer::Dialect, String)>,
+    /// For a file too large to hold (`cli::stream`), `text` holds only the
+    /// lines the report shows, and this says where they are in the file.
+    pub sparse: Option<Sparse>,
+}
+
+/// Some lines of a file, in file order: whole lines, each piece starting at a
+/// line start.
+#[derive(Debug, Default, Clone)]
+pub struct Sparse {
+    pub text: Vec<u8>,
+    /// Where each piece starts: (file offset, offset in `text`, file line,
+    /// line in `text`), both lines 0-based.
+    pieces: Vec<(u32, u32, u32, u32)>,
+    text_lines: u32,
+}
+
+impl Sparse {
+    /// Adds the lines `bytes`, which start at file offset `file` on 0-based line `line`.
+    pub fn push(&mut self, file: u32, line: u32, bytes: &[u8]) {
+        if bytes.is_empty() {
+            return;
+        }
+        self.pieces
+            .push((file, self.text.len() as u32, line, self.text_lines));
+        self.text.extend_from_slice(bytes);
+        self.text_lines += analyzer::LineIndex::new(bytes).line_count() - 1;
+    }
+
+    fn piece(&self, file: u32) -> Option<&(u32, u32, u32, u32)> {
+        let i = self.pieces.partition_point(|p| p.0 <= file);
+        self.pieces.get(i.checked_sub(1)?)
+    }
+
+    /// The offset in `text` of file offset `at` (positions between pieces go
+    /// to the end of the piece before).
+    pub fn to_text(&self, at: u32) -> u32 {
+        let Some(&(file, text, _, _)) = self.piece(at) else {
+            return 0;
+        };
+        let next = self
+            .pieces
+            .iter()
+            .find(|p| p.1 > text)
+            .map_or(self.text.len() as u32, |p| p.1);
+        (text + (at - file)).min(next)
+    }
+
+    /// The file line of line `text_line` of `text`, in the piece of file offset `at`.
+    fn file_line(&self, at: u32, text_line: u32) -> u32 {
+        match self.piece(at) {
+            Some(&(_, _, line, tl)) => text_line.saturating_sub(tl) + line,
+            None => text_line,
+        }
+    }
+}
+
+impl FileReport {
+    /// The offset in `text` of a main-file offset.
+    pub fn text_offset(&self, at: u32) -> u32 {
+        match &self.sparse {
+            Some(s) => s.to_text(at),
+            None => at,
+        }
+    }
 }
 
 /// The report's dialect name and reason, for the JSON outputs.
@@ -99,6 +163,7 @@ pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
         }
         let mut indexes: Vec<(String, &[u8], LineIndex)> =
             Vec::with_capacity(1 + r.extra_files.len());
+        let sparse = r.sparse.as_ref();
         indexes.push((
             r.path.display().to_string(),
             &r.text[..],
@@ -119,8 +184,25 @@ pub fn locate(reports: &[FileReport]) -> Vec<Located<'_>> {
                 ends = Columns::default();
                 last_file = Some(d.file);
             }
-            let (line, column) = starts.position(index, text, d.span.start);
-            let (end_line, end_column) = ends.position(index, text, d.span.end.max(d.span.start));
+            // A sparse text holds the lines around the file's offsets.
+            let (s, e) = (d.span.start, d.span.end.max(d.span.start));
+            let (line, column, end_line, end_column) = match sparse.filter(|_| d.file.0 == 0) {
+                Some(sp) => {
+                    let (l, c) = starts.position(index, text, sp.to_text(s));
+                    let (el, ec) = ends.position(index, text, sp.to_text(e));
+                    (
+                        sp.file_line(s, l - 1) + 1,
+                        c,
+                        sp.file_line(e, el - 1) + 1,
+                        ec,
+                    )
+                }
+                None => {
+                    let (l, c) = starts.position(index, text, s);
+                    let (el, ec) = ends.position(index, text, e);
+                    (l, c, el, ec)
+                }
+            };
             out.push(Located {
                 path: path.clone(),
                 text,
@@ -353,17 +435,26 @@ fn human(
             continue;
         }
         // Only the lines around the spans: the report reads nothing else.
-        let (ps, pe) = (l.d.span.start as usize, l.d.span.end as usize);
-        let near = |r: &analyzer::diagnostic::Related| {
-            r.file == l.d.file
-                && (r.span.start as usize).abs_diff(ps) <= super::excerpt::MAX_RELATED_DISTANCE
+        let r = &reports[l.report];
+        let at = |o: u32| -> usize {
+            if l.d.file.0 == 0 {
+                r.text_offset(o) as usize
+            } else {
+                o as usize
+            }
+        };
+        let (ps, pe) = (at(l.d.span.start), at(l.d.span.end));
+        let near = |rel: &analyzer::diagnostic::Related| {
+            rel.file == l.d.file
+                && (rel.span.start as usize).abs_diff(l.d.span.start as usize)
+                    <= super::excerpt::MAX_RELATED_DISTANCE
         };
         let (lo, hi) =
             l.d.related
                 .iter()
                 .filter(|r| near(r))
                 .fold((ps, pe), |(a, b), r| {
-                    (a.min(r.span.start as usize), b.max(r.span.end as usize))
+                    (a.min(at(r.span.start)), b.max(at(r.span.end)))
                 });
         let lo_line = if lo < ps {
             (l.line as usize).saturating_sub(1).saturating_sub(
@@ -382,8 +473,8 @@ fn human(
             (s, e - s),
         )];
         for r in l.d.related.iter().filter(|r| near(r)) {
-            let rs = src.map(r.span.start as usize);
-            let re = src.map(r.span.end as usize).max(rs);
+            let rs = src.map(at(r.span.start));
+            let re = src.map(at(r.span.end)).max(rs);
             labels.push(LabeledSpan::new_with_span(
                 Some(super::excerpt::visible_str(&r.message).into_owned()),
                 (rs, re - rs),

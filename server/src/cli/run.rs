@@ -386,6 +386,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             io_error: false,
             extra_files: Vec::new(),
             dialect: Some((dialect, dialect_reason)),
+            sparse: None,
         };
         return mismatch_output(&args, &report, &profile_name);
     }
@@ -445,6 +446,7 @@ pub fn run(args: RunArgs) -> ExitCode {
             io_error: false,
             extra_files: output::read_extra_files(&out.files),
             dialect: Some((dialect, dialect_reason.clone())),
+            sparse: None,
         };
         let dry = DryRun {
             totals,
@@ -504,6 +506,7 @@ pub fn run(args: RunArgs) -> ExitCode {
         io_error: false,
         extra_files,
         dialect: Some((dialect, dialect_reason)),
+        sparse: None,
     };
 
     let read: Vec<&Path> = out.files.iter().map(Path::new).collect();

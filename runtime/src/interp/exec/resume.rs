@@ -182,16 +182,18 @@ fn input_key(input: &RunInput<'_>, snapshots: bool) -> u64 {
 /// Whether every block of `p` runs at most once, in order: no flow control,
 /// no calls, at most one program head.
 fn single_pass(p: &Program) -> bool {
+    let (flow, heads) = flow_and_heads(p);
+    !flow && heads <= 1
+}
+
+/// Whether `p` holds flow control or a call (a computed G or M code could be
+/// one), and how many program heads.
+pub(super) fn flow_and_heads(p: &Program) -> (bool, u32) {
     let mut heads = 0;
     for it in &p.items {
         match &it.kind {
-            ItemKind::OWord(_) | ItemKind::Macro(_) => return false,
-            ItemKind::ProgramHead { .. } => {
-                heads += 1;
-                if heads > 1 {
-                    return false;
-                }
-            }
+            ItemKind::OWord(_) | ItemKind::Macro(_) => return (true, heads),
+            ItemKind::ProgramHead { .. } => heads += 1,
             ItemKind::Word(w) => {
                 let v = w.num().map(|n| n.value);
                 let calls = match w.letter {
@@ -199,16 +201,15 @@ fn single_pass(p: &Program) -> bool {
                     b'G' => matches!(v, Some(x) if x == 65.0 || x == 66.0 || x == 66.1),
                     _ => false,
                 };
-                // A computed G or M code could be a call.
                 let computed = matches!(w.value, analyzer::syntax::WordValue::Expr(_));
                 if calls || (matches!(w.letter, b'M' | b'G') && computed) {
-                    return false;
+                    return (true, heads);
                 }
             }
             _ => {}
         }
     }
-    true
+    (false, heads)
 }
 
 /// Whether a run of `input` can record checkpoints.
@@ -276,7 +277,7 @@ fn checkpointed(
         };
         it.resume = Some(Resume::default());
     }
-    it.run_main_with(None, observe.as_deref_mut());
+    it.run_main_with(None, observe.as_deref_mut(), None);
     let (m, e) = it.observed;
     let out = it.finish();
     // The run is over: what a pending compensated move held back is final.

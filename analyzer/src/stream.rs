@@ -1,0 +1,357 @@
+//! Checking a file too large to hold: windows and a skeleton.
+//!
+//! A host reads the file in windows of whole lines and parses each with
+//! [`crate::syntax::parse_window`], which gives the tree the file's spans and
+//! lines. Block rules need nothing beyond their block, so each window is
+//! linted on its own ([`check_window`]). The whole-file rules run over a
+//! [`Skeleton`]: a stand-in program holding every block that is not plain and
+//! the first block of each run of plain blocks, which is all they read (they
+//! treat a run of plain blocks like its first block,
+//! [`crate::rules::ProgramCx::segments`]). Their findings are moved back to the
+//! file's offsets, and what only the whole file knows (its suppression
+//! comments, the text the control never reads) goes to every window's
+//! [`crate::finish_window`] as [`FileFacts`].
+//!
+//! A host makes two passes: the first feeds every window to the skeleton, the
+//! second lints the windows (and runs them) knowing the file's facts.
+
+use crate::diagnostic::Diagnostic;
+use crate::rules::{self, util, BlockRules, ProgramCx};
+use crate::settings::{Settings, Suppressions};
+use crate::span::Span;
+use crate::syntax::{self, Program};
+use crate::Dialect;
+
+/// What a window's findings need to know about the whole file.
+#[derive(Debug, Default)]
+pub struct FileFacts {
+    pub suppressions: Suppressions,
+    /// RS274/NGC: text LinuxCNC never reads (after a top-level M2/M30), as
+    /// sorted disjoint ranges of the blocks' offsets.
+    dead: Vec<Span>,
+    /// FANUC: text an unconditional GOTO, M99 or M30 jumps over.
+    jumped: Vec<Span>,
+    /// The file has a G70-G72 lathe cycle (its U and W words are relative X and Z).
+    pub(crate) lathe_cycle: bool,
+    dialect: Option<Dialect>,
+}
+
+fn within(ranges: &[Span], at: u32) -> bool {
+    let i = ranges.partition_point(|r| r.start <= at);
+    i > 0 && ranges.get(i - 1).is_some_and(|r| at < r.end)
+}
+
+impl FileFacts {
+    /// Whether the control never reads the text at `at` (what [`crate::finish`]
+    /// works out from the whole program).
+    pub fn never_read(&self, at: u32) -> bool {
+        match self.dialect {
+            Some(Dialect::Rs274ngc) => within(&self.dead, at),
+            Some(Dialect::Fanuc) => within(&self.jumped, at),
+            _ => false,
+        }
+    }
+
+    /// Whether the block rules pass over the block starting at `at`
+    /// (as [`rules::skipped_blocks`] does for a whole program).
+    pub fn dead_block(&self, at: u32) -> bool {
+        within(&self.dead, at)
+    }
+}
+
+/// One block of the skeleton, or a run of plain blocks kept as its first.
+#[derive(Debug, Clone, Copy)]
+struct Piece {
+    /// Offset of the kept bytes in the skeleton's text and in the file.
+    skel: u32,
+    file: u32,
+    /// 0-based line of the block in the file.
+    line: u32,
+    /// Length of the first block's content (its span).
+    content: u32,
+    /// Blocks of the file the piece stands for (1, or the run's length).
+    blocks: u32,
+    /// The last block of the run: where its content and terminator end.
+    run_content_end: u32,
+    run_term_end: u32,
+}
+
+/// The stand-in program the whole-file rules run over (see the module doc).
+#[derive(Debug, Default)]
+pub struct Skeleton {
+    text: Vec<u8>,
+    pieces: Vec<Piece>,
+    /// The last block added was plain: a plain block next continues its run.
+    in_run: bool,
+    /// File offset just past the last window added.
+    end: u32,
+    /// The latest block of the current run of plain blocks, after its first:
+    /// its bytes and piece, and the ends of the block before it. The file's
+    /// last block is kept too (rules report there), so a run at the end of
+    /// the file ends with it.
+    run_tail: Option<(Vec<u8>, Piece, (u32, u32))>,
+    lathe_cycle: bool,
+}
+
+impl Skeleton {
+    /// Adds the next window of the file (in file order).
+    pub fn add(&mut self, window: &Program) {
+        self.lathe_cycle |= rules::unknown_address::has_lathe_cycle(window);
+        let blocks = &window.blocks;
+        for (i, b) in blocks.iter().enumerate() {
+            let plain = util::is_plain(window, b);
+            let to = blocks
+                .get(i + 1)
+                .map_or(window.end_offset(), |n| n.span.start);
+            if plain && self.in_run {
+                if let Some(p) = self.pieces.last_mut() {
+                    let before = (p.run_content_end, p.run_term_end);
+                    p.blocks += 1;
+                    p.run_content_end = b.span.end;
+                    p.run_term_end = b.term_end.max(b.span.end);
+                    let tail = Piece {
+                        skel: 0,
+                        file: b.span.start,
+                        line: b.line,
+                        content: b.span.len(),
+                        blocks: 1,
+                        run_content_end: b.span.end,
+                        run_term_end: b.term_end.max(b.span.end),
+                    };
+                    let bytes = window.slice(Span::new(b.span.start, to)).to_vec();
+                    self.run_tail = Some((bytes, tail, before));
+                    continue;
+                }
+            }
+            self.in_run = plain;
+            self.run_tail = None;
+            // The bytes up to the next block, so that nothing between blocks is lost.
+            let from = if self.pieces.is_empty() {
+                window.base
+            } else {
+                b.span.start
+            };
+            let bytes = window.slice(Span::new(from, to));
+            self.pieces.push(Piece {
+                skel: self.text.len() as u32 + (b.span.start - from),
+                file: b.span.start,
+                line: b.line,
+                content: b.span.len(),
+                blocks: 1,
+                run_content_end: b.span.end,
+                run_term_end: b.term_end.max(b.span.end),
+            });
+            self.text.extend_from_slice(bytes);
+        }
+        self.end = window.end_offset();
+    }
+
+    /// The text and pieces with the file's last block kept on its own.
+    fn sealed(&self) -> (Vec<u8>, Vec<Piece>) {
+        let (mut text, mut pieces) = (self.text.clone(), self.pieces.clone());
+        if let (Some((bytes, tail, before)), Some(run)) = (&self.run_tail, pieces.last_mut()) {
+            run.blocks -= 1;
+            (run.run_content_end, run.run_term_end) = *before;
+            pieces.push(Piece {
+                skel: text.len() as u32,
+                ..*tail
+            });
+            text.extend_from_slice(bytes);
+        }
+        (text, pieces)
+    }
+
+    /// Bytes the skeleton holds (its memory is about ten times this).
+    pub fn len(&self) -> usize {
+        self.text.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.text.is_empty()
+    }
+
+    /// The skeleton as a program, its blocks on their lines in the file.
+    pub fn program(&self, settings: &Settings) -> Program {
+        let opts = syntax::ParseOptions {
+            dialect: settings.dialect,
+            variant: settings.variant,
+        };
+        let (text, pieces) = self.sealed();
+        let mut program = syntax::parse_lean(opts, text);
+        if aligned(&program, &pieces) {
+            for (b, p) in program.blocks.iter_mut().zip(&pieces) {
+                b.line = p.line;
+            }
+        }
+        // The window parses reported the syntax errors already.
+        program.diagnostics.clear();
+        program
+    }
+
+    /// Runs the whole-file rules over [`Skeleton::program`]: their findings,
+    /// through [`crate::finish`] and at the file's offsets, and the facts
+    /// every window's findings need.
+    pub fn check(&self, program: &Program, settings: &Settings) -> (Vec<Diagnostic>, FileFacts) {
+        let (text, pieces) = self.sealed();
+        let map = Map {
+            pieces: &pieces,
+            len: text.len(),
+            end: self.end,
+        };
+        let aligned = aligned(program, &pieces);
+        let stands_for: Vec<u32> = pieces.iter().map(|p| p.blocks).collect();
+        let enabled = rules::enabled_rules(settings);
+        let mut found = Vec::new();
+        {
+            let mut cx = ProgramCx::new(program, settings);
+            if aligned {
+                cx.stands_for = Some(&stands_for);
+            }
+            rules::check_whole_program(&cx, &enabled, &mut found);
+        }
+        let mut found = crate::finish(program, settings, found);
+        for d in &mut found {
+            map.diagnostic_to_file(d);
+        }
+        let mut facts = FileFacts {
+            suppressions: Suppressions::collect(program),
+            dialect: Some(settings.dialect),
+            lathe_cycle: self.lathe_cycle,
+            ..FileFacts::default()
+        };
+        facts.suppressions.map_spans(|s| {
+            let start = map.to_file(s.start);
+            // A block's range ends where the next kept block starts, or never.
+            let end = if s.end == u32::MAX {
+                u32::MAX
+            } else {
+                map.to_file(s.end)
+            };
+            Span::new(start, end.max(start))
+        });
+        let ranges = |flags: Vec<bool>| -> Vec<Span> {
+            let mut out: Vec<Span> = Vec::new();
+            for (p, _) in pieces.iter().zip(flags).filter(|(_, f)| *f) {
+                let r = Span::new(p.file, p.run_term_end.max(p.file + 1));
+                match out.last_mut() {
+                    Some(last) if last.end >= r.start => last.end = last.end.max(r.end),
+                    _ => out.push(r),
+                }
+            }
+            out
+        };
+        if aligned {
+            facts.dead = ranges(util::dead_blocks(program));
+            if settings.dialect == Dialect::Fanuc {
+                facts.jumped = ranges(util::jumped_over_blocks(program));
+            }
+        }
+        (found, facts)
+    }
+}
+
+/// Whether `program`'s blocks are the kept blocks, one for one (the
+/// skeleton's text re-reads as them).
+fn aligned(program: &Program, pieces: &[Piece]) -> bool {
+    program.blocks.len() == pieces.len()
+        && program
+            .blocks
+            .iter()
+            .zip(pieces)
+            .all(|(b, p)| b.span.start == p.skel)
+}
+
+/// Moves the skeleton's offsets to the file's.
+struct Map<'a> {
+    pieces: &'a [Piece],
+    /// Length of the skeleton's text, and of the file.
+    len: usize,
+    end: u32,
+}
+
+impl Map<'_> {
+    /// A file offset for an offset of the skeleton's text.
+    fn to_file(&self, at: u32) -> u32 {
+        if at as usize >= self.len {
+            return self.end;
+        }
+        let i = self.pieces.partition_point(|p| p.skel <= at);
+        let Some(p) = i.checked_sub(1).and_then(|i| self.pieces.get(i)) else {
+            return at;
+        };
+        let rel = at - p.skel;
+        if p.blocks > 1 && rel >= p.content {
+            // The end of a run's first block stands for the end of the run.
+            return if rel == p.content {
+                p.run_content_end
+            } else {
+                p.run_term_end
+            };
+        }
+        p.file + rel
+    }
+
+    fn span_to_file(&self, s: Span) -> Span {
+        let start = self.to_file(s.start);
+        Span::new(start, self.to_file(s.end).max(start))
+    }
+
+    fn diagnostic_to_file(&self, d: &mut Diagnostic) {
+        d.span = self.span_to_file(d.span);
+        let file = d.file;
+        for r in d.related.iter_mut().filter(|r| r.file == file) {
+            r.span = self.span_to_file(r.span);
+        }
+        for f in &mut d.fixes {
+            for e in &mut f.edits {
+                e.span = self.span_to_file(e.span);
+            }
+        }
+    }
+}
+
+/// The block rules' and the parser's findings in one window, through
+/// [`crate::finish_window`]. `utf8` is whether to look for invalid UTF-8 (a
+/// file reports the first only).
+pub fn check_window(
+    window: &Program,
+    settings: &Settings,
+    rules: &BlockRules,
+    facts: &FileFacts,
+    utf8: bool,
+) -> Vec<Diagnostic> {
+    let mut out = window.diagnostics.clone();
+    if utf8 {
+        if let Some(mut d) = crate::utf8_check(&window.text) {
+            d.shift(window.base);
+            out.push(d);
+        }
+    }
+    let mut cx = ProgramCx::new(window, settings);
+    cx.file = Some(facts);
+    let unreadable = util::unreadable_blocks(window);
+    let mut codes = Vec::new();
+    for (i, b) in window.blocks.iter().enumerate() {
+        if facts.dead_block(b.span.start) || unreadable.get(i).copied().unwrap_or(false) {
+            continue;
+        }
+        rules::check_block_at(&cx, rules, i, &mut codes, &mut out);
+    }
+    crate::finish_window(window, facts, settings, out)
+}
+
+/// The block rules a file's settings enable (one set for all its windows).
+pub fn block_rules(settings: &Settings) -> BlockRules {
+    BlockRules::new(&rules::enabled_rules(settings), settings)
+}
+
+/// The P010 finding of a file's signature (read window by window with
+/// [`crate::control::SignScan`]), before selection and suppression.
+pub fn mismatch_finding(sig: &crate::Signature) -> Option<Diagnostic> {
+    rules::control_mismatch::signature_diagnostic(sig)
+}
+
+/// Whether a finding is P010, which leaves a file no other.
+pub fn is_mismatch(d: &Diagnostic) -> bool {
+    d.code == rules::control_mismatch::CONTROL_MISMATCH.code
+}

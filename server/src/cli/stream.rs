@@ -1,0 +1,441 @@
+//! `check` of a file too large to hold: read in windows of whole lines
+//! (`analyzer::stream` says what each part of the analysis sees).
+//!
+//! Three passes over the file, each holding a few windows at a time:
+//! 1. every window feeds the skeleton the whole-file rules run over, and the
+//!    facts the interpreter needs before it starts (single pass or not);
+//! 2. every window is linted by the block rules on this thread while the
+//!    interpreter, on another, runs the windows in order (a channel of one
+//!    window between them bounds the memory);
+//! 3. the lines the report shows are read back ([`Sparse`]).
+
+use std::fs::File;
+use std::io::Read;
+use std::path::Path;
+use std::sync::Arc;
+
+use analyzer::syntax::{self, ParserState, Program};
+use analyzer::{Diagnostic, Settings};
+
+use super::output::{FileReport, Sparse};
+
+/// Files above this size are checked in windows.
+pub const STREAM_ABOVE: u64 = 32 << 20;
+/// Bytes per window (the last line of a window is completed past it).
+pub const WINDOW_BYTES: usize = 8 << 20;
+
+/// Reads a file as windows of whole lines, in order.
+pub struct Windows {
+    file: File,
+    /// Bytes read past the last complete line.
+    carry: Vec<u8>,
+    size: usize,
+    base: u64,
+    line: u32,
+    done: bool,
+}
+
+/// One window: its bytes, file offset and first line.
+pub struct Window {
+    pub bytes: Arc<[u8]>,
+    pub base: u32,
+    pub line: u32,
+}
+
+/// Line breaks as `LineIndex` counts them (`\n`, `\r\n`, a lone `\r`).
+fn line_breaks(b: &[u8]) -> u32 {
+    let lf = b.iter().filter(|&&c| c == b'\n').count();
+    let lone_cr = if b.contains(&b'\r') {
+        b.iter()
+            .enumerate()
+            .filter(|&(i, &c)| c == b'\r' && b.get(i + 1) != Some(&b'\n'))
+            .count()
+    } else {
+        0
+    };
+    (lf + lone_cr) as u32
+}
+
+impl Windows {
+    pub fn open(path: &Path, size: usize) -> std::io::Result<Windows> {
+        Ok(Windows {
+            file: File::open(path)?,
+            carry: Vec::new(),
+            size: size.max(1),
+            base: 0,
+            line: 0,
+            done: false,
+        })
+    }
+
+    /// The next window, `None` at the end of the file.
+    pub fn next_window(&mut self) -> std::io::Result<Option<Window>> {
+        if self.done && self.carry.is_empty() {
+            return Ok(None);
+        }
+        let mut buf = std::mem::take(&mut self.carry);
+        // Read until the window holds `size` bytes and a line break, or the file ends.
+        loop {
+            let have_break = buf.iter().any(|&c| c == b'\n' || c == b'\r');
+            if self.done || (buf.len() >= self.size && have_break) {
+                break;
+            }
+            let want = self.size.max(buf.len() / 2 + 1);
+            let old = buf.len();
+            buf.resize(old + want, 0);
+            let n = loop {
+                match self.file.read(&mut buf[old..]) {
+                    Ok(n) => break n,
+                    Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                    Err(e) => return Err(e),
+                }
+            };
+            buf.truncate(old + n);
+            if n == 0 {
+                self.done = true;
+            }
+        }
+        // Cut after the last `\n`; without one, after the last `\r` that a
+        // later byte shows is no CR LF.
+        let cut = if self.done {
+            buf.len()
+        } else if let Some(i) = buf.iter().rposition(|&c| c == b'\n') {
+            i + 1
+        } else {
+            match buf[..buf.len().saturating_sub(1)]
+                .iter()
+                .rposition(|&c| c == b'\r')
+            {
+                Some(i) => i + 1,
+                None => buf.len(),
+            }
+        };
+        self.carry = buf.split_off(cut);
+        if buf.is_empty() {
+            return Ok(None);
+        }
+        let base = u32::try_from(self.base).map_err(|_| {
+            std::io::Error::other("the file is larger than 4 GiB, which Partscope cannot check")
+        })?;
+        let w = Window {
+            base,
+            line: self.line,
+            bytes: Arc::from(buf),
+        };
+        self.base += w.bytes.len() as u64;
+        self.line = self.line.saturating_add(line_breaks(&w.bytes));
+        Ok(Some(w))
+    }
+}
+
+/// Parses the windows of a file in order.
+pub struct Parsed {
+    windows: Windows,
+    opts: syntax::ParseOptions,
+    state: ParserState,
+}
+
+impl Parsed {
+    pub fn new(windows: Windows, settings: &Settings) -> Parsed {
+        Parsed {
+            windows,
+            opts: syntax::ParseOptions {
+                dialect: settings.dialect,
+                variant: settings.variant,
+            },
+            state: ParserState::default(),
+        }
+    }
+
+    pub fn next_program(&mut self) -> std::io::Result<Option<Program>> {
+        let Some(w) = self.windows.next_window()? else {
+            return Ok(None);
+        };
+        let (p, state) = syntax::parse_window(self.opts, w.bytes, w.base, w.line, self.state);
+        self.state = state;
+        Ok(Some(p))
+    }
+}
+
+/// What the first pass learnt of the file.
+pub struct FirstPass {
+    pub skeleton: analyzer::stream::Skeleton,
+    pub main: runtime::interp::MainFileFacts,
+    pub signature: Option<analyzer::Signature>,
+    pub blocks: usize,
+}
+
+pub fn first_pass(path: &Path, settings: &Settings, window: usize) -> std::io::Result<FirstPass> {
+    let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
+    let mut skeleton = analyzer::stream::Skeleton::default();
+    let mut main = runtime::interp::MainFileFacts::default();
+    let mut signs = analyzer::control::SignScan::default();
+    let mut blocks = 0;
+    while let Some(p) = parsed.next_program()? {
+        skeleton.add(&p);
+        main.add(&p);
+        signs.add(&p);
+        blocks += p.blocks.len();
+    }
+    Ok(FirstPass {
+        skeleton,
+        main,
+        signature: signs.finish(),
+        blocks,
+    })
+}
+
+/// Pass 3: the lines around every position the report names, as a
+/// [`Sparse`] text.
+pub fn report_lines(
+    path: &Path,
+    diagnostics: &[Diagnostic],
+    window: usize,
+) -> std::io::Result<Sparse> {
+    // The ranges an excerpt shows: each diagnostic with its nearby related spans.
+    let mut want: Vec<(u32, u32)> = Vec::new();
+    for d in diagnostics.iter().filter(|d| d.file == analyzer::FileId(0)) {
+        let (mut lo, mut hi) = (d.span.start, d.span.end.max(d.span.start));
+        for r in d.related.iter().filter(|r| r.file == d.file) {
+            let near = (r.span.start as usize).abs_diff(d.span.start as usize)
+                <= super::excerpt::MAX_RELATED_DISTANCE;
+            if near {
+                lo = lo.min(r.span.start);
+                hi = hi.max(r.span.end);
+            } else {
+                want.push((r.span.start, r.span.end.max(r.span.start)));
+            }
+        }
+        want.push((lo, hi));
+    }
+    want.sort_unstable();
+    let mut sparse = Sparse::default();
+    let mut windows = Windows::open(path, window)?;
+    let mut next = 0;
+    while let Some(w) = windows.next_window()? {
+        let end = w.base + w.bytes.len() as u32;
+        let index = analyzer::LineIndex::new(&w.bytes);
+        // Ranges that end before this window were taken by earlier ones.
+        while want.get(next).is_some_and(|r| r.1 < w.base) {
+            next += 1;
+        }
+        let mut pieces: Vec<(u32, u32)> = Vec::new();
+        let mut k = next;
+        while let Some(&(lo, hi)) = want.get(k) {
+            if lo > end {
+                break;
+            }
+            k += 1;
+            let (lo, hi) = (lo.max(w.base) - w.base, hi.min(end) - w.base);
+            // One line of context either side, within the window.
+            let (l0, _) = index.line_col(lo);
+            let (l1, _) = index.line_col(hi);
+            let from = index.line_start(l0.saturating_sub(1)).unwrap_or(0);
+            let to = index
+                .line_start(l1 + 2)
+                .unwrap_or(w.bytes.len() as u32)
+                .min(w.bytes.len() as u32);
+            match pieces.last_mut() {
+                Some(p) if p.1 >= from => p.1 = p.1.max(to),
+                _ => pieces.push((from, to)),
+            }
+        }
+        for (from, to) in pieces {
+            let (line, _) = index.line_col(from);
+            sparse.push(
+                w.base + from,
+                w.line + line,
+                &w.bytes[from as usize..to as usize],
+            );
+        }
+    }
+    Ok(sparse)
+}
+
+/// The whole-file findings, moved to the file and finished.
+pub fn whole_file(
+    first: &FirstPass,
+    skeleton: &Program,
+    settings: &Settings,
+) -> (Vec<Diagnostic>, analyzer::stream::FileFacts) {
+    let (mut found, facts) = first.skeleton.check(skeleton, settings);
+    // The skeleton holds only some of the blocks: the signature of the
+    // whole file decides P010.
+    found.retain(|d| !analyzer::stream::is_mismatch(d));
+    if let Some(d) = first
+        .signature
+        .as_ref()
+        .and_then(analyzer::stream::mismatch_finding)
+    {
+        let kept = analyzer::finish_window(skeleton, &facts, settings, vec![d]);
+        if !kept.is_empty() {
+            return (kept, facts);
+        }
+    }
+    (found, facts)
+}
+
+/// One file's check in windows.
+pub struct Job<'a> {
+    pub path: &'a Path,
+    pub args: &'a super::CheckArgs,
+    pub loaded: &'a super::workspace::LoadedConfig,
+    pub settings: &'a Settings,
+    pub window: usize,
+    /// The limit on files the interpreter loads whole (called programs).
+    pub called: crate::resolve::SizeLimit,
+    /// The file is a subprogram by its name (a ServoWorks `O….dat`).
+    pub subprogram_by_name: bool,
+}
+
+/// `check` of `job.path` in windows; `head` is its first bytes. `None`: the
+/// file is better read whole (flow control the windows cannot run, in a file
+/// small enough to hold).
+pub fn check_file(
+    job: &Job<'_>,
+    head: Arc<[u8]>,
+    dialect: (analyzer::Dialect, String),
+) -> Option<FileReport> {
+    let report = |text: Arc<[u8]>, diagnostics, extra_files, sparse| FileReport {
+        path: job.path.to_path_buf(),
+        text,
+        diagnostics,
+        io_error: false,
+        extra_files,
+        dialect: Some(dialect.clone()),
+        sparse,
+    };
+    let parsed = analyzer::parse_text_lean(head.clone(), job.settings);
+    if parsed.binary {
+        return Some(report(
+            head,
+            analyzer::lint(&parsed, job.settings),
+            Vec::new(),
+            None,
+        ));
+    }
+    match check_windows(job) {
+        Ok(None) => None,
+        Ok(Some((diagnostics, extra_files, sparse))) => {
+            let text = Arc::from(sparse.text.as_slice());
+            Some(report(text, diagnostics, extra_files, Some(sparse)))
+        }
+        Err(e) => Some(FileReport::io_error(job.path.to_path_buf(), e.to_string())),
+    }
+}
+
+type Checked = (
+    Vec<Diagnostic>,
+    Vec<(std::path::PathBuf, Arc<[u8]>)>,
+    Sparse,
+);
+
+fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
+    let (path, settings, window) = (job.path, job.settings, job.window);
+    let first = first_pass(path, settings, window)?;
+    let skeleton = first.skeleton.program(settings);
+    let (whole, facts) = whole_file(&first, &skeleton, settings);
+    if whole.iter().any(analyzer::stream::is_mismatch) {
+        let sparse = report_lines(path, &whole, window)?;
+        return Ok(Some((whole, Vec::new(), sparse)));
+    }
+    let subprogram = job.subprogram_by_name
+        || runtime::interp::files::is_subprogram_file(&skeleton, settings.file_stem.as_deref());
+    let single_pass = first.main.single_pass();
+    let size = std::fs::metadata(path).map_or(0, |m| m.len());
+    let holdable = size <= super::workspace::DEFAULT_MAX_FILE_MB << 20;
+    let run = !job.args.no_run && !subprogram;
+    if run && !single_pass && holdable && job.args.window_bytes.is_none() {
+        return Ok(None);
+    }
+    let interpret = run && single_pass;
+    let rules = analyzer::stream::block_rules(settings);
+    let (tx, rx) = std::sync::mpsc::sync_channel::<Arc<Program>>(1);
+    let mut statics = Vec::new();
+    let mut end = None;
+    let run_out = std::thread::scope(|s| -> std::io::Result<_> {
+        let interp = interpret.then(|| s.spawn(|| run_windows(job, &first, rx)));
+        let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
+        let mut utf8 = true;
+        while let Some(p) = parsed.next_program()? {
+            let p = Arc::new(p);
+            if interpret && tx.send(p.clone()).is_err() {
+                break;
+            }
+            let found = analyzer::stream::check_window(&p, settings, &rules, &facts, utf8);
+            utf8 &= !found
+                .iter()
+                .any(|d| d.code == analyzer::rules::NOT_TEXT.code);
+            statics.extend(found);
+            end = Some((p.end_offset(), p.blocks.last().map_or(0, |b| b.line)));
+        }
+        drop(tx);
+        Ok(interp.and_then(|h| h.join().ok()).flatten())
+    })?;
+    let mut diagnostics = analyzer::merge(statics, whole, settings);
+    let mut extra_files = Vec::new();
+    if run && !single_pass {
+        diagnostics.push(runtime::interp::not_run_in_windows(
+            size.div_ceil(1 << 20),
+            super::workspace::DEFAULT_MAX_FILE_MB,
+        ));
+    }
+    if let Some((out_diagnostics, files)) = run_out {
+        // A window at the end of the file: the runtime's findings are all
+        // before it, so each is finished with the file's facts alone.
+        let (at, line) = end.unwrap_or((0, 0));
+        let opts = syntax::ParseOptions {
+            dialect: settings.dialect,
+            variant: settings.variant,
+        };
+        let (tail, _) =
+            syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
+        let finished = analyzer::finish_window(&tail, &facts, settings, out_diagnostics);
+        diagnostics = analyzer::merge(diagnostics, finished, settings);
+        extra_files = super::output::read_extra_files(&files);
+    }
+    let sparse = report_lines(path, &diagnostics, window)?;
+    Ok(Some((diagnostics, extra_files, sparse)))
+}
+
+/// The interpreter's thread: runs the windows `rx` brings, in order.
+fn run_windows(
+    job: &Job<'_>,
+    first: &FirstPass,
+    rx: std::sync::mpsc::Receiver<Arc<Program>>,
+) -> Option<(Vec<Diagnostic>, Vec<String>)> {
+    let (loaded, settings) = (job.loaded, job.settings);
+    let program = rx.recv().ok()?;
+    let resolver = crate::resolve::FsResolver::for_command_line(
+        job.path,
+        settings.dialect,
+        &loaded.config.machine,
+        loaded.path.as_deref(),
+        job.called,
+    );
+    let files = loaded.linuxcnc_files();
+    for w in &files.warnings {
+        super::workspace::warn_once(w);
+    }
+    let machine =
+        super::workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
+    let args = job.args;
+    let input = runtime::RunInput {
+        program: &program,
+        settings,
+        machine: &machine,
+        resolver: &resolver,
+        step_budget: args
+            .step_budget
+            .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
+        motion_budget: args
+            .motion_budget
+            .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
+        emit_canon: false,
+        tool_table: files.tool_table.as_deref(),
+        var_file: files.var_file.as_deref(),
+    };
+    let mut next = || rx.recv().ok();
+    let out = runtime::interp::run_windowed(&input, &first.main, &mut next, &mut |_, _| {});
+    Some((out.diagnostics, out.files))
+}
