@@ -262,6 +262,14 @@ fn finish_in(
     {
         diagnostics.retain(|d| d.code == MISMATCH && d.file == FileId(0));
     }
+    join_finished(diagnostics, settings)
+}
+
+/// The last step of [`finish`]: sorts by position and code, joins repeats
+/// of one code on one span, drops twins and bounds the list. A host that
+/// finished the parts of one file's static findings separately (the windows
+/// and the skeleton of `stream`) joins them with it.
+pub fn join_finished(mut diagnostics: Vec<Diagnostic>, settings: &Settings) -> Vec<Diagnostic> {
     diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
     twins::join_same_code(&mut diagnostics);
     twins::drop_twins(&mut diagnostics);

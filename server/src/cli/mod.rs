@@ -94,7 +94,7 @@ pub struct CheckArgs {
     pub max_runtime_errors: Option<usize>,
     /// Largest program to read, in MB (default: no limit); a larger file gets
     /// one located error (L000) and exit status 2. Programs above 32 MB are
-    /// read in windows of 8 MB, so memory does not grow with the file.
+    /// read in windows of 4 MB, so memory does not grow with the file.
     #[arg(long)]
     pub max_file_size: Option<u64>,
     /// Read every program in windows of this many bytes (tests compare it

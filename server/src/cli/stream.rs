@@ -22,7 +22,7 @@ use super::output::{FileReport, Sparse};
 /// Files above this size are checked in windows.
 pub const STREAM_ABOVE: u64 = 32 << 20;
 /// Bytes per window (the last line of a window is completed past it).
-pub const WINDOW_BYTES: usize = 8 << 20;
+pub const WINDOW_BYTES: usize = 4 << 20;
 
 /// Reads a file as windows of whole lines, in order.
 pub struct Windows {
@@ -357,11 +357,11 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         let interp = interpret.then(|| s.spawn(|| run_windows(job, &first, rx)));
         let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
         let mut utf8 = true;
+        // The interpreter may stop before the end (and drop its end).
+        let mut feeding = interpret;
         while let Some(p) = parsed.next_program()? {
             let p = Arc::new(p);
-            if interpret && tx.send(p.clone()).is_err() {
-                break;
-            }
+            feeding = feeding && tx.send(p.clone()).is_ok();
             let found = analyzer::stream::check_window(&p, settings, &rules, &facts, utf8);
             utf8 &= !found
                 .iter()
@@ -372,7 +372,8 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         drop(tx);
         Ok(interp.and_then(|h| h.join().ok()).flatten())
     })?;
-    let mut diagnostics = analyzer::merge(statics, whole, settings);
+    statics.extend(whole);
+    let mut diagnostics = analyzer::join_finished(statics, settings);
     let mut extra_files = Vec::new();
     if run && !single_pass {
         diagnostics.push(runtime::interp::not_run_in_windows(

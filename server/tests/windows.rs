@@ -1,0 +1,109 @@
+//! A program read in windows (`check` of a file above 32 MB) is checked as if
+//! it were read whole: the hidden `--window-bytes` forces windows of a few
+//! lines on the repository's program fixtures, in every dialect, and the JSON
+//! must be byte-identical. A program with flow control or calls cannot run in
+//! windows: its static findings must still be identical, and its run is
+//! reported as not made (F004) instead of being guessed.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn check(dir: &Path, file: &str, extra: &[&str]) -> (Option<i32>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_partscope"))
+        .current_dir(dir)
+        .args(["check", "--format", "json"])
+        .args(extra)
+        .arg(file)
+        .output()
+        .expect("partscope runs");
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+    )
+}
+
+fn programs(root: &Path, out: &mut Vec<PathBuf>) {
+    let Ok(rd) = std::fs::read_dir(root) else {
+        return;
+    };
+    let mut entries: Vec<PathBuf> = rd.flatten().map(|e| e.path()).collect();
+    entries.sort();
+    for p in entries {
+        if p.is_dir() {
+            programs(&p, out);
+        } else if p
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| ["ngc", "nc", "dat", "tap"].contains(&e.to_ascii_lowercase().as_str()))
+        {
+            out.push(p);
+        }
+    }
+}
+
+#[test]
+fn windows_of_a_few_lines_check_as_the_whole_file() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut files = Vec::new();
+    for dir in [
+        "analyzer/tests/rules",
+        "tests/conformance/programs",
+        "tests/holdout",
+        "tests/recovery",
+        "examples",
+    ] {
+        programs(&root.join(dir), &mut files);
+    }
+    assert!(files.len() > 300, "fixtures found: {}", files.len());
+    let (mut same, mut not_run) = (0, 0);
+    let mut failures = Vec::new();
+    for f in &files {
+        let dir = f.parent().unwrap_or(Path::new("."));
+        let name = f.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        // 64 bytes: two or three lines a window, so nearly every block meets a seam.
+        let whole = check(dir, name, &["--no-run"]);
+        let windows = check(dir, name, &["--no-run", "--window-bytes", "64"]);
+        if whole != windows {
+            failures.push(format!("{} (static)", f.display()));
+            continue;
+        }
+        let whole = check(dir, name, &[]);
+        let windows = check(dir, name, &["--window-bytes", "64"]);
+        if whole == windows {
+            same += 1;
+        } else if windows.1.contains("the dry run was not made") {
+            not_run += 1;
+        } else {
+            failures.push(format!("{} (run)", f.display()));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} programs check differently in windows:\n{}",
+        failures.len(),
+        files.len(),
+        failures.join("\n")
+    );
+    // Most fixtures are single-pass and run in windows too.
+    assert!(same > not_run, "{same} identical, {not_run} not run");
+}
+
+#[test]
+fn a_program_with_flow_control_is_not_run_in_windows_and_says_so() {
+    let dir = std::env::temp_dir().join(format!("partscope-windows-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let text = "G21 G90\n#1=0\no100 while [#1 LT 3]\nG1 X#1 F100\n#1=[#1+1]\no100 endwhile\nM2\n";
+    std::fs::write(dir.join("loop.ngc"), text).expect("write");
+    let (code, out) = check(&dir, "loop.ngc", &["--window-bytes", "32"]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    let codes: Vec<&str> = v
+        .as_array()
+        .expect("array")
+        .iter()
+        .filter_map(|d| d["code"].as_str())
+        .collect();
+    assert_eq!(codes, ["F004"], "{out}");
+    assert_eq!(code, Some(1));
+    let _ = std::fs::remove_dir_all(&dir);
+}
