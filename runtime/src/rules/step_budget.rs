@@ -9,6 +9,9 @@ declare_rule! {
     /// (`--step-budget`), motions produced (`--motion-budget`) or, for `run --svg`,
     /// the size of the SVG picture (`--max-svg-mb`). The message names the budget and the
     /// flag that raises it; the run's figures then cover only part of the program.
+    /// `check` also reports here a program above 128 MB (read in windows) that calls
+    /// subprograms or has flow control: its dry run needs the whole program in memory, so
+    /// it is not made, and the static checks alone cover the file.
     ///
     /// ## Why is this bad?
     /// A loop whose condition never changes runs forever on the machine; a program
