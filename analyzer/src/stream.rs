@@ -3,7 +3,7 @@
 //! A host reads the file in windows of whole lines and parses each with
 //! [`crate::syntax::parse_window`], which gives the tree the file's spans and
 //! lines. Block rules need nothing beyond their block, so each window is
-//! linted on its own ([`check_window`]). The whole-file rules run over a
+//! linted on its own ([`WindowChecks`]). The whole-file rules run over a
 //! [`Skeleton`]: a stand-in program holding every block that is not plain and
 //! the first block of each run of plain blocks, which is all they read (they
 //! treat a run of plain blocks like its first block,
@@ -59,6 +59,15 @@ impl FileFacts {
     }
 }
 
+/// The blocks a run of the skeleton stands for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Run {
+    /// [`util::is_plain`].
+    Plain,
+    /// [`util::is_numbered_plain`].
+    Numbered,
+}
+
 /// One block of the skeleton, or a run of plain blocks kept as its first.
 #[derive(Debug, Clone, Copy)]
 struct Piece {
@@ -81,8 +90,14 @@ struct Piece {
 pub struct Skeleton {
     text: Vec<u8>,
     pieces: Vec<Piece>,
-    /// The last block added was plain: a plain block next continues its run.
-    in_run: bool,
+    /// The kind of run the last block added belongs to: a block of the same
+    /// kind next continues it.
+    run: Option<Run>,
+    /// Runs of numbered plain blocks are kept as their first too
+    /// ([`Skeleton::numbered`]).
+    numbered: bool,
+    /// A block that branches to a sequence number was added.
+    branches: bool,
     /// File offset just past the last window added.
     end: u32,
     /// The latest block of the current run of plain blocks, after its first:
@@ -94,16 +109,58 @@ pub struct Skeleton {
 }
 
 impl Skeleton {
+    /// A skeleton that also keeps a run of numbered plain blocks (`N120 G1
+    /// X1.5`) as its first, so that Fusion-style output, numbered on every
+    /// line, makes a small skeleton too. Only the sequence-number rule reads
+    /// those numbers when nothing branches: with this skeleton the host runs
+    /// that rule over the windows ([`WindowChecks`]), and must start again
+    /// with [`Skeleton::default`] when [`Skeleton::branches`] says a block
+    /// branches to a number.
+    pub fn numbered() -> Skeleton {
+        Skeleton {
+            numbered: true,
+            ..Skeleton::default()
+        }
+    }
+
+    /// [`Skeleton::numbered`] unless the settings enable a rule that reads
+    /// every line number (the style rules on line numbers).
+    pub fn for_settings(settings: &Settings) -> Skeleton {
+        use rules::style_line_numbers::{LINE_NUMBERS, LINE_NUMBER_ORDER};
+        if settings.rule_enabled(&LINE_NUMBERS) || settings.rule_enabled(&LINE_NUMBER_ORDER) {
+            Skeleton::default()
+        } else {
+            Skeleton::numbered()
+        }
+    }
+
+    /// Whether a block added branches to a sequence number (`GOTO`, `M99 P`, `M97 P`).
+    pub fn branches(&self) -> bool {
+        self.branches
+    }
+
+    /// Whether runs of numbered plain blocks are kept as their first.
+    pub fn is_numbered(&self) -> bool {
+        self.numbered
+    }
+
     /// Adds the next window of the file (in file order).
     pub fn add(&mut self, window: &Program) {
         self.lathe_cycle |= rules::unknown_address::has_lathe_cycle(window);
         let blocks = &window.blocks;
         for (i, b) in blocks.iter().enumerate() {
-            let plain = util::is_plain(window, b);
+            let kind = if util::is_plain(window, b) {
+                Some(Run::Plain)
+            } else if self.numbered && util::is_numbered_plain(window, b) {
+                Some(Run::Numbered)
+            } else {
+                self.branches |= branches_in(window, b);
+                None
+            };
             let to = blocks
                 .get(i + 1)
                 .map_or(window.end_offset(), |n| n.span.start);
-            if plain && self.in_run {
+            if kind.is_some() && kind == self.run {
                 if let Some(p) = self.pieces.last_mut() {
                     let before = (p.run_content_end, p.run_term_end);
                     p.blocks += 1;
@@ -123,7 +180,7 @@ impl Skeleton {
                     continue;
                 }
             }
-            self.in_run = plain;
+            self.run = kind;
             self.run_tail = None;
             // The bytes up to the next block, so that nothing between blocks is lost.
             let from = if self.pieces.is_empty() {
@@ -200,7 +257,11 @@ impl Skeleton {
         };
         let aligned = aligned(program, &pieces);
         let stands_for: Vec<u32> = pieces.iter().map(|p| p.blocks).collect();
-        let enabled = rules::enabled_rules(settings);
+        let mut enabled = rules::enabled_rules(settings);
+        // Numbered runs keep only their first number: the windows walk them all.
+        if self.numbered {
+            enabled.retain(|r| r.meta().code != rules::sequence_number::SEQUENCE_NUMBER.code);
+        }
         let mut found = Vec::new();
         {
             let mut cx = ProgramCx::new(program, settings);
@@ -310,10 +371,8 @@ impl Map<'_> {
     }
 }
 
-/// The block rules' and the parser's findings in one window, through
-/// [`crate::finish_window`]. `utf8` is whether to look for invalid UTF-8 (a
-/// file reports the first only).
-pub fn check_window(
+/// The parser's and the block rules' findings in one window, not yet finished.
+fn check_window_raw(
     window: &Program,
     settings: &Settings,
     rules: &BlockRules,
@@ -337,11 +396,11 @@ pub fn check_window(
         }
         rules::check_block_at(&cx, rules, i, &mut codes, &mut out);
     }
-    crate::finish_window(window, facts, settings, out)
+    out
 }
 
 /// The block rules a file's settings enable (one set for all its windows).
-pub fn block_rules(settings: &Settings) -> BlockRules {
+fn block_rules(settings: &Settings) -> BlockRules {
     BlockRules::new(&rules::enabled_rules(settings), settings)
 }
 
@@ -354,4 +413,72 @@ pub fn mismatch_finding(sig: &crate::Signature) -> Option<Diagnostic> {
 /// Whether a finding is P010, which leaves a file no other.
 pub fn is_mismatch(d: &Diagnostic) -> bool {
     d.code == rules::control_mismatch::CONTROL_MISMATCH.code
+}
+
+/// Whether a block branches to a sequence number: `GOTO n`, `IF … GOTO n`,
+/// `M99 P`, `M97 P`.
+fn branches_in(p: &Program, b: &crate::syntax::Block) -> bool {
+    use crate::syntax::{ItemKind, MacroStmt};
+    let items = p.items_of(b);
+    let m_with_p = || {
+        let lit = |w: &crate::syntax::Word, l: u8, v: f64| {
+            w.letter == l && !w.comma && w.num().is_some_and(|n| n.value == v)
+        };
+        p.words(b)
+            .any(|(_, w)| lit(w, b'M', 99.0) || lit(w, b'M', 97.0))
+            && p.words(b).any(|(_, w)| w.letter == b'P' && !w.comma)
+    };
+    items.iter().any(|it| {
+        matches!(
+            it.kind,
+            ItemKind::Macro(MacroStmt::Goto { .. } | MacroStmt::IfGoto { .. })
+        )
+    }) || m_with_p()
+}
+
+/// The checks each window gets: the block rules, and with a
+/// [`Skeleton::numbered`] skeleton the sequence-number rule's walk.
+pub struct WindowChecks {
+    rules: BlockRules,
+    numbers: Option<rules::sequence_number::Numbers>,
+}
+
+impl WindowChecks {
+    pub fn new(settings: &Settings, skeleton: &Skeleton) -> WindowChecks {
+        let walk =
+            skeleton.numbered && settings.rule_enabled(&rules::sequence_number::SEQUENCE_NUMBER);
+        WindowChecks {
+            rules: block_rules(settings),
+            numbers: walk.then(|| rules::sequence_number::Numbers::new(settings, None)),
+        }
+    }
+
+    /// The findings in one window: the parser's, the block rules' (with
+    /// what `facts` knows of the file) and the walk's over its numbers,
+    /// through [`crate::finish_window`]. `utf8`: whether to look for invalid
+    /// UTF-8 (a file reports the first only).
+    pub fn check(
+        &mut self,
+        window: &Program,
+        settings: &Settings,
+        facts: &FileFacts,
+        utf8: bool,
+    ) -> Vec<Diagnostic> {
+        let mut out = check_window_raw(window, settings, &self.rules, facts, utf8);
+        if let Some(walk) = &mut self.numbers {
+            for b in window.blocks.iter().filter(|b| !util::is_plain(window, b)) {
+                walk.block(window, b, &mut out);
+            }
+        }
+        crate::finish_window(window, facts, settings, out)
+    }
+
+    /// What the walk reports once for the file (`tail`: a window at its end).
+    pub fn finish(self, tail: &Program, facts: &FileFacts, settings: &Settings) -> Vec<Diagnostic> {
+        let mut out = Vec::new();
+        if let Some(walk) = self.numbers {
+            walk.finish(&mut out);
+        }
+        crate::finish_window(tail, facts, settings, out)
+    }
 }

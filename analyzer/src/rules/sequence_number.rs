@@ -3,9 +3,10 @@
 use crate::declare_rule;
 use crate::diagnostic::Diagnostic;
 use crate::dialect::Dialect;
-use crate::syntax::{ItemKind, WordValue};
+use crate::span::Span;
+use crate::syntax::{Block, ItemKind, Program, WordValue};
 
-use super::util::{branch_targets, is_emc2};
+use super::util::{branch_targets, is_emc2, BranchTargets};
 use super::{Interest, ProgramCx, Rule, RuleMeta};
 
 declare_rule! {
@@ -71,117 +72,173 @@ impl Rule for SequenceNumber {
     }
 
     fn check_program(&self, cx: &ProgramCx<'_>, out: &mut Vec<Diagnostic>) {
-        let p = cx.program;
-        let d = p.dialect;
+        if cx.program.dialect == Dialect::Servoworks {
+            return;
+        }
+        // A duplicate matters only where a branch searches for that number.
+        let targets = (cx.program.dialect == Dialect::Fanuc).then(|| branch_targets(cx));
+        let mut walk = Numbers::new(cx.settings, targets);
+        // Plain blocks hold no N word and no program head.
+        for b in cx.non_plain_blocks() {
+            walk.block(cx.program, b, out);
+        }
+        walk.finish(out);
+    }
+}
+
+/// The rule's walk over a file's blocks in order ([`Numbers::block`] on each
+/// block that may hold an N word, then [`Numbers::finish`]); a host that reads
+/// the file in windows walks every window with one.
+pub struct Numbers {
+    dialect: Dialect,
+    emc2: bool,
+    digits: u8,
+    max_digits: usize,
+    max_value: f64,
+    targets: Option<BranchTargets>,
+    /// Sequence numbers of the current program that a branch searches for,
+    /// by the bits of their value.
+    seen: std::collections::HashMap<u64, Span>,
+    /// RS274/NGC line numbers with more than five digits: the first and how
+    /// many, reported once per file.
+    long: Option<(Span, String)>,
+    long_count: usize,
+    /// FANUC numbers past the format: the first, the last and how many, one
+    /// report for the whole run of them.
+    too_long: Option<((Span, String), (Span, String))>,
+    too_long_count: usize,
+}
+
+impl Numbers {
+    /// `targets`: the numbers the file's branches search for (FANUC), `None`
+    /// where nothing branches.
+    pub fn new(settings: &crate::Settings, targets: Option<BranchTargets>) -> Numbers {
+        let digits = settings.sequence_number_digits;
+        Numbers {
+            dialect: settings.dialect,
+            emc2: is_emc2(settings),
+            digits,
+            max_digits: usize::from(digits),
+            max_value: 10f64.powi(i32::from(digits)) - 1.0,
+            targets,
+            seen: std::collections::HashMap::new(),
+            long: None,
+            long_count: 0,
+            too_long: None,
+            too_long_count: 0,
+        }
+    }
+
+    pub fn block(&mut self, p: &Program, b: &Block, out: &mut Vec<Diagnostic>) {
+        let d = self.dialect;
         if d == Dialect::Servoworks {
             return;
         }
-        // Sequence numbers of the current program, by the bits of their value.
-        let mut seen: std::collections::HashMap<u64, crate::span::Span> =
-            std::collections::HashMap::new();
-        // RS274/NGC line numbers with more than five digits: reported once per file.
-        let mut long: Vec<(crate::span::Span, String)> = Vec::new();
-        // FANUC numbers past the format: one report for the whole run of them.
-        let mut too_long: Vec<(crate::span::Span, String)> = Vec::new();
-        // A duplicate matters only where a branch searches for that number.
-        let targets = (d == Dialect::Fanuc).then(|| branch_targets(cx));
-        let max_digits = usize::from(cx.settings.sequence_number_digits);
-        let max_value = 10f64.powi(i32::from(cx.settings.sequence_number_digits)) - 1.0;
-        // Plain blocks hold no N word and no program head.
-        for b in cx.non_plain_blocks() {
-            let items = p.items_of(b);
-            if items
-                .iter()
-                .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }))
-            {
-                seen.clear();
+        let items = p.items_of(b);
+        if items
+            .iter()
+            .any(|i| matches!(i.kind, ItemKind::ProgramHead { .. }))
+        {
+            self.seen.clear();
+        }
+        for (idx, item) in items.iter().enumerate() {
+            let ItemKind::Word(w) = &item.kind else {
+                continue;
+            };
+            if w.letter != b'N' || w.comma {
+                continue;
             }
-            for (idx, item) in items.iter().enumerate() {
-                let ItemKind::Word(w) = &item.kind else {
-                    continue;
-                };
-                if w.letter != b'N' || w.comma {
+            let text = || p.str_of(item.span).into_owned();
+            let n = match &w.value {
+                WordValue::Num(n) => *n,
+                WordValue::Missing => continue,
+                _ => {
+                    if d == Dialect::Fanuc {
+                        out.push(SEQUENCE_NUMBER.error(item.span, format!("`{}`: a sequence number cannot be given by a variable or expression. Write a literal number.", text())));
+                    }
                     continue;
                 }
-                let text = p.str_of(item.span).into_owned();
-                let n = match &w.value {
-                    WordValue::Num(n) => *n,
-                    WordValue::Missing => continue,
-                    _ => {
-                        if d == Dialect::Fanuc {
-                            out.push(SEQUENCE_NUMBER.error(item.span, format!("`{text}`: a sequence number cannot be given by a variable or expression. Write a literal number.")));
-                        }
-                        continue;
+            };
+            let int_digits = p
+                .str_of(n.span)
+                .trim_start_matches(['+', '-'])
+                .split('.')
+                .next()
+                .map(|s| s.chars().filter(|c| c.is_ascii_digit()).count())
+                .unwrap_or(0);
+            match d {
+                Dialect::Rs274ngc => {
+                    if idx > 0 {
+                        out.push(SEQUENCE_NUMBER.error(item.span, format!("`{}`: a line number must be the first item of the line (after an optional `/`). Move it to the start or remove it.", text())));
                     }
-                };
-                let int_digits = p
-                    .str_of(n.span)
-                    .trim_start_matches(['+', '-'])
-                    .split('.')
-                    .next()
-                    .map(|s| s.chars().filter(|c| c.is_ascii_digit()).count())
-                    .unwrap_or(0);
-                match d {
-                    Dialect::Rs274ngc => {
-                        if idx > 0 {
-                            out.push(SEQUENCE_NUMBER.error(item.span, format!("`{text}`: a line number must be the first item of the line (after an optional `/`). Move it to the start or remove it.")));
-                        }
-                        if n.value > 99_999.0 || int_digits > 5 {
-                            long.push((item.span, text.clone()));
-                        }
-                        if is_emc2(cx.settings) && n.value.fract() != 0.0 {
-                            out.push(SEQUENCE_NUMBER.warning(
-                                item.span,
-                                format!(
-                                    "`{text}`: the 2007 interpreter reads only whole line numbers."
-                                ),
-                            ));
+                    if n.value > 99_999.0 || int_digits > 5 {
+                        self.long_count += 1;
+                        if self.long.is_none() {
+                            self.long = Some((item.span, text()));
                         }
                     }
-                    Dialect::Fanuc => {
-                        if int_digits > max_digits || n.value > max_value {
-                            too_long.push((item.span, text));
-                        } else if n.value == 0.0 {
-                            out.push(SEQUENCE_NUMBER.warning(
-                                item.span,
-                                "N0 must not be used as a sequence number. Start numbering at N1.",
-                            ));
-                        } else if let Some(first) = seen
-                            .get(&n.value.to_bits())
-                            .filter(|_| targets.as_ref().is_some_and(|t| t.contains(n.value)))
-                        {
-                            out.push(
-                                SEQUENCE_NUMBER.warning(item.span, format!("`{text}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number."))
+                    if self.emc2 && n.value.fract() != 0.0 {
+                        out.push(SEQUENCE_NUMBER.warning(
+                            item.span,
+                            format!(
+                                "`{}`: the 2007 interpreter reads only whole line numbers.",
+                                text()
+                            ),
+                        ));
+                    }
+                }
+                Dialect::Fanuc => {
+                    if int_digits > self.max_digits || n.value > self.max_value {
+                        self.too_long_count += 1;
+                        let here = (item.span, text());
+                        match &mut self.too_long {
+                            Some((_, last)) => *last = here,
+                            None => self.too_long = Some((here.clone(), here)),
+                        }
+                    } else if n.value == 0.0 {
+                        out.push(SEQUENCE_NUMBER.warning(
+                            item.span,
+                            "N0 must not be used as a sequence number. Start numbering at N1.",
+                        ));
+                    } else if self.targets.as_ref().is_some_and(|t| t.contains(n.value)) {
+                        match self.seen.get(&n.value.to_bits()) {
+                            Some(first) => out.push(
+                                SEQUENCE_NUMBER.warning(item.span, format!("`{}` is used twice in this program: GOTO and M99 P branch to whichever block the control finds first. Give each block its own number.", text()))
                                     .with_related(*first, "first use"),
-                            );
-                        } else {
-                            seen.insert(n.value.to_bits(), item.span);
+                            ),
+                            None => {
+                                self.seen.insert(n.value.to_bits(), item.span);
+                            }
                         }
                     }
-                    Dialect::Servoworks => {}
                 }
+                Dialect::Servoworks => {}
             }
         }
-        if let (Some((span, text)), Some((last, last_text))) = (too_long.first(), too_long.last()) {
-            let digits = cx.settings.sequence_number_digits;
+    }
+
+    pub fn finish(self, out: &mut Vec<Diagnostic>) {
+        if let Some(((span, text), (last, last_text))) = &self.too_long {
+            let digits = self.digits;
+            let max_value = self.max_value;
             let option = if digits == 5 {
                 ", or set machine.sequence_number_digits = 8 for the 8-digit sequence number option"
             } else {
                 ""
             };
-            let message = if too_long.len() == 1 {
+            let message = if self.too_long_count == 1 {
                 format!("`{text}`: sequence numbers have at most {digits} digits, 1 to {max_value} (alarm PS0003). Renumber the block{option}.")
             } else {
-                format!("`{text}` and {} more sequence numbers up to `{last_text}` have more than {digits} digits: the control takes 1 to {max_value} (alarm PS0003). Renumber the program{option}.", too_long.len() - 1)
+                format!("`{text}` and {} more sequence numbers up to `{last_text}` have more than {digits} digits: the control takes 1 to {max_value} (alarm PS0003). Renumber the program{option}.", self.too_long_count - 1)
             };
             let mut diag = SEQUENCE_NUMBER.error(*span, message);
-            if too_long.len() > 1 {
+            if self.too_long_count > 1 {
                 diag = diag.with_related(*last, "the last one");
             }
             out.push(diag);
         }
-        if let Some((span, text)) = long.first() {
-            let more = match long.len() {
+        if let Some((span, text)) = &self.long {
+            let more = match self.long_count {
                 1 => String::new(),
                 n => format!(" ({} more lines like it)", n - 1),
             };

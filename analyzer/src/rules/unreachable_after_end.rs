@@ -134,9 +134,10 @@ impl Rule for UnreachableAfterEnd {
                     continue;
                 }
                 if b.kind == BlockKind::Normal && has_code_items(p, b) {
+                    let k = cx.blocks_in(seg);
                     run = Some(match run {
-                        Some((s, n)) => (s.cover(b.span), n + 1),
-                        None => (b.span, 1),
+                        Some((s, n)) => (s.cover(b.span), n + k),
+                        None => (b.span, k),
                     });
                 }
             }
@@ -211,9 +212,10 @@ impl Rule for UnreachableAfterEnd {
                     flush(&mut run, end, out);
                     ended = None;
                 } else {
+                    let k = cx.blocks_in(seg);
                     run = Some(match run {
-                        Some((s, n)) => (s.cover(b.span), n + 1),
-                        None => (b.span, 1),
+                        Some((s, n)) => (s.cover(b.span), n + k),
+                        None => (b.span, k),
                     });
                     continue;
                 }

@@ -329,6 +329,24 @@ pub fn expr_nodes(program: &Program, root: crate::syntax::ExprId) -> Vec<crate::
 /// break) are at most 80 bytes, below every line-length limit. The
 /// whole-file rules visit a run of them once ([`super::ProgramCx::segments`]).
 pub fn is_plain(program: &Program, b: &Block) -> bool {
+    plain_from(program, b, 0)
+}
+
+/// A plain block but for a literal sequence number first (`N120 G1 X1.5`,
+/// the lines of Fusion-style output). In a file without branches only the
+/// sequence-number rule reads such a block's number, so a host reading the
+/// file in windows may treat a run of them as the whole-file rules treat a
+/// run of plain blocks (`crate::stream`).
+pub fn is_numbered_plain(program: &Program, b: &Block) -> bool {
+    let numbered = program.items_of(b).first().is_some_and(|it| {
+        matches!(&it.kind, ItemKind::Word(w)
+            if w.letter == b'N' && !w.comma && matches!(w.value, WordValue::Num(_)))
+    });
+    numbered && plain_from(program, b, 1)
+}
+
+/// [`is_plain`] of the block's items after the first `skip`.
+fn plain_from(program: &Program, b: &Block, skip: usize) -> bool {
     if b.kind != crate::syntax::BlockKind::Normal
         || b.skip().is_some()
         || b.end().end.saturating_sub(b.span.start) > 80
@@ -338,7 +356,7 @@ pub fn is_plain(program: &Program, b: &Block) -> bool {
     {
         return false;
     }
-    let items = program.items_of(b);
+    let items = program.items_of(b).get(skip..).unwrap_or_default();
     !items.is_empty()
         && items.iter().all(|it| match &it.kind {
             ItemKind::Word(w) => {

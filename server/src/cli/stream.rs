@@ -166,8 +166,27 @@ pub struct FirstPass {
 }
 
 pub fn first_pass(path: &Path, settings: &Settings, window: usize) -> std::io::Result<FirstPass> {
+    let first = first_pass_with(path, settings, window, true)?;
+    if first.skeleton.is_numbered() && first.skeleton.branches() {
+        // A branch searches for sequence numbers: the rules need every one.
+        return first_pass_with(path, settings, window, false);
+    }
+    Ok(first)
+}
+
+fn first_pass_with(
+    path: &Path,
+    settings: &Settings,
+    window: usize,
+    numbered: bool,
+) -> std::io::Result<FirstPass> {
     let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
-    let mut skeleton = analyzer::stream::Skeleton::default();
+    let mut skeleton = if numbered {
+        analyzer::stream::Skeleton::for_settings(settings)
+    } else {
+        analyzer::stream::Skeleton::default()
+    };
+    let numbered = skeleton.is_numbered();
     let mut main = runtime::interp::MainFileFacts::default();
     let mut signs = analyzer::control::SignScan::default();
     let mut blocks = 0;
@@ -176,6 +195,9 @@ pub fn first_pass(path: &Path, settings: &Settings, window: usize) -> std::io::R
         main.add(&p);
         signs.add(&p);
         blocks += p.blocks.len();
+        if numbered && skeleton.branches() {
+            break;
+        }
     }
     Ok(FirstPass {
         skeleton,
@@ -226,6 +248,9 @@ pub fn report_lines(
                 break;
             }
             k += 1;
+            if hi < w.base {
+                continue;
+            }
             let (lo, hi) = (lo.max(w.base) - w.base, hi.min(end) - w.base);
             // One line of context either side, within the window.
             let (l0, _) = index.line_col(lo);
@@ -349,7 +374,7 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         return Ok(None);
     }
     let interpret = run && single_pass;
-    let rules = analyzer::stream::block_rules(settings);
+    let mut checks = analyzer::stream::WindowChecks::new(settings, &first.skeleton);
     let (tx, rx) = std::sync::mpsc::sync_channel::<Arc<Program>>(1);
     let mut statics = Vec::new();
     let mut end = None;
@@ -362,7 +387,7 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         while let Some(p) = parsed.next_program()? {
             let p = Arc::new(p);
             feeding = feeding && tx.send(p.clone()).is_ok();
-            let found = analyzer::stream::check_window(&p, settings, &rules, &facts, utf8);
+            let found = checks.check(&p, settings, &facts, utf8);
             utf8 &= !found
                 .iter()
                 .any(|d| d.code == analyzer::rules::NOT_TEXT.code);
@@ -373,6 +398,16 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         Ok(interp.and_then(|h| h.join().ok()).flatten())
     })?;
     statics.extend(whole);
+    // A window at the end of the file: the findings made once for the file
+    // (and the runtime's, all before it) are finished with the file's facts.
+    let (at, line) = end.unwrap_or((0, 0));
+    let opts = syntax::ParseOptions {
+        dialect: settings.dialect,
+        variant: settings.variant,
+    };
+    let (tail, _) =
+        syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
+    statics.extend(checks.finish(&tail, &facts, settings));
     let mut diagnostics = analyzer::join_finished(statics, settings);
     let mut extra_files = Vec::new();
     if run && !single_pass {
@@ -382,15 +417,6 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         ));
     }
     if let Some((out_diagnostics, files)) = run_out {
-        // A window at the end of the file: the runtime's findings are all
-        // before it, so each is finished with the file's facts alone.
-        let (at, line) = end.unwrap_or((0, 0));
-        let opts = syntax::ParseOptions {
-            dialect: settings.dialect,
-            variant: settings.variant,
-        };
-        let (tail, _) =
-            syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
         let finished = analyzer::finish_window(&tail, &facts, settings, out_diagnostics);
         diagnostics = analyzer::merge(diagnostics, finished, settings);
         extra_files = super::output::read_extra_files(&files);
