@@ -482,3 +482,87 @@ impl WindowChecks {
         crate::finish_window(tail, facts, settings, out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::{parse_lean, parse_window, ParseOptions, ParserState};
+    use std::sync::Arc;
+
+    /// The windows of `text`, cut after every `lines` lines, parsed in order.
+    fn windows(text: &str, dialect: Dialect, lines: usize) -> Vec<Program> {
+        let opts = ParseOptions::new(dialect);
+        let (mut base, mut line, mut state) = (0u32, 0u32, ParserState::default());
+        let all: Vec<&str> = text.split_inclusive('\n').collect();
+        all.chunks(lines)
+            .map(|c| {
+                let bytes: Vec<u8> = c.concat().into_bytes();
+                let len = bytes.len() as u32;
+                let (p, s) = parse_window(opts, Arc::from(bytes), base, line, state);
+                (base, line, state) = (base + len, line + c.len() as u32, s);
+                p
+            })
+            .collect()
+    }
+
+    #[test]
+    fn windows_carry_the_files_spans_and_lines() {
+        let text = "%\nO1000 (HEAD)\nN10 G0 X1. Y2.\nG1 Z-1. F100.\n#1=[#2+3]\nX4.\nM30\n%\n";
+        let whole = parse_lean(ParseOptions::new(Dialect::Fanuc), text.as_bytes().to_vec());
+        let parts = windows(text, Dialect::Fanuc, 3);
+        let blocks: Vec<_> = parts
+            .iter()
+            .flat_map(|p| p.blocks.iter().copied())
+            .collect();
+        let spans = |b: &[crate::syntax::Block]| -> Vec<(Span, u32, u32)> {
+            b.iter().map(|b| (b.span, b.term_end, b.line)).collect()
+        };
+        assert_eq!(spans(&blocks), spans(&whole.blocks));
+        // A window reads its items' text at the file's offsets.
+        let last = parts.last().expect("windows");
+        let m30 = last.blocks.iter().find(|b| last.slice(b.span) == b"M30");
+        assert!(m30.is_some_and(|b| b.line == 6), "{:?}", last.blocks);
+    }
+
+    #[test]
+    fn a_run_of_plain_blocks_is_kept_as_its_first_and_the_files_last_block() {
+        let mut text = String::from("G21 G90 (setup)\n");
+        for i in 0..1000 {
+            text.push_str(&format!("G1 X{i} Y{i} Z-1\n"));
+        }
+        let mut sk = Skeleton::default();
+        for w in windows(&text, Dialect::Rs274ngc, 7) {
+            sk.add(&w);
+        }
+        let settings = Settings::new(Dialect::Rs274ngc);
+        let p = sk.program(&settings);
+        let lines: Vec<u32> = p.blocks.iter().map(|b| b.line).collect();
+        assert_eq!(lines, [0, 1, 1000]);
+        // The missing end is reported where the whole file's check reports it.
+        let (found, _) = sk.check(&p, &settings);
+        let whole = crate::analyze(text.as_bytes().to_vec(), &settings);
+        let p005 = |ds: &[Diagnostic]| ds.iter().find(|d| d.code == "P005").map(|d| d.span);
+        assert_eq!(p005(&found), p005(&whole.diagnostics));
+        assert!(p005(&found).is_some());
+    }
+
+    #[test]
+    fn numbered_lines_make_a_small_skeleton_unless_something_branches() {
+        let mut text = String::from("%\nO1000\n");
+        for i in 1..2000 {
+            text.push_str(&format!("N{i} G1 X{i}. Y1.\n"));
+        }
+        let mut sk = Skeleton::numbered();
+        for w in windows(&text, Dialect::Fanuc, 50) {
+            sk.add(&w);
+        }
+        assert!(!sk.branches());
+        assert!(sk.len() < 100, "{} bytes", sk.len());
+        text.push_str("GOTO 10\nM30\n%\n");
+        let mut sk = Skeleton::numbered();
+        for w in windows(&text, Dialect::Fanuc, 50) {
+            sk.add(&w);
+        }
+        assert!(sk.branches());
+    }
+}
