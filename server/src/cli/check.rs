@@ -64,9 +64,11 @@ pub fn run(args: CheckArgs) -> ExitCode {
                 .map(|c| analyzer::settings::fail_level(&c.config))
         })
         .unwrap_or(Severity::Warning);
-    if let Err(e) = output::emit(args.format, &reports) {
-        eprintln!("partscope: cannot write output: {e}");
-        return ExitCode::from(2);
+    if let Some(code) = output::emit(args.format, &reports)
+        .err()
+        .and_then(|e| super::write_failure(&e))
+    {
+        return code;
     }
     if reports.iter().any(|r| r.io_error) {
         return ExitCode::from(2);

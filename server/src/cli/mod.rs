@@ -195,17 +195,24 @@ fn rule(code: Option<String>, all: bool, json: bool) -> ExitCode {
     print_out(&text)
 }
 
-/// Writes `text` to standard output. A reader that stops early (`partscope rule
-/// --all | head`) closes the pipe: that ends the output, it is no failure.
+/// Writes `text` to standard output (see [`write_failure`]).
 fn print_out(text: &str) -> ExitCode {
     use std::io::Write;
     let mut out = std::io::stdout().lock();
     match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("partscope: cannot write the output: {e}");
-            ExitCode::from(2)
-        }
+        Err(e) => write_failure(&e).unwrap_or(ExitCode::SUCCESS),
     }
+}
+
+/// What a command does when its output cannot be written: a reader that stops
+/// early (`partscope rule --all | head`, `check … | head`) closes the pipe,
+/// which ends the output and is no failure, so `None` (the command exits with
+/// the status its findings give); any other error is reported, exit status 2.
+pub(crate) fn write_failure(e: &std::io::Error) -> Option<ExitCode> {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        return None;
+    }
+    eprintln!("partscope: cannot write the output: {e}");
+    Some(ExitCode::from(2))
 }

@@ -468,8 +468,8 @@ pub fn run(args: RunArgs) -> ExitCode {
             summary["blocks_skipped"] = blocks_skipped();
         }
         let res = write_summary(&mut w, summary, &dry.blocks, &out.files).and_then(|_| w.flush());
-        if let Err(e) = res {
-            return fail(format_args!("cannot write output: {e}"));
+        if let Some(code) = res.err().and_then(|e| super::write_failure(&e)) {
+            return code;
         }
         return exit_status(&report, &stop);
     }
@@ -653,13 +653,13 @@ pub fn run(args: RunArgs) -> ExitCode {
                 .map(block_json)
                 .collect();
             serde_json::to_writer_pretty(&mut w, &v)
-                .map_err(std::io::Error::other)
+                .map_err(std::io::Error::from)
                 .and_then(|_| writeln!(w))
         }
         Some(Emit::Toolpath) => {
             let tp = dryrun::toolpath_on(&out, 0.01, &profile);
             serde_json::to_writer(&mut w, &tp)
-                .map_err(std::io::Error::other)
+                .map_err(std::io::Error::from)
                 .and_then(|_| writeln!(w))
         }
         Some(Emit::Canon) | None => match args.format {
@@ -684,8 +684,12 @@ pub fn run(args: RunArgs) -> ExitCode {
             ),
         },
     };
-    if let Err(e) = res.and_then(|_| w.flush()) {
-        return fail(format_args!("cannot write output: {e}"));
+    if let Some(code) = res
+        .and_then(|_| w.flush())
+        .err()
+        .and_then(|e| super::write_failure(&e))
+    {
+        return code;
     }
     exit_status(&report, &stop)
 }
@@ -793,7 +797,7 @@ fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> E
             "diagnostics": diags,
         });
         serde_json::to_writer_pretty(&mut w, &v)
-            .map_err(std::io::Error::other)
+            .map_err(std::io::Error::from)
             .and_then(|_| writeln!(w))
     } else {
         // Emits and pictures are not made either; the reason goes where a human reads it.
@@ -810,8 +814,12 @@ fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> E
         }
         r
     };
-    if let Err(e) = res.and_then(|_| w.flush()) {
-        return fail(format_args!("cannot write output: {e}"));
+    if let Some(code) = res
+        .and_then(|_| w.flush())
+        .err()
+        .and_then(|e| super::write_failure(&e))
+    {
+        return code;
     }
     exit_status(report, &Stop::default())
 }
@@ -985,7 +993,7 @@ fn write_summary(
         return writeln!(w, "{head}");
     }
     write!(w, "{head},\n  \"files\": ")?;
-    serde_json::to_writer(&mut *w, files).map_err(std::io::Error::other)?;
+    serde_json::to_writer(&mut *w, files).map_err(std::io::Error::from)?;
     write!(w, ",\n  \"blocks\": [")?;
     for (i, b) in blocks.iter().enumerate() {
         w.write_all(if i == 0 { b"\n    " } else { b",\n    " })?;

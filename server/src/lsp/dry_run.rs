@@ -42,10 +42,13 @@ pub struct DryRunResult {
     pub toolpath: Toolpath,
     /// LSP diagnostics (converted by the caller).
     pub diagnostics: Vec<serde_json::Value>,
-    /// False when the run stopped before the program's end: the times are partial.
+    /// False when the times are partial: the run stopped before the program's
+    /// end, or skipped a call it could not follow.
     pub complete: bool,
-    /// Where and why it stopped (`null` when complete).
+    /// Where and why it stopped (`null` when it did not stop).
     pub stopped_at: Option<StoppedAt>,
+    /// A called program was not run (F002): the figures leave out what it does.
+    pub skipped_calls: bool,
     /// The cycle time by cause and the top causes in words (`null` when no
     /// planner ran).
     pub breakdown: Option<Breakdown>,
@@ -70,6 +73,7 @@ pub struct BreakdownResult {
     pub distance_mm: f64,
     pub complete: bool,
     pub stopped_at: Option<StoppedAt>,
+    pub skipped_calls: bool,
     pub breakdown: Option<Breakdown>,
     pub text: String,
 }
@@ -89,8 +93,9 @@ pub fn breakdown_of(uri: String, name: &str, version: i32, report: &RunReport) -
         tool_change_s: t.map(|t| t.tool_change_s),
         other_s: t.map(|t| t.other_s),
         distance_mm: distance,
-        complete: report.stopped.is_none(),
+        complete: report.stopped.is_none() && !report.skipped_calls,
         stopped_at: report.stopped.clone(),
+        skipped_calls: report.skipped_calls,
         breakdown: report.breakdown.clone(),
         text: breakdown_text(name, report, distance),
     }
@@ -108,7 +113,7 @@ pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> Strin
         "{name}: cycle time {} ({:.3} s{})",
         clock(t.cycle_time_s),
         t.cycle_time_s,
-        if report.stopped.is_some() {
+        if report.stopped.is_some() || report.skipped_calls {
             ", partial"
         } else {
             ""
@@ -116,6 +121,9 @@ pub fn breakdown_text(name: &str, report: &RunReport, distance_mm: f64) -> Strin
     );
     if let Some(s) = &report.stopped {
         out.push_str(&format!("\n  {}", s.describe()));
+    }
+    if report.skipped_calls {
+        out.push_str("\n  a called program was not run (F002): its time is left out");
     }
     let rows = [
         ("cutting", t.cutting_s, true),
@@ -176,8 +184,9 @@ pub fn summarize(
             bounds: Bounds { min, max },
         },
         diagnostics,
-        complete: report.stopped.is_none(),
+        complete: report.stopped.is_none() && !report.skipped_calls,
         stopped_at: report.stopped.clone(),
+        skipped_calls: report.skipped_calls,
         breakdown: report.breakdown.clone(),
         decimation,
     }
@@ -282,6 +291,27 @@ mod tests {
         assert_eq!(
             json["toolpath"]["segments"][1]["points"][1],
             serde_json::json!([3.0, 4.0, -1.0])
+        );
+    }
+
+    #[test]
+    fn a_skipped_call_makes_the_answers_partial() {
+        let report = RunReport {
+            timing: Some(Timing {
+                cycle_time_s: 2.0,
+                ..Timing::default()
+            }),
+            skipped_calls: true,
+            ..RunReport::default()
+        };
+        let r = summarize(1, &report, vec![], Request::EXACT);
+        assert!(!r.complete && r.skipped_calls && r.stopped_at.is_none());
+        let b = breakdown_of("u".into(), "p.ngc", 1, &report);
+        assert!(!b.complete && b.skipped_calls);
+        assert!(
+            b.text.starts_with("p.ngc: cycle time 0:02.0 (2.000 s, partial)\n  a called program was not run (F002): its time is left out"),
+            "{}",
+            b.text
         );
     }
 
