@@ -9,9 +9,13 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn check(dir: &Path, file: &str, extra: &[&str]) -> (Option<i32>, String) {
+    partscope(dir, file, &["check", "--format", "json"], extra)
+}
+
+fn partscope(dir: &Path, file: &str, command: &[&str], extra: &[&str]) -> (Option<i32>, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_partscope"))
         .current_dir(dir)
-        .args(["check", "--format", "json"])
+        .args(command)
         .args(extra)
         .arg(file)
         .output()
@@ -88,6 +92,45 @@ fn windows_of_a_few_lines_check_as_the_whole_file() {
     assert!(same > not_run, "{same} identical, {not_run} not run");
 }
 
+/// `run`'s summary of a program read in windows: the same figures and
+/// findings as the whole-file run (per-block figures and what-ifs, which the
+/// windows do not gather, are off in both).
+#[test]
+fn run_in_windows_gives_the_whole_files_figures() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut files = Vec::new();
+    for dir in ["tests/conformance/programs", "tests/holdout", "examples"] {
+        programs(&root.join(dir), &mut files);
+    }
+    let run = [
+        "run",
+        "--format",
+        "json",
+        "--what-if",
+        "off",
+        "--blocks",
+        "off",
+    ];
+    let (mut same, mut failures) = (0, Vec::new());
+    for f in &files {
+        let dir = f.parent().unwrap_or(Path::new("."));
+        let name = f.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        let whole = partscope(dir, name, &run, &[]);
+        let windows = partscope(dir, name, &run, &["--window-bytes", "64"]);
+        if whole == windows {
+            same += 1;
+        } else if !windows.1.contains("the dry run was not made") {
+            failures.push(f.display().to_string());
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "run differs in windows:\n{}",
+        failures.join("\n")
+    );
+    assert!(same > 100, "{same} identical");
+}
+
 #[test]
 fn a_program_with_flow_control_is_not_run_in_windows_and_says_so() {
     let dir = std::env::temp_dir().join(format!("partscope-windows-{}", std::process::id()));
@@ -104,6 +147,20 @@ fn a_program_with_flow_control_is_not_run_in_windows_and_says_so() {
         .filter_map(|d| d["code"].as_str())
         .collect();
     assert_eq!(codes, ["F004"], "{out}");
+    assert_eq!(code, Some(1));
+    // `run` gives no figures for it, and says why.
+    let (code, out) = partscope(
+        &dir,
+        "loop.ngc",
+        &["run", "--format", "json"],
+        &["--window-bytes", "32"],
+    );
+    let v: serde_json::Value = serde_json::from_str(&out).expect("JSON");
+    assert_eq!(
+        (v["cycle_time_s"].is_null(), &v["partial"]),
+        (true, &serde_json::json!(true))
+    );
+    assert_eq!(v["diagnostics"][0]["code"], "F004");
     assert_eq!(code, Some(1));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -126,9 +126,15 @@ pub struct RunArgs {
     #[arg(long)]
     pub max_per_file: Option<usize>,
     /// Largest program to read, in MB (default 128); larger files are refused
-    /// with an error instead of exhausting memory.
+    /// with an error instead of exhausting memory. The summary alone (no
+    /// `--emit`, pictures, what-ifs or blocks) reads a program above 32 MB in
+    /// windows and has no default limit.
     #[arg(long)]
     pub max_file_size: Option<u64>,
+    /// Read the program in windows of this many bytes (tests compare it with
+    /// the whole-file run).
+    #[arg(long, hide = true)]
+    pub window_bytes: Option<usize>,
     /// Runtime errors the dry run reports and recovers from before it stops
     /// (default 100, `[rules] max_runtime_errors`).
     #[arg(long)]
@@ -140,6 +146,15 @@ const DEFAULT_MAX_HTML_MB: u64 = 64;
 
 impl RunArgs {
     /// The files the run writes besides its standard output, with their flags.
+    /// Whether only the summary is asked for (human or JSON), which a file
+    /// read in windows can give.
+    fn summary_only(&self) -> bool {
+        self.emit.is_none()
+            && self.outputs().iter().all(|(_, o)| o.is_none())
+            && self.what_if != AutoSwitch::On
+            && self.blocks != AutoSwitch::On
+    }
+
     fn outputs(&self) -> [(&'static str, Option<&PathBuf>); 3] {
         [
             ("--svg", self.svg.as_ref()),
@@ -198,11 +213,23 @@ pub fn run(args: RunArgs) -> ExitCode {
             return fail(e);
         }
     }
-    let max_mb = args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB);
-    let text = match crate::resolve::read_program(
-        &args.file,
-        &crate::resolve::SizeLimit::megabytes(max_mb),
-    ) {
+    let size = std::fs::metadata(&args.file).map_or(0, |m| m.len());
+    // The summary of a large program reads it in windows; its head names the dialect.
+    let window = args
+        .window_bytes
+        .or_else(|| (size > super::stream::STREAM_ABOVE).then_some(super::stream::WINDOW_BYTES))
+        .filter(|_| args.summary_only());
+    let default_mb = match window {
+        Some(_) => u64::MAX >> 20,
+        None => workspace::DEFAULT_MAX_FILE_MB,
+    };
+    let max_mb = args.max_file_size.unwrap_or(default_mb);
+    let limit = crate::resolve::SizeLimit::megabytes(max_mb);
+    let text = match window {
+        Some(_) => crate::resolve::read_head(&args.file, &limit, 64 * 1024),
+        None => crate::resolve::read_program(&args.file, &limit),
+    };
+    let text = match text {
         Ok(b) => b,
         Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
     };
@@ -376,6 +403,33 @@ pub fn run(args: RunArgs) -> ExitCode {
         }
     };
 
+    if let Some(window) = window {
+        // Called files are read whole, within the usual limit.
+        let called = crate::resolve::SizeLimit::megabytes(
+            args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB),
+        );
+        let resolver = crate::resolve::FsResolver::for_command_line(
+            &args.file,
+            dialect,
+            &loaded.config.machine,
+            loaded.path.as_deref(),
+            called,
+        );
+        let parts = super::stream::RunParts {
+            settings: &settings,
+            machine: &machine_table,
+            resolver: &resolver,
+            tool_table: tool_table.as_deref(),
+            var_file: var_file.as_deref(),
+            step_budget: args.step_budget,
+            motion_budget: args.motion_budget,
+        };
+        let reason = (dialect, dialect_reason.clone());
+        return match super::stream::run_file(&args.file, window, &parts, &profile, reason) {
+            Ok(w) => windowed_output(&args, w, &profile_name, &profile),
+            Err(e) => fail(format_args!("{}: {e}", args.file.display())),
+        };
+    }
     let parsed = analyzer::parse_text_lean(text.clone(), &settings);
     if analyzer::reports_mismatch(&parsed, &settings) {
         // A lathe or Haas program: a cycle time read as a FANUC mill would mean nothing.
@@ -764,7 +818,88 @@ fn plan_beside(
 /// The output of `run` for a program written for another control (P010): the
 /// diagnostic, no figures (`cycle_time_s` and the other totals are null, `partial`
 /// is true in JSON).
+/// The summary of a run made in windows (`cli::stream::run_file`), as the
+/// whole-file JSON summary path writes it (no per-block figures).
+fn windowed_output(
+    args: &RunArgs,
+    w: super::stream::RunWindows,
+    profile_name: &str,
+    profile: &MachineProfile,
+) -> ExitCode {
+    let report = w.report;
+    let Some(out) = w.out else {
+        let why = if report.diagnostics.iter().any(analyzer::stream::is_mismatch) {
+            NotComputed::OtherControl
+        } else {
+            NotComputed::NotRun
+        };
+        return no_figures_output(args, &report, profile_name, why);
+    };
+    let dry = DryRun {
+        totals: w.totals,
+        ..DryRun::default()
+    };
+    let stop = stop_of(out.stopped.as_ref(), &out.files, out.skipped_calls, &report);
+    let stdout = std::io::stdout();
+    let mut wr = std::io::BufWriter::new(stdout.lock());
+    let res = match args.format {
+        RunFormat::Json => {
+            let what_ifs = match args.what_if {
+                AutoSwitch::Off => WhatIfs::Off,
+                _ => WhatIfs::Skipped(format!(
+                    "the program is larger than {} KiB; --what-if on plans them",
+                    WHAT_IF_AUTO_BYTES >> 10
+                )),
+            };
+            let mut summary = summary_json(&dry, &report, &stop, profile_name, &what_ifs, profile);
+            if args.blocks == AutoSwitch::Auto {
+                summary["blocks_skipped"] = blocks_skipped();
+            }
+            write_summary(&mut wr, summary, &[], &out.files)
+        }
+        RunFormat::Human => human(
+            &mut wr,
+            &args.file,
+            &dry,
+            &out,
+            &report,
+            &stop,
+            profile_name,
+            &WhatIfs::Off,
+            profile,
+        ),
+    };
+    if let Some(code) = res
+        .and_then(|_| wr.flush())
+        .err()
+        .and_then(|e| super::write_failure(&e))
+    {
+        return code;
+    }
+    exit_status(&report, &stop)
+}
+
+/// Why `run` gives no figures.
+#[derive(Clone, Copy, PartialEq)]
+enum NotComputed {
+    /// P010: the program is for another control.
+    OtherControl,
+    /// F004: a program with flow control too large to hold.
+    NotRun,
+}
+
 fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> ExitCode {
+    no_figures_output(args, report, profile_name, NotComputed::OtherControl)
+}
+
+/// The output of `run` without figures: the diagnostics, and (in JSON) null
+/// totals with `partial` true.
+fn no_figures_output(
+    args: &RunArgs,
+    report: &FileReport,
+    profile_name: &str,
+    why: NotComputed,
+) -> ExitCode {
     let stdout = std::io::stdout();
     let mut w = std::io::BufWriter::new(stdout.lock());
     let located = output::locate(std::slice::from_ref(report));
@@ -801,12 +936,12 @@ fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> E
             .and_then(|_| writeln!(w))
     } else {
         // Emits and pictures are not made either; the reason goes where a human reads it.
-        let mut r = writeln!(w, "{}", args.file.display()).and_then(|_| {
-            writeln!(
-                w,
-                "  cycle time   not computed: the program is not for a FANUC 30i mill"
-            )
-        });
+        let reason = match why {
+            NotComputed::OtherControl => "the program is not for a FANUC 30i mill",
+            NotComputed::NotRun => "the dry run was not made (F004)",
+        };
+        let mut r = writeln!(w, "{}", args.file.display())
+            .and_then(|_| writeln!(w, "  cycle time   not computed: {reason}"));
         for l in &located {
             if r.is_ok() {
                 r = writeln!(w, "  {}:{} {} {}", l.line, l.column, l.d.code, l.d.message);
@@ -821,7 +956,11 @@ fn mismatch_output(args: &RunArgs, report: &FileReport, profile_name: &str) -> E
     {
         return code;
     }
-    exit_status(report, &Stop::default())
+    let stop = Stop {
+        partial: why == NotComputed::NotRun,
+        ..Stop::default()
+    };
+    exit_status(report, &stop)
 }
 
 /// Why the figures cover only part of the program: where the run stopped (an

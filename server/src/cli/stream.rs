@@ -368,53 +368,20 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
         || runtime::interp::files::is_subprogram_file(&skeleton, settings.file_stem.as_deref());
     let single_pass = first.main.single_pass();
     let size = std::fs::metadata(path).map_or(0, |m| m.len());
-    let holdable = size <= super::workspace::DEFAULT_MAX_FILE_MB << 20;
     let run = !job.args.no_run && !subprogram;
-    if run && !single_pass && holdable && job.args.window_bytes.is_none() {
+    if run && !single_pass && holdable(size) && job.args.window_bytes.is_none() {
         return Ok(None);
     }
     let interpret = run && single_pass;
-    let mut checks = analyzer::stream::WindowChecks::new(settings, &first.skeleton);
     let (tx, rx) = std::sync::mpsc::sync_channel::<Arc<Program>>(1);
-    let mut statics = Vec::new();
-    let mut end = None;
-    let run_out = std::thread::scope(|s| -> std::io::Result<_> {
+    let ((mut diagnostics, tail), run_out) = std::thread::scope(|s| -> std::io::Result<_> {
         let interp = interpret.then(|| s.spawn(|| run_windows(job, &first, rx)));
-        let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
-        let mut utf8 = true;
-        // The interpreter may stop before the end (and drop its end).
-        let mut feeding = interpret;
-        while let Some(p) = parsed.next_program()? {
-            let p = Arc::new(p);
-            feeding = feeding && tx.send(p.clone()).is_ok();
-            let found = checks.check(&p, settings, &facts, utf8);
-            utf8 &= !found
-                .iter()
-                .any(|d| d.code == analyzer::rules::NOT_TEXT.code);
-            statics.extend(found);
-            end = Some((p.end_offset(), p.blocks.last().map_or(0, |b| b.line)));
-        }
-        drop(tx);
-        Ok(interp.and_then(|h| h.join().ok()).flatten())
+        let linted = lint_windows(path, settings, window, &first, whole, &facts, Some(tx))?;
+        Ok((linted, interp.and_then(|h| h.join().ok()).flatten()))
     })?;
-    statics.extend(whole);
-    // A window at the end of the file: the findings made once for the file
-    // (and the runtime's, all before it) are finished with the file's facts.
-    let (at, line) = end.unwrap_or((0, 0));
-    let opts = syntax::ParseOptions {
-        dialect: settings.dialect,
-        variant: settings.variant,
-    };
-    let (tail, _) =
-        syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
-    statics.extend(checks.finish(&tail, &facts, settings));
-    let mut diagnostics = analyzer::join_finished(statics, settings);
     let mut extra_files = Vec::new();
     if run && !single_pass {
-        diagnostics.push(runtime::interp::not_run_in_windows(
-            size.div_ceil(1 << 20),
-            super::workspace::DEFAULT_MAX_FILE_MB,
-        ));
+        diagnostics.push(not_run(size));
     }
     if let Some((out_diagnostics, files)) = run_out {
         let finished = analyzer::finish_window(&tail, &facts, settings, out_diagnostics);
@@ -423,6 +390,197 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
     }
     let sparse = report_lines(path, &diagnostics, window)?;
     Ok(Some((diagnostics, extra_files, sparse)))
+}
+
+/// Whether a file is small enough to read whole (a program with flow control
+/// runs only so).
+fn holdable(size: u64) -> bool {
+    size <= super::workspace::DEFAULT_MAX_FILE_MB << 20
+}
+
+fn not_run(size: u64) -> Diagnostic {
+    runtime::interp::not_run_in_windows(
+        size.div_ceil(1 << 20),
+        super::workspace::DEFAULT_MAX_FILE_MB,
+    )
+}
+
+/// Pass 2's static checks: every window through the block rules (and, with
+/// `feed`, to the interpreter as well), joined with the whole-file findings
+/// and finished. Also returns an empty window at the end of the file, which
+/// the findings made once for the file are finished with.
+fn lint_windows(
+    path: &Path,
+    settings: &Settings,
+    window: usize,
+    first: &FirstPass,
+    whole: Vec<Diagnostic>,
+    facts: &analyzer::stream::FileFacts,
+    feed: Option<std::sync::mpsc::SyncSender<Arc<Program>>>,
+) -> std::io::Result<(Vec<Diagnostic>, Program)> {
+    let mut checks = analyzer::stream::WindowChecks::new(settings, &first.skeleton);
+    let mut statics = Vec::new();
+    let mut end = None;
+    let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
+    let mut utf8 = true;
+    // The interpreter may stop before the end (and drop its end).
+    let mut feed = feed;
+    while let Some(p) = parsed.next_program()? {
+        let p = Arc::new(p);
+        if feed.as_ref().is_some_and(|tx| tx.send(p.clone()).is_err()) {
+            feed = None;
+        }
+        let found = checks.check(&p, settings, facts, utf8);
+        utf8 &= !found
+            .iter()
+            .any(|d| d.code == analyzer::rules::NOT_TEXT.code);
+        statics.extend(found);
+        end = Some((p.end_offset(), p.blocks.last().map_or(0, |b| b.line)));
+    }
+    drop(feed);
+    statics.extend(whole);
+    let (at, line) = end.unwrap_or((0, 0));
+    let opts = syntax::ParseOptions {
+        dialect: settings.dialect,
+        variant: settings.variant,
+    };
+    let (tail, _) =
+        syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
+    statics.extend(checks.finish(&tail, facts, settings));
+    Ok((analyzer::join_finished(statics, settings), tail))
+}
+
+/// What `run` needs besides the program (`runtime::RunInput` without it).
+pub struct RunParts<'a> {
+    pub settings: &'a Settings,
+    pub machine: &'a analyzer::config::MachineConfig,
+    pub resolver: &'a dyn runtime::Resolver,
+    pub tool_table: Option<&'a str>,
+    pub var_file: Option<&'a str>,
+    pub step_budget: Option<u64>,
+    pub motion_budget: Option<u64>,
+}
+
+/// `run`'s figures of a file read in windows.
+pub struct RunWindows {
+    /// The findings and the lines they need, as for `check`.
+    pub report: FileReport,
+    /// The run's output (motions and events went to the planner), `None` when
+    /// no run was made: a program for another control (P010), or one with flow
+    /// control too large to hold (F004).
+    pub out: Option<runtime::RunOutput>,
+    pub totals: runtime::plan::Totals,
+}
+
+/// `run`'s summary of `path` in windows: the static checks on one thread while
+/// the interpreter and the planner read the file again on this one
+/// (`dryrun::stream_totals`, which passes over it twice when a long program
+/// needs the closed-form planner).
+pub fn run_file(
+    path: &Path,
+    window: usize,
+    parts: &RunParts<'_>,
+    profile: &runtime::machine::MachineProfile,
+    dialect: (analyzer::Dialect, String),
+) -> std::io::Result<RunWindows> {
+    let settings = parts.settings;
+    let first = first_pass(path, settings, window)?;
+    let skeleton = first.skeleton.program(settings);
+    let (whole, facts) = whole_file(&first, &skeleton, settings);
+    let report = |diagnostics: Vec<Diagnostic>, files: &[String]| -> std::io::Result<FileReport> {
+        let sparse = report_lines(path, &diagnostics, window)?;
+        Ok(FileReport {
+            path: path.to_path_buf(),
+            text: Arc::from(sparse.text.as_slice()),
+            diagnostics,
+            io_error: false,
+            extra_files: super::output::read_extra_files(files),
+            dialect: Some(dialect.clone()),
+            sparse: Some(sparse),
+        })
+    };
+    let none = |diagnostics| -> std::io::Result<RunWindows> {
+        Ok(RunWindows {
+            report: report(diagnostics, &[])?,
+            out: None,
+            totals: Default::default(),
+        })
+    };
+    if whole.iter().any(analyzer::stream::is_mismatch) {
+        return none(whole);
+    }
+    if !first.main.single_pass() {
+        let (mut diagnostics, _) =
+            lint_windows(path, settings, window, &first, whole, &facts, None)?;
+        let size = std::fs::metadata(path).map_or(0, |m| m.len());
+        diagnostics.push(not_run(size));
+        return none(diagnostics);
+    }
+    let (linted, run) = std::thread::scope(|s| {
+        let lint = s.spawn(|| lint_windows(path, settings, window, &first, whole, &facts, None));
+        let run = runtime::dryrun::stream_totals(profile, |sink| {
+            run_pass(path, window, &first, parts, sink)
+        });
+        (lint.join(), run)
+    });
+    let (statics, tail) =
+        linted.map_err(|_| std::io::Error::other("the static checks failed"))??;
+    let (out, totals) = run;
+    let mut out = out?;
+    let finished = analyzer::finish_window(
+        &tail,
+        &facts,
+        settings,
+        std::mem::take(&mut out.diagnostics),
+    );
+    let diagnostics = analyzer::merge(statics, finished, settings);
+    Ok(RunWindows {
+        report: report(diagnostics, &out.files)?,
+        out: Some(out),
+        totals,
+    })
+}
+
+/// One pass of the interpreter over the file's windows, its motions to `sink`.
+fn run_pass(
+    path: &Path,
+    window: usize,
+    first: &FirstPass,
+    parts: &RunParts<'_>,
+    sink: &mut runtime::interp::MotionSink<'_>,
+) -> std::io::Result<runtime::RunOutput> {
+    let mut parsed = Parsed::new(Windows::open(path, window)?, parts.settings);
+    let Some(program) = parsed.next_program()? else {
+        return Ok(runtime::RunOutput::default());
+    };
+    let input = runtime::RunInput {
+        program: &program,
+        settings: parts.settings,
+        machine: parts.machine,
+        resolver: parts.resolver,
+        step_budget: parts
+            .step_budget
+            .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
+        motion_budget: parts
+            .motion_budget
+            .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
+        emit_canon: false,
+        tool_table: parts.tool_table,
+        var_file: parts.var_file,
+    };
+    let mut failed = None;
+    let mut next = || match parsed.next_program() {
+        Ok(p) => p.map(Arc::new),
+        Err(e) => {
+            failed = Some(e);
+            None
+        }
+    };
+    let out = runtime::interp::run_windowed(&input, &first.main, &mut next, sink);
+    match failed {
+        Some(e) => Err(e),
+        None => Ok(out),
+    }
 }
 
 /// The interpreter's thread: runs the windows `rx` brings, in order.
