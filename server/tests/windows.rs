@@ -164,3 +164,61 @@ fn a_program_with_flow_control_is_not_run_in_windows_and_says_so() {
     assert_eq!(code, Some(1));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Shapes a window reader can trip on, each checked in windows of 16 bytes
+/// against the whole file: no line break at all, CR-only and CR LF breaks
+/// (a window must never end between CR and LF), invalid UTF-8 past the first
+/// window (reported once), a binary file, an empty file, a file of blank lines.
+#[test]
+fn hostile_shapes_check_in_windows_as_whole() {
+    let dir =
+        std::env::temp_dir().join(format!("partscope-windows-hostile-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let long_line: Vec<u8> = std::iter::repeat_n(&b"X1. "[..], 3000)
+        .flatten()
+        .copied()
+        .collect();
+    let mut crlf = Vec::new();
+    let mut cr = Vec::new();
+    let mut bad_utf8 = Vec::new();
+    for i in 0..200 {
+        crlf.extend_from_slice(format!("G1 X{i} Y{i} F100\r\n").as_bytes());
+        cr.extend_from_slice(format!("G1 X{i} F100\r").as_bytes());
+        bad_utf8.extend_from_slice(format!("G1 X{i} F100 (caf").as_bytes());
+        bad_utf8.extend_from_slice(&[0xE9, b')', b'\n']);
+    }
+    let cases: Vec<(&str, Vec<u8>)> = vec![
+        ("long.ngc", long_line),
+        ("crlf.ngc", crlf),
+        ("cr.ngc", cr),
+        ("latin1.ngc", bad_utf8),
+        (
+            "binary.ngc",
+            [&b"G1 X1\n"[..], &[0u8, 1, 2, 3][..], &b"\nM2\n"[..]].concat(),
+        ),
+        ("empty.ngc", Vec::new()),
+        ("blank.ngc", b"\n\n\n\n\r\n\n".repeat(50)),
+    ];
+    for (name, bytes) in &cases {
+        std::fs::write(dir.join(name), bytes).expect("write");
+        for extra in [&["--no-run"][..], &[][..]] {
+            let whole = check(&dir, name, extra);
+            let windows = check(&dir, name, &[extra, &["--window-bytes", "16"]].concat());
+            assert_eq!(whole, windows, "{name} {extra:?}");
+        }
+        let run = [
+            "run",
+            "--format",
+            "json",
+            "--what-if",
+            "off",
+            "--blocks",
+            "off",
+        ];
+        let whole = partscope(&dir, name, &run, &[]);
+        let windows = partscope(&dir, name, &run, &["--window-bytes", "16"]);
+        assert_eq!(whole, windows, "run {name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -229,10 +229,27 @@ pub fn run(args: RunArgs) -> ExitCode {
         Some(_) => crate::resolve::read_head(&args.file, &limit, 64 * 1024),
         None => crate::resolve::read_program(&args.file, &limit),
     };
-    let text = match text {
+    let mut text = match text {
         Ok(b) => b,
         Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
     };
+    // A binary file gets its one L009 as the whole-file run gives it.
+    let binary = window.is_some()
+        && analyzer::parse_text_lean(
+            text.clone(),
+            &analyzer::Settings::new(analyzer::Dialect::Rs274ngc),
+        )
+        .binary;
+    let window = window.filter(|_| !binary);
+    if binary {
+        let limit = crate::resolve::SizeLimit::megabytes(
+            args.max_file_size.unwrap_or(workspace::DEFAULT_MAX_FILE_MB),
+        );
+        text = match crate::resolve::read_program(&args.file, &limit) {
+            Ok(b) => b,
+            Err(e) => return fail(format_args!("{}: {e}", args.file.display())),
+        };
+    }
     let loaded = match &args.config {
         Some(p) => workspace::load_config(p),
         None => {

@@ -76,7 +76,9 @@ impl Windows {
         let mut buf = std::mem::take(&mut self.carry);
         // Read until the window holds `size` bytes and a line break, or the file ends.
         loop {
-            let have_break = buf.iter().any(|&c| c == b'\n' || c == b'\r');
+            // A CR last may be half of a CR LF: it is a break only once a byte follows.
+            let before_last = &buf[..buf.len().saturating_sub(1)];
+            let have_break = buf.contains(&b'\n') || before_last.contains(&b'\r');
             if self.done || (buf.len() >= self.size && have_break) {
                 break;
             }
@@ -392,6 +394,15 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
     Ok(Some((diagnostics, extra_files, sparse)))
 }
 
+/// The window of an empty file.
+fn empty_window(settings: &Settings) -> Program {
+    let opts = syntax::ParseOptions {
+        dialect: settings.dialect,
+        variant: settings.variant,
+    };
+    syntax::parse_window(opts, Arc::from(&b""[..]), 0, 0, ParserState::default()).0
+}
+
 /// Whether a file is small enough to read whole (a program with flow control
 /// runs only so).
 fn holdable(size: u64) -> bool {
@@ -550,8 +561,9 @@ fn run_pass(
     sink: &mut runtime::interp::MotionSink<'_>,
 ) -> std::io::Result<runtime::RunOutput> {
     let mut parsed = Parsed::new(Windows::open(path, window)?, parts.settings);
-    let Some(program) = parsed.next_program()? else {
-        return Ok(runtime::RunOutput::default());
+    let program = match parsed.next_program()? {
+        Some(p) => p,
+        None => empty_window(parts.settings),
     };
     let input = runtime::RunInput {
         program: &program,
@@ -590,7 +602,10 @@ fn run_windows(
     rx: std::sync::mpsc::Receiver<Arc<Program>>,
 ) -> Option<(Vec<Diagnostic>, Vec<String>)> {
     let (loaded, settings) = (job.loaded, job.settings);
-    let program = rx.recv().ok()?;
+    // An empty file has no window: it runs as an empty program.
+    let program = rx
+        .recv()
+        .unwrap_or_else(|_| Arc::new(empty_window(settings)));
     let resolver = crate::resolve::FsResolver::for_command_line(
         job.path,
         settings.dialect,
