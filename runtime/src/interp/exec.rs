@@ -142,13 +142,7 @@ pub type MotionObserver<'s> = dyn FnMut(&[Motion], &[Event]) + 's;
 pub fn run_streaming_owned(input: &RunInput<'_>, sink: &mut OwnedMotionSink<'_>) -> RunOutput {
     let mut it = Interp::new(input, false);
     it.run_main_with(Some(sink), None, None);
-    let mut out = it.finish();
-    if !out.motions.is_empty() || !out.events.is_empty() {
-        sink(&mut out.motions, &mut out.events);
-    }
-    out.motions = Vec::new();
-    out.events = Vec::new();
-    out
+    it.finish_streamed(sink)
 }
 
 /// Where control goes after a block.
@@ -597,6 +591,17 @@ impl<'a, 'i> Interp<'a, 'i> {
     }
 
     // ----------------------------------------------------------------- main loop
+
+    /// The output of a streamed run, its last motions and events handed to `sink`.
+    fn finish_streamed(self, sink: &mut OwnedMotionSink<'_>) -> RunOutput {
+        let mut out = self.finish();
+        if !out.motions.is_empty() || !out.events.is_empty() {
+            sink(&mut out.motions, &mut out.events);
+        }
+        out.motions = Vec::new();
+        out.events = Vec::new();
+        out
+    }
 
     fn run_main(&mut self) {
         self.run_main_with(None, None, None);

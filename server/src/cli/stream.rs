@@ -394,13 +394,14 @@ fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
     Ok(Some((diagnostics, extra_files, sparse)))
 }
 
-/// The window of an empty file.
-fn empty_window(settings: &Settings) -> Program {
+/// An empty window at file offset `at` on line `line`: the window of an
+/// empty file, or the end of one.
+fn empty_window(settings: &Settings, at: u32, line: u32) -> Program {
     let opts = syntax::ParseOptions {
         dialect: settings.dialect,
         variant: settings.variant,
     };
-    syntax::parse_window(opts, Arc::from(&b""[..]), 0, 0, ParserState::default()).0
+    syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default()).0
 }
 
 /// Whether a file is small enough to read whole (a program with flow control
@@ -451,12 +452,7 @@ fn lint_windows(
     drop(feed);
     statics.extend(whole);
     let (at, line) = end.unwrap_or((0, 0));
-    let opts = syntax::ParseOptions {
-        dialect: settings.dialect,
-        variant: settings.variant,
-    };
-    let (tail, _) =
-        syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default());
+    let tail = empty_window(settings, at, line);
     statics.extend(checks.finish(&tail, facts, settings));
     Ok((analyzer::join_finished(statics, settings), tail))
 }
@@ -470,6 +466,28 @@ pub struct RunParts<'a> {
     pub var_file: Option<&'a str>,
     pub step_budget: Option<u64>,
     pub motion_budget: Option<u64>,
+}
+
+impl RunParts<'_> {
+    /// The run's input with `program`, the file's first window; the budgets
+    /// default to the whole file's (`first.blocks`).
+    fn input<'p>(&'p self, program: &'p Program, first: &FirstPass) -> runtime::RunInput<'p> {
+        runtime::RunInput {
+            program,
+            settings: self.settings,
+            machine: self.machine,
+            resolver: self.resolver,
+            step_budget: self
+                .step_budget
+                .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
+            motion_budget: self
+                .motion_budget
+                .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
+            emit_canon: false,
+            tool_table: self.tool_table,
+            var_file: self.var_file,
+        }
+    }
 }
 
 /// `run`'s figures of a file read in windows.
@@ -563,23 +581,9 @@ fn run_pass(
     let mut parsed = Parsed::new(Windows::open(path, window)?, parts.settings);
     let program = match parsed.next_program()? {
         Some(p) => p,
-        None => empty_window(parts.settings),
+        None => empty_window(parts.settings, 0, 0),
     };
-    let input = runtime::RunInput {
-        program: &program,
-        settings: parts.settings,
-        machine: parts.machine,
-        resolver: parts.resolver,
-        step_budget: parts
-            .step_budget
-            .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
-        motion_budget: parts
-            .motion_budget
-            .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
-        emit_canon: false,
-        tool_table: parts.tool_table,
-        var_file: parts.var_file,
-    };
+    let input = parts.input(&program, first);
     let mut failed = None;
     let mut next = || match parsed.next_program() {
         Ok(p) => p.map(Arc::new),
@@ -605,7 +609,7 @@ fn run_windows(
     // An empty file has no window: it runs as an empty program.
     let program = rx
         .recv()
-        .unwrap_or_else(|_| Arc::new(empty_window(settings)));
+        .unwrap_or_else(|_| Arc::new(empty_window(settings, 0, 0)));
     let resolver = crate::resolve::FsResolver::for_command_line(
         job.path,
         settings.dialect,
@@ -619,22 +623,16 @@ fn run_windows(
     }
     let machine =
         super::workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
-    let args = job.args;
-    let input = runtime::RunInput {
-        program: &program,
+    let parts = RunParts {
         settings,
         machine: &machine,
         resolver: &resolver,
-        step_budget: args
-            .step_budget
-            .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
-        motion_budget: args
-            .motion_budget
-            .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
-        emit_canon: false,
         tool_table: files.tool_table.as_deref(),
         var_file: files.var_file.as_deref(),
+        step_budget: job.args.step_budget,
+        motion_budget: job.args.motion_budget,
     };
+    let input = parts.input(&program, first);
     let mut next = || rx.recv().ok();
     let out = runtime::interp::run_windowed(&input, &first.main, &mut next, &mut |_, _| {});
     Some((out.diagnostics, out.files))

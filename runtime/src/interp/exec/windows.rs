@@ -57,13 +57,7 @@ pub fn run_windowed(
     // windows, and for it the rule keeps no per-block memory.
     it.rules.rapid_no_motion.single_pass = true;
     it.run_main_with(Some(&mut sink), None, Some(next));
-    let mut out = it.finish();
-    if !out.motions.is_empty() || !out.events.is_empty() {
-        sink(&mut out.motions, &mut out.events);
-    }
-    out.motions = Vec::new();
-    out.events = Vec::new();
-    out
+    it.finish_streamed(&mut sink)
 }
 
 impl Interp<'_, '_> {
