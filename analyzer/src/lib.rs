@@ -157,7 +157,7 @@ pub fn finish(
     settings: &Settings,
     diagnostics: Vec<Diagnostic>,
 ) -> Vec<Diagnostic> {
-    finish_in(program, None, settings, diagnostics)
+    finish_in(program, None, settings, diagnostics, true)
 }
 
 /// [`finish`] for a file read in windows: `program` is the window the
@@ -170,14 +170,17 @@ pub fn finish_window(
     settings: &Settings,
     diagnostics: Vec<Diagnostic>,
 ) -> Vec<Diagnostic> {
-    finish_in(program, Some(file), settings, diagnostics)
+    finish_in(program, Some(file), settings, diagnostics, true)
 }
 
-fn finish_in(
+/// `limit`: whether to bound the list ([`limit_diagnostics`]); a host that
+/// bounds a whole file's parts with one [`Limiter`] finishes them without.
+pub(crate) fn finish_in(
     program: &syntax::Program,
     file: Option<&stream::FileFacts>,
     settings: &Settings,
     mut diagnostics: Vec<Diagnostic>,
+    limit: bool,
 ) -> Vec<Diagnostic> {
     let collected;
     let sup = match file {
@@ -262,7 +265,11 @@ fn finish_in(
     {
         diagnostics.retain(|d| d.code == MISMATCH && d.file == FileId(0));
     }
-    join_finished(diagnostics, settings)
+    if limit {
+        return join_finished(diagnostics, settings);
+    }
+    join_unbounded(&mut diagnostics);
+    diagnostics
 }
 
 /// The last step of [`finish`]: sorts by position and code, joins repeats
@@ -270,10 +277,14 @@ fn finish_in(
 /// finished the parts of one file's static findings separately (the windows
 /// and the skeleton of `stream`) joins them with it.
 pub fn join_finished(mut diagnostics: Vec<Diagnostic>, settings: &Settings) -> Vec<Diagnostic> {
-    diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
-    twins::join_same_code(&mut diagnostics);
-    twins::drop_twins(&mut diagnostics);
+    join_unbounded(&mut diagnostics);
     limit_diagnostics(diagnostics, settings)
+}
+
+fn join_unbounded(diagnostics: &mut Vec<Diagnostic>) {
+    diagnostics.sort_by(|a, b| (a.file, a.span.start, a.code).cmp(&(b.file, b.span.start, b.code)));
+    twins::join_same_code(diagnostics);
+    twins::drop_twins(diagnostics);
 }
 
 /// Joins the static diagnostics of a file with its interpreter's, each already
@@ -300,59 +311,104 @@ pub(crate) const MORE_PREFIX: &str = "… and ";
 /// code (or per file) at the first one dropped. Hostile files produce millions of
 /// diagnostics; this bounds the memory and output they take. Idempotent.
 pub fn limit_diagnostics(diagnostics: Vec<Diagnostic>, settings: &Settings) -> Vec<Diagnostic> {
-    use std::collections::HashMap;
-    let per_code = settings.max_per_code.max(1);
-    let per_file = settings.max_per_file.max(1);
-    let is_more = |d: &Diagnostic| d.message.starts_with(MORE_PREFIX);
-    let mut counts: HashMap<(FileId, &'static str), usize> = HashMap::new();
-    let mut file_counts: HashMap<FileId, usize> = HashMap::new();
-    // (first dropped, how many) per code and per file.
-    let mut dropped: HashMap<(FileId, &'static str), (Diagnostic, usize)> = HashMap::new();
-    let mut dropped_file: HashMap<FileId, (Diagnostic, usize)> = HashMap::new();
-    if diagnostics.len() <= per_code.min(per_file) {
+    if diagnostics.len()
+        <= settings
+            .max_per_code
+            .max(1)
+            .min(settings.max_per_file.max(1))
+    {
         return diagnostics;
     }
-    let mut kept = Vec::with_capacity(diagnostics.len().min(per_file));
+    let mut limit = Limiter::new(settings);
     for d in diagnostics {
-        if is_more(&d) {
-            kept.push(d);
-            continue;
+        limit.push(d);
+    }
+    limit.finish()
+}
+
+/// [`limit_diagnostics`] as a fold: a host that finds a file's diagnostics in
+/// parts, in file order (the windows of `stream`), pushes them as they come, so
+/// that no more than the kept ones are ever held.
+pub struct Limiter {
+    per_code: usize,
+    per_file: usize,
+    counts: std::collections::HashMap<(FileId, &'static str), usize>,
+    file_counts: std::collections::HashMap<FileId, usize>,
+    /// (first dropped, how many) per code and per file.
+    dropped: std::collections::HashMap<(FileId, &'static str), (Diagnostic, usize)>,
+    dropped_file: std::collections::HashMap<FileId, (Diagnostic, usize)>,
+    kept: Vec<Diagnostic>,
+}
+
+impl Limiter {
+    pub fn new(settings: &Settings) -> Limiter {
+        Limiter {
+            per_code: settings.max_per_code.max(1),
+            per_file: settings.max_per_file.max(1),
+            counts: Default::default(),
+            file_counts: Default::default(),
+            dropped: Default::default(),
+            dropped_file: Default::default(),
+            kept: Vec::new(),
         }
-        let n = counts.entry((d.file, d.code)).or_insert(0);
-        if *n >= per_code {
-            let e = dropped
+    }
+
+    pub fn push(&mut self, d: Diagnostic) {
+        if d.message.starts_with(MORE_PREFIX) {
+            self.kept.push(d);
+            return;
+        }
+        let n = self.counts.entry((d.file, d.code)).or_insert(0);
+        if *n >= self.per_code {
+            let e = self
+                .dropped
                 .entry((d.file, d.code))
                 .or_insert_with(|| (d.clone(), 0));
             e.1 += 1;
-            continue;
+            return;
         }
-        let f = file_counts.entry(d.file).or_insert(0);
-        if *f >= per_file {
-            let e = dropped_file.entry(d.file).or_insert_with(|| (d.clone(), 0));
+        let f = self.file_counts.entry(d.file).or_insert(0);
+        if *f >= self.per_file {
+            let e = self
+                .dropped_file
+                .entry(d.file)
+                .or_insert_with(|| (d.clone(), 0));
             e.1 += 1;
-            continue;
+            return;
         }
         *n += 1;
         *f += 1;
-        kept.push(d);
+        self.kept.push(d);
     }
-    if dropped.is_empty() && dropped_file.is_empty() {
-        return kept;
+
+    /// The kept diagnostics and one "… and N more" per code (or file) that
+    /// dropped some, sorted by position.
+    pub fn finish(self) -> Vec<Diagnostic> {
+        let (per_code, per_file) = (self.per_code, self.per_file);
+        let mut kept = self.kept;
+        if self.dropped.is_empty() && self.dropped_file.is_empty() {
+            return kept;
+        }
+        for ((_, code), (first, n)) in self.dropped {
+            let mut d = Diagnostic::new(code, first.severity, first.span, format!("{MORE_PREFIX}{n} more {code} diagnostics in this file from here on: at most {per_code} of one code are reported (raise with --max-per-code)"));
+            d.file = first.file;
+            kept.push(d);
+        }
+        for (_, (first, n)) in self.dropped_file {
+            let mut d = Diagnostic::new(first.code, first.severity, first.span, format!("{MORE_PREFIX}{n} more diagnostics in this file from here on: at most {per_file} are reported per file (raise with --max-per-file)"));
+            d.file = first.file;
+            kept.push(d);
+        }
+        kept.sort_by(|a, b| {
+            (a.file, a.span.start, a.code, &a.message).cmp(&(
+                b.file,
+                b.span.start,
+                b.code,
+                &b.message,
+            ))
+        });
+        kept
     }
-    for ((_, code), (first, n)) in dropped {
-        let mut d = Diagnostic::new(code, first.severity, first.span, format!("{MORE_PREFIX}{n} more {code} diagnostics in this file from here on: at most {per_code} of one code are reported (raise with --max-per-code)"));
-        d.file = first.file;
-        kept.push(d);
-    }
-    for (_, (first, n)) in dropped_file {
-        let mut d = Diagnostic::new(first.code, first.severity, first.span, format!("{MORE_PREFIX}{n} more diagnostics in this file from here on: at most {per_file} are reported per file (raise with --max-per-file)"));
-        d.file = first.file;
-        kept.push(d);
-    }
-    kept.sort_by(|a, b| {
-        (a.file, a.span.start, a.code, &a.message).cmp(&(b.file, b.span.start, b.code, &b.message))
-    });
-    kept
 }
 
 /// The warning for text that is not valid UTF-8, at its first bad byte.

@@ -455,8 +455,9 @@ impl WindowChecks {
 
     /// The findings in one window: the parser's, the block rules' (with
     /// what `facts` knows of the file) and the walk's over its numbers,
-    /// through [`crate::finish_window`]. `utf8`: whether to look for invalid
-    /// UTF-8 (a file reports the first only).
+    /// finished but not bounded: the host bounds the file's with one
+    /// [`crate::Limiter`]. `utf8`: whether to look for invalid UTF-8 (a file
+    /// reports the first only).
     pub fn check(
         &mut self,
         window: &Program,
@@ -470,7 +471,7 @@ impl WindowChecks {
                 walk.block(window, b, &mut out);
             }
         }
-        crate::finish_window(window, facts, settings, out)
+        crate::finish_in(window, Some(facts), settings, out, false)
     }
 
     /// What the walk reports once for the file (`tail`: a window at its end).

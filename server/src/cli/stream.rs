@@ -431,7 +431,8 @@ fn lint_windows(
     feed: Option<std::sync::mpsc::SyncSender<Arc<Program>>>,
 ) -> std::io::Result<(Vec<Diagnostic>, Program)> {
     let mut checks = analyzer::stream::WindowChecks::new(settings, &first.skeleton);
-    let mut statics = Vec::new();
+    // The windows' findings come in file order: bounded as they come.
+    let mut statics = analyzer::Limiter::new(settings);
     let mut end = None;
     let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
     let mut utf8 = true;
@@ -446,10 +447,13 @@ fn lint_windows(
         utf8 &= !found
             .iter()
             .any(|d| d.code == analyzer::rules::NOT_TEXT.code);
-        statics.extend(found);
+        for d in found {
+            statics.push(d);
+        }
         end = Some((p.end_offset(), p.blocks.last().map_or(0, |b| b.line)));
     }
     drop(feed);
+    let mut statics = statics.finish();
     statics.extend(whole);
     let (at, line) = end.unwrap_or((0, 0));
     let tail = empty_window(settings, at, line);
