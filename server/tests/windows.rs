@@ -201,6 +201,48 @@ fn hostile_shapes_check_in_windows_as_whole() {
         ("blank.ngc", b"\n\n\n\n\r\n\n".repeat(50)),
         // More findings of one code than are reported (the cap counts across windows).
         ("many.ngc", b"G1 X1 F-100 (neg)\n".repeat(2500)),
+        // Suppressions far from the findings they silence, a block one and a file one.
+        (
+            "allow.ngc",
+            [
+                &b"(partscope: allow-file W007)\nG21 G90\n"[..],
+                &b"G1 X1 F100\n".repeat(40),
+                &b"G1 X2 F-5\nS-100 (partscope: allow W007)\nG0 X1 Y1 Z1 Q-1\n"[..],
+                &b"G1 X1 F100\n".repeat(40),
+                &b"M2\n"[..],
+            ]
+            .concat(),
+        ),
+        // Text LinuxCNC never reads: syntax errors after M2, windows later.
+        (
+            "dead.ngc",
+            [
+                &b"G21 G90\nG1 X1 F100\nM2\n"[..],
+                &b"G1 X1 Y2\n".repeat(40),
+                &b"G1 X$ Y%%\n(unclosed\n"[..],
+            ]
+            .concat(),
+        ),
+        // A lathe program: its two signs windows apart give one P010.
+        (
+            "lathe.nc",
+            [
+                &b"(partscope: dialect=fanuc)\n%\nO1000\nT0101\n"[..],
+                &b"G1 X1. Z-1. F0.2\n".repeat(60),
+                &b"G71 P10 Q20 U0.2 W0.1 D1.\nN10 G1 X2.\nN20 Z-2.\nM30\n%\n"[..],
+            ]
+            .concat(),
+        ),
+        // FANUC: text after M30 up to the next sequence number is never read.
+        (
+            "jumped.nc",
+            [
+                &b"(partscope: dialect=fanuc)\n%\nO1000\nG1 X1. F100.\nM30\n"[..],
+                &b"G1 X$1\n".repeat(30),
+                &b"N100 G1 X2.\nM30\n%\n"[..],
+            ]
+            .concat(),
+        ),
     ];
     for (name, bytes) in &cases {
         std::fs::write(dir.join(name), bytes).expect("write");
