@@ -72,8 +72,10 @@ pub fn rope_bytes(rope: &Rope) -> std::sync::Arc<[u8]> {
     v.into()
 }
 
-/// Everything needed to analyse a document version.
-pub struct Inputs<'a> {
+/// Everything needed to analyse a document version; `P` is how the previous
+/// analysis is held ([`analyze`] takes a [`Previous`], the language server
+/// keeps its snapshots).
+pub struct Inputs<P> {
     pub version: i32,
     pub rope: Rope,
     pub path: Option<PathBuf>,
@@ -83,7 +85,24 @@ pub struct Inputs<'a> {
     pub files: Arc<crate::cli::workspace::FileCache>,
     /// The previous analysis of the document, which an edit updates instead
     /// of analysing the whole text again.
-    pub previous: Option<Previous<'a>>,
+    pub previous: Option<P>,
+}
+
+impl<P> Inputs<P> {
+    /// The same inputs with `previous` instead, and the previous analysis they held.
+    pub fn replace_previous<Q>(self, previous: Option<Q>) -> (Inputs<Q>, Option<P>) {
+        let inputs = Inputs {
+            version: self.version,
+            rope: self.rope,
+            path: self.path,
+            roots: self.roots,
+            client: self.client,
+            runner: self.runner,
+            files: self.files,
+            previous,
+        };
+        (inputs, self.previous)
+    }
 }
 
 /// The previous analysis of a document: edited in place when nothing else
@@ -104,7 +123,7 @@ impl Previous<'_> {
 
 /// Resolves settings and analyses one document version. Blocking: call it on
 /// a blocking thread.
-pub fn analyze(inputs: Inputs<'_>) -> Document {
+pub fn analyze(inputs: Inputs<Previous<'_>>) -> Document {
     let timing = std::env::var_os("PARTSCOPE_LSP_TIMING").is_some();
     let t0 = std::time::Instant::now();
     let text = rope_bytes(&inputs.rope);

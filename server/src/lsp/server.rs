@@ -223,14 +223,16 @@ impl Backend {
         let doc = state.docs.get(uri)?;
         Some(Inputs {
             uri: uri.clone(),
-            version: doc.version,
-            rope: doc.rope.clone(),
-            path: doc.path.clone(),
-            roots: state.roots.clone(),
-            client: Self::client_options(state),
-            runner: self.runner.clone(),
-            files: self.files.clone(),
-            previous: doc.snapshot.clone(),
+            doc: crate::document::Inputs {
+                version: doc.version,
+                rope: doc.rope.clone(),
+                path: doc.path.clone(),
+                roots: state.roots.clone(),
+                client: Self::client_options(state),
+                runner: self.runner.clone(),
+                files: self.files.clone(),
+                previous: doc.snapshot.clone(),
+            },
         })
     }
 
@@ -398,7 +400,7 @@ impl Backend {
             .as_ref()
             .is_some_and(|s| s.version != doc.version)
         {
-            inputs.previous = doc.snapshot.take();
+            inputs.doc.previous = doc.snapshot.take();
         }
         Some(inputs)
     }

@@ -4,15 +4,12 @@
 
 use analyzer::Severity;
 use ropey::Rope;
-use std::path::PathBuf;
 use std::sync::Arc;
 use tower_lsp_server::ls_types::{
     CodeDescription, Diagnostic as LspDiagnostic, DiagnosticRelatedInformation, DiagnosticSeverity,
     Location, NumberOrString, Uri,
 };
 
-use super::config::ClientOptions;
-use super::dry_run::DryRunner;
 use super::position::span_to_range;
 use crate::document::{self, Document, Previous};
 
@@ -32,16 +29,8 @@ impl std::ops::Deref for Snapshot {
 /// Everything needed to analyse a document, cloned out of the server state.
 pub struct Inputs {
     pub uri: Uri,
-    pub version: i32,
-    pub rope: Rope,
-    pub path: Option<PathBuf>,
-    pub roots: Vec<PathBuf>,
-    pub client: ClientOptions,
-    pub runner: Arc<dyn DryRunner>,
-    pub files: Arc<crate::cli::workspace::FileCache>,
-    /// The previous analysis of the document, which an edit updates instead
-    /// of analysing the whole text again.
-    pub previous: Option<Arc<Snapshot>>,
+    /// The document's inputs, with the previous snapshot.
+    pub doc: document::Inputs<Arc<Snapshot>>,
 }
 
 /// Converts one analyzer diagnostic of the document `uri` holding `rope`.
@@ -77,8 +66,9 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
     // The previous snapshot is handed over owned when this is its only holder
     // (so `document::analyze` edits it in place), borrowed while a run or a
     // request still reads it.
+    let (doc, previous) = inputs.doc.replace_previous(None);
     let shared;
-    let previous = match inputs.previous.map(Arc::try_unwrap) {
+    let previous = match previous.map(Arc::try_unwrap) {
         Some(Ok(prev)) => Some(Previous::Owned(Box::new(prev.analysed))),
         Some(Err(arc)) => {
             shared = arc;
@@ -86,19 +76,9 @@ pub fn analyze(inputs: Inputs) -> Snapshot {
         }
         None => None,
     };
-    let analysed = document::analyze(document::Inputs {
-        version: inputs.version,
-        rope: inputs.rope,
-        path: inputs.path,
-        roots: inputs.roots,
-        client: inputs.client,
-        runner: inputs.runner,
-        files: inputs.files,
-        previous,
-    });
     Snapshot {
         uri: inputs.uri,
-        analysed,
+        analysed: document::analyze(document::Inputs { previous, ..doc }),
     }
 }
 
