@@ -73,7 +73,9 @@ use messages::{rs274_message, rs274_parameter_message};
 pub use resume::{
     rerun, run_checkpointed, run_checkpointed_observed, run_checkpointed_recording, Checkpoints,
 };
-pub use windows::{not_run_in_windows, run_windowed, FileFacts as MainFileFacts, NextWindow};
+pub use windows::{
+    not_run_in_windows, run_windowed, run_windowed_owned, FileFacts as MainFileFacts, NextWindow,
+};
 
 #[path = "checks.rs"]
 mod checks;

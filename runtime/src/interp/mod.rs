@@ -24,8 +24,8 @@ pub mod values;
 pub use exec::{
     not_run_in_windows, rerun, run, run_checkpointed, run_checkpointed_observed,
     run_checkpointed_recording, run_streaming, run_streaming_owned, run_windowed,
-    run_with_snapshots, run_without_fast_path, Checkpoints, MainFileFacts, MotionObserver,
-    MotionSink, NextWindow, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
+    run_windowed_owned, run_with_snapshots, run_without_fast_path, Checkpoints, MainFileFacts,
+    MotionObserver, MotionSink, NextWindow, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
 };
 pub use state::{Modal, State};
 // What the rule checks in `crate::rules` read (`rules::check::Cx`).

@@ -777,10 +777,8 @@ fn blocks_skipped() -> serde_json::Value {
 /// that neither waits on the other's jitter, few enough that memory stays flat.
 const PLAN_QUEUE: usize = 4;
 
-/// Interprets on this thread and plans on another, chunk by chunk: the totals of
-/// [`dryrun::stream_totals`], with the planner's work taken off the interpreter's
-/// thread. Like `stream_totals`, a run past the servo-simulation limit is streamed
-/// a second time into a closed-form planner.
+/// Runs `input` with the planner on a thread of its own, fed through a
+/// bounded queue of motion chunks ([`plan_beside_with`]).
 fn plan_beside(
     input: &runtime::RunInput<'_>,
     profile: &MachineProfile,
@@ -790,6 +788,21 @@ fn plan_beside(
     runtime::plan::Totals,
     Vec<dryrun::BlockTime>,
 ) {
+    plan_beside_with(profile, with_blocks, |sink| {
+        runtime::run_streaming_owned(input, sink)
+    })
+}
+
+/// Plans the motions `run` hands its sink on a thread of its own, through a
+/// bounded queue (memory stays flat however long the program), and returns
+/// what `run` returned with the totals (and per-block figures when asked).
+/// `run` is called a second time, into a closed-form planner, when the run
+/// passes the servo-simulation limit.
+pub(super) fn plan_beside_with<R>(
+    profile: &MachineProfile,
+    with_blocks: bool,
+    run: impl Fn(&mut runtime::interp::OwnedMotionSink<'_>) -> R,
+) -> (R, runtime::plan::Totals, Vec<dryrun::BlockTime>) {
     let pass = |plan: dryrun::StreamPlan| {
         std::thread::scope(|scope| {
             type Chunk = (Vec<runtime::Motion>, Vec<runtime::Event>);
@@ -806,7 +819,7 @@ fn plan_beside(
                 }
                 plan.finish_with_blocks()
             });
-            let out = runtime::run_streaming_owned(input, &mut |m, e| {
+            let out = run(&mut |m, e| {
                 // The full buffers go to the planner; emptied ones come back.
                 let (mut mb, mut eb) = back_rx.try_recv().unwrap_or_default();
                 std::mem::swap(m, &mut mb);

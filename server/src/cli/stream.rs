@@ -551,10 +551,10 @@ pub fn run_file(
     }
     let (linted, run) = std::thread::scope(|s| {
         let lint = s.spawn(|| lint_windows(path, settings, window, &first, whole, &facts, None));
-        let run = runtime::dryrun::stream_totals(profile, |sink| {
+        let (out, totals, _) = super::run::plan_beside_with(profile, false, |sink| {
             run_pass(path, window, &first, parts, sink)
         });
-        (lint.join(), run)
+        (lint.join(), (out, totals))
     });
     let (statics, tail) =
         linted.map_err(|_| std::io::Error::other("the static checks failed"))??;
@@ -580,7 +580,7 @@ fn run_pass(
     window: usize,
     first: &FirstPass,
     parts: &RunParts<'_>,
-    sink: &mut runtime::interp::MotionSink<'_>,
+    sink: &mut runtime::interp::OwnedMotionSink<'_>,
 ) -> std::io::Result<runtime::RunOutput> {
     let mut parsed = Parsed::new(Windows::open(path, window)?, parts.settings);
     let program = match parsed.next_program()? {
@@ -596,7 +596,7 @@ fn run_pass(
             None
         }
     };
-    let out = runtime::interp::run_windowed(&input, &first.main, &mut next, sink);
+    let out = runtime::interp::run_windowed_owned(&input, &first.main, &mut next, sink);
     match failed {
         Some(e) => Err(e),
         None => Ok(out),

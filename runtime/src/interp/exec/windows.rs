@@ -48,16 +48,25 @@ pub fn run_windowed(
     next: &mut NextWindow<'_>,
     sink: &mut MotionSink<'_>,
 ) -> RunOutput {
+    run_windowed_owned(input, facts, next, &mut |m, e| sink(m, e))
+}
+
+/// [`run_windowed`] handing over the buffers themselves ([`OwnedMotionSink`]).
+pub fn run_windowed_owned(
+    input: &RunInput<'_>,
+    facts: &FileFacts,
+    next: &mut NextWindow<'_>,
+    sink: &mut OwnedMotionSink<'_>,
+) -> RunOutput {
     let mut it = Interp::new(input, false);
     it.files[0].taps = facts.taps;
     it.files[0].returns = facts.returns;
-    let mut sink = |m: &mut Vec<Motion>, e: &mut Vec<Event>| sink(m, e);
     it.windows = Some(*facts);
     // Block indices restart in every window: only a single-pass file runs in
     // windows, and for it the rule keeps no per-block memory.
     it.rules.rapid_no_motion.single_pass = true;
-    it.run_main_with(Some(&mut sink), None, Some(next));
-    it.finish_streamed(&mut sink)
+    it.run_main_with(Some(sink), None, Some(next));
+    it.finish_streamed(sink)
 }
 
 impl Interp<'_, '_> {
