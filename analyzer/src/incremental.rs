@@ -22,8 +22,8 @@ use std::sync::Arc;
 
 use crate::rules::{self, ProgramCx};
 use crate::syntax::{
-    Block, Expr, ExprId, ExprNode, Item, ItemKind, MacroStmt, OLabel, ParseOptions, Parser,
-    ParserState, Program, WordValue,
+    Block, Expr, ExprId, ExprNode, Item, ItemKind, MacroStmt, OLabel, Parser, ParserState, Program,
+    WordValue,
 };
 use crate::{Analysis, Diagnostic, Settings, Span};
 
@@ -121,13 +121,6 @@ fn settings_key(s: &Settings) -> String {
     format!("{s:?}")
 }
 
-fn opts(settings: &Settings) -> ParseOptions {
-    ParseOptions {
-        dialect: settings.dialect,
-        variant: settings.variant,
-    }
-}
-
 fn empty_program(settings: &Settings, text: Arc<[u8]>, like: Option<&Program>) -> Program {
     let n = text.len();
     let cap = |old: Option<usize>, guess: usize| old.map_or(guess, |c| c + c / 16 + 16);
@@ -148,7 +141,7 @@ fn empty_program(settings: &Settings, text: Arc<[u8]>, like: Option<&Program>) -
 /// above a host's size limit) the parse with its syntax diagnostics only.
 pub fn reference(text: Arc<[u8]>, settings: &Settings, syntax_only: bool) -> Analysis {
     if syntax_only {
-        let program = crate::syntax::parse(opts(settings), text);
+        let program = crate::syntax::parse(settings.parse_options(), text);
         let diagnostics = crate::finish(&program, settings, program.diagnostics.clone());
         Analysis {
             program,
@@ -308,7 +301,7 @@ impl Incremental {
         }
         let mut program = empty_program(settings, text.clone(), None);
         let mut index = Index::default();
-        let mut parser = Parser::new(opts(settings), text);
+        let mut parser = Parser::new(settings.parse_options(), text);
         while !parser.is_done() {
             index.record(&parser, &program);
             parser.parse_blocks(&mut program, 1);
@@ -460,7 +453,7 @@ fn splice_in_place(
     let mut sx = Index::default();
     let delta = edit.new_end as i64 - edit.old_end as i64;
     let mut parser = Parser::resume(
-        opts(settings),
+        settings.parse_options(),
         text.clone(),
         start_pos,
         p.blocks[first].line,

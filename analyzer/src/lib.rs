@@ -71,10 +71,7 @@ pub fn parse_text_lean(text: impl Into<Arc<[u8]>>, settings: &Settings) -> Parse
 }
 
 fn read(text: Arc<[u8]>, settings: &Settings, lean: bool) -> Parsed {
-    let opts = syntax::ParseOptions {
-        dialect: settings.dialect,
-        variant: settings.variant,
-    };
+    let opts = settings.parse_options();
     if let Some(d) = binary_check(&text) {
         // A binary file is reported once; parsing it would only produce noise.
         let program = syntax::parse(opts, Arc::<[u8]>::from(&b""[..]));

@@ -54,6 +54,14 @@ pub const DEFAULT_MAX_PER_FILE: usize = 20_000;
 pub const DEFAULT_MAX_RUNTIME_ERRORS: usize = 100;
 
 impl Settings {
+    /// How the parser reads text for these settings (dialect and variant).
+    pub fn parse_options(&self) -> crate::syntax::ParseOptions {
+        crate::syntax::ParseOptions {
+            dialect: self.dialect,
+            variant: self.variant,
+        }
+    }
+
     pub fn new(dialect: Dialect) -> Settings {
         Settings {
             dialect,

@@ -43,6 +43,33 @@ impl Span {
     }
 }
 
+/// Where the lines after the first start: after each `\n`, `\r\n` or lone `\r`.
+fn line_starts(src: &[u8]) -> impl Iterator<Item = u32> + '_ {
+    let mut i = 0usize;
+    std::iter::from_fn(move || {
+        while let Some(&b) = src.get(i) {
+            i += 1;
+            match b {
+                b'\n' => return Some(i as u32),
+                b'\r' => {
+                    if src.get(i) == Some(&b'\n') {
+                        i += 1;
+                    }
+                    return Some(i as u32);
+                }
+                _ => {}
+            }
+        }
+        None
+    })
+}
+
+/// How many line breaks `src` holds, as [`LineIndex`] counts them: its
+/// lines less one.
+pub fn line_breaks(src: &[u8]) -> u32 {
+    line_starts(src).count() as u32
+}
+
 /// Maps byte offsets to 0-based (line, byte column) pairs.
 #[derive(Debug, Clone, Default)]
 pub struct LineIndex {
@@ -53,23 +80,8 @@ pub struct LineIndex {
 
 impl LineIndex {
     pub fn new(src: &[u8]) -> LineIndex {
-        let mut starts = vec![0u32];
-        let mut i = 0usize;
-        while i < src.len() {
-            match src[i] {
-                b'\n' => starts.push(i as u32 + 1),
-                b'\r' => {
-                    if src.get(i + 1) == Some(&b'\n') {
-                        i += 1;
-                    }
-                    starts.push(i as u32 + 1);
-                }
-                _ => {}
-            }
-            i += 1;
-        }
         LineIndex {
-            starts,
+            starts: std::iter::once(0).chain(line_starts(src)).collect(),
             len: src.len() as u32,
         }
     }

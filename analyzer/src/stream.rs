@@ -85,6 +85,21 @@ struct Piece {
     run_term_end: u32,
 }
 
+impl Piece {
+    /// The piece of block `b` alone, its bytes at `skel` in the skeleton's text.
+    fn of(b: &crate::syntax::Block, skel: u32) -> Piece {
+        Piece {
+            skel,
+            file: b.span.start,
+            line: b.line,
+            content: b.span.len(),
+            blocks: 1,
+            run_content_end: b.span.end,
+            run_term_end: b.term_end.max(b.span.end),
+        }
+    }
+}
+
 /// The stand-in program the whole-file rules run over (see the module doc).
 #[derive(Debug, Default)]
 pub struct Skeleton {
@@ -166,15 +181,7 @@ impl Skeleton {
                     p.blocks += 1;
                     p.run_content_end = b.span.end;
                     p.run_term_end = b.term_end.max(b.span.end);
-                    let tail = Piece {
-                        skel: 0,
-                        file: b.span.start,
-                        line: b.line,
-                        content: b.span.len(),
-                        blocks: 1,
-                        run_content_end: b.span.end,
-                        run_term_end: b.term_end.max(b.span.end),
-                    };
+                    let tail = Piece::of(b, 0);
                     let bytes = window.slice(Span::new(b.span.start, to)).to_vec();
                     self.run_tail = Some((bytes, tail, before));
                     continue;
@@ -189,15 +196,8 @@ impl Skeleton {
                 b.span.start
             };
             let bytes = window.slice(Span::new(from, to));
-            self.pieces.push(Piece {
-                skel: self.text.len() as u32 + (b.span.start - from),
-                file: b.span.start,
-                line: b.line,
-                content: b.span.len(),
-                blocks: 1,
-                run_content_end: b.span.end,
-                run_term_end: b.term_end.max(b.span.end),
-            });
+            self.pieces
+                .push(Piece::of(b, self.text.len() as u32 + (b.span.start - from)));
             self.text.extend_from_slice(bytes);
         }
         self.end = window.end_offset();
@@ -227,35 +227,63 @@ impl Skeleton {
         self.text.is_empty()
     }
 
-    /// The skeleton as a program, its blocks on their lines in the file.
-    pub fn program(&self, settings: &Settings) -> Program {
-        let opts = syntax::ParseOptions {
-            dialect: settings.dialect,
-            variant: settings.variant,
-        };
+    /// The skeleton as a program, its blocks on their lines in the file,
+    /// which the whole-file rules run over ([`Sealed::check`]).
+    pub fn seal(&self, settings: &Settings) -> Sealed {
         let (text, pieces) = self.sealed();
-        let mut program = syntax::parse_lean(opts, text);
-        if aligned(&program, &pieces) {
+        let mut program = syntax::parse_lean(settings.parse_options(), text);
+        let aligned = aligned(&program, &pieces);
+        if aligned {
             for (b, p) in program.blocks.iter_mut().zip(&pieces) {
                 b.line = p.line;
             }
         }
         // The window parses reported the syntax errors already.
         program.diagnostics.clear();
-        program
+        Sealed {
+            program,
+            pieces,
+            aligned,
+            end: self.end,
+            numbered: self.numbered,
+            lathe_cycle: self.lathe_cycle,
+        }
+    }
+}
+
+/// A [`Skeleton`] read as a program.
+pub struct Sealed {
+    program: Program,
+    pieces: Vec<Piece>,
+    /// The program's blocks are the kept blocks, one for one (the skeleton's
+    /// text re-reads as them), so block-level facts map back to the file.
+    aligned: bool,
+    end: u32,
+    numbered: bool,
+    lathe_cycle: bool,
+}
+
+impl Sealed {
+    /// The stand-in program (a whole-file view of the file's flow: its
+    /// subprogram definitions, ends and program heads are all there).
+    pub fn program(&self) -> &Program {
+        &self.program
     }
 
-    /// Runs the whole-file rules over [`Skeleton::program`]: their findings,
-    /// through [`crate::finish`] and at the file's offsets, and the facts
-    /// every window's findings need.
-    pub fn check(&self, program: &Program, settings: &Settings) -> (Vec<Diagnostic>, FileFacts) {
-        let (text, pieces) = self.sealed();
+    /// File offset just past the file's last byte.
+    pub fn end(&self) -> u32 {
+        self.end
+    }
+
+    /// Runs the whole-file rules: their findings, through [`crate::finish`]
+    /// and at the file's offsets, and the facts every window's findings need.
+    pub fn check(&self, settings: &Settings) -> (Vec<Diagnostic>, FileFacts) {
+        let (program, pieces) = (&self.program, &self.pieces);
         let map = Map {
-            pieces: &pieces,
-            len: text.len(),
+            pieces,
+            len: program.text.len(),
             end: self.end,
         };
-        let aligned = aligned(program, &pieces);
         let stands_for: Vec<u32> = pieces.iter().map(|p| p.blocks).collect();
         let mut enabled = rules::enabled_rules(settings);
         // Numbered runs keep only their first number: the windows walk them all.
@@ -265,7 +293,7 @@ impl Skeleton {
         let mut found = Vec::new();
         {
             let mut cx = ProgramCx::new(program, settings);
-            if aligned {
+            if self.aligned {
                 cx.stands_for = Some(&stands_for);
             }
             rules::check_whole_program(&cx, &enabled, &mut found);
@@ -301,7 +329,7 @@ impl Skeleton {
             }
             out
         };
-        if aligned {
+        if self.aligned {
             facts.dead = ranges(util::dead_blocks(program));
             if settings.dialect == Dialect::Fanuc {
                 facts.jumped = ranges(util::jumped_over_blocks(program));
@@ -536,11 +564,11 @@ mod tests {
             sk.add(&w);
         }
         let settings = Settings::new(Dialect::Rs274ngc);
-        let p = sk.program(&settings);
-        let lines: Vec<u32> = p.blocks.iter().map(|b| b.line).collect();
+        let sealed = sk.seal(&settings);
+        let lines: Vec<u32> = sealed.program().blocks.iter().map(|b| b.line).collect();
         assert_eq!(lines, [0, 1, 1000]);
         // The missing end is reported where the whole file's check reports it.
-        let (found, _) = sk.check(&p, &settings);
+        let (found, _) = sealed.check(&settings);
         let whole = crate::analyze(text.as_bytes().to_vec(), &settings);
         let p005 = |ds: &[Diagnostic]| ds.iter().find(|d| d.code == "P005").map(|d| d.span);
         assert_eq!(p005(&found), p005(&whole.diagnostics));

@@ -66,6 +66,11 @@ pub struct FileEntry<'a> {
     pub foreign: bool,
 }
 
+/// A tapping cycle, G84 or G74 ([`FileEntry::taps`]).
+pub fn is_tapping_cycle(w: &analyzer::syntax::Word) -> bool {
+    w.letter == b'G' && w.num().is_some_and(|n| n.value == 84.0 || n.value == 74.0)
+}
+
 /// The key of an O-word label (`100`, `name`).
 pub fn label_key(p: &Program, ow: &analyzer::syntax::OWord) -> Option<String> {
     match ow.label {
@@ -139,10 +144,7 @@ impl<'a> FileEntry<'a> {
                     ItemKind::Macro(MacroStmt::Goto { .. } | MacroStmt::IfGoto { .. }) => {
                         self.branches = true;
                     }
-                    ItemKind::Word(w)
-                        if w.letter == b'G'
-                            && w.num().is_some_and(|n| n.value == 84.0 || n.value == 74.0) =>
-                    {
+                    ItemKind::Word(w) if is_tapping_cycle(w) => {
                         self.taps = true;
                     }
                     ItemKind::Word(w)

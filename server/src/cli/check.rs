@@ -227,38 +227,13 @@ fn check_file(
             if !interpret {
                 return None;
             }
-            let resolver = crate::resolve::FsResolver::for_command_line(
-                path,
-                dialect,
-                &loaded.config.machine,
-                loaded.path.as_deref(),
-                limit,
-            );
-            let files = loaded.linuxcnc_files();
-            for w in &files.warnings {
-                workspace::warn_once(w);
-            }
-            let machine =
-                workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
-            let input = runtime::RunInput {
-                program: &parsed.program,
-                settings: &settings,
-                machine: &machine,
-                resolver: &resolver,
-                step_budget: args
-                    .step_budget
-                    .unwrap_or_else(|| runtime::default_step_budget(parsed.program.blocks.len())),
-                motion_budget: args
-                    .motion_budget
-                    .unwrap_or_else(|| runtime::default_motion_budget(parsed.program.blocks.len())),
-                emit_canon: false,
-                tool_table: files.tool_table.as_deref(),
-                var_file: files.var_file.as_deref(),
-            };
-            // Lint needs the diagnostics only: motions are dropped as they are produced.
-            let out = runtime::run_streaming(&input, &mut |_, _| {});
-            let diagnostics = analyzer::finish(&parsed.program, &settings, out.diagnostics);
-            Some((diagnostics, out.files))
+            with_run_parts(path, &settings, &loaded, args, limit, |parts| {
+                let input = parts.input(&parsed.program, parsed.program.blocks.len());
+                // Lint needs the diagnostics only: motions are dropped as they are produced.
+                let out = runtime::run_streaming(&input, &mut |_, _| {});
+                let diagnostics = analyzer::finish(&parsed.program, &settings, out.diagnostics);
+                Some((diagnostics, out.files))
+            })
         },
     );
     let mut extra_files = Vec::new();
@@ -275,6 +250,40 @@ fn check_file(
         dialect: Some((dialect, dialect_reason)),
         sparse: None,
     }
+}
+
+/// Calls `run` with what `check`'s interpreter reads besides the program: the
+/// resolver of `path` (called files within `limit`) and the configuration's
+/// machine, tool table and parameter file; the budgets are the command line's.
+pub(super) fn with_run_parts<R>(
+    path: &Path,
+    settings: &analyzer::Settings,
+    loaded: &LoadedConfig,
+    args: &CheckArgs,
+    limit: crate::resolve::SizeLimit,
+    run: impl FnOnce(&super::stream::RunParts<'_>) -> R,
+) -> R {
+    let resolver = crate::resolve::FsResolver::for_command_line(
+        path,
+        settings.dialect,
+        &loaded.config.machine,
+        loaded.path.as_deref(),
+        limit,
+    );
+    let files = loaded.linuxcnc_files();
+    for w in &files.warnings {
+        workspace::warn_once(w);
+    }
+    let machine = workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
+    run(&super::stream::RunParts {
+        settings,
+        machine: &machine,
+        resolver: &resolver,
+        tool_table: files.tool_table.as_deref(),
+        var_file: files.var_file.as_deref(),
+        step_budget: args.step_budget,
+        motion_budget: args.motion_budget,
+    })
 }
 
 impl FileReport {

@@ -45,31 +45,32 @@ impl Sparse {
         self.pieces
             .push((file, self.text.len() as u32, line, self.text_lines));
         self.text.extend_from_slice(bytes);
-        self.text_lines += analyzer::LineIndex::new(bytes).line_count() - 1;
+        self.text_lines += analyzer::span::line_breaks(bytes);
     }
 
-    fn piece(&self, file: u32) -> Option<&(u32, u32, u32, u32)> {
-        let i = self.pieces.partition_point(|p| p.0 <= file);
-        self.pieces.get(i.checked_sub(1)?)
+    /// The index of the piece holding file offset `at` (or the last before it).
+    fn piece(&self, at: u32) -> Option<usize> {
+        self.pieces.partition_point(|p| p.0 <= at).checked_sub(1)
     }
 
     /// The offset in `text` of file offset `at` (positions between pieces go
     /// to the end of the piece before).
     pub fn to_text(&self, at: u32) -> u32 {
-        let Some(&(file, text, _, _)) = self.piece(at) else {
+        let Some((i, &(file, text, _, _))) =
+            self.piece(at).and_then(|i| Some((i, self.pieces.get(i)?)))
+        else {
             return 0;
         };
         let next = self
             .pieces
-            .iter()
-            .find(|p| p.1 > text)
+            .get(i + 1)
             .map_or(self.text.len() as u32, |p| p.1);
         (text + (at - file)).min(next)
     }
 
     /// The file line of line `text_line` of `text`, in the piece of file offset `at`.
     fn file_line(&self, at: u32, text_line: u32) -> u32 {
-        match self.piece(at) {
+        match self.piece(at).and_then(|i| self.pieces.get(i)) {
             Some(&(_, _, line, tl)) => text_line.saturating_sub(tl) + line,
             None => text_line,
         }

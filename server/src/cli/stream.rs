@@ -42,20 +42,6 @@ pub struct Window {
     pub line: u32,
 }
 
-/// Line breaks as `LineIndex` counts them (`\n`, `\r\n`, a lone `\r`).
-fn line_breaks(b: &[u8]) -> u32 {
-    let lf = b.iter().filter(|&&c| c == b'\n').count();
-    let lone_cr = if b.contains(&b'\r') {
-        b.iter()
-            .enumerate()
-            .filter(|&(i, &c)| c == b'\r' && b.get(i + 1) != Some(&b'\n'))
-            .count()
-    } else {
-        0
-    };
-    (lf + lone_cr) as u32
-}
-
 impl Windows {
     pub fn open(path: &Path, size: usize) -> std::io::Result<Windows> {
         Ok(Windows {
@@ -125,7 +111,9 @@ impl Windows {
             bytes: Arc::from(buf),
         };
         self.base += w.bytes.len() as u64;
-        self.line = self.line.saturating_add(line_breaks(&w.bytes));
+        self.line = self
+            .line
+            .saturating_add(analyzer::span::line_breaks(&w.bytes));
         Ok(Some(w))
     }
 }
@@ -141,10 +129,7 @@ impl Parsed {
     pub fn new(windows: Windows, settings: &Settings) -> Parsed {
         Parsed {
             windows,
-            opts: syntax::ParseOptions {
-                dialect: settings.dialect,
-                variant: settings.variant,
-            },
+            opts: settings.parse_options(),
             state: ParserState::default(),
         }
     }
@@ -279,27 +264,70 @@ pub fn report_lines(
     Ok(sparse)
 }
 
-/// The whole-file findings, moved to the file and finished.
-pub fn whole_file(
-    first: &FirstPass,
-    skeleton: &Program,
-    settings: &Settings,
-) -> (Vec<Diagnostic>, analyzer::stream::FileFacts) {
-    let (mut found, facts) = first.skeleton.check(skeleton, settings);
-    // The skeleton holds only some of the blocks: the signature of the
-    // whole file decides P010.
-    found.retain(|d| !analyzer::stream::is_mismatch(d));
-    if let Some(d) = first
-        .signature
-        .as_ref()
-        .and_then(analyzer::stream::mismatch_finding)
-    {
-        let kept = analyzer::finish_window(skeleton, &facts, settings, vec![d]);
-        if !kept.is_empty() {
-            return (kept, facts);
+/// What passes 1 gives: the skeleton, the whole-file findings (moved to the
+/// file and finished) and the facts every window's findings need.
+struct WholeFile {
+    first: FirstPass,
+    skeleton: analyzer::stream::Sealed,
+    findings: Vec<Diagnostic>,
+    facts: analyzer::stream::FileFacts,
+    /// The file's size in bytes.
+    size: u64,
+}
+
+impl WholeFile {
+    fn read(path: &Path, settings: &Settings, window: usize) -> std::io::Result<WholeFile> {
+        let first = first_pass(path, settings, window)?;
+        let skeleton = first.skeleton.seal(settings);
+        let (mut findings, facts) = skeleton.check(settings);
+        // The skeleton holds only some of the blocks: the signature of the
+        // whole file decides P010.
+        findings.retain(|d| !analyzer::stream::is_mismatch(d));
+        if let Some(d) = first
+            .signature
+            .as_ref()
+            .and_then(analyzer::stream::mismatch_finding)
+        {
+            let end = empty_window(settings, skeleton.end(), 0);
+            let kept = analyzer::finish_window(&end, &facts, settings, vec![d]);
+            if !kept.is_empty() {
+                findings = kept;
+            }
         }
+        Ok(WholeFile {
+            first,
+            skeleton,
+            findings,
+            facts,
+            size: std::fs::metadata(path)?.len(),
+        })
     }
-    (found, facts)
+
+    /// The file is for another control (P010): it gets that finding alone.
+    fn mismatch(&self) -> bool {
+        self.findings.iter().any(analyzer::stream::is_mismatch)
+    }
+}
+
+/// The report of a file read in windows: its findings, with the lines they
+/// need read back (pass 3).
+fn report(
+    path: &Path,
+    window: usize,
+    dialect: &(analyzer::Dialect, String),
+    diagnostics: Vec<Diagnostic>,
+    files: &[String],
+) -> std::io::Result<FileReport> {
+    let sparse = report_lines(path, &diagnostics, window)?;
+    Ok(FileReport {
+        path: path.to_path_buf(),
+        text: Arc::from(sparse.text.as_slice()),
+        diagnostics,
+        io_error: false,
+        extra_files: super::output::read_extra_files(files),
+        dialect: Some(dialect.clone()),
+        sparse: Some(sparse),
+    })
 }
 
 /// One file's check in windows.
@@ -323,84 +351,64 @@ pub fn check_file(
     head: Arc<[u8]>,
     dialect: (analyzer::Dialect, String),
 ) -> Option<FileReport> {
-    let report = |text: Arc<[u8]>, diagnostics, extra_files, sparse| FileReport {
-        path: job.path.to_path_buf(),
-        text,
-        diagnostics,
-        io_error: false,
-        extra_files,
-        dialect: Some(dialect.clone()),
-        sparse,
-    };
     let parsed = analyzer::parse_text_lean(head.clone(), job.settings);
     if parsed.binary {
-        return Some(report(
-            head,
-            analyzer::lint(&parsed, job.settings),
-            Vec::new(),
-            None,
-        ));
+        return Some(FileReport {
+            path: job.path.to_path_buf(),
+            text: head,
+            diagnostics: analyzer::lint(&parsed, job.settings),
+            io_error: false,
+            extra_files: Vec::new(),
+            dialect: Some(dialect),
+            sparse: None,
+        });
     }
-    match check_windows(job) {
-        Ok(None) => None,
-        Ok(Some((diagnostics, extra_files, sparse))) => {
-            let text = Arc::from(sparse.text.as_slice());
-            Some(report(text, diagnostics, extra_files, Some(sparse)))
-        }
-        Err(e) => Some(FileReport::io_error(job.path.to_path_buf(), e.to_string())),
-    }
+    check_windows(job, &dialect)
+        .unwrap_or_else(|e| Some(FileReport::io_error(job.path.to_path_buf(), e.to_string())))
 }
 
-type Checked = (
-    Vec<Diagnostic>,
-    Vec<(std::path::PathBuf, Arc<[u8]>)>,
-    Sparse,
-);
-
-fn check_windows(job: &Job<'_>) -> std::io::Result<Option<Checked>> {
+fn check_windows(
+    job: &Job<'_>,
+    dialect: &(analyzer::Dialect, String),
+) -> std::io::Result<Option<FileReport>> {
     let (path, settings, window) = (job.path, job.settings, job.window);
-    let first = first_pass(path, settings, window)?;
-    let skeleton = first.skeleton.program(settings);
-    let (whole, facts) = whole_file(&first, &skeleton, settings);
-    if whole.iter().any(analyzer::stream::is_mismatch) {
-        let sparse = report_lines(path, &whole, window)?;
-        return Ok(Some((whole, Vec::new(), sparse)));
+    let whole = WholeFile::read(path, settings, window)?;
+    if whole.mismatch() {
+        return report(path, window, dialect, whole.findings, &[]).map(Some);
     }
     let subprogram = job.subprogram_by_name
-        || runtime::interp::files::is_subprogram_file(&skeleton, settings.file_stem.as_deref());
-    let single_pass = first.main.single_pass();
-    let size = std::fs::metadata(path).map_or(0, |m| m.len());
+        || runtime::interp::files::is_subprogram_file(
+            whole.skeleton.program(),
+            settings.file_stem.as_deref(),
+        );
+    let single_pass = whole.first.main.single_pass();
     let run = !job.args.no_run && !subprogram;
-    if run && !single_pass && holdable(size) && job.args.window_bytes.is_none() {
+    if run && !single_pass && holdable(whole.size) && job.args.window_bytes.is_none() {
         return Ok(None);
     }
     let interpret = run && single_pass;
     let (tx, rx) = std::sync::mpsc::sync_channel::<Arc<Program>>(1);
     let ((mut diagnostics, tail), run_out) = std::thread::scope(|s| -> std::io::Result<_> {
-        let interp = interpret.then(|| s.spawn(|| run_windows(job, &first, rx)));
-        let linted = lint_windows(path, settings, window, &first, whole, &facts, Some(tx))?;
+        let interp = interpret.then(|| s.spawn(|| run_windows(job, &whole.first, rx)));
+        let linted = lint_windows(path, settings, window, &whole, Some(tx))?;
         Ok((linted, interp.and_then(|h| h.join().ok()).flatten()))
     })?;
-    let mut extra_files = Vec::new();
     if run && !single_pass {
-        diagnostics.push(not_run(size));
+        diagnostics.push(not_run(whole.size));
     }
-    if let Some((out_diagnostics, files)) = run_out {
-        let finished = analyzer::finish_window(&tail, &facts, settings, out_diagnostics);
+    let mut files = Vec::new();
+    if let Some((out_diagnostics, called)) = run_out {
+        let finished = analyzer::finish_window(&tail, &whole.facts, settings, out_diagnostics);
         diagnostics = analyzer::merge(diagnostics, finished, settings);
-        extra_files = super::output::read_extra_files(&files);
+        files = called;
     }
-    let sparse = report_lines(path, &diagnostics, window)?;
-    Ok(Some((diagnostics, extra_files, sparse)))
+    report(path, window, dialect, diagnostics, &files).map(Some)
 }
 
 /// An empty window at file offset `at` on line `line`: the window of an
 /// empty file, or the end of one.
 fn empty_window(settings: &Settings, at: u32, line: u32) -> Program {
-    let opts = syntax::ParseOptions {
-        dialect: settings.dialect,
-        variant: settings.variant,
-    };
+    let opts = settings.parse_options();
     syntax::parse_window(opts, Arc::from(&b""[..]), at, line, ParserState::default()).0
 }
 
@@ -425,19 +433,17 @@ fn lint_windows(
     path: &Path,
     settings: &Settings,
     window: usize,
-    first: &FirstPass,
-    whole: Vec<Diagnostic>,
-    facts: &analyzer::stream::FileFacts,
-    feed: Option<std::sync::mpsc::SyncSender<Arc<Program>>>,
+    whole: &WholeFile,
+    mut feed: Option<std::sync::mpsc::SyncSender<Arc<Program>>>,
 ) -> std::io::Result<(Vec<Diagnostic>, Program)> {
-    let mut checks = analyzer::stream::WindowChecks::new(settings, &first.skeleton);
+    let facts = &whole.facts;
+    let mut checks = analyzer::stream::WindowChecks::new(settings, &whole.first.skeleton);
     // The windows' findings come in file order: bounded as they come.
     let mut statics = analyzer::Limiter::new(settings);
     let mut end = None;
     let mut parsed = Parsed::new(Windows::open(path, window)?, settings);
     let mut utf8 = true;
     // The interpreter may stop before the end (and drop its end).
-    let mut feed = feed;
     while let Some(p) = parsed.next_program()? {
         let p = Arc::new(p);
         if feed.as_ref().is_some_and(|tx| tx.send(p.clone()).is_err()) {
@@ -454,7 +460,7 @@ fn lint_windows(
     }
     drop(feed);
     let mut statics = statics.finish();
-    statics.extend(whole);
+    statics.extend(whole.findings.iter().cloned());
     let (at, line) = end.unwrap_or((0, 0));
     let tail = empty_window(settings, at, line);
     statics.extend(checks.finish(&tail, facts, settings));
@@ -473,9 +479,9 @@ pub struct RunParts<'a> {
 }
 
 impl RunParts<'_> {
-    /// The run's input with `program`, the file's first window; the budgets
-    /// default to the whole file's (`first.blocks`).
-    fn input<'p>(&'p self, program: &'p Program, first: &FirstPass) -> runtime::RunInput<'p> {
+    /// The run's input with `program` (the file, or its first window); the
+    /// budgets default to those of a file of `blocks` blocks.
+    pub fn input<'p>(&'p self, program: &'p Program, blocks: usize) -> runtime::RunInput<'p> {
         runtime::RunInput {
             program,
             settings: self.settings,
@@ -483,10 +489,10 @@ impl RunParts<'_> {
             resolver: self.resolver,
             step_budget: self
                 .step_budget
-                .unwrap_or_else(|| runtime::default_step_budget(first.blocks)),
+                .unwrap_or_else(|| runtime::default_step_budget(blocks)),
             motion_budget: self
                 .motion_budget
-                .unwrap_or_else(|| runtime::default_motion_budget(first.blocks)),
+                .unwrap_or_else(|| runtime::default_motion_budget(blocks)),
             emit_canon: false,
             tool_table: self.tool_table,
             var_file: self.var_file,
@@ -506,9 +512,9 @@ pub struct RunWindows {
 }
 
 /// `run`'s summary of `path` in windows: the static checks on one thread while
-/// the interpreter and the planner read the file again on this one
-/// (`dryrun::stream_totals`, which passes over it twice when a long program
-/// needs the closed-form planner).
+/// the interpreter reads the file again on this one and the planner plans on
+/// a third (`run::plan_beside_with`, which passes over the file twice when a
+/// long program needs the closed-form planner).
 pub fn run_file(
     path: &Path,
     window: usize,
@@ -517,42 +523,26 @@ pub fn run_file(
     dialect: (analyzer::Dialect, String),
 ) -> std::io::Result<RunWindows> {
     let settings = parts.settings;
-    let first = first_pass(path, settings, window)?;
-    let skeleton = first.skeleton.program(settings);
-    let (whole, facts) = whole_file(&first, &skeleton, settings);
-    let report = |diagnostics: Vec<Diagnostic>, files: &[String]| -> std::io::Result<FileReport> {
-        let sparse = report_lines(path, &diagnostics, window)?;
-        Ok(FileReport {
-            path: path.to_path_buf(),
-            text: Arc::from(sparse.text.as_slice()),
-            diagnostics,
-            io_error: false,
-            extra_files: super::output::read_extra_files(files),
-            dialect: Some(dialect.clone()),
-            sparse: Some(sparse),
-        })
-    };
+    let whole = WholeFile::read(path, settings, window)?;
     let none = |diagnostics| -> std::io::Result<RunWindows> {
         Ok(RunWindows {
-            report: report(diagnostics, &[])?,
+            report: report(path, window, &dialect, diagnostics, &[])?,
             out: None,
             totals: Default::default(),
         })
     };
-    if whole.iter().any(analyzer::stream::is_mismatch) {
-        return none(whole);
+    if whole.mismatch() {
+        return none(whole.findings);
     }
-    if !first.main.single_pass() {
-        let (mut diagnostics, _) =
-            lint_windows(path, settings, window, &first, whole, &facts, None)?;
-        let size = std::fs::metadata(path).map_or(0, |m| m.len());
-        diagnostics.push(not_run(size));
+    if !whole.first.main.single_pass() {
+        let (mut diagnostics, _) = lint_windows(path, settings, window, &whole, None)?;
+        diagnostics.push(not_run(whole.size));
         return none(diagnostics);
     }
     let (linted, run) = std::thread::scope(|s| {
-        let lint = s.spawn(|| lint_windows(path, settings, window, &first, whole, &facts, None));
+        let lint = s.spawn(|| lint_windows(path, settings, window, &whole, None));
         let (out, totals, _) = super::run::plan_beside_with(profile, false, |sink| {
-            run_pass(path, window, &first, parts, sink)
+            run_pass(path, window, &whole.first, parts, sink)
         });
         (lint.join(), (out, totals))
     });
@@ -562,13 +552,13 @@ pub fn run_file(
     let mut out = out?;
     let finished = analyzer::finish_window(
         &tail,
-        &facts,
+        &whole.facts,
         settings,
         std::mem::take(&mut out.diagnostics),
     );
     let diagnostics = analyzer::merge(statics, finished, settings);
     Ok(RunWindows {
-        report: report(diagnostics, &out.files)?,
+        report: report(path, window, &dialect, diagnostics, &out.files)?,
         out: Some(out),
         totals,
     })
@@ -587,7 +577,7 @@ fn run_pass(
         Some(p) => p,
         None => empty_window(parts.settings, 0, 0),
     };
-    let input = parts.input(&program, first);
+    let input = parts.input(&program, first.blocks);
     let mut failed = None;
     let mut next = || match parsed.next_program() {
         Ok(p) => p.map(Arc::new),
@@ -609,35 +599,22 @@ fn run_windows(
     first: &FirstPass,
     rx: std::sync::mpsc::Receiver<Arc<Program>>,
 ) -> Option<(Vec<Diagnostic>, Vec<String>)> {
-    let (loaded, settings) = (job.loaded, job.settings);
+    let settings = job.settings;
     // An empty file has no window: it runs as an empty program.
     let program = rx
         .recv()
         .unwrap_or_else(|_| Arc::new(empty_window(settings, 0, 0)));
-    let resolver = crate::resolve::FsResolver::for_command_line(
+    super::check::with_run_parts(
         job.path,
-        settings.dialect,
-        &loaded.config.machine,
-        loaded.path.as_deref(),
-        job.called,
-    );
-    let files = loaded.linuxcnc_files();
-    for w in &files.warnings {
-        super::workspace::warn_once(w);
-    }
-    let machine =
-        super::workspace::machine_table_with(&loaded.config.machine, files.ini_profile.as_ref());
-    let parts = RunParts {
         settings,
-        machine: &machine,
-        resolver: &resolver,
-        tool_table: files.tool_table.as_deref(),
-        var_file: files.var_file.as_deref(),
-        step_budget: job.args.step_budget,
-        motion_budget: job.args.motion_budget,
-    };
-    let input = parts.input(&program, first);
-    let mut next = || rx.recv().ok();
-    let out = runtime::interp::run_windowed(&input, &first.main, &mut next, &mut |_, _| {});
-    Some((out.diagnostics, out.files))
+        job.loaded,
+        job.args,
+        job.called,
+        |parts| {
+            let input = parts.input(&program, first.blocks);
+            let mut next = || rx.recv().ok();
+            let out = runtime::interp::run_windowed(&input, &first.main, &mut next, &mut |_, _| {});
+            Some((out.diagnostics, out.files))
+        },
+    )
 }

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use analyzer::syntax::{parse, ParseOptions, Program};
+use analyzer::syntax::{parse, Program};
 use ropey::Rope;
 use tower_lsp_server::ls_types::{Location, Position, Range, Uri};
 
@@ -26,13 +26,7 @@ pub struct OtherDoc {
 
 pub(super) fn parse_rope(snap: &Snapshot, rope: &Rope) -> Program {
     let settings = &snap.doc.settings;
-    parse(
-        ParseOptions {
-            dialect: settings.dialect,
-            variant: settings.variant,
-        },
-        super::position::rope_bytes(rope),
-    )
+    parse(settings.parse_options(), super::position::rope_bytes(rope))
 }
 
 /// The file that defines a subprogram/program the document calls but does not define.

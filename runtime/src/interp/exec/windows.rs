@@ -13,8 +13,8 @@ use super::*;
 pub struct FileFacts {
     flow: bool,
     heads: u32,
+    /// A tapping cycle anywhere makes M29 the rigid-tapping code ([`FileEntry::taps`]).
     taps: bool,
-    returns: bool,
 }
 
 impl FileFacts {
@@ -23,9 +23,9 @@ impl FileFacts {
         let (flow, heads) = resume::flow_and_heads(window);
         self.flow |= flow;
         self.heads += heads;
-        let entry = FileEntry::new(ProgRef::Borrowed(window), FileId(0));
-        self.taps |= entry.taps;
-        self.returns |= entry.returns;
+        self.taps |= window.items.iter().any(|it| {
+            matches!(&it.kind, analyzer::syntax::ItemKind::Word(w) if super::super::files::is_tapping_cycle(w))
+        });
     }
 
     /// Whether every block runs at most once, in order: no flow control, no
@@ -59,8 +59,8 @@ pub fn run_windowed_owned(
     sink: &mut OwnedMotionSink<'_>,
 ) -> RunOutput {
     let mut it = Interp::new(input, false);
+    // A single-pass file has no M99, so it never `returns`.
     it.files[0].taps = facts.taps;
-    it.files[0].returns = facts.returns;
     it.windows = Some(*facts);
     // Block indices restart in every window: only a single-pass file runs in
     // windows, and for it the rule keeps no per-block memory.
@@ -80,7 +80,6 @@ impl Interp<'_, '_> {
         };
         let mut entry = FileEntry::new(ProgRef::Shared(window), FileId(0));
         entry.taps = facts.taps;
-        entry.returns = facts.returns;
         self.files[0] = entry;
         self.cur = (0, 0);
         true
