@@ -1,6 +1,6 @@
 //! Every call of a flow-sensitive rule's check, in the order they run and
 //! report (diagnostic order is output): the checks of a block against the state
-//! before it (`state_checks`, and `plain_motion_checks` for the fast path), the
+//! before it (`state_checks`), the
 //! pass over its items (`spec_items`), the input files, loaded subprograms and
 //! the program end. Each check is a function in its rule's file
 //! (`crate::rules::<rule>`); the per-block ones take a `rules::check::Cx`, built
@@ -10,7 +10,7 @@
 use analyzer::syntax::{Expr, Item};
 
 use super::*;
-use crate::rules::check::{BlockItems, Cx, Memory, Sink, AXES};
+use crate::rules::check::{Cx, Memory, Sink, AXES};
 use crate::rules::{
     arc_uvw_plane, arc_words, comp_conflict, comp_motion, context_restore, coordinate_mode,
     cycle_hygiene, cycle_still_active, feed_spindle_off, inverse_time, involute, lathe_cycle,
@@ -31,13 +31,10 @@ impl<'a> Interp<'a, '_> {
             .iter()
             .any(|g| w.has_g(*g));
         if w.any_axis() && !consumed && self.st.modal.motion != 800 {
-            let span = w.g.first().map(|g| g.1).unwrap_or_else(|| {
-                b"XYZABCUVW"
-                    .iter()
-                    .find(|c| w.has(**c))
-                    .map(|c| w.sp(*c))
-                    .unwrap_or_default()
-            });
+            let span =
+                w.g.first()
+                    .map(|g| g.1)
+                    .unwrap_or_else(|| w.first_axis().map(|c| w.sp(c)).unwrap_or_default());
             return Some((self.st.modal.motion, span));
         }
         None
@@ -124,38 +121,6 @@ impl<'a> Interp<'a, '_> {
         }
         trc_lookahead::check(cx, &mut mem.trc_lookahead);
         Ok(())
-    }
-
-    /// [`Self::state_checks`] reduced to what can act on a plain motion line of the
-    /// fast path (`fast.rs`: RS274/NGC, only X/Y/Z/F numbers, a modal G0/G1, no cutter
-    /// compensation, feed per minute, no diameter mode, no G66). Every other check
-    /// needs a G/M code, another letter, or a state the fast path excludes; what
-    /// remains, in the general order, is:
-    /// - the block's motion (`block_motion`): the modal code, at the first axis word;
-    /// - T003: Z after an M6 that kept the old tool's length offset;
-    /// - T004: the first motion after G40 clears the flag (a line, so never an error);
-    /// - the M70/M73 levels left by a return, feed with the spindle stopped (when
-    ///   selected), and the look-ahead count.
-    ///
-    /// `runtime/tests/fast_path.rs` runs programs both ways and compares everything.
-    pub(super) fn plain_motion_checks(&mut self, w: &Words, bspan: Span) {
-        let span = [b'X', b'Y', b'Z']
-            .iter()
-            .find(|c| w.has(**c))
-            .map(|c| w.sp(*c))
-            .unwrap_or_default();
-        let motion = Some((self.st.modal.motion, span));
-        // No `$` words or bare letters on a plain line.
-        let BlockItems { dollar, bare_axes } = &mut self.items;
-        dollar.clear();
-        bare_axes.clear();
-        let (mut cx, mem) = self.check_cx(w, bspan, motion);
-        let cx = &mut cx;
-        tool_offset_state::plain_check(cx, &mut mem.tool_offset_state);
-        comp_motion::plain_check(&mut mem.comp_motion);
-        context_restore::plain_check(cx, &mut mem.context_restore);
-        feed_spindle_off::plain_check(cx, &mut mem.feed_spindle_off);
-        trc_lookahead::plain_check(cx, &mut mem.trc_lookahead);
     }
 
     /// Modes a program should cancel before M2/M30.

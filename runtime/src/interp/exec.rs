@@ -79,8 +79,6 @@ pub use windows::{
 
 #[path = "checks.rs"]
 mod checks;
-#[path = "fast.rs"]
-mod fast;
 
 const NUM_PARAMS: usize = 20_000;
 
@@ -97,16 +95,6 @@ pub fn run(input: &RunInput<'_>) -> RunOutput {
 /// only need motions and diagnostics save about 500 bytes per block).
 pub fn run_with_snapshots(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
     let mut it = Interp::new(input, snapshots);
-    it.run_main();
-    it.finish()
-}
-
-/// Like [`run_with_snapshots`] with every block on the general path: the reference
-/// the fast path for plain motion blocks is tested against.
-#[doc(hidden)]
-pub fn run_without_fast_path(input: &RunInput<'_>, snapshots: bool) -> RunOutput {
-    let mut it = Interp::new(input, snapshots);
-    it.fast_path = false;
     it.run_main();
     it.finish()
 }
@@ -181,9 +169,14 @@ struct Frame {
 }
 
 /// The evaluated words of one block (the rule checks in `crate::rules` read them).
+///
+/// `letters` has bit `c - b'A'` set for every letter that holds a value, so that
+/// asking for a letter, or for any of a set of letters, costs one mask test and
+/// clearing touches only the letters the block wrote.
 #[derive(Default)]
 pub(crate) struct Words {
-    pub(crate) v: [Option<f64>; 26],
+    v: [Option<f64>; 26],
+    letters: u32,
     pub(crate) span: [Span; 26],
     pub(crate) point: [bool; 26],
     pub(crate) g: Vec<(u32, Span)>,
@@ -191,8 +184,8 @@ pub(crate) struct Words {
     pub(crate) pname: Option<String>,
     pub(crate) n: Option<i64>,
     pub(crate) ijk_order: Vec<(u8, f64)>,
-    /// The N number as written.
-    pub(crate) n_text: Option<String>,
+    /// The N number's text (whitespace kept); `n_text` reads it as written.
+    pub(crate) n_span: Option<Span>,
     /// RS274/NGC polar words `@` (radius) and `^` (angle, degrees).
     pub(crate) polar_r: Option<f64>,
     pub(crate) polar_a: Option<f64>,
@@ -200,11 +193,35 @@ pub(crate) struct Words {
     pub(crate) raw_k: Option<f64>,
 }
 
+/// The mask bit of letter `c` (`A`..=`Z`); 0 for anything else.
+const fn letter_bit(c: u8) -> u32 {
+    if c.is_ascii_uppercase() {
+        1 << (c - b'A')
+    } else {
+        0
+    }
+}
+
+/// The mask of every letter in `s`.
+pub(crate) const fn letter_mask(s: &[u8]) -> u32 {
+    let mut m = 0;
+    let mut i = 0;
+    while i < s.len() {
+        m |= letter_bit(s[i]);
+        i += 1;
+    }
+    m
+}
+
+/// The axis letters a block can move.
+const AXIS_LETTERS: u32 = letter_mask(b"XYZABCUVW");
+
 impl Words {
     /// Makes the words those of `Words::default()` again, keeping the lists' buffers.
     fn clear(&mut self) {
         let Words {
             v,
+            letters,
             span,
             point,
             g,
@@ -212,34 +229,77 @@ impl Words {
             pname,
             n,
             ijk_order,
-            n_text,
+            n_span,
             polar_r,
             polar_a,
             raw_k,
         } = self;
-        *v = [None; 26];
-        *span = [Span::default(); 26];
-        *point = [false; 26];
+        let mut left = *letters;
+        while left != 0 {
+            let i = left.trailing_zeros() as usize;
+            left &= left - 1;
+            v[i] = None;
+            span[i] = Span::default();
+            point[i] = false;
+        }
+        *letters = 0;
         g.clear();
         m.clear();
         *pname = None;
         *n = None;
         ijk_order.clear();
-        *n_text = None;
+        *n_span = None;
         *polar_r = None;
         *polar_a = None;
         *raw_k = None;
     }
 
+    /// Gives letter `c` the value `val` (the span and decimal point stay as they are).
+    pub(crate) fn set(&mut self, c: u8, val: f64) {
+        if let Some(slot) = self.v.get_mut(usize::from(c.wrapping_sub(b'A'))) {
+            *slot = Some(val);
+            self.letters |= letter_bit(c);
+        }
+    }
+
+    /// Gives letter `c` a word read from the block.
+    pub(crate) fn set_word(&mut self, c: u8, val: f64, span: Span, point: bool) {
+        let i = usize::from(c.wrapping_sub(b'A'));
+        if i < 26 {
+            self.v[i] = Some(val);
+            self.span[i] = span;
+            self.point[i] = point;
+            self.letters |= letter_bit(c);
+        }
+    }
+
+    /// Applies `f` to letter `c`'s value, if it has one.
+    pub(crate) fn map(&mut self, c: u8, f: impl FnOnce(f64) -> f64) {
+        if let Some(slot) = self.v.get_mut(usize::from(c.wrapping_sub(b'A'))) {
+            *slot = slot.map(f);
+        }
+    }
+
     pub(crate) fn get(&self, c: u8) -> Option<f64> {
-        self.v.get((c - b'A') as usize).copied().flatten()
+        self.v
+            .get(usize::from(c.wrapping_sub(b'A')))
+            .copied()
+            .flatten()
     }
     pub(crate) fn has(&self, c: u8) -> bool {
-        self.get(c).is_some()
+        self.letters & letter_bit(c) != 0
+    }
+    /// Whether any letter of `mask` (from [`letter_mask`]) holds a value.
+    pub(crate) fn has_any(&self, mask: u32) -> bool {
+        self.letters & mask != 0
+    }
+    /// Whether the block has no letter word, no G and no M code.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.letters == 0 && self.g.is_empty() && self.m.is_empty()
     }
     pub(crate) fn sp(&self, c: u8) -> Span {
         self.span
-            .get((c - b'A') as usize)
+            .get(usize::from(c.wrapping_sub(b'A')))
             .copied()
             .unwrap_or_default()
     }
@@ -265,9 +325,14 @@ impl Words {
             .unwrap_or_default()
     }
     pub(crate) fn any_axis(&self) -> bool {
-        b"XYZABCUVW".iter().any(|c| self.has(*c))
-            || self.polar_r.is_some()
-            || self.polar_a.is_some()
+        self.has_any(AXIS_LETTERS) || self.polar_r.is_some() || self.polar_a.is_some()
+    }
+    /// The first axis letter (in `XYZABCUVW` order) the block has.
+    pub(crate) fn first_axis(&self) -> Option<u8> {
+        if !self.has_any(AXIS_LETTERS) {
+            return None;
+        }
+        b"XYZABCUVW".iter().copied().find(|c| self.has(*c))
     }
 }
 
@@ -322,13 +387,7 @@ struct Interp<'a, 'i> {
     /// The block's inverse-time rate is already out: rs274 sets it once per
     /// compensated move, from the programmed path, before any corner arc.
     inv_rate_set: bool,
-    /// Plain motion blocks take `fast::fast_motion_block` (off only to test it).
-    fast_path: bool,
-    /// The fast path's words, kept between blocks: a `Words` is several hundred
-    /// bytes, and clearing the four letters the fast path writes is cheaper than
-    /// building a new one for every line.
-    fast_words: Option<Box<Words>>,
-    /// The general path's words, kept between blocks (`Words::clear`).
+    /// The last block's words, kept between blocks (`Words::clear`).
     block_words: Option<Box<Words>>,
     /// RS274/NGC: the state saved by M70 outside any subroutine.
     top_context: Option<context::SavedContext>,
@@ -485,8 +544,6 @@ impl<'a, 'i> Interp<'a, 'i> {
             tlo_drift: [0.0; 6],
             feed_override_off: false,
             inv_rate_set: false,
-            fast_path: true,
-            fast_words: Some(Box::default()),
             block_words: Some(Box::default()),
             top_context: None,
             naive_tol: 0.0,

@@ -24,12 +24,12 @@ pub mod values;
 pub use exec::{
     not_run_in_windows, rerun, run, run_checkpointed, run_checkpointed_observed,
     run_checkpointed_recording, run_streaming, run_streaming_owned, run_windowed,
-    run_windowed_owned, run_with_snapshots, run_without_fast_path, Checkpoints, MainFileFacts,
-    MotionObserver, MotionSink, NextWindow, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
+    run_windowed_owned, run_with_snapshots, Checkpoints, MainFileFacts, MotionObserver, MotionSink,
+    NextWindow, OwnedMotionSink, SNAPSHOT_LIMIT, STOP_SUFFIX,
 };
 pub use state::{Modal, State};
 // What the rule checks in `crate::rules` read (`rules::check::Cx`).
-pub(crate) use exec::{dist, target_of, tool_diameter_of, unit_of, Words};
+pub(crate) use exec::{dist, letter_mask, target_of, tool_diameter_of, unit_of, Words};
 pub(crate) use machine_cfg::MachineCfg;
 pub(crate) use state::{is_cycle, is_group_1, moves_to_axis_words};
 pub use types::*;

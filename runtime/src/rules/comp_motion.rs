@@ -73,12 +73,6 @@ impl Stop {
     }
 }
 
-/// [`check`] on a plain motion line of the fast path: a line after G40 clears the flag.
-#[inline(always)]
-pub(crate) fn plain_check(mem: &mut Mem) {
-    mem.after_g40 = false;
-}
-
 /// Motion rules at the start and end of cutter compensation.
 #[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {

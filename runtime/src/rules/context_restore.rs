@@ -63,13 +63,3 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     mem.saved_levels.retain(|l| *l <= level);
     Ok(())
 }
-
-/// [`check`] on a plain motion line of the fast path: only a return may have
-/// left levels to forget.
-#[inline(always)]
-pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
-    if !mem.saved_levels.is_empty() {
-        let level = cx.call_level;
-        mem.saved_levels.retain(|l| *l <= level);
-    }
-}

@@ -65,17 +65,6 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     }
 }
 
-/// [`check`] on a plain motion line of the fast path (a modal G0 or G1).
-#[inline(always)]
-pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
-    let Some((m, s)) = cx.motion else {
-        return;
-    };
-    if m == 10 && wanted(cx, mem) && cx.st.spindle_dir == 0 {
-        cx.out.diag(&FEED_SPINDLE_OFF, Severity::Warning, s, "feed move with the spindle stopped: the tool would rub or break; start the spindle (M3/M4) first");
-    }
-}
-
 /// Whether the rule is selected (looked up once).
 fn wanted(cx: &Cx<'_, '_>, mem: &mut Mem) -> bool {
     match mem.wanted {

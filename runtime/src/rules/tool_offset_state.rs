@@ -137,14 +137,3 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     }
     Ok(())
 }
-
-/// [`check`] on a plain motion line of the fast path: only Z after an M6 that
-/// kept the old tool's length offset can apply.
-#[inline(always)]
-pub(crate) fn plain_check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
-    let w = cx.w;
-    if mem.m6_without_g43 && w.has(b'Z') {
-        mem.m6_without_g43 = false;
-        cx.out.diag(&TOOL_OFFSET_STATE, Severity::Info, w.sp(b'Z'), "M6 loaded a new tool but the length offset is still the old tool's: give G43 (H of the new tool) before moving Z");
-    }
-}

@@ -170,11 +170,3 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     }
     mem.motions_seen = n;
 }
-
-/// [`check`] on a plain motion line of the fast path: compensation is off
-/// there, so the count restarts.
-#[inline(always)]
-pub(crate) fn plain_check(cx: &Cx<'_, '_>, mem: &mut Mem) {
-    mem.blocks_without_motion = 0;
-    mem.motions_seen = cx.motions_buffered;
-}

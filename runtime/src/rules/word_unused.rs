@@ -5,7 +5,7 @@ use analyzer::declare_rule;
 use analyzer::Diagnostic;
 
 use super::check::Cx;
-use crate::interp::{is_cycle, is_group_1};
+use crate::interp::{is_cycle, is_group_1, letter_mask};
 
 declare_rule! {
     /// ## What it does
@@ -67,11 +67,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         && w.any_axis()
         && !gm(&[100, 280, 300, 520, 920, 431, 432])
     {
-        let span = b"XYZABCUVW"
-            .iter()
-            .find(|c| w.has(**c))
-            .map(|c| w.sp(*c))
-            .unwrap_or(cx.bspan);
+        let span = w.first_axis().map(|c| w.sp(c)).unwrap_or(cx.bspan);
         return Err(cx.out.err(
             &WORD_UNUSED,
             span,
@@ -81,11 +77,32 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         ));
     }
     let mm = |codes: &[u32]| codes.iter().any(|c| w.has_m(*c));
+    if w.has_any(letter_mask(b"DHIJLPQR")) {
+        unused_words(cx)?;
+    }
+    if let Some(&(v, s)) = cx.items.dollar.first() {
+        let takes = mm(&[30, 40, 50, 190, 510]) || gm(&[330, 331, 760, 950, 960, 970]);
+        if !takes {
+            return Err(cx.out.err(&WORD_UNUSED, s, "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it: LinuxCNC stops here"));
+        }
+        let spindles = cx.input.machine.spindles.unwrap_or(1.0);
+        if v != -1.0 && (v < 0.0 || v >= spindles || v.fract() != 0.0) {
+            return Err(cx.out.err(&WORD_UNUSED, s, format!("${v} selects a spindle this machine does not have (spindles 0 to {}, or $-1 for all): LinuxCNC stops here", spindles - 1.0)));
+        }
+    }
+    Ok(())
+}
+
+/// D, H, I, J, L, P, Q and R words that no code of the line uses (LinuxCNC's check
+/// of other codes).
+fn unused_words(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
+    let w = cx.w;
+    let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
+    let mm = |codes: &[u32]| codes.iter().any(|c| w.has_m(*c));
     let user_m = w.m.iter().any(|(m, _)| (1000..=1990).contains(m));
     let mode = cx.motion_mode();
     let lathe_cycle = gm(&[700, 710, 711, 712, 720, 721, 722]);
     let cycle = is_cycle(mode);
-    // Words that no code of the line uses (LinuxCNC's check of other codes).
     let unused: [(u8, bool, &str); 8] = [
         (b'D', gm(&[410, 411, 420, 421, 960]) || lathe_cycle, "D word with no G41, G41.1, G42, G42.1, G71, G71.1, G71.2 or G96 to use it"),
         (b'H', gm(&[430, 432, 760]), "H word with no G43 or G76 to use it"),
@@ -105,16 +122,6 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
                     "{msg}: LinuxCNC stops here; remove the word or add the code it belongs to"
                 ),
             ));
-        }
-    }
-    if let Some(&(v, s)) = cx.items.dollar.first() {
-        let takes = mm(&[30, 40, 50, 190, 510]) || gm(&[330, 331, 760, 950, 960, 970]);
-        if !takes {
-            return Err(cx.out.err(&WORD_UNUSED, s, "$ (spindle selection) word with no M3, M4, M5, M19, M51, G33, G33.1, G76, G95, G96 or G97 to use it: LinuxCNC stops here"));
-        }
-        let spindles = cx.input.machine.spindles.unwrap_or(1.0);
-        if v != -1.0 && (v < 0.0 || v >= spindles || v.fract() != 0.0) {
-            return Err(cx.out.err(&WORD_UNUSED, s, format!("${v} selects a spindle this machine does not have (spindles 0 to {}, or $-1 for all): LinuxCNC stops here", spindles - 1.0)));
         }
     }
     Ok(())

@@ -146,11 +146,7 @@ impl Interp<'_, '_> {
         }
         let now = self.current_context();
         let mut w = Words::default();
-        let set = |w: &mut Words, c: u8, v: f64| {
-            if let Some(slot) = w.v.get_mut(usize::from(c - b'A')) {
-                *slot = Some(v);
-            }
-        };
+        let set = |w: &mut Words, c: u8, v: f64| w.set(c, v);
         let u = self.unit();
         if saved.feed != now.feed {
             // LinuxCNC writes the feed with one decimal (`F%.1f`).
@@ -193,7 +189,7 @@ impl Interp<'_, '_> {
             w.m.push((m, span));
         }
         let rest: Vec<u32> = ms.collect();
-        if w.g.is_empty() && w.m.is_empty() && w.v.iter().all(Option::is_none) {
+        if w.is_empty() {
             return Ok(());
         }
         run(self, &w)?;

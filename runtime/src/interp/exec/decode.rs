@@ -81,14 +81,6 @@ impl Interp<'_, '_> {
         if items.is_empty() {
             return Ok(Flow::Next);
         }
-        // A plain motion line needs nothing of `spec_items` but the clearing of its
-        // per-block lists, which the fast path does (no `$`, no expressions). A G7x
-        // profile being read collects its moves instead of running them.
-        if self.g7x.is_none() {
-            if let Some(r) = self.fast_motion_block(items, block.span) {
-                return r;
-            }
-        }
         self.spec_items(&prog, items);
         // A bare O-word line (program title, M98 target) does nothing, not even its comments.
         if self.ngc()
@@ -263,15 +255,7 @@ impl Interp<'_, '_> {
                         }
                         b'N' => {
                             w.n = Some(val as i64);
-                            w.n_text = Some(match word.num() {
-                                Some(n) => prog
-                                    .str_of(n.span)
-                                    .chars()
-                                    .filter(|c| !c.is_whitespace())
-                                    .take_while(|c| *c != '.')
-                                    .collect(),
-                                None => format!("{}", val as i64),
-                            });
+                            w.n_span = word.num().map(|n| n.span);
                         }
                         b'O' => {}
                         // A G7x profile may use U and W (relative X and Z).
@@ -293,37 +277,38 @@ impl Interp<'_, '_> {
                         b'@' => w.polar_r = Some(val),
                         b'^' => w.polar_a = Some(val),
                         c @ b'A'..=b'Z' if !word.comma => {
-                            let i = (c - b'A') as usize;
                             // ServoWorks uses the first of duplicated words (§1.4).
-                            if self.dialect == Dialect::Servoworks && w.v[i].is_some() {
+                            if self.dialect == Dialect::Servoworks && w.has(c) {
                                 continue;
                             }
-                            w.v[i] = Some(val);
-                            w.span[i] = it.span;
-                            w.point[i] = point;
-                            if matches!(
-                                c,
-                                b'I' | b'J'
-                                    | b'K'
-                                    | b'A'
-                                    | b'B'
-                                    | b'C'
-                                    | b'D'
-                                    | b'E'
-                                    | b'F'
-                                    | b'H'
-                                    | b'M'
-                                    | b'Q'
-                                    | b'R'
-                                    | b'S'
-                                    | b'T'
-                                    | b'U'
-                                    | b'V'
-                                    | b'W'
-                                    | b'X'
-                                    | b'Y'
-                                    | b'Z'
-                            ) {
+                            w.set_word(c, val, it.span, point);
+                            // The written order of G65/G66 arguments (FANUC and
+                            // ServoWorks macro calls; RS274/NGC has none).
+                            if !self.ngc()
+                                && matches!(
+                                    c,
+                                    b'I' | b'J'
+                                        | b'K'
+                                        | b'A'
+                                        | b'B'
+                                        | b'C'
+                                        | b'D'
+                                        | b'E'
+                                        | b'F'
+                                        | b'H'
+                                        | b'M'
+                                        | b'Q'
+                                        | b'R'
+                                        | b'S'
+                                        | b'T'
+                                        | b'U'
+                                        | b'V'
+                                        | b'W'
+                                        | b'X'
+                                        | b'Y'
+                                        | b'Z'
+                                )
+                            {
                                 w.ijk_order.push((c, val));
                             }
                         }
@@ -347,8 +332,8 @@ impl Interp<'_, '_> {
         for (t, v, s, tainted) in assigns {
             self.assign(prog, t, v, s, tainted, None)?;
         }
-        if let (Some(c), Some(n)) = (self.canon.as_mut(), w.n_text.clone()) {
-            c.line_number = Some(n);
+        if let Some(c) = self.canon.as_mut() {
+            c.line_number = n_text(prog, w);
         }
         if self.st.ended {
             if !self.after_end_reported {
@@ -458,22 +443,20 @@ impl Interp<'_, '_> {
         match self.dialect {
             Dialect::Fanuc if !self.cfg.decimal_point_input => {
                 let inc = if self.st.modal.inch { 0.0001 } else { 0.001 };
-                for c in dist {
-                    let i = (c - b'A') as usize;
-                    if w.v[i].is_some() && !w.point[i] {
-                        if *c == b'Q' && w.has_g(760) {
+                for &c in dist {
+                    if w.has(c) && !w.point[(c - b'A') as usize] {
+                        if c == b'Q' && w.has_g(760) {
                             continue;
                         }
-                        w.v[i] = w.v[i].map(|v| v * inc);
+                        w.map(c, |v| v * inc);
                     }
                 }
             }
             Dialect::Servoworks if self.cfg.integer_machine_unit => {
                 let mu = self.cfg.machine_unit / if self.st.modal.inch { 25.4 } else { 1.0 };
-                for c in dist {
-                    let i = (c - b'A') as usize;
-                    if w.v[i].is_some() && !w.point[i] {
-                        w.v[i] = w.v[i].map(|v| v * mu);
+                for &c in dist {
+                    if w.has(c) && !w.point[(c - b'A') as usize] {
+                        w.map(c, |v| v * mu);
                     }
                 }
             }
@@ -487,9 +470,8 @@ impl Interp<'_, '_> {
                 } else {
                     self.st.modal.diameter
                 };
-                let i = (b'X' - b'A') as usize;
                 if diameter {
-                    w.v[i] = w.v[i].map(|v| v / 2.0);
+                    w.map(b'X', |v| v / 2.0);
                 }
             }
             _ => {}
@@ -500,36 +482,9 @@ impl Interp<'_, '_> {
         v * self.unit()
     }
 
-    pub(super) fn exec_words(
-        &mut self,
-        fi: usize,
-        bi: u32,
-        p: &Program,
-        w: &Words,
-        comments: &[(CommentKind, Span)],
-        bspan: Span,
-    ) -> Result<Flow, Diagnostic> {
-        let ngc = self.ngc();
-        self.block_exact = !ngc && w.has_g(90);
-        // Comments and messages.  rs274 keeps only the last parenthesised comment
-        // of a line.
-        let skip = if ngc {
-            let paren = |(_, s): &&(CommentKind, Span)| !p.str_of(*s).starts_with(';');
-            comments.iter().filter(paren).count().saturating_sub(1)
-        } else {
-            0
-        };
-        let mut seen = 0;
-        for (k, s) in comments {
-            if ngc && !p.str_of(*s).starts_with(';') {
-                seen += 1;
-                if seen <= skip {
-                    continue;
-                }
-            }
-            self.exec_comment(p, *k, *s)?;
-        }
-        self.state_checks(w, bspan)?;
+    /// The G codes that change how the block's own words read: units, spindle
+    /// speed mode and feed mode.
+    fn exec_g_before_words(&mut self, w: &Words) {
         // Units first so that every word of the block is read in them.
         if w.has_g(200) || w.has_g(210) {
             self.switch_units(w.has_g(200));
@@ -560,49 +515,12 @@ impl Interp<'_, '_> {
                 }
             }
         }
-        if let Some(f) = w.get(b'F') {
-            let u = if ngc {
-                self.unit()
-            } else if self.st.modal.inch {
-                25.4
-            } else {
-                1.0
-            };
-            self.st.feed = if self.st.modal.feed_mode == 930 {
-                f
-            } else {
-                f * u
-            };
-            if self.st.modal.feed_mode != 930 {
-                canon!(self, "SET_FEED_RATE({})", f4(f));
-            }
-        }
-        if let Some(s) = w.get(b'S') {
-            self.st.spindle = s;
-            canon!(self, "SET_SPINDLE_SPEED(0, {})", f4(s));
-            if self.st.spindle_dir != 0 {
-                let (rpm, dir) = (s, self.st.spindle_dir);
-                self.event(EventKind::Spindle { rpm, dir });
-            }
-        }
-        if let Some(t) = w.get(b'T') {
-            let t = t.round().max(0.0) as u32;
-            self.st.next_tool = t;
-            self.check_tool(t, w.sp(b'T'))?;
-            canon!(self, "SELECT_TOOL({t})");
-            if self.dialect == Dialect::Servoworks {
-                // ServoWorks changes the tool with the T word itself.
-                self.st.tool = t;
-                self.event(EventKind::ToolChange { tool: t });
-            } else {
-                self.event(EventKind::ToolSelect { tool: t });
-            }
-        }
-        // Subprogram calls (FANUC/ServoWorks) are handled at the end of the block.
-        let sw_m_after = self.dialect == Dialect::Servoworks;
-        if !sw_m_after {
-            self.exec_m_before(w)?;
-        }
+    }
+
+    /// The modal G codes after the M codes: dwell, plane, units, diameter mode,
+    /// compensation, tool length, coordinate system, path and distance modes.
+    fn exec_modal_g(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        let ngc = self.ngc();
         // Modal G codes.
         if w.has_g(40) {
             self.exec_dwell(w)?;
@@ -715,6 +633,88 @@ impl Interp<'_, '_> {
             self.st.modal.retract_old_z = false;
             self.canon_comment("interpreter: retract mode set to r_plane");
         }
+        Ok(())
+    }
+
+    pub(super) fn exec_words(
+        &mut self,
+        fi: usize,
+        bi: u32,
+        p: &Program,
+        w: &Words,
+        comments: &[(CommentKind, Span)],
+        bspan: Span,
+    ) -> Result<Flow, Diagnostic> {
+        let ngc = self.ngc();
+        self.block_exact = !ngc && w.has_g(90);
+        // Comments and messages.  rs274 keeps only the last parenthesised comment
+        // of a line.
+        let skip = if ngc {
+            let paren = |(_, s): &&(CommentKind, Span)| !p.str_of(*s).starts_with(';');
+            comments.iter().filter(paren).count().saturating_sub(1)
+        } else {
+            0
+        };
+        let mut seen = 0;
+        for (k, s) in comments {
+            if ngc && !p.str_of(*s).starts_with(';') {
+                seen += 1;
+                if seen <= skip {
+                    continue;
+                }
+            }
+            self.exec_comment(p, *k, *s)?;
+        }
+        self.state_checks(w, bspan)?;
+        if !w.g.is_empty() {
+            self.exec_g_before_words(w);
+        }
+        if let Some(f) = w.get(b'F') {
+            let u = if ngc {
+                self.unit()
+            } else if self.st.modal.inch {
+                25.4
+            } else {
+                1.0
+            };
+            self.st.feed = if self.st.modal.feed_mode == 930 {
+                f
+            } else {
+                f * u
+            };
+            if self.st.modal.feed_mode != 930 {
+                canon!(self, "SET_FEED_RATE({})", f4(f));
+            }
+        }
+        if let Some(s) = w.get(b'S') {
+            self.st.spindle = s;
+            canon!(self, "SET_SPINDLE_SPEED(0, {})", f4(s));
+            if self.st.spindle_dir != 0 {
+                let (rpm, dir) = (s, self.st.spindle_dir);
+                self.event(EventKind::Spindle { rpm, dir });
+            }
+        }
+        if let Some(t) = w.get(b'T') {
+            let t = t.round().max(0.0) as u32;
+            self.st.next_tool = t;
+            self.check_tool(t, w.sp(b'T'))?;
+            canon!(self, "SELECT_TOOL({t})");
+            if self.dialect == Dialect::Servoworks {
+                // ServoWorks changes the tool with the T word itself.
+                self.st.tool = t;
+                self.event(EventKind::ToolChange { tool: t });
+            } else {
+                self.event(EventKind::ToolSelect { tool: t });
+            }
+        }
+        // Subprogram calls (FANUC/ServoWorks) are handled at the end of the block.
+        let sw_m_after = self.dialect == Dialect::Servoworks;
+        if !sw_m_after {
+            self.exec_m_before(w)?;
+        }
+        if !w.g.is_empty() {
+            self.exec_modal_g(w)?;
+        }
         self.exec_fanuc_modes(w)?;
         // Subprogram call blocks (FANUC / ServoWorks): the motion in the block is ignored.
         if w.has_m(980) || (!ngc && w.has_g(650)) {
@@ -761,5 +761,21 @@ impl Interp<'_, '_> {
         }
         // Stops and ends.
         self.exec_stops(w, fi)
+    }
+}
+
+/// The block's N number as written, for the canon: its digits without spaces or a
+/// fraction.
+fn n_text(prog: &Program, w: &Words) -> Option<String> {
+    match (w.n_span, w.n) {
+        (Some(span), _) => Some(
+            prog.str_of(span)
+                .chars()
+                .filter(|c| !c.is_whitespace())
+                .take_while(|c| *c != '.')
+                .collect(),
+        ),
+        (None, Some(n)) => Some(format!("{n}")),
+        (None, None) => None,
     }
 }

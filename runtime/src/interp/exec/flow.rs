@@ -565,6 +565,10 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn exec_stops(&mut self, w: &Words, fi: usize) -> Result<Flow, Diagnostic> {
+        // Every stop and end is an M code.
+        if w.m.is_empty() {
+            return Ok(Flow::Next);
+        }
         if w.has_m(600) && self.ngc() {
             self.canon("PALLET_SHUTTLE()");
         }

@@ -171,9 +171,10 @@ impl Interp<'_, '_> {
         // The approach is made with the block's own numbers as absolute
         // coordinates (LinuxCNC switches to G90 before it), also under G91.
         let mut approach = Words::default();
-        for l in b"XYZABC" {
-            let i = (l - b'A') as usize;
-            approach.v[i] = w.v[i];
+        for &l in b"XYZABC" {
+            if let Some(v) = w.get(l) {
+                approach.set(l, v);
+            }
         }
         approach.g.push((0, span));
         self.g7x_move(&approach, span)?;
@@ -296,7 +297,7 @@ impl Interp<'_, '_> {
     /// Makes one move of the cycle (absolute coordinates, absolute arc centres).
     fn g7x_emit(&mut self, path: &Path, m: Out, span: Span) -> Result<(), Diagnostic> {
         let mut w = Words::default();
-        let set = |w: &mut Words, l: u8, v: f64| w.v[(l - b'A') as usize] = Some(v);
+        let set = |w: &mut Words, l: u8, v: f64| w.set(l, v);
         let put = |w: &mut Words, p: C| {
             set(w, b'X', p.im);
             set(w, b'Z', p.re);

@@ -53,6 +53,10 @@ impl Interp<'_, '_> {
     }
 
     pub(super) fn exec_m_before(&mut self, w: &Words) -> Result<(), Diagnostic> {
+        // Every step below is an M code's.
+        if w.m.is_empty() {
+            return Ok(());
+        }
         let ngc = self.ngc();
         if w.has_m(60) && !(self.dialect == Dialect::Servoworks) {
             let t = self.st.next_tool;
@@ -226,11 +230,7 @@ impl Interp<'_, '_> {
             let span = if w.has(b'S') {
                 w.sp(b'S')
             } else {
-                b"XYZABCUVW"
-                    .iter()
-                    .find(|c| w.has(**c))
-                    .map(|c| w.sp(*c))
-                    .unwrap_or_default()
+                w.first_axis().map(|c| w.sp(c)).unwrap_or_default()
             };
             self.diag(&RIGID_TAP, Severity::Error, span, "S command or axis movement between M29 and G84/G74: the control alarms (PS0203); position the tool before M29 and give the tap right after it");
         }

@@ -337,6 +337,10 @@ impl Interp<'_, '_> {
 
     /// Non-modal codes that consume axis words. Returns whether they did.
     pub(super) fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
+        // Every code below is a G code.
+        if w.g.is_empty() {
+            return Ok(false);
+        }
         if self.dialect == Dialect::Servoworks && w.has_g(370) {
             self.exec_g37(w)?;
             return Ok(true);
