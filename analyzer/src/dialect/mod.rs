@@ -263,10 +263,72 @@ impl CodeInfo {
 
 /// Looks a code up in a dialect's table.
 pub fn lookup(dialect: Dialect, letter: char, num: CodeNum) -> Option<&'static CodeInfo> {
-    dialect
-        .codes()
-        .iter()
-        .find(|c| c.letter == letter && c.num == num)
+    let codes = dialect.codes();
+    match CodeIndex::of(dialect).position(letter, num) {
+        Some(Some(i)) => codes.get(i),
+        Some(None) => None,
+        None => codes.iter().find(|c| c.letter == letter && c.num == num),
+    }
+}
+
+/// G and M codes (tenths) below this are found through [`CodeIndex`].
+const INDEXED_CODES: usize = 1024;
+
+/// Where each G and M code below [`INDEXED_CODES`] is in a dialect's table (its
+/// first entry), so that the lookup every block makes is one load, not a scan of
+/// a table of a few hundred codes.
+struct CodeIndex {
+    g: Vec<u16>,
+    m: Vec<u16>,
+}
+
+impl CodeIndex {
+    /// Marks a code the table does not have.
+    const NONE: u16 = u16::MAX;
+
+    fn of(dialect: Dialect) -> &'static CodeIndex {
+        static INDEX: [std::sync::OnceLock<CodeIndex>; 3] = [
+            std::sync::OnceLock::new(),
+            std::sync::OnceLock::new(),
+            std::sync::OnceLock::new(),
+        ];
+        let slot = match dialect {
+            Dialect::Servoworks => &INDEX[0],
+            Dialect::Rs274ngc => &INDEX[1],
+            Dialect::Fanuc => &INDEX[2],
+        };
+        slot.get_or_init(|| CodeIndex::build(dialect.codes()))
+    }
+
+    fn build(codes: &[CodeInfo]) -> CodeIndex {
+        let mut index = CodeIndex {
+            g: vec![Self::NONE; INDEXED_CODES],
+            m: vec![Self::NONE; INDEXED_CODES],
+        };
+        for (i, c) in codes.iter().enumerate().rev() {
+            let list = match c.letter {
+                'G' => &mut index.g,
+                'M' => &mut index.m,
+                _ => continue,
+            };
+            if let (Some(slot), Ok(i)) = (list.get_mut(c.num.0 as usize), u16::try_from(i)) {
+                *slot = i;
+            }
+        }
+        index
+    }
+
+    /// `Some(position)` for an indexed code (`Some(None)`: not in the table);
+    /// `None` when the code is not indexed and the table must be searched.
+    fn position(&self, letter: char, num: CodeNum) -> Option<Option<usize>> {
+        let list = match letter {
+            'G' => &self.g,
+            'M' => &self.m,
+            _ => return None,
+        };
+        let at = *list.get(num.0 as usize)?;
+        Some((at != Self::NONE).then_some(usize::from(at)))
+    }
 }
 
 /// The meaning of one address letter (a non-G/M word) in a dialect, for hover.
@@ -639,5 +701,35 @@ mod tests {
         assert_eq!(g80.as_deref(), Some("09"));
         let m30 = lookup(Dialect::Fanuc, 'M', CodeNum(300)).map(|c| c.hover(Dialect::Fanuc));
         assert!(m30.unwrap_or_default().contains("No modal group."));
+    }
+}
+
+#[cfg(test)]
+mod index_tests {
+    use super::*;
+
+    /// The index finds exactly what a scan of the table finds: every code of every
+    /// table, the numbers between them, and letters and numbers it does not index.
+    #[test]
+    fn lookup_agrees_with_a_scan_of_the_table() {
+        for dialect in [Dialect::Servoworks, Dialect::Rs274ngc, Dialect::Fanuc] {
+            let scan = |letter: char, num: CodeNum| {
+                dialect
+                    .codes()
+                    .iter()
+                    .find(|c| c.letter == letter && c.num == num)
+            };
+            for letter in ['G', 'M', 'T', 'D'] {
+                for n in (0..1100).chain([9999, 10_000, u32::MAX]) {
+                    let num = CodeNum(n);
+                    let got = lookup(dialect, letter, num).map(|c| (c.letter, c.num));
+                    let want = scan(letter, num).map(|c| (c.letter, c.num));
+                    assert_eq!(got, want, "{} {letter}{n}", dialect.as_str());
+                }
+            }
+            for c in dialect.codes() {
+                assert!(std::ptr::eq(lookup(dialect, c.letter, c.num).unwrap(), c));
+            }
+        }
     }
 }

@@ -24,17 +24,18 @@ impl<'a> Interp<'a, '_> {
     /// The motion the block performs: an explicit group-01 code, or the modal
     /// one when the block has axis words and no code that consumes them.
     fn block_motion(&self, w: &Words) -> Option<(u32, Span)> {
-        if let Some(&(g, s)) = w.g.iter().find(|(g, _)| moves_to_axis_words(*g)) {
+        if let Some(&(g, s)) = w.g().iter().find(|(g, _)| moves_to_axis_words(*g)) {
             return Some((g, s));
         }
         let consumed = [100u32, 280, 300, 920, 520, 650]
             .iter()
             .any(|g| w.has_g(*g));
         if w.any_axis() && !consumed && self.st.modal.motion != 800 {
-            let span =
-                w.g.first()
-                    .map(|g| g.1)
-                    .unwrap_or_else(|| w.first_axis().map(|c| w.sp(c)).unwrap_or_default());
+            let span = w
+                .g()
+                .first()
+                .map(|g| g.1)
+                .unwrap_or_else(|| w.first_axis().map(|c| w.sp(c)).unwrap_or_default());
             return Some((self.st.modal.motion, span));
         }
         None

@@ -170,16 +170,21 @@ struct Frame {
 
 /// The evaluated words of one block (the rule checks in `crate::rules` read them).
 ///
-/// `letters` has bit `c - b'A'` set for every letter that holds a value, so that
-/// asking for a letter, or for any of a set of letters, costs one mask test and
-/// clearing touches only the letters the block wrote.
+/// `letters` has bit `c - b'A'` set for every letter that holds a value, and
+/// `g_bits` bit `n` for every G code `n` (tenths) below [`G_BITS`], so that asking
+/// for a letter or a code costs one mask test whatever the block holds; clearing
+/// touches only what the block wrote.
 #[derive(Default)]
 pub(crate) struct Words {
     v: [Option<f64>; 26],
     letters: u32,
     pub(crate) span: [Span; 26],
     pub(crate) point: [bool; 26],
-    pub(crate) g: Vec<(u32, Span)>,
+    /// The G codes in the order written (tenths: G41.1 is 411).
+    g: Vec<(u32, Span)>,
+    g_bits: [u64; G_BITS / 64],
+    /// A G code that is not a motion code (`state::is_group_1`) is in `g`.
+    other_g: bool,
     pub(crate) m: Vec<(u32, Span)>,
     pub(crate) pname: Option<String>,
     pub(crate) n: Option<i64>,
@@ -213,6 +218,10 @@ pub(crate) const fn letter_mask(s: &[u8]) -> u32 {
     m
 }
 
+/// G codes (tenths) below this have a bit in [`Words`]; every code of the dialect
+/// tables is (G0 to G99.9), others are looked up in the list.
+const G_BITS: usize = 1024;
+
 /// The axis letters a block can move.
 const AXIS_LETTERS: u32 = letter_mask(b"XYZABCUVW");
 
@@ -225,6 +234,8 @@ impl Words {
             span,
             point,
             g,
+            g_bits,
+            other_g,
             m,
             pname,
             n,
@@ -243,7 +254,13 @@ impl Words {
             point[i] = false;
         }
         *letters = 0;
+        for (code, _) in g.iter() {
+            if let Some(word) = g_bits.get_mut(*code as usize / 64) {
+                *word = 0;
+            }
+        }
         g.clear();
+        *other_g = false;
         m.clear();
         *pname = None;
         *n = None;
@@ -303,8 +320,28 @@ impl Words {
             .copied()
             .unwrap_or_default()
     }
+    /// The block's G codes in the order written.
+    pub(crate) fn g(&self) -> &[(u32, Span)] {
+        &self.g
+    }
+    /// Adds G code `code` (tenths).
+    pub(crate) fn push_g(&mut self, code: u32, span: Span) {
+        self.g.push((code, span));
+        self.other_g |= !is_group_1(code);
+        if let Some(word) = self.g_bits.get_mut(code as usize / 64) {
+            *word |= 1 << (code % 64);
+        }
+    }
+    /// Whether the block has a G code other than a motion code: only such codes
+    /// change modes, offsets or the coordinate system.
+    pub(crate) fn has_other_g(&self) -> bool {
+        self.other_g
+    }
     pub(crate) fn has_g(&self, t: u32) -> bool {
-        self.g.iter().any(|(g, _)| *g == t)
+        match self.g_bits.get(t as usize / 64) {
+            Some(word) => word & (1 << (t % 64)) != 0,
+            None => self.g.iter().any(|(g, _)| *g == t),
+        }
     }
     pub(crate) fn g_span(&self, t: u32) -> Span {
         self.g

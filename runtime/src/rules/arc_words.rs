@@ -59,11 +59,12 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let d = cx.dialect;
     let ngc = d == Dialect::Rs274ngc;
     // A plane code on the arc's own line applies before the arc.
-    let plane =
-        w.g.iter()
-            .find(|g| matches!(g.0, 170 | 180 | 190))
-            .map(|g| g.0)
-            .unwrap_or(st.modal.plane);
+    let plane = w
+        .g()
+        .iter()
+        .find(|g| matches!(g.0, 170 | 180 | 190))
+        .map(|g| g.0)
+        .unwrap_or(st.modal.plane);
     let (a, b, n) = match plane {
         180 => (2, 0, 1),
         190 => (1, 2, 0),

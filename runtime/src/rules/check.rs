@@ -150,7 +150,7 @@ impl Cx<'_, '_> {
     #[inline]
     pub(crate) fn motion_mode(&self) -> u32 {
         self.w
-            .g
+            .g()
             .iter()
             .find(|g| matches!(g.0, 50..=52))
             .map(|g| g.0)

@@ -54,14 +54,18 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if st.modal.comp == 400 {
         return Ok(());
     }
-    let plane = w.g.iter().find(|g| matches!(g.0, 170 | 180 | 190)).copied();
+    let plane = w
+        .g()
+        .iter()
+        .find(|g| matches!(g.0, 170 | 180 | 190))
+        .copied();
     if cx.dialect == Dialect::Fanuc {
         if let Some((p, s)) = plane {
             if p != st.modal.plane {
                 cx.out.diag(&COMP_CONFLICT, Severity::Error, s, "the plane cannot be changed while cutter compensation (G41/G42) is on: the control alarms (PS0037); cancel with G40 first");
             }
         }
-        if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
+        if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
             cx.out.diag(&COMP_CONFLICT, Severity::Error, s, format!("G{} tool position offset cannot be used while cutter compensation (G41/G42) is on: the control alarms (PS0042); cancel with G40 first", g / 10));
         }
         return Ok(());
@@ -96,7 +100,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     if w.has_g(400) {
         return Ok(());
     }
-    if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
+    if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
         return Err(cx.out.err(
             &COMP_CONFLICT,
             s,
@@ -170,7 +174,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
             ));
         }
     }
-    if let Some(&(g, s)) = w.g.iter().find(|g| (540..=593).contains(&g.0)) {
+    if let Some(&(g, s)) = w.g().iter().find(|g| (540..=593).contains(&g.0)) {
         let name = if g % 10 == 0 {
             format!("G{}", g / 10)
         } else {

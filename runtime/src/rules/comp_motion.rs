@@ -83,12 +83,13 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
     let motion = cx.motion;
     let arc = matches!(motion, Some((20 | 30, _)));
     if d == Dialect::Rs274ngc {
-        if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
-            let plane =
-                w.g.iter()
-                    .find(|g| matches!(g.0, 170 | 180 | 190))
-                    .map(|g| g.0)
-                    .unwrap_or(st.modal.plane);
+        if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 410 | 420 | 411 | 421)) {
+            let plane = w
+                .g()
+                .iter()
+                .find(|g| matches!(g.0, 170 | 180 | 190))
+                .map(|g| g.0)
+                .unwrap_or(st.modal.plane);
             let emc2 = cx.variant == Variant::Emc2;
             if (emc2 && plane != 170) || plane == 190 {
                 return Err(Stop::error(cx.out.err(&COMP_MOTION, s, format!("cutter radius compensation (G{}) is not allowed in the G{} plane: LinuxCNC compensates only in {}", g / 10, plane / 10, if emc2 { "G17" } else { "G17 and G18" }))));
@@ -116,16 +117,17 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Stop> {
         return Ok(());
     }
     if let Some((g, s)) = motion {
-        let first = w.g.iter().any(|x| matches!(x.0, 410 | 420)) || (comp_on && st.comp_first);
+        let first = w.g().iter().any(|x| matches!(x.0, 410 | 420)) || (comp_on && st.comp_first);
         if arc && (first || cancel) {
             let which = if cancel { "last" } else { "first" };
             cx.out.diag(&COMP_MOTION, Severity::Error, s, format!("the {which} motion of tool radius compensation cannot be G{:02}: use G00 or G01 to start and end it", g / 10));
         }
     }
     if comp_on && !cancel {
-        if let Some(&(g, s)) =
-            w.g.iter()
-                .find(|x| !matches!(x.0, 0 | 10 | 20 | 30 | 40 | 400 | 410 | 420))
+        if let Some(&(g, s)) = w
+            .g()
+            .iter()
+            .find(|x| !matches!(x.0, 0 | 10 | 20 | 30 | 40 | 400 | 410 | 420))
         {
             let name = if g % 10 == 0 {
                 format!("G{:02}", g / 10)

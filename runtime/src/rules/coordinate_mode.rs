@@ -112,7 +112,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
         );
     }
     let comp_on = m.comp != 400 && !w.has_g(400);
-    if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420)) {
+    if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 410 | 420)) {
         if m.scaling || m.mirror || w.has_g(510) || w.has_g(511) {
             cx.out.diag(&COORDINATE_MODE, Severity::Error, s, format!("G{} cannot be combined with scaling (G51) or mirror image (G51.1): cancel them first", g / 10));
         }

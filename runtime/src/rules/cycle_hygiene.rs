@@ -85,7 +85,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     }
     let modal = st.modal.modal_cycle() && !w.has_g(800);
     if modal && !ngc {
-        if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 0 | 10 | 20 | 30)) {
+        if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 0 | 10 | 20 | 30)) {
             let (sev, msg) = if d == Dialect::Fanuc {
                 (
                     Severity::Info,
@@ -100,7 +100,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
             };
             cx.out.diag(&CYCLE_HYGIENE, sev, s, msg);
         }
-        if let Some(&(p, s)) = w.g.iter().find(|g| matches!(g.0, 170 | 180 | 190)) {
+        if let Some(&(p, s)) = w.g().iter().find(|g| matches!(g.0, 170 | 180 | 190)) {
             if p != st.modal.plane {
                 let sev = if d == Dialect::Fanuc {
                     Severity::Warning
@@ -114,7 +114,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
     if w.has_g(800) {
         mem.q_from = None;
     }
-    let explicit = w.g.iter().find(|g| is_cycle(g.0)).copied();
+    let explicit = w.g().iter().find(|g| is_cycle(g.0)).copied();
     if modal && !ngc && explicit.is_none() {
         let fanuc = d == Dialect::Fanuc;
         let kept: &[u8] = if fanuc { b"QP" } else { b"QR" };
@@ -136,10 +136,10 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic
                 let s = w.g_span(if w.has_g(900) { 900 } else { 910 });
                 cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, s, "G90/G91 changes in canned-cycle mode without R and Z on the line: the stored R and Z are now read in the other mode; give R and Z again");
             }
-            if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 430 | 440 | 490)) {
+            if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 430 | 440 | 490)) {
                 cx.out.diag(&CYCLE_HYGIENE, Severity::Warning, s, format!("G{} in canned-cycle mode: the new length offset takes effect at the positioning to point R, not at once", g / 10));
             }
-            if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
+            if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 450 | 460 | 470 | 480)) {
                 cx.out.diag(
                     &CYCLE_HYGIENE,
                     Severity::Warning,

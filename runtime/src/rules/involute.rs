@@ -66,23 +66,25 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Option<(u32, Span)> {
     // Involute mode restrictions.
     // Involute codes are not in the checks' motion list: find them here.
     let invol: Option<(u32, Span)> = w
-        .g
+        .g()
         .iter()
         .find(|g| matches!(g.0, 22 | 32))
         .copied()
         .or_else(|| {
-            (involute_mode && w.any_axis() && !w.g.iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30)))
-                .then(|| {
-                    (
-                        st.modal.motion,
-                        w.g.first().map(|g| g.1).unwrap_or(cx.bspan),
-                    )
-                })
+            (involute_mode
+                && w.any_axis()
+                && !w.g().iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30)))
+            .then(|| {
+                (
+                    st.modal.motion,
+                    w.g().first().map(|g| g.1).unwrap_or(cx.bspan),
+                )
+            })
         });
     let invol_block = invol.is_some();
     let motion = invol.or(cx.motion);
     if involute_mode || invol_block {
-        for &(g, s) in &w.g {
+        for &(g, s) in w.g() {
             if matches!(g, 400 | 410 | 420) && involute_mode {
                 cx.out.diag(&INVOLUTE, Severity::Error, s, format!("G{} cannot be commanded in involute interpolation mode: give G41/G42 before G02.2/G03.2 and G40 after leaving it", g / 10));
             } else if involute_mode

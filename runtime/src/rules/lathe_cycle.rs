@@ -49,9 +49,10 @@ declare_rule! {
 pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     let (w, st) = (cx.w, cx.st);
     // Lathe roughing/finishing cycles, checked in LinuxCNC's order and words.
-    if let Some(&(g, s)) =
-        w.g.iter()
-            .find(|(g, _)| matches!(g, 700 | 710 | 711 | 712 | 720 | 721 | 722))
+    if let Some(&(g, s)) = w
+        .g()
+        .iter()
+        .find(|(g, _)| matches!(g, 700 | 710 | 711 | 712 | 720 | 721 | 722))
     {
         let name = format!("G{}.{}", g / 10, g % 10);
         if !w.has(b'Q') {

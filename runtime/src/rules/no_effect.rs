@@ -63,10 +63,11 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let motion = cx.motion;
     // NGC107: axis words taken by a group-0 code while a motion mode is only modal.
     if d == Dialect::Rs274ngc && w.any_axis() {
-        let explicit = w.g.iter().any(|g| moves_to_axis_words(g.0));
-        if let Some(&(g, s)) =
-            w.g.iter()
-                .find(|g| matches!(g.0, 100 | 280 | 300 | 520 | 920))
+        let explicit = w.g().iter().any(|g| moves_to_axis_words(g.0));
+        if let Some(&(g, s)) = w
+            .g()
+            .iter()
+            .find(|g| matches!(g.0, 100 | 280 | 300 | 520 | 920))
         {
             if !explicit && st.modal.motion != 800 {
                 let name = analyzer::dialect::CodeNum(g).display();
@@ -82,7 +83,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     }
     // SW084: G41/G42 with no D/H and no radius for the current tool.
     if d == Dialect::Servoworks {
-        if let Some(&(g, s)) = w.g.iter().find(|g| matches!(g.0, 410 | 420)) {
+        if let Some(&(g, s)) = w.g().iter().find(|g| matches!(g.0, 410 | 420)) {
             if !w.has(b'D') && !w.has(b'H') && cx.tool_diameter() == 0.0 {
                 cx.out.diag(&COMP_MOTION, Severity::Warning, s, format!("G{} without D or H and no radius for tool {}: the compensation offset is zero", g / 10, st.tool));
             }
@@ -120,9 +121,10 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     }
     // FAN060 / FAN062: polar coordinate mode (G16).
     if st.modal.polar && !w.has_g(150) {
-        if let Some(&(g, s)) =
-            w.g.iter()
-                .find(|g| matches!(g.0, 40 | 100 | 520 | 920 | 530 | 220 | 680 | 510))
+        if let Some(&(g, s)) = w
+            .g()
+            .iter()
+            .find(|g| matches!(g.0, 40 | 100 | 520 | 920 | 530 | 220 | 680 | 510))
         {
             if w.any_axis() {
                 cx.out.diag(&NO_EFFECT, Severity::Info, s, format!("in polar mode (G16) the axis words of G{:02} are Cartesian, not radius and angle", g / 10));
@@ -146,7 +148,8 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
             cx.out.diag(&NO_EFFECT, Severity::Info, s, format!("M{:02} after rigid tapping was cancelled: S was cleared to S0, so give S again", m / 10));
         }
     }
-    if st.modal.rigid_tap && (w.has_g(800) || w.g.iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30))) {
+    if st.modal.rigid_tap && (w.has_g(800) || w.g().iter().any(|g| matches!(g.0, 0 | 10 | 20 | 30)))
+    {
         mem.rigid_s_cleared = true;
     }
 }

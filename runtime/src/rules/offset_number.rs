@@ -50,9 +50,9 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) {
     for c in [b'H', b'D'] {
         if let Some(v) = w.get(c) {
             let uses = if c == b'H' {
-                w.g.iter().any(|g| matches!(g.0, 430 | 440 | 490))
+                w.g().iter().any(|g| matches!(g.0, 430 | 440 | 490))
             } else {
-                w.g.iter().any(|g| matches!(g.0, 410 | 420))
+                w.g().iter().any(|g| matches!(g.0, 410 | 420))
             };
             if uses && (v < 0.0 || v > count) {
                 cx.out.diag(&OFFSET_NUMBER, Severity::Error, w.sp(c), format!("offset number {}{v} is beyond the {count} offsets of this control (PS0030): use 0 to {count}", c as char));

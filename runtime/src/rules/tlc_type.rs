@@ -55,10 +55,11 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
     let (w, st) = (cx.w, cx.st);
     let tlc_type = cx.input.machine.tlc_type.unwrap_or(0);
     // A plane code in the block applies before its G43/G37.
-    let plane =
-        w.g.iter()
-            .find(|g| matches!(g.0, 170 | 180 | 190))
-            .map_or(st.modal.plane, |g| g.0);
+    let plane = w
+        .g()
+        .iter()
+        .find(|g| matches!(g.0, 170 | 180 | 190))
+        .map_or(st.modal.plane, |g| g.0);
     let perpendicular = match plane {
         180 => 1usize,
         190 => 0,
@@ -77,7 +78,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) {
         )
         .collect();
     // G43/G44: which axis the length offset goes to, by TLC type.
-    if let Some(&(g, _)) = w.g.iter().find(|(g, _)| matches!(g, 430 | 440)) {
+    if let Some(&(g, _)) = w.g().iter().find(|(g, _)| matches!(g, 430 | 440)) {
         let h = w.get(b'H').map(|h| h.round() as i64);
         let allowed = if tlc_type == 1 { perpendicular } else { 2 };
         let has_allowed = axis_words.iter().any(|a| a.0 == allowed);

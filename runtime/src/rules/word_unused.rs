@@ -60,7 +60,7 @@ pub(crate) fn check(cx: &mut Cx<'_, '_>) -> Result<(), Diagnostic> {
     // (also at power on): LinuxCNC has nothing to give them to (enhance_block).
     // G10, G28, G30, G52 and G92 use them themselves; G43.1/G43.2 take them
     // as the offset.
-    let group_1 = w.g.iter().any(|(g, _)| is_group_1(*g));
+    let group_1 = w.g().iter().any(|(g, _)| is_group_1(*g));
     if modal == 800
         && cx.motion.is_none()
         && !group_1

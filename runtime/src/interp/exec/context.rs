@@ -141,7 +141,7 @@ impl Interp<'_, '_> {
         let run = |it: &mut Self, w: &Words| it.exec_words(fi, bi, &p, w, &[], span).map(|_| ());
         if self.st.modal.inch != saved.inch {
             let mut w = Words::default();
-            w.g.push((if saved.inch { 200 } else { 210 }, span));
+            w.push_g(if saved.inch { 200 } else { 210 }, span);
             run(self, &w)?;
         }
         let now = self.current_context();
@@ -164,7 +164,7 @@ impl Interp<'_, '_> {
             // Cutter compensation comes back only as G40: G41/G42 would need the
             // tool and side LinuxCNC does not save either.
             if s != n && !(k == 1 && *s != 400) {
-                w.g.push((*s, span));
+                w.push_g(*s, span);
             }
         }
         // Our tolerance is kept in mm and converted back, LinuxCNC keeps it as
@@ -172,10 +172,10 @@ impl Interp<'_, '_> {
         let differs = |a: f64, b: f64| (a - b).abs() > 1e-9 * a.abs().max(1.0);
         let g64 = differs(saved.tol, now.tol) || differs(saved.naive, now.naive);
         if saved.control != now.control && saved.control != 640 {
-            w.g.push((saved.control, span));
+            w.push_g(saved.control, span);
         }
         if saved.control == 640 && (g64 || saved.control != now.control) {
-            w.g.push((640, span));
+            w.push_g(640, span);
             set(&mut w, b'P', saved.tol);
             set(&mut w, b'Q', saved.naive);
         }

@@ -26,11 +26,12 @@ impl Interp<'_, '_> {
         bspan: Span,
     ) -> Result<(), Diagnostic> {
         let ngc = self.ngc();
-        let span =
-            w.g.iter()
-                .find(|(g, _)| is_cycle(*g))
-                .map(|x| x.1)
-                .unwrap_or(bspan);
+        let span = w
+            .g()
+            .iter()
+            .find(|(g, _)| is_cycle(*g))
+            .map(|x| x.1)
+            .unwrap_or(bspan);
         // LinuxCNC's canned cycles move only X, Y and Z.
         if ngc && mode != 800 {
             for c in [b'A', b'B', b'C'] {

@@ -227,7 +227,7 @@ impl Interp<'_, '_> {
                     };
                     match word.letter {
                         b'G' => match analyzer::dialect::CodeNum::from_value(val) {
-                            Some(c) => w.g.push((c.0, it.span)),
+                            Some(c) => w.push_g(c.0, it.span),
                             None => {
                                 return Err(self.err(
                                     &UNKNOWN_CODE,
@@ -382,7 +382,7 @@ impl Interp<'_, '_> {
             })
         };
         let mut seen: Vec<(char, u8, u32)> = Vec::new();
-        for (letter, list) in [('G', &w.g), ('M', &w.m)] {
+        for (letter, list) in [('G', w.g()), ('M', &w.m)] {
             for (n, span) in list.iter().copied() {
                 if custom(letter, n) {
                     continue;
@@ -526,11 +526,12 @@ impl Interp<'_, '_> {
             self.exec_dwell(w)?;
         }
         if self.st.modal.rotation && [170u32, 180, 190].iter().any(|g| w.has_g(*g)) {
-            let span =
-                w.g.iter()
-                    .find(|g| matches!(g.0, 170 | 180 | 190))
-                    .map(|g| g.1)
-                    .unwrap_or_default();
+            let span = w
+                .g()
+                .iter()
+                .find(|g| matches!(g.0, 170 | 180 | 190))
+                .map(|g| g.1)
+                .unwrap_or_default();
             self.diag(&COORD_DURING_ROTATION, Severity::Error, span, "the plane cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         for (code, name, plane) in [
@@ -666,7 +667,7 @@ impl Interp<'_, '_> {
             self.exec_comment(p, *k, *s)?;
         }
         self.state_checks(w, bspan)?;
-        if !w.g.is_empty() {
+        if w.has_other_g() {
             self.exec_g_before_words(w);
         }
         if let Some(f) = w.get(b'F') {
@@ -712,7 +713,7 @@ impl Interp<'_, '_> {
         if !sw_m_after {
             self.exec_m_before(w)?;
         }
-        if !w.g.is_empty() {
+        if w.has_other_g() {
             self.exec_modal_g(w)?;
         }
         self.exec_fanuc_modes(w)?;
@@ -747,7 +748,7 @@ impl Interp<'_, '_> {
             // A G66 modal call runs the macro after each block that moves an axis.
             if let Some((name, args)) = self.st.g66.clone() {
                 if w.any_axis() && !self.frames.iter().any(|f| f.modal_call) {
-                    let span = w.g.first().map(|g| g.1).unwrap_or(bspan);
+                    let span = w.g().first().map(|g| g.1).unwrap_or(bspan);
                     let flow = self.call_program(fi, bi, &name, 1, Some(args.to_vec()), span)?;
                     if let Some(f) = self.frames.last_mut() {
                         f.modal_call = true;

@@ -91,7 +91,7 @@ impl Interp<'_, '_> {
         if cap.incremental {
             end = end + start;
         }
-        if let Some(m) = w.g.iter().map(|g| g.0).find(|g| is_group_1(*g)) {
+        if let Some(m) = w.g().iter().map(|g| g.0).find(|g| is_group_1(*g)) {
             cap.mode = m;
         }
         if start == end {
@@ -140,7 +140,7 @@ impl Interp<'_, '_> {
 
     /// Runs a G70/G71/G72 block (`mode` 700, 710, 711, 712, 720, 721, 722).
     pub(super) fn exec_g7x(&mut self, mode: u32, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
-        let span = w.g.iter().find(|g| g.0 == mode).map_or(bspan, |g| g.1);
+        let span = w.g().iter().find(|g| g.0 == mode).map_or(bspan, |g| g.1);
         let Some(q) = w.get(b'Q') else {
             return Err(self.err(&LATHE_CYCLE, span, "G7x.x  requires a Q word"));
         };
@@ -176,7 +176,7 @@ impl Interp<'_, '_> {
                 approach.set(l, v);
             }
         }
-        approach.g.push((0, span));
+        approach.push_g(0, span);
         self.g7x_move(&approach, span)?;
 
         // Read the profile: run the subroutine with motion diverted.
@@ -304,11 +304,11 @@ impl Interp<'_, '_> {
         };
         match m {
             Out::Rapid(p) => {
-                w.g.push((0, span));
+                w.push_g(0, span);
                 put(&mut w, path.unmap(p));
             }
             Out::Feed(p) => {
-                w.g.push((10, span));
+                w.push_g(10, span);
                 put(&mut w, path.unmap(p));
             }
             Out::Arc { ccw, c: ctr, e } => {
@@ -318,7 +318,7 @@ impl Interp<'_, '_> {
                 if (self.st.pos[2] - e.re).abs() < 1e-4 && (self.st.pos[0] - e.im).abs() < 1e-4 {
                     return Ok(());
                 }
-                w.g.push((if ccw { 30 } else { 20 }, span));
+                w.push_g(if ccw { 30 } else { 20 }, span);
                 put(&mut w, e);
                 set(&mut w, b'I', ctr.im);
                 set(&mut w, b'K', ctr.re);

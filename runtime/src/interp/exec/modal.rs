@@ -248,7 +248,7 @@ impl Interp<'_, '_> {
             }
             self.st.modal.rigid_tap = true;
         }
-        if w.has_g(800) || w.g.iter().any(|(g, _)| matches!(g, 0 | 10 | 20 | 30)) {
+        if w.has_g(800) || w.g().iter().any(|(g, _)| matches!(g, 0 | 10 | 20 | 30)) {
             self.st.modal.rigid_tap = false;
         }
         if w.has_g(150) {
@@ -346,11 +346,12 @@ impl Interp<'_, '_> {
                 _ => None,
             };
             if on == Some(true) && self.st.modal.tlo_mode == 432 {
-                let span =
-                    w.g.iter()
-                        .find(|g| g.0 == 50 || g.0 == 80)
-                        .map(|g| g.1)
-                        .unwrap_or_default();
+                let span = w
+                    .g()
+                    .iter()
+                    .find(|g| g.0 == 50 || g.0 == 80)
+                    .map(|g| g.1)
+                    .unwrap_or_default();
                 return Err(self.err(&DLACC_TCP, span, "3D-DLACC cannot be combined with tool centre point control (G43.2): the control stops"));
             }
             if let Some(on) = on {
@@ -371,7 +372,7 @@ impl Interp<'_, '_> {
             520, 530, 540, 550, 560, 570, 580, 590, 541, 610, 640, 641, 650, 900, 910, 920, 3100,
             3110,
         ];
-        for (g, s) in &w.g {
+        for (g, s) in w.g() {
             if !ALLOWED.contains(g) {
                 let name = analyzer::dialect::CodeNum(*g).display();
                 let rule = if *g == 432 {

@@ -263,7 +263,7 @@ impl Interp<'_, '_> {
 
     pub(super) fn exec_motion(&mut self, w: &Words, bspan: Span) -> Result<(), Diagnostic> {
         let mut motion = None;
-        for (g, _) in &w.g {
+        for (g, _) in w.g() {
             if matches!(
                 g,
                 0 | 10
@@ -820,11 +820,12 @@ impl Interp<'_, '_> {
         let e2 = [t[a], t[b]];
         let has_r = w.has(b'R');
         let has_c = w.has(ca) || w.has(cb);
-        let span =
-            w.g.iter()
-                .find(|(g, _)| *g == 20 || *g == 30)
-                .map(|x| x.1)
-                .unwrap_or(bspan);
+        let span = w
+            .g()
+            .iter()
+            .find(|(g, _)| *g == 20 || *g == 30)
+            .map(|x| x.1)
+            .unwrap_or(bspan);
         if self.st.modal.polar && !self.ngc() && has_c {
             self.diag(
                 &ARC_POLAR_IJK,

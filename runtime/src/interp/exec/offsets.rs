@@ -310,11 +310,12 @@ impl Interp<'_, '_> {
         }
         let Some(o) = origin else { return Ok(()) };
         if self.st.modal.rotation {
-            let span =
-                w.g.iter()
-                    .find(|(g, _)| (540..=593).contains(g))
-                    .map(|x| x.1)
-                    .unwrap_or_default();
+            let span = w
+                .g()
+                .iter()
+                .find(|(g, _)| (540..=593).contains(g))
+                .map(|x| x.1)
+                .unwrap_or_default();
             self.diag(&COORD_DURING_ROTATION, Severity::Error, span, "work coordinate systems cannot be changed while coordinate rotation (G68) is on: cancel it with G69 first");
         }
         if o == self.st.modal.origin {
@@ -337,8 +338,8 @@ impl Interp<'_, '_> {
 
     /// Non-modal codes that consume axis words. Returns whether they did.
     pub(super) fn exec_modal0(&mut self, w: &Words) -> Result<bool, Diagnostic> {
-        // Every code below is a G code.
-        if w.g.is_empty() {
+        // Every code below is a G code other than a motion code.
+        if !w.has_other_g() {
             return Ok(false);
         }
         if self.dialect == Dialect::Servoworks && w.has_g(370) {
