@@ -993,6 +993,14 @@ impl Planner {
             }
             tc.run.cycle_time = cycle;
             let next_t = self.queue.front().map(|n| self.real_target_vel(n));
+            // Once a parabolic blend has started the next element moves in the same
+            // periods, so they are not skipped.
+            if !tc.run.blending_next {
+                cycles += servo::cruise(&mut tc.run, &view, next_t, cycle, budget - cycles);
+                if cycles >= budget {
+                    continue;
+                }
+            }
             servo::update_cycle(&mut tc.run, &view, next_t, cycle);
             cycles += 1;
             if tc.term == Term::Parabolic {

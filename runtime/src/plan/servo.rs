@@ -112,6 +112,74 @@ pub(super) fn update_cycle(r: &mut Run, v: &View, next_target: Option<f64>, cycl
     check_end(r, v, next_target, cycle);
 }
 
+/// Runs, at once, the periods in which an element holds its target speed and is
+/// not yet near its end (no deceleration, no split): returns how many periods it
+/// advanced, at most `max`. Each is exactly what [`update_cycle`] does in such a
+/// period (the same addition to `progress`), so the state is bit for bit the same;
+/// a long move then costs one addition per period instead of one update.
+///
+/// Every condition such a period depends on (the trapezoid update keeps the
+/// speed, `check_end` changes nothing) holds for all remaining distances above a
+/// threshold, since rounded arithmetic is monotone. The thresholds are solved for
+/// and then checked with the very predicates the update uses; when a check fails
+/// nothing is skipped.
+pub(super) fn cruise(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64, max: u64) -> u64 {
+    let cv = r.currentvel;
+    // The update keeps the speed only when it already is the target speed (the
+    // trapezoid's acceleration is then 0) and the linear ramp is not in use.
+    let vf = final_vel(v, next_target);
+    let ramp = r.ramp && v.tangent && vf >= VEL_EPS;
+    if max == 0 || ramp || r.splitting || r.remove || cv.to_bits() != v.v_target.to_bits() {
+        return 0;
+    }
+    if !(cv > 0.0 && cv.is_finite() && r.cycle_time.to_bits() == cycle.to_bits() && v.accel > 0.0) {
+        return 0;
+    }
+    let ct = r.cycle_time;
+    let a = v.accel;
+    let half = a * ct * 0.5;
+    let d3 = half * half;
+    let keeps_speed = |dx: f64| {
+        let disc = vf * vf + a * (2.0 * dx - cv * ct) + d3;
+        cruising(disc, d3, half, v.v_target, cv)
+    };
+    let v_avg = (cv + vf) / 2.0;
+    let end_is_far =
+        |dx: f64| dx > POS_EPS && (v.stop || far_from_end(dx, v_avg, cv, vf, a, cycle));
+    let need = v.v_target + half;
+    let pre = ((need * need * (1.0 + MARGIN) - vf * vf - d3) / a + cv * ct) / 2.0;
+    let post = if v.stop {
+        2.0 * POS_EPS
+    } else {
+        (cycle * v_avg * (1.0 + MARGIN)).max((vf - cv).abs() * v_avg / (a * (1.0 - MARGIN)))
+    };
+    let (Some(pre), Some(post)) = (
+        verified_threshold(pre, keeps_speed),
+        verified_threshold(post, end_is_far),
+    ) else {
+        return 0;
+    };
+    // The same expression as the update's, with `v_next == currentvel`.
+    let step = (cv + cv) * 0.5 * ct;
+    let mut n = 0;
+    while n < max && v.target - r.progress >= pre && v.target - (r.progress + step) >= post {
+        r.progress += step;
+        n += 1;
+    }
+    if n > 0 {
+        r.peak = r.peak.max(cv);
+        r.on_final_decel = false;
+    }
+    n
+}
+
+/// A remaining distance at and above which `holds` is true (it is monotone), found
+/// a little above the solved `guess` and checked; `None` when the check fails.
+fn verified_threshold(guess: f64, holds: impl Fn(f64) -> bool) -> Option<f64> {
+    let t = guess.max(POS_EPS) * (1.0 + 1e-9) + 2.0 * POS_EPS;
+    (t.is_finite() && holds(t)).then_some(t)
+}
+
 /// `tpCheckEndCondition`.
 fn check_end(r: &mut Run, v: &View, next_target: Option<f64>, cycle: f64) {
     r.cycle_time = cycle;
@@ -399,6 +467,62 @@ mod tests {
             far_periods > periods / 2,
             "{far_periods} of {periods} far from the end"
         );
+    }
+
+    /// Elements run to their end with [`cruise`] skipping what it can and with one
+    /// update per period: after every skipped stretch and every update the states
+    /// are bit for bit the same, the period counts agree, and most periods of the
+    /// longer elements are skipped.
+    #[test]
+    fn cruise_changes_no_bit() {
+        let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+        let cycle = 0.001;
+        let (mut periods, mut skipped) = (0u64, 0u64);
+        for case in 0..2000 {
+            let x = rng.next();
+            let v_target = rng.pick(&[0.5, 5.0, 33.333_333_333_333_336, 250.0]) * (0.5 + x);
+            let v = View {
+                target: rng.pick(&[1e-9, 0.05, 0.3, 2.4, 40.0]) * (0.5 + x),
+                v_target,
+                finalvel: rng.pick(&[0.0, v_target, v_target * x, v_target * 2.0]),
+                tangent: case % 3 != 0,
+                stop: case % 5 == 0,
+                accel: rng.pick(&[1.0, 10.0, 500.0, 1000.0, 20000.0]) * (0.5 + x),
+            };
+            let next_target = rng.pick(&[None, Some(v_target), Some(v_target * x), Some(0.0)]);
+            let mut a = Run {
+                currentvel: rng.pick(&[0.0, v_target, v_target * x, v_target * 1.5]),
+                cycle_time: cycle,
+                ramp: case % 7 == 0,
+                ..Run::default()
+            };
+            let mut b = a;
+            let max = 200_000;
+            let mut n = 0;
+            while n < max && !(a.remove || a.splitting) {
+                let k = cruise(&mut a, &v, next_target, cycle, max - n);
+                for _ in 0..k {
+                    update_cycle(&mut b, &v, next_target, cycle);
+                }
+                assert_eq!(bits(&a), bits(&b), "case {case} after {k} skipped: {v:?}");
+                skipped += k;
+                n += k;
+                if n >= max {
+                    break;
+                }
+                update_cycle(&mut a, &v, next_target, cycle);
+                update_cycle(&mut b, &v, next_target, cycle);
+                assert_eq!(bits(&a), bits(&b), "case {case}: {v:?}");
+                n += 1;
+            }
+            periods += n;
+            // The reference ends in the same period.
+            if n < max {
+                assert!(b.remove || b.splitting, "case {case}: {v:?}");
+            }
+        }
+        assert!(periods > 1_000_000, "{periods} periods");
+        assert!(skipped > periods * 3 / 4, "{skipped} of {periods} skipped");
     }
 
     /// Single updates from random states, including states no run reaches (speed
