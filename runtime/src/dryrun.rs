@@ -367,10 +367,18 @@ fn naive_event_seconds(e: &plan::Event, rapid: f64) -> f64 {
 /// ([`stream_totals`] does both). Running a closed-form planner alongside instead
 /// would double the planning cost of every program to save a second interpreter
 /// pass for the few that run longer than four hours.
+///
+/// To spare that second pass, a servo-period plan keeps a copy of the chunks it
+/// was given, up to [`REPLAY_BYTES`]: when it passes the limit with the copy
+/// whole, it plans the copy closed-form and goes on so. A run whose first four
+/// hours of motion need more than that is still run twice.
 pub struct StreamPlan {
     planner: Option<plan::Planner>,
     /// The planner simulates servo periods, so the limit applies.
     servo: bool,
+    /// The chunks so far, while the limit may still be passed and they fit.
+    replay: Option<Replay>,
+    profile: MachineProfile,
     naive_s: f64,
     rapid: f64,
     motions: usize,
@@ -425,12 +433,46 @@ impl StreamBlocks {
     }
 }
 
+/// Bytes of motions and events a [`StreamPlan`] keeps to plan again
+/// closed-form (about 150 000 motions).
+pub const REPLAY_BYTES: usize = 32 << 20;
+
+/// The chunks a [`StreamPlan`] was given, in order.
+#[derive(Debug)]
+struct Replay {
+    chunks: Vec<(Vec<Motion>, Vec<IEvent>)>,
+    bytes: usize,
+    limit: usize,
+}
+
+impl Replay {
+    fn new(limit: usize) -> Replay {
+        Replay {
+            chunks: Vec::new(),
+            bytes: 0,
+            limit,
+        }
+    }
+
+    /// Keeps a copy of a chunk; false when it would pass the limit.
+    fn keep(&mut self, motions: &[Motion], events: &[IEvent]) -> bool {
+        self.bytes += std::mem::size_of_val(motions) + std::mem::size_of_val(events);
+        if self.bytes > self.limit {
+            return false;
+        }
+        self.chunks.push((motions.to_vec(), events.to_vec()));
+        true
+    }
+}
+
 impl StreamPlan {
     /// Plans with `profile` as given.
     pub fn new(profile: &MachineProfile) -> StreamPlan {
         StreamPlan {
             planner: Some(plan::Planner::new(profile)),
             servo: profile.servo_simulation,
+            replay: profile.servo_simulation.then(|| Replay::new(REPLAY_BYTES)),
+            profile: profile.clone(),
             naive_s: 0.0,
             rapid: profile.traj_max_velocity.max(1e-9),
             motions: 0,
@@ -446,6 +488,15 @@ impl StreamPlan {
         StreamPlan::new(&cf)
     }
 
+    /// Keeps at most `bytes` of the run to plan again (instead of
+    /// [`REPLAY_BYTES`]); 0 for a host that would rather run the program twice.
+    pub fn with_replay_bytes(mut self, bytes: usize) -> StreamPlan {
+        if let Some(r) = self.replay.as_mut() {
+            r.limit = bytes;
+        }
+        self
+    }
+
     /// Also gathers the per-block figures of [`block_times`] (memory grows with
     /// the program's line count, not with its motions).
     pub fn with_blocks(mut self) -> StreamPlan {
@@ -455,6 +506,34 @@ impl StreamPlan {
 
     /// Feeds the next chunk of the run (see [`crate::interp::MotionSink`]).
     pub fn push(&mut self, motions: &[Motion], events: &[IEvent]) {
+        if self
+            .replay
+            .as_mut()
+            .is_some_and(|r| !r.keep(motions, events))
+        {
+            self.replay = None;
+        }
+        if !self.push_planned(motions, events) {
+            return;
+        }
+        // Past the limit: the whole run is planned closed-form, from the kept
+        // chunks when there are all of them, or by the host's second run.
+        let Some(replay) = self.replay.take() else {
+            return;
+        };
+        let mut again = StreamPlan::closed_form(&self.profile);
+        if self.blocks.is_some() {
+            again = again.with_blocks();
+        }
+        for (m, e) in &replay.chunks {
+            again.push(m, e);
+        }
+        *self = again;
+    }
+
+    /// Plans a chunk; true when it passed the servo-simulation limit (the
+    /// planner is then dropped).
+    fn push_planned(&mut self, motions: &[Motion], events: &[IEvent]) -> bool {
         let first = self.motions;
         self.motions += motions.len();
         let Self {
@@ -466,7 +545,7 @@ impl StreamPlan {
             ..
         } = self;
         let Some(p) = planner.as_mut() else {
-            return;
+            return false;
         };
         let mut over = false;
         interleave(motions, events, first, &mut |e| {
@@ -515,6 +594,7 @@ impl StreamPlan {
         if over {
             *planner = None;
         }
+        over
     }
 
     /// The totals, or `None` when the run passed the servo-simulation limit and must

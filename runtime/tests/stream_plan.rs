@@ -37,7 +37,8 @@ fn input<'a>(
     }
 }
 
-/// (buffered totals, streamed totals, buffered motions, streamed motions).
+/// (buffered totals, streamed totals, buffered motions, streamed motions); the
+/// program is streamed once.
 fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
     let p = program(dialect, text);
     let settings = Settings::new(dialect);
@@ -46,16 +47,17 @@ fn both(dialect: Dialect, text: &str) -> (Totals, Totals, usize, usize) {
     let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
     let dry = dryrun::plan_run(&buffered, &profile);
     let mut streamed_motions = 0;
+    let mut passes = 0;
     let (streamed, totals) = dryrun::stream_totals(&profile, |sink| {
-        // Counts the motions of the last pass only (a run beyond the servo limit
-        // is streamed twice).
-        streamed_motions = 0;
+        passes += 1;
         runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| {
             streamed_motions += m.len();
             sink(m, e)
         })
     });
     assert!(streamed.motions.is_empty() && streamed.events.is_empty());
+    // Past the servo-simulation limit the kept chunks are planned again.
+    assert_eq!(passes, 1);
     assert_eq!(
         format!("{:?}", buffered.diagnostics),
         format!("{:?}", streamed.diagnostics)
@@ -71,15 +73,23 @@ fn stream_plan_asks_for_closed_form_beyond_servo_limit() {
     let machine = analyzer::config::MachineConfig::default();
     let profile = MachineProfile::default_for(dialect);
     assert!(profile.servo_simulation);
-    let run = |text: &str| {
+    let run = |text: &str, replay: usize| {
         let p = program(dialect, text);
-        let mut plan = StreamPlan::new(&profile);
+        let mut plan = StreamPlan::new(&profile).with_replay_bytes(replay);
         runtime::run_streaming(&input(&p, &settings, &machine), &mut |m, e| plan.push(m, e));
         plan.finish()
     };
-    // Three passes at 1 mm/min take more than four hours of naive motion time.
-    assert_eq!(run(&job(3, 1.0)), None);
-    let short = run(&job(3, 1500.0));
+    // Three passes at 1 mm/min take more than four hours of naive motion time:
+    // without the chunks kept the run must be streamed again.
+    assert_eq!(run(&job(3, 1.0), 0), None);
+    // With them (the default), the plan is closed-form from the start, as
+    // `plan_run` makes it.
+    let p = program(dialect, &job(3, 1.0));
+    let buffered = runtime::run_with_snapshots(&input(&p, &settings, &machine), false);
+    let want = dryrun::plan_run(&buffered, &profile).totals;
+    assert!(want.cutting_s > dryrun::SERVO_SIMULATION_LIMIT_S);
+    assert_eq!(run(&job(3, 1.0), dryrun::REPLAY_BYTES), Some(want));
+    let short = run(&job(3, 1500.0), 0);
     assert!(
         short.as_ref().is_some_and(|t| t.cutting_s > 0.0),
         "{short:?}"
