@@ -27,9 +27,11 @@ impl<'a> Interp<'a, '_> {
         if let Some(&(g, s)) = w.g().iter().find(|(g, _)| moves_to_axis_words(*g)) {
             return Some((g, s));
         }
-        let consumed = [100u32, 280, 300, 920, 520, 650]
-            .iter()
-            .any(|g| w.has_g(*g));
+        // None of the codes that consume axis words is a motion code.
+        let consumed = w.has_other_g()
+            && [100u32, 280, 300, 920, 520, 650]
+                .iter()
+                .any(|g| w.has_g(*g));
         if w.any_axis() && !consumed && self.st.modal.motion != 800 {
             let span = w
                 .g()

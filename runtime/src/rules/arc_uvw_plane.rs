@@ -52,7 +52,8 @@ pub(crate) struct Mem {
 #[inline(always)]
 pub(crate) fn check(cx: &mut Cx<'_, '_>, mem: &mut Mem) -> Result<(), Diagnostic> {
     let w = cx.w;
-    let gm = |codes: &[u32]| codes.iter().any(|c| w.has_g(*c));
+    // The plane codes are not motion codes: a block with motion codes only has none.
+    let gm = |codes: &[u32]| w.has_other_g() && codes.iter().any(|c| w.has_g(*c));
     // Plane selection for arcs in UVW planes.
     if let Some(&(g, s)) = cx.motion.as_ref().filter(|m| matches!(m.0, 20 | 30)) {
         if mem.uvw_plane && !gm(&[170, 180, 190]) {
