@@ -674,33 +674,30 @@ impl Planner {
         // Rapid and feed moves are never blended, and every axis of a dog-leg
         // rapid starts from rest.
         let stop = |prev: &Tc, tc: &Tc| prev.rapid != tc.rapid || tc.dogleg;
-        if self.lcnc() {
-            if let Some(mut prev) = self.queue.pop_back() {
-                if stop(&prev, &tc) {
-                    set_term(&mut prev, Some(&mut tc), Term::Stop);
-                }
-                let (blend, consumed) = self.lcnc_junction(&mut prev, &mut tc);
-                if !consumed {
-                    self.finalize(&mut prev);
-                    self.queue.push_back(prev);
+        // The newest element is set up where it is (an element is several hundred
+        // bytes); the junctions read no other element.
+        let mut queue = std::mem::take(&mut self.queue);
+        if let Some(prev) = queue.back_mut() {
+            if stop(prev, &tc) {
+                set_term(prev, Some(&mut tc), Term::Stop);
+            }
+            if self.lcnc() {
+                // A blend arc may swallow the older element, and goes after it.
+                let (blend, consumed) = self.lcnc_junction(prev, &mut tc);
+                if consumed {
+                    queue.pop_back();
+                } else {
+                    self.finalize(prev);
                 }
                 if let Some(b) = blend {
-                    self.queue.push_back(b);
+                    queue.push_back(b);
                 }
-            }
-        } else {
-            // The generic junction never removes or inserts an element, so the
-            // newest one is set up where it is (an element is several hundred bytes).
-            let mut queue = std::mem::take(&mut self.queue);
-            if let Some(prev) = queue.back_mut() {
-                if stop(prev, &tc) {
-                    set_term(prev, Some(&mut tc), Term::Stop);
-                }
+            } else {
                 self.generic_junction(prev, &mut tc);
                 self.finalize(prev);
             }
-            self.queue = queue;
         }
+        self.queue = queue;
         let v = self.real_target_vel(&tc);
         tc.run_vmax = match self.queue.back() {
             Some(prev) if prev.term == Term::Tangent => prev.run_vmax.max(v),
